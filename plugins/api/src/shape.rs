@@ -1,0 +1,99 @@
+use std::fmt::Debug;
+
+use glam::{DVec2, DVec3};
+
+use crate::{Aabb, Ray};
+
+/// The cheap result of [`Shape::intersect`]: the ray parameter plus scratch values the
+/// shape may keep to finish the job in [`Shape::surface`] (which part was hit, barycentrics...).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Hit {
+    /// Ray parameter of the hit.
+    pub t: f64,
+    /// Which part of the shape was hit (for example 0 = side, 1 = base cap, 2 = top cap).
+    pub part: u32,
+    /// Free scratch space for the shape.
+    pub scratch: DVec3,
+}
+
+impl Hit {
+    /// A hit at `t` on part 0 with no scratch data.
+    pub fn at(t: f64) -> Self {
+        Self { t, ..Self::default() }
+    }
+
+    /// A hit at `t` on `part`.
+    pub fn on_part(t: f64, part: u32) -> Self {
+        Self { t, part, scratch: DVec3::ZERO }
+    }
+}
+
+/// Geometry at a hit, in object space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surface {
+    /// The hit point.
+    pub point: DVec3,
+    /// Unit geometric normal, pointing out of the shape (for open surfaces: the shape's own
+    /// front side). The integrators flip it toward the viewer; they never rely on its sign
+    /// for shading, only for entering and leaving interiors.
+    pub normal: DVec3,
+    /// Unit shading normal (interpolated on meshes); equal to `normal` on analytic shapes.
+    pub shading_normal: DVec3,
+    /// Surface parameterisation for texturing, each component in [0, 1] where defined.
+    pub uv: DVec2,
+}
+
+impl Surface {
+    /// A surface point whose shading normal is its geometric normal.
+    pub fn new(point: DVec3, normal: DVec3, uv: DVec2) -> Self {
+        Self { point, normal, shading_normal: normal, uv }
+    }
+}
+
+/// A point sampled uniformly on a shape's surface (object space).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaSample {
+    /// The sampled point.
+    pub point: DVec3,
+    /// Unit outward normal there.
+    pub normal: DVec3,
+    /// Probability density with respect to area (1 / area for uniform sampling).
+    pub pdf_area: f64,
+}
+
+/// A shape in its own object space. Prism transforms rays into this space; `t` is shared
+/// between spaces because the direction is not renormalised.
+pub trait Shape: Send + Sync + Debug + 'static {
+    /// Object-space bounds; [`Aabb::INFINITE`] for unbounded shapes.
+    fn bounds(&self) -> Aabb;
+
+    /// The nearest hit with `t_min < t < t_max`, if any. Keep it cheap: the full surface
+    /// is computed once, for the winning hit, by [`Shape::surface`].
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit>;
+
+    /// The surface at a hit this shape returned for this ray.
+    fn surface(&self, ray: &Ray, hit: &Hit) -> Surface;
+
+    /// True when anything lies on the ray with `t_min < t < t_max` (shadow rays).
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        self.intersect(ray, t_min, t_max).is_some()
+    }
+
+    /// Surface area, for shapes that can be area lights.
+    fn area(&self) -> Option<f64> {
+        None
+    }
+
+    /// A uniformly distributed point on the surface from `u` in [0,1)^2.
+    fn sample_area(&self, u: DVec2) -> Option<AreaSample> {
+        let _ = u;
+        None
+    }
+
+    /// The POV-Ray 3.7 SDL of this shape in object space, already mapped to POV-Ray's
+    /// left-handed frame with [`crate::pov::vector`] (z negated). `None` when the shape has
+    /// no POV-Ray equivalent; the exporter then reports an error naming it.
+    fn to_pov(&self) -> Option<String> {
+        None
+    }
+}
