@@ -1,1 +1,175 @@
-fn main() {}
+//! The `prism` command line.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+use prism::render::{RenderOptions, render};
+use prism::scene::Scene;
+use prism::scene::components::ToneMap;
+use prism::scene::load::{load_file, load_from};
+use prism::{builtin, output, plugins, prepare};
+
+/// Prism renders scenes written as TOML: analytic shapes, lights and materials, to PNG and
+/// OpenEXR. With no arguments it renders the built-in demo room to `prism.png`.
+#[derive(Parser)]
+#[command(name = "prism", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene file to an image.
+    Render(RenderArgs),
+    /// List the registered shape types and their parameters.
+    Shapes,
+    /// Load a scene and write it back as one self-contained TOML file (includes flattened).
+    Save {
+        /// The scene file.
+        scene: PathBuf,
+        /// Where to write it (standard output when absent).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+}
+
+#[derive(Args, Default)]
+struct RenderArgs {
+    /// The scene file (TOML).
+    scene: PathBuf,
+    /// Tone-mapped image (format from the extension: png, ppm, jpg, bmp, tga, tif, qoi, exr, hdr).
+    /// Defaults to the scene's name with `.png` when neither -o nor --exr is given.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Linear, unclipped OpenEXR image.
+    #[arg(long)]
+    exr: Option<PathBuf>,
+    /// Image width in pixels (overrides the scene).
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height in pixels (overrides the scene).
+    #[arg(long)]
+    height: Option<u32>,
+    /// Samples per pixel (overrides the scene).
+    #[arg(long)]
+    samples: Option<u32>,
+    /// Render threads (default: one per core).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Seed of every random number (overrides the scene).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Exposure in stops for the tone-mapped image (overrides the scene).
+    #[arg(long, allow_hyphen_values = true)]
+    exposure: Option<f64>,
+    /// Tone-mapping operator for the tone-mapped image (overrides the scene).
+    #[arg(long, value_enum)]
+    tone_map: Option<ToneMap>,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => render_default(),
+        Some(Command::Render(args)) => render_command(&args),
+        Some(Command::Shapes) => {
+            print!("{}", prism::registry::describe(&plugins::registry()));
+            Ok(())
+        }
+        Some(Command::Save { scene, output }) => save_command(&scene, output.as_deref()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("{message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn render_default() -> Result<(), String> {
+    let registry = plugins::registry();
+    let scene = load_from(&builtin::FILES, Path::new(builtin::DEFAULT_SCENE), &registry).map_err(|e| e.to_string())?;
+    let args = RenderArgs { output: Some(PathBuf::from("prism.png")), ..RenderArgs::default() };
+    render_scene(scene, &args)
+}
+
+fn render_command(args: &RenderArgs) -> Result<(), String> {
+    let registry = plugins::registry();
+    let scene = load_file(&args.scene, &registry).map_err(|e| e.to_string())?;
+    render_scene(scene, args)
+}
+
+fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
+    let settings = &mut scene.render;
+    if let Some(w) = args.width {
+        settings.width = w;
+    }
+    if let Some(h) = args.height {
+        settings.height = h;
+    }
+    if let Some(s) = args.samples {
+        settings.samples = s;
+    }
+    if let Some(s) = args.seed {
+        settings.seed = s;
+    }
+    if let Some(e) = args.exposure {
+        settings.exposure = e;
+    }
+    if let Some(t) = args.tone_map {
+        settings.tone_map = t;
+    }
+    if args.threads == Some(0) {
+        return Err("--threads must be at least 1".into());
+    }
+    let mut outputs: Vec<PathBuf> = args.output.iter().chain(args.exr.iter()).cloned().collect();
+    if outputs.is_empty() {
+        let stem = args.scene.file_stem().map_or("prism".into(), |s| s.to_string_lossy().into_owned());
+        outputs.push(PathBuf::from(format!("{stem}.png")));
+    }
+    if let Some(exr) = &args.exr
+        && output::format_for(exr).map_err(|e| e.to_string())? != output::OutputFormat::Exr
+    {
+        return Err(format!("{}: --exr needs a file ending in .exr", exr.display()));
+    }
+    // Fail before rendering, not after: bad paths and formats are found now.
+    for path in &outputs {
+        output::check_writable(path).map_err(|e| e.to_string())?;
+    }
+    let render_scene = prepare(&mut scene).map_err(|e| e.to_string())?;
+    let options = RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal() };
+    let (film, stats) = render(&render_scene, &options).map_err(|e| e.to_string())?;
+    for path in &outputs {
+        output::write_image(&film, path, scene.render.exposure, scene.render.tone_map).map_err(|e| e.to_string())?;
+    }
+    let names: Vec<String> = outputs.iter().map(|p| p.display().to_string()).collect();
+    eprintln!(
+        "rendered {}x{} at {} spp in {:.3} s: {} primary rays, {} rays in all, {:.2} Mrays/s -> {}",
+        scene.render.width,
+        scene.render.height,
+        scene.render.samples,
+        stats.elapsed.as_secs_f64(),
+        stats.primary_rays,
+        stats.total_rays,
+        stats.mrays_per_second(),
+        names.join(", ")
+    );
+    Ok(())
+}
+
+fn save_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
+    let registry = plugins::registry();
+    let scene = load_file(path, &registry).map_err(|e| e.to_string())?;
+    let text = prism::scene::save::save(&scene).map_err(|e| format!("{}: cannot write scene: {e}", path.display()))?;
+    match output {
+        Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
+        None => {
+            print!("{text}");
+            Ok(())
+        }
+    }
+}

@@ -6,7 +6,10 @@
 //! `occluded` agrees with `intersect`; shrinking `t_max` below a hit never yields a farther
 //! hit; and the hit is invariant (within tolerance) when the ray is expressed through a
 //! random rotation, non-uniform scale and translation and mapped back, as Prism does for
-//! every transformed primitive.
+//! every transformed primitive. A ray whose hit-or-miss answer changes when it is nudged
+//! sideways by a billionth of the shape's size grazes a silhouette or an edge (a triangle's
+//! edge, a disc's rim): there rounding legitimately decides, so such a ray is not counted
+//! against the transform-invariance budget. Rays that hit either way must agree.
 
 use glam::{DAffine3, DQuat, DVec2, DVec3};
 
@@ -117,6 +120,19 @@ fn random_transform(rng: &mut TestRng) -> DAffine3 {
     DAffine3::from_scale_rotation_translation(scale, rotation, translation)
 }
 
+/// True when `ray` grazes a silhouette or an edge of the shape, where hit-or-miss is decided
+/// by rounding: copies of the ray moved sideways by `delta` and `2 delta` miss on one side
+/// and hit on the opposite side. Near a cone's apex or a box's edge the nudged rays hit on
+/// every side, so solvers that lose such hits to rounding are still caught; a shape that
+/// drops hits at random shows no consistent edge and is caught too.
+fn grazes_an_edge(shape: &dyn Shape, ray: &Ray, t_min: f64, t_max: f64, delta: f64) -> bool {
+    let (a, b) = crate::math::orthonormal_basis(ray.direction.normalize());
+    let hits = |offset: DVec3| shape.intersect(&Ray::new(ray.origin + offset, ray.direction), t_min, t_max).is_some();
+    [a, -a, b, -b].into_iter().any(|side| {
+        !hits(side * delta) && !hits(side * (2.0 * delta)) && hits(-side * delta) && hits(-side * (2.0 * delta))
+    })
+}
+
 /// Runs the contract with `config`; panics with a description of the first violation.
 pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
     let mut rng = TestRng::new(config.seed);
@@ -153,11 +169,7 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
             surface.point
         );
         for (what, n) in [("normal", surface.normal), ("shading normal", surface.shading_normal)] {
-            assert!(
-                (n.length() - 1.0).abs() < 1e-9,
-                "{what} {n} is not unit length at {} for {ray:?}",
-                surface.point
-            );
+            assert!((n.length() - 1.0).abs() < 1e-9, "{what} {n} is not unit length at {} for {ray:?}", surface.point);
         }
         assert!(
             !bounds.is_bounded() || bounds.contains(surface.point, tol),
@@ -185,7 +197,9 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
         );
         match shape.intersect(&back, t_min, t_max) {
             Some(h) if (h.t - hit.t).abs() <= tol * (1.0 + hit.t) => {}
-            _ => flips += 1,
+            Some(_) => flips += 1,
+            None if grazes_an_edge(shape, &ray, t_min, t_max, 1e-9 * scale) => {}
+            None => flips += 1,
         }
     }
     let allowed = (config.max_flip_fraction * config.rays as f64).ceil() as usize;
@@ -194,7 +208,11 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
         "{flips} of {} rays changed their hit under a round trip through a random transform (allowed {allowed})",
         config.rays
     );
-    assert!(hits > config.rays / 50, "only {hits} of {} contract rays hit the shape: is intersect() implemented?", config.rays);
+    assert!(
+        hits > config.rays / 50,
+        "only {hits} of {} contract rays hit the shape: is intersect() implemented?",
+        config.rays
+    );
 
     if let Some(area) = shape.area() {
         assert!(area.is_finite() && area > 0.0, "area {area} must be positive");
@@ -209,5 +227,80 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
                 );
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Hit;
+
+    /// The triangle (0,0,0), (1,0,0), (0,1,0): the kit's rays along z through the centre of
+    /// its bounds hit its hypotenuse exactly, where rounding decides hit or miss.
+    #[derive(Debug)]
+    struct RightTriangle;
+
+    impl Shape for RightTriangle {
+        fn bounds(&self) -> Aabb {
+            Aabb::from_corners(DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0))
+        }
+        fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+            if ray.direction.z.abs() <= 1e-12 * ray.direction.length() {
+                return None;
+            }
+            let t = -ray.origin.z / ray.direction.z;
+            let p = ray.at(t);
+            (t > t_min && t < t_max && p.x >= 0.0 && p.y >= 0.0 && p.x + p.y <= 1.0).then(|| Hit::at(t))
+        }
+        fn surface(&self, ray: &Ray, hit: &Hit) -> crate::Surface {
+            crate::Surface::new(ray.at(hit.t), DVec3::Z, DVec2::ZERO)
+        }
+    }
+
+    /// A unit sphere that loses or misplaces hits depending on the last bit of the origin.
+    #[derive(Debug)]
+    struct Flaky {
+        far_instead_of_near: bool,
+    }
+
+    impl Shape for Flaky {
+        fn bounds(&self) -> Aabb {
+            Aabb::from_corners(DVec3::splat(-1.0), DVec3::splat(1.0))
+        }
+        fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+            let d = ray.direction;
+            let (t0, t1) = crate::math::solve_quadratic(
+                d.length_squared(),
+                2.0 * ray.origin.dot(d),
+                ray.origin.length_squared() - 1.0,
+            )?;
+            let odd = ray.origin.x.to_bits() & 1 == 1;
+            if odd && !self.far_instead_of_near {
+                return None;
+            }
+            let candidates = if odd { [t1, t1] } else { [t0, t1] };
+            candidates.into_iter().find(|&t| t > t_min && t < t_max).map(Hit::at)
+        }
+        fn surface(&self, ray: &Ray, hit: &Hit) -> crate::Surface {
+            let p = ray.at(hit.t);
+            crate::Surface::new(p, p.normalize(), DVec2::ZERO)
+        }
+    }
+
+    #[test]
+    fn rays_on_an_edge_may_flip() {
+        check_shape(&RightTriangle);
+    }
+
+    #[test]
+    #[should_panic(expected = "changed their hit")]
+    fn hits_that_move_are_caught() {
+        check_shape(&Flaky { far_instead_of_near: true });
+    }
+
+    #[test]
+    #[should_panic(expected = "changed their hit")]
+    fn hits_lost_at_random_are_caught() {
+        check_shape(&Flaky { far_instead_of_near: false });
     }
 }

@@ -3,9 +3,7 @@
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
-use prism_api::{
-    Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov,
-};
+use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -84,11 +82,7 @@ impl Shape for Sphere {
         let r = (1.0 - z * z).max(0.0).sqrt();
         let phi = TAU * u.y;
         let normal = DVec3::new(r * phi.cos(), r * phi.sin(), z);
-        Some(AreaSample {
-            point: self.center + normal * self.radius,
-            normal,
-            pdf_area: 1.0 / self.area()?,
-        })
+        Some(AreaSample { point: self.center + normal * self.radius, normal, pdf_area: 1.0 / self.area()? })
     }
 
     fn to_pov(&self) -> Option<String> {

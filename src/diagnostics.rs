@@ -1,0 +1,196 @@
+//! Scene diagnostics: every problem in a scene names the file, line, column and key path,
+//! says what is wrong and, where it can, suggests the nearest valid name.
+
+use std::fmt;
+use std::ops::Range;
+use std::sync::Arc;
+
+/// A scene source file kept for turning byte offsets into line and column numbers.
+#[derive(Debug)]
+pub struct SourceFile {
+    /// The path as the user wrote it (or `<built-in>/...` for embedded scenes).
+    pub path: String,
+    /// The file's text.
+    pub text: String,
+}
+
+impl SourceFile {
+    /// 1-based line and column of byte `offset` (columns count characters).
+    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+        let offset = offset.min(self.text.len());
+        let before = &self.text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let col = self.text[line_start..offset].chars().count() + 1;
+        (line, col)
+    }
+}
+
+/// Where something in a scene came from: file, line, column and key path.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Location {
+    /// The scene file.
+    pub file: Arc<str>,
+    /// 1-based line (0 when unknown).
+    pub line: usize,
+    /// 1-based column (0 when unknown).
+    pub column: usize,
+    /// Dotted key path, such as `object[2].radius`.
+    pub key: String,
+}
+
+impl Location {
+    /// The location of byte range `span` of `source`, for key path `key`.
+    pub fn new(source: &SourceFile, file: &Arc<str>, span: Range<usize>, key: impl Into<String>) -> Self {
+        let (line, column) = source.line_col(span.start);
+        Self { file: file.clone(), line, column, key: key.into() }
+    }
+
+    /// A location with no line information (command-line options, files that failed to open).
+    pub fn file_only(file: impl Into<Arc<str>>, key: impl Into<String>) -> Self {
+        Self { file: file.into(), line: 0, column: 0, key: key.into() }
+    }
+
+    /// The same place, pointing at a sub-key.
+    pub fn child(&self, key: &str) -> Self {
+        let key = if self.key.is_empty() { key.to_string() } else { format!("{}.{key}", self.key) };
+        Self { key, ..self.clone() }
+    }
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.line > 0 {
+            write!(f, "{}:{}:{}", self.file, self.line, self.column)
+        } else {
+            write!(f, "{}", self.file)
+        }
+    }
+}
+
+/// One problem in a scene.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Diagnostic {
+    /// Where it is.
+    pub location: Location,
+    /// What is wrong.
+    pub message: String,
+    /// What to do about it, such as "did you mean `radius`?".
+    pub help: Option<String>,
+}
+
+impl Diagnostic {
+    /// A diagnostic at `location`.
+    pub fn new(location: Location, message: impl Into<String>) -> Self {
+        Self { location, message: message.into(), help: None }
+    }
+
+    /// The same diagnostic with a hint.
+    pub fn with_help(mut self, help: impl Into<String>) -> Self {
+        self.help = Some(help.into());
+        self
+    }
+
+    /// Adds "did you mean `x`?" when one of `candidates` is close to `wrong`.
+    pub fn suggest<'a>(self, wrong: &str, candidates: impl IntoIterator<Item = &'a str>) -> Self {
+        match nearest_name(wrong, candidates) {
+            Some(name) => self.with_help(format!("did you mean `{name}`?")),
+            None => self,
+        }
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: error", self.location)?;
+        if !self.location.key.is_empty() {
+            write!(f, " in `{}`", self.location.key)?;
+        }
+        write!(f, ": {}", self.message)?;
+        if let Some(help) = &self.help {
+            write!(f, "\n  help: {help}")?;
+        }
+        Ok(())
+    }
+}
+
+/// One or more problems that stop a scene from loading.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneError {
+    /// The problems, in file order.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl SceneError {
+    /// An error holding one diagnostic.
+    pub fn single(diagnostic: Diagnostic) -> Self {
+        Self { diagnostics: vec![diagnostic] }
+    }
+}
+
+impl From<Diagnostic> for SceneError {
+    fn from(d: Diagnostic) -> Self {
+        Self::single(d)
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, d) in self.diagnostics.iter().enumerate() {
+            if i > 0 {
+                writeln!(f)?;
+            }
+            write!(f, "{d}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// The candidate closest to `wrong` by edit distance, if it is close enough to be a typo.
+pub fn nearest_name<'a>(wrong: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    candidates
+        .into_iter()
+        .map(|c| (strsim::damerau_levenshtein(&wrong.to_lowercase(), &c.to_lowercase()), c))
+        .filter(|(d, c)| *d <= (c.len().max(wrong.len()) / 3).max(2))
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| c)
+}
+
+/// Field names listed in a serde "unknown field `x`, expected one of `a`, `b`" message:
+/// the unknown field and the expected names.
+pub fn parse_unknown_field(message: &str) -> Option<(String, Vec<String>)> {
+    let rest = message.strip_prefix("unknown field `")?;
+    let end = rest.find('`')?;
+    let field = rest[..end].to_string();
+    let expected = rest[end + 1..].split('`').skip(1).step_by(2).map(str::to_string).collect();
+    Some((field, expected))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_and_column() {
+        let s = SourceFile { path: "a.toml".into(), text: "a = 1\nbé = 2\n".into() };
+        assert_eq!(s.line_col(0), (1, 1));
+        assert_eq!(s.line_col(6), (2, 1));
+        assert_eq!(s.line_col(9), (2, 3));
+    }
+
+    #[test]
+    fn suggestions() {
+        assert_eq!(nearest_name("radus", ["radius", "center"]), Some("radius"));
+        assert_eq!(nearest_name("colour", ["color", "ambient"]), Some("color"));
+        assert_eq!(nearest_name("zzzzzz", ["radius", "center"]), None);
+    }
+
+    #[test]
+    fn unknown_field_message() {
+        let (f, e) = parse_unknown_field("unknown field `radus`, expected `center` or `radius`").unwrap();
+        assert_eq!(f, "radus");
+        assert_eq!(e, vec!["center", "radius"]);
+    }
+}

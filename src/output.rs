@@ -1,0 +1,222 @@
+//! `write`: the film to files. EXR stays linear and unclipped; 8-bit formats go through
+//! exposure, a tone-mapping operator and the exact sRGB curve. Every file is written to a
+//! temporary name in the same directory and renamed into place, so a failed or interrupted
+//! render never leaves a half-written image.
+
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+
+use image::{ImageFormat, RgbImage};
+
+use crate::render::film::Film;
+use crate::scene::components::ToneMap;
+
+/// Errors from writing output files.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    /// The extension names no format Prism writes.
+    #[error("{path}: unknown image format `.{extension}` (use .png, .exr, .ppm, .jpg, .bmp, .tga, .tif, .qoi or .hdr)")]
+    UnknownFormat {
+        /// The output path.
+        path: PathBuf,
+        /// Its extension.
+        extension: String,
+    },
+    /// The directory cannot be written.
+    #[error("{path}: cannot write output: {source}")]
+    Io {
+        /// The output path.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Encoding failed.
+    #[error("{path}: cannot encode image: {message}")]
+    Encode {
+        /// The output path.
+        path: PathBuf,
+        /// What the encoder said.
+        message: String,
+    },
+}
+
+/// The file formats Prism writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputFormat {
+    /// Linear float OpenEXR.
+    Exr,
+    /// Radiance HDR (linear float).
+    Hdr,
+    /// An 8-bit format of the image crate.
+    Ldr(ImageFormat),
+}
+
+/// The format for `path`, from its extension.
+pub fn format_for(path: &Path) -> Result<OutputFormat, OutputError> {
+    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let unknown = || OutputError::UnknownFormat { path: path.to_path_buf(), extension: extension.clone() };
+    match extension.as_str() {
+        "exr" => Ok(OutputFormat::Exr),
+        "hdr" => Ok(OutputFormat::Hdr),
+        "png" | "ppm" | "pnm" | "jpg" | "jpeg" | "bmp" | "tga" | "tif" | "tiff" | "qoi" => {
+            ImageFormat::from_extension(&extension).map(OutputFormat::Ldr).ok_or_else(unknown)
+        }
+        _ => Err(unknown()),
+    }
+}
+
+/// Fails early (before a render) when `path` has an unknown format or its directory cannot
+/// be written. Leaves nothing behind.
+pub fn check_writable(path: &Path) -> Result<(), OutputError> {
+    format_for(path)?;
+    let temp = temp_path(path);
+    std::fs::write(&temp, b"").map_err(|source| OutputError::Io { path: path.to_path_buf(), source })?;
+    let _ = std::fs::remove_file(&temp);
+    if path.is_dir() {
+        return Err(OutputError::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::new(std::io::ErrorKind::IsADirectory, "is a directory"),
+        });
+    }
+    Ok(())
+}
+
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    path.with_file_name(format!(".{name}.prism-{}.tmp", std::process::id()))
+}
+
+/// Writes `bytes` to `path` through a temporary file and a rename.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+    let temp = temp_path(path);
+    let io = |source| OutputError::Io { path: path.to_path_buf(), source };
+    if let Err(e) = std::fs::write(&temp, bytes) {
+        let _ = std::fs::remove_file(&temp);
+        return Err(io(e));
+    }
+    std::fs::rename(&temp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&temp);
+        io(e)
+    })
+}
+
+/// The exact sRGB encoding of a linear value in [0, 1].
+pub fn srgb_encode(x: f64) -> f64 {
+    if x <= 0.003_130_8 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 }
+}
+
+/// A tone-mapping operator applied to one linear channel (after exposure).
+pub fn tone_map(x: f64, op: ToneMap) -> f64 {
+    let x = x.max(0.0);
+    match op {
+        ToneMap::Clamp => x,
+        ToneMap::Reinhard => x / (1.0 + x),
+        ToneMap::Aces => (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14),
+    }
+}
+
+/// The film as 8-bit sRGB: exposure (stops), tone map, clip, sRGB curve, round.
+pub fn to_ldr(film: &Film, exposure: f64, op: ToneMap) -> RgbImage {
+    let scale = exposure.exp2();
+    let mut img = RgbImage::new(film.width, film.height);
+    for (dst, src) in img.pixels_mut().zip(&film.pixels) {
+        for c in 0..3 {
+            let v = tone_map(f64::from(src[c]) * scale, op).clamp(0.0, 1.0);
+            dst.0[c] = (srgb_encode(v) * 255.0 + 0.5).floor() as u8;
+        }
+    }
+    img
+}
+
+/// Encodes the film for `path`'s format.
+pub fn encode(film: &Film, path: &Path, exposure: f64, op: ToneMap) -> Result<Vec<u8>, OutputError> {
+    let encode_err =
+        |e: &dyn std::fmt::Display| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() };
+    let mut bytes = Cursor::new(Vec::new());
+    match format_for(path)? {
+        OutputFormat::Exr => {
+            use exr::prelude::*;
+            let (w, h) = (film.width as usize, film.height as usize);
+            let channels = SpecificChannels::rgb(|p: Vec2<usize>| {
+                let [r, g, b] = film.pixels[p.y() * w + p.x()];
+                (r, g, b)
+            });
+            let layer = Layer::new((w, h), LayerAttributes::named("beauty"), Encoding::SMALL_LOSSLESS, channels);
+            Image::from_layer(layer).write().to_buffered(&mut bytes).map_err(|e| encode_err(&e))?;
+        }
+        OutputFormat::Hdr => {
+            let data: Vec<f32> = film.pixels.iter().flatten().copied().collect();
+            let img = image::Rgb32FImage::from_raw(film.width, film.height, data)
+                .ok_or_else(|| encode_err(&"film size mismatch"))?;
+            image::DynamicImage::ImageRgb32F(img).write_to(&mut bytes, ImageFormat::Hdr).map_err(|e| encode_err(&e))?;
+        }
+        OutputFormat::Ldr(ImageFormat::Pnm) => {
+            use image::ImageEncoder;
+            use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
+            let img = to_ldr(film, exposure, op);
+            PnmEncoder::new(&mut bytes)
+                .with_subtype(PnmSubtype::Pixmap(SampleEncoding::Binary))
+                .write_image(img.as_raw(), film.width, film.height, image::ExtendedColorType::Rgb8)
+                .map_err(|e| encode_err(&e))?;
+        }
+        OutputFormat::Ldr(format) => {
+            let img = to_ldr(film, exposure, op);
+            image::DynamicImage::ImageRgb8(img).write_to(&mut bytes, format).map_err(|e| encode_err(&e))?;
+        }
+    }
+    Ok(bytes.into_inner())
+}
+
+/// Writes the film to `path` (format from the extension), atomically.
+pub fn write_image(film: &Film, path: &Path, exposure: f64, op: ToneMap) -> Result<(), OutputError> {
+    let bytes = encode(film, path, exposure, op)?;
+    write_atomically(path, &bytes)
+}
+
+/// Reads a linear RGB EXR back into a film (used by tests and the parity checks).
+pub fn read_exr(path: &Path) -> Result<Film, String> {
+    use exr::prelude::*;
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |resolution, _| Film::new(resolution.width() as u32, resolution.height() as u32),
+        |film: &mut Film, p: Vec2<usize>, (r, g, b, _a): (f32, f32, f32, f32)| {
+            let w = film.width as usize;
+            film.pixels[p.y() * w + p.x()] = [r, g, b];
+        },
+    )
+    .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(image.layer_data.channel_data.pixels)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_curve_matches_pov_ray_quantisation() {
+        // REPORT.md 2: internal 0.35 -> 41038 / 65535 in a 16-bit PNG.
+        assert_eq!((srgb_encode(0.35) * 65535.0 + 0.5).floor() as u32, 41038);
+    }
+
+    #[test]
+    fn tone_maps_are_monotonic_and_bounded() {
+        for op in [ToneMap::Clamp, ToneMap::Reinhard, ToneMap::Aces] {
+            let mut last = -1.0;
+            for i in 0..100 {
+                let v = tone_map(f64::from(i) * 0.1, op);
+                assert!(v >= last);
+                last = v;
+            }
+        }
+        assert!(tone_map(1e6, ToneMap::Reinhard) < 1.0);
+    }
+
+    #[test]
+    fn formats_by_extension() {
+        assert_eq!(format_for(Path::new("a.EXR")).unwrap(), OutputFormat::Exr);
+        assert_eq!(format_for(Path::new("a.png")).unwrap(), OutputFormat::Ldr(ImageFormat::Png));
+        assert_eq!(format_for(Path::new("a.ppm")).unwrap(), OutputFormat::Ldr(ImageFormat::Pnm));
+        assert!(format_for(Path::new("a.xyz")).is_err());
+        assert!(format_for(Path::new("noext")).is_err());
+    }
+}

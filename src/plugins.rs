@@ -1,0 +1,18 @@
+//! Shape registration: one line per shape plugin crate.
+
+use prism_api::shape_type;
+
+use crate::registry::ShapeRegistry;
+
+/// The registry of every shape type Prism ships.
+pub fn registry() -> ShapeRegistry {
+    let mut registry = ShapeRegistry::new();
+    registry.add(shape_type::<prism_sphere::SphereParams>("sphere", "A sphere around a centre point."));
+    registry.add(shape_type::<prism_plane::PlaneParams>("plane", "An infinite plane (a solid half-space)."));
+    registry.add(shape_type::<prism_disc::DiscParams>("disc", "A flat disc, optionally with a hole."));
+    registry.add(shape_type::<prism_cone::ConeParams>("cone", "A finite cone, capped unless open."));
+    registry.add(shape_type::<prism_cylinder::CylinderParams>("cylinder", "A finite cylinder, capped unless open."));
+    registry.add(shape_type::<prism_box::BoxParams>("box", "An axis-aligned box."));
+    registry.add(shape_type::<prism_triangle::TriangleParams>("triangle", "A single triangle."));
+    registry
+}

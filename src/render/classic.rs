@@ -1,0 +1,495 @@
+//! The `classic` integrator: Whitted-style recursive tracing with POV-Ray 3.7's shading
+//! model, as measured in `shared/povray/REPORT.md` (sections 4.1-4.8): ambient, diffuse
+//! with brilliance, phong and specular highlights (metallic), point/spot/parallel/area
+//! lights with fade, filtered straight-line shadows, reflection (constant, falloff,
+//! Fresnel, metallic, exponent), refraction with an interior stack, interior fade, and the
+//! max_trace_level / adc_bailout limits that return black.
+
+use glam::{DVec2, DVec3};
+use prism_api::Ray;
+
+use super::sampling::SampleStream;
+use super::scene::{AreaGrid, RenderLight, RenderScene};
+use crate::material::Material;
+use crate::scene::components::LightKind;
+
+/// POV-Ray ignores shadow-ray hits closer than this to the surface or the light.
+const SHADOW_TOLERANCE: f64 = 1e-3;
+/// Hits closer than this to a ray's origin are ignored (POV-Ray's per-shape tolerance).
+const RAY_EPSILON: f64 = 1e-6;
+/// POV-Ray ignores intersections farther than this.
+const MAX_DISTANCE: f64 = 1e7;
+/// Deepest nesting of interiors tracked (deeper ones are treated as leaving the outermost).
+const MAX_INTERIORS: usize = 16;
+
+/// The interiors a ray is inside, innermost last (primitive indices).
+#[derive(Clone, Copy, Debug, Default)]
+struct Interiors {
+    items: [u32; MAX_INTERIORS],
+    len: usize,
+}
+
+impl Interiors {
+    fn contains(&self, p: u32) -> bool {
+        self.items[..self.len].contains(&p)
+    }
+
+    fn innermost(&self) -> Option<u32> {
+        self.len.checked_sub(1).map(|i| self.items[i])
+    }
+
+    fn entering(mut self, p: u32) -> Self {
+        if self.len == MAX_INTERIORS {
+            self.items.copy_within(1.., 0);
+            self.len -= 1;
+        }
+        self.items[self.len] = p;
+        self.len += 1;
+        self
+    }
+
+    fn leaving(mut self, p: u32) -> Self {
+        if let Some(i) = self.items[..self.len].iter().position(|&q| q == p) {
+            self.items.copy_within(i + 1..self.len, i);
+            self.len -= 1;
+        }
+        self
+    }
+}
+
+/// Per-sample state: the random stream and the number of rays traced.
+pub struct PathState {
+    /// Random numbers of this pixel sample.
+    pub stream: SampleStream,
+    /// Next free random dimension.
+    pub dimension: u64,
+    /// Rays traced (camera, reflected, refracted, shadow).
+    pub rays: u64,
+}
+
+/// The classic integrator over one render scene.
+pub struct Classic<'a> {
+    scene: &'a RenderScene,
+}
+
+impl<'a> Classic<'a> {
+    /// An integrator for `scene`.
+    pub fn new(scene: &'a RenderScene) -> Self {
+        Self { scene }
+    }
+
+    /// Radiance along a camera ray.
+    pub fn radiance(&self, ray: &Ray, state: &mut PathState) -> DVec3 {
+        self.trace(ray, 1, 1.0, Interiors::default(), state)
+    }
+
+    fn medium_ior(&self, interiors: &Interiors) -> f64 {
+        interiors.innermost().map_or(1.0, |p| self.material_of(p).ior)
+    }
+
+    fn material_of(&self, primitive: u32) -> &Material {
+        &self.scene.materials[self.scene.primitives[primitive as usize].material as usize]
+    }
+
+    fn trace(&self, ray: &Ray, level: u32, weight: f64, interiors: Interiors, state: &mut PathState) -> DVec3 {
+        let scene = self.scene;
+        if level > scene.settings.max_depth || weight < scene.settings.adc_bailout {
+            return DVec3::ZERO;
+        }
+        state.rays += 1;
+        let Some(closest) = scene.accel.closest(&scene.primitives, ray, RAY_EPSILON, MAX_DISTANCE, |_| true) else {
+            return scene.environment.background.0;
+        };
+        let primitive = &scene.primitives[closest.primitive as usize];
+        let material = &scene.materials[primitive.material as usize];
+        let surface = primitive.shape.surface(&closest.object_ray, &closest.hit);
+        let point = if primitive.identity {
+            surface.point
+        } else {
+            primitive.world_from_object.transform_point3(surface.point)
+        };
+        let shading = if primitive.identity {
+            surface.shading_normal
+        } else {
+            (primitive.normal_to_world * surface.shading_normal).normalize()
+        };
+        let d = ray.direction;
+        // Two-sided: shade with the normal facing the viewer.
+        let n = if shading.dot(d) > 0.0 { -shading } else { shading };
+        let entering = !interiors.contains(closest.primitive);
+
+        let mut colour = self.local_shading(point, n, d, material, state);
+
+        // Reflection and refraction.
+        let c = -d.dot(n);
+        let n_from = self.medium_ior(&interiors);
+        let inner = if entering { interiors.entering(closest.primitive) } else { interiors.leaving(closest.primitive) };
+        let n_to = if entering { material.ior } else { self.medium_ior(&inner) };
+
+        let reflection = &material.reflection;
+        let mut rf = DVec3::ZERO;
+        if reflection.is_reflective() {
+            let (min, max) = (reflection.min.0, reflection.max.0);
+            rf = if reflection.fresnel {
+                min + (max - min) * fresnel(n_to / n_from, c)
+            } else {
+                min + (max - min) * (1.0 - c).max(0.0).powf(reflection.falloff)
+            };
+            if reflection.metallic != 0.0 {
+                rf *= DVec3::ONE + reflection.metallic * (1.0 - metallic_fresnel(c)) * (material.color.0 - DVec3::ONE);
+            }
+        }
+
+        let mut total_internal = false;
+        if material.is_transparent() {
+            let mut filter = material.color.0 * material.filter + DVec3::splat(material.transmit);
+            if material.conserve_energy {
+                filter *= DVec3::ONE - rf;
+            }
+            let strength = (0.297 * filter.x + 0.589 * filter.y + 0.114 * filter.z).abs().min(1.0);
+            if strength > scene.settings.adc_bailout {
+                let child_weight = weight * filter.max_element();
+                if n_from == n_to {
+                    // No refraction: the ray continues, at the same level.
+                    let through = Ray::new(point, d);
+                    colour += filter * self.trace(&through, level, child_weight, inner, state);
+                } else {
+                    let eta = n_from / n_to;
+                    let k = 1.0 + eta * eta * (c * c - 1.0);
+                    if k < 0.0 {
+                        total_internal = true;
+                        let mirror = Ray::new(point, (d - 2.0 * d.dot(n) * n).normalize());
+                        colour += self.trace(&mirror, level + 1, child_weight, interiors, state);
+                    } else {
+                        let direction = (eta * d + (eta * c - k.sqrt()) * n).normalize();
+                        let refracted = Ray::new(point, direction);
+                        colour += filter * self.trace(&refracted, level + 1, child_weight, inner, state);
+                    }
+                }
+            }
+        }
+
+        if reflection.is_reflective() && !total_internal {
+            let reflect_weight = if reflection.fresnel {
+                rf.max_element()
+            } else {
+                reflection.min.0.max_element().max(reflection.max.0.max_element())
+            };
+            let mirror = Ray::new(point, (d - 2.0 * d.dot(n) * n).normalize());
+            let mut reflected = self.trace(&mirror, level + 1, weight * reflect_weight, interiors, state);
+            if reflection.exponent != 1.0 {
+                reflected = reflected.max(DVec3::ZERO).powf(1.0 / reflection.exponent);
+            }
+            colour += rf * reflected;
+        }
+
+        // Light travelling inside an interior fades over the distance to this hit.
+        if let Some(inside) = interiors.innermost() {
+            colour *= interior_fade(self.material_of(inside), closest.hit.t * d.length());
+        }
+        colour
+    }
+
+    /// Ambient, emission, diffuse and highlights from every light.
+    fn local_shading(&self, point: DVec3, n: DVec3, d: DVec3, m: &Material, state: &mut PathState) -> DVec3 {
+        let scene = self.scene;
+        let pigment = m.color.0;
+        let opacity = m.opacity();
+        let mut colour = pigment * opacity * (m.ambient.0 * scene.environment.ambient_light.0 + m.emission.0);
+        if m.diffuse == 0.0 && m.phong == 0.0 && m.specular == 0.0 {
+            return colour;
+        }
+        let mirror = d - 2.0 * d.dot(n) * n;
+        for light in &scene.lights {
+            let (l, distance) = match light.kind {
+                LightKind::Parallel => {
+                    let l = -light.axis;
+                    (l, (light.position - point).dot(l))
+                }
+                _ => {
+                    let to_light = light.position - point;
+                    let distance = to_light.length();
+                    (to_light / distance, distance)
+                }
+            };
+            let n_dot_l = n.dot(l);
+            if n_dot_l < 1e-10 {
+                continue;
+            }
+            let mut e = light.color * attenuation(light, l, distance);
+            if e == DVec3::ZERO {
+                continue;
+            }
+            if !light.shadowless {
+                e *= match &light.area {
+                    Some(grid) => self.area_visibility(point, l, light, grid, state),
+                    None => self.transmittance(point, l, distance, state),
+                };
+                if e == DVec3::ZERO {
+                    continue;
+                }
+            }
+            if m.diffuse != 0.0 {
+                let cosine = if m.brilliance == 1.0 { n_dot_l } else { n_dot_l.powf(m.brilliance) };
+                colour += m.diffuse * opacity * cosine * pigment * e;
+            }
+            if light.shadowless {
+                continue;
+            }
+            let highlight = if m.metallic != 0.0 {
+                e * (DVec3::ONE + m.metallic * (1.0 - metallic_fresnel(n_dot_l)) * (pigment - DVec3::ONE))
+            } else {
+                e
+            };
+            if m.phong != 0.0 {
+                let r_dot_l = mirror.dot(l);
+                if r_dot_l > 0.0 && !(m.phong_size >= 60.0 && r_dot_l <= 0.0008) {
+                    colour += m.phong * r_dot_l.powf(m.phong_size) * highlight;
+                }
+            }
+            if m.specular != 0.0 {
+                let h = (l - d).normalize();
+                let n_dot_h = n.dot(h);
+                if n_dot_h > 0.0 {
+                    colour += m.specular * n_dot_h.powf(1.0 / m.roughness) * highlight;
+                }
+            }
+        }
+        colour
+    }
+
+    /// Light that reaches `point` from `distance` along `l`: 1 when unblocked, 0 behind an
+    /// opaque object, and filtered by every transparent surface crossed (straight through).
+    fn transmittance(&self, point: DVec3, l: DVec3, distance: f64, state: &mut PathState) -> DVec3 {
+        let scene = self.scene;
+        let t_max = distance - SHADOW_TOLERANCE;
+        if t_max <= SHADOW_TOLERANCE {
+            return DVec3::ONE;
+        }
+        let ray = Ray::new(point, l);
+        let casts = |p: u32| !scene.primitives[p as usize].no_shadow;
+        state.rays += 1;
+        if !scene.has_transparency {
+            let blocked = scene.accel.occluded(&scene.primitives, &ray, SHADOW_TOLERANCE, t_max, casts);
+            return if blocked { DVec3::ZERO } else { DVec3::ONE };
+        }
+        let mut filter = DVec3::ONE;
+        let mut t_min = SHADOW_TOLERANCE;
+        while let Some(hit) = scene.accel.closest(&scene.primitives, &ray, t_min, t_max, casts) {
+            let m = self.material_of(hit.primitive);
+            if !m.is_transparent() {
+                return DVec3::ZERO;
+            }
+            filter *= m.color.0 * m.filter + DVec3::splat(m.transmit);
+            if filter.max_element() <= 0.0 {
+                return DVec3::ZERO;
+            }
+            t_min = hit.hit.t + RAY_EPSILON * (1.0 + hit.hit.t);
+        }
+        filter
+    }
+
+    /// POV-Ray's hierarchical (trapezoid-like) average of the shadow over the area grid.
+    fn area_visibility(
+        &self,
+        point: DVec3,
+        l: DVec3,
+        light: &RenderLight,
+        grid: &AreaGrid,
+        state: &mut PathState,
+    ) -> DVec3 {
+        let (mut axis1, mut axis2) = (grid.axis1, grid.axis2);
+        if grid.orient {
+            let t = if (l.z.abs() - 1.0).abs() < 0.01 { DVec3::Y } else { DVec3::Z };
+            let len = axis1.length();
+            axis1 = l.cross(t).normalize() * len;
+            axis2 = l.cross(axis1).normalize() * len;
+        }
+        let (n1, n2) = (grid.size1 as usize, grid.size2 as usize);
+        let jitter_base = state.dimension;
+        state.dimension += 2 * (n1 * n2) as u64;
+        let mut cache: Vec<Option<DVec3>> = vec![None; n1 * n2];
+        let mut sample = |u: usize, v: usize, state: &mut PathState| -> DVec3 {
+            if let Some(c) = cache[v * n1 + u] {
+                return c;
+            }
+            let (mut ju, mut jv) = (u as f64, v as f64);
+            if grid.jitter {
+                let k = jitter_base + 2 * (v * n1 + u) as u64;
+                ju += state.stream.uniform(k) - 0.5;
+                jv += state.stream.uniform(k + 1) - 0.5;
+            }
+            let mut fu = if n1 > 1 { ju / (n1 - 1) as f64 - 0.5 } else { 0.0 };
+            let mut fv = if n2 > 1 { jv / (n2 - 1) as f64 - 0.5 } else { 0.0 };
+            if grid.circular {
+                fu += 0.001;
+                fv += 0.001;
+                let s = fu.abs().max(fv.abs()) / (fu * fu + fv * fv).sqrt();
+                fu *= s;
+                fv *= s;
+            }
+            let target = light.position + axis1 * fu + axis2 * fv;
+            let to = target - point;
+            let distance = to.length();
+            let c = self.transmittance(point, to / distance, distance, state);
+            cache[v * n1 + u] = Some(c);
+            c
+        };
+        block(&mut sample, 0, 0, n1 - 1, n2 - 1, 0, grid.adaptive, state)
+    }
+}
+
+/// One region of POV-Ray's recursive area-light average.
+#[allow(clippy::too_many_arguments)]
+fn block(
+    sample: &mut impl FnMut(usize, usize, &mut PathState) -> DVec3,
+    u1: usize,
+    v1: usize,
+    u2: usize,
+    v2: usize,
+    level: u32,
+    adaptive: u32,
+    state: &mut PathState,
+) -> DVec3 {
+    let c00 = sample(u1, v1, state);
+    let c10 = sample(u2, v1, state);
+    let c01 = sample(u1, v2, state);
+    let c11 = sample(u2, v2, state);
+    let differ = |a: DVec3, b: DVec3| (a - b).abs().element_sum() > 0.1;
+    let large = u2 - u1 > 1 || v2 - v1 > 1;
+    if large && (level < adaptive || differ(c00, c10) || differ(c00, c01) || differ(c10, c11) || differ(c01, c11)) {
+        let (mid_u_lo, mid_v_lo) = ((u1 + u2) / 2, (v1 + v2) / 2);
+        let (mid_u_hi, mid_v_hi) = ((u1 + u2).div_ceil(2), (v1 + v2).div_ceil(2));
+        let a = block(sample, u1, v1, mid_u_lo, mid_v_lo, level + 1, adaptive, state);
+        let b = block(sample, mid_u_hi, v1, u2, mid_v_lo, level + 1, adaptive, state);
+        let c = block(sample, u1, mid_v_hi, mid_u_lo, v2, level + 1, adaptive, state);
+        let d = block(sample, mid_u_hi, mid_v_hi, u2, v2, level + 1, adaptive, state);
+        (a + b + c + d) * 0.25
+    } else {
+        (c00 + c10 + c01 + c11) * 0.25
+    }
+}
+
+/// Spotlight cone and distance fade, as POV-Ray computes them.
+fn attenuation(light: &RenderLight, l: DVec3, distance: f64) -> f64 {
+    let mut a = 1.0;
+    if let Some((cos_radius, cos_falloff, tightness)) = light.spot {
+        let cos_theta = light.axis.dot(-l);
+        if cos_theta <= 0.0 {
+            return 0.0;
+        }
+        a = if tightness != 0.0 { cos_theta.powf(tightness) } else { 1.0 };
+        if cos_theta < cos_radius {
+            let p = (cos_theta - cos_falloff) / (cos_radius - cos_falloff);
+            a *= if p < 0.0 {
+                0.0
+            } else if p < 1.0 {
+                (3.0 - 2.0 * p) * p * p
+            } else {
+                1.0
+            };
+        }
+    }
+    if light.fade_power > 0.0 && light.fade_distance != 0.0 {
+        a *= 2.0 / (1.0 + (distance / light.fade_distance).powf(light.fade_power));
+    }
+    a
+}
+
+/// POV-Ray's approximate Fresnel term for metallic highlights and reflection.
+fn metallic_fresnel(cosine: f64) -> f64 {
+    let x = cosine.clamp(-1.0, 1.0).acos() / std::f64::consts::FRAC_PI_2;
+    (0.014567225 / ((x - 1.12) * (x - 1.12)) - 0.011612903).clamp(0.0, 1.0)
+}
+
+/// Unpolarised Fresnel reflectance for relative index `eta` (n_to / n_from) and cosine `c`.
+fn fresnel(eta: f64, c: f64) -> f64 {
+    let g2 = eta * eta + c * c - 1.0;
+    if g2 <= 0.0 {
+        return 1.0;
+    }
+    let g = g2.sqrt();
+    let a = (g - c) / (g + c);
+    let b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+    0.5 * a * a * (1.0 + b * b)
+}
+
+/// Interior attenuation over path length `s`.
+fn interior_fade(m: &Material, s: f64) -> DVec3 {
+    if m.fade_distance <= 0.0 || m.fade_power <= 0.0 {
+        return DVec3::ONE;
+    }
+    let fade_color = m.fade_color.0;
+    if m.fade_power >= 1000.0 {
+        let k = (DVec3::ONE - fade_color) * (s / m.fade_distance);
+        DVec3::new((-k.x).exp(), (-k.y).exp(), (-k.z).exp())
+    } else {
+        fade_color + (DVec3::ONE - fade_color) / (1.0 + (s / m.fade_distance).powf(m.fade_power))
+    }
+}
+
+/// A unit-disc lens sample for thin-lens depth of field.
+pub fn lens_sample(u: DVec2) -> DVec2 {
+    super::sampling::concentric_disc(u)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fresnel_matches_pov_ray_measurement() {
+        // REPORT.md 7: ior 1.5 at 60 degrees -> 0.08919.
+        assert!((fresnel(1.5, 60f64.to_radians().cos()) - 0.08919).abs() < 1e-5);
+        assert_eq!(fresnel(1.0 / 1.5, 0.1), 1.0, "total internal reflection");
+    }
+
+    #[test]
+    fn spotlight_cone() {
+        // radius 10, falloff 20, tightness 10, 15 degrees off axis: cos^10 times the
+        // smoothstep (3 - 2p) p^2 of p = (cos15 - cos20) / (cos10 - cos20).
+        let light = RenderLight {
+            kind: LightKind::Spot,
+            position: DVec3::ZERO,
+            color: DVec3::ONE,
+            fade_distance: 0.0,
+            fade_power: 0.0,
+            shadowless: false,
+            axis: DVec3::NEG_Y,
+            spot: Some((10f64.to_radians().cos(), 20f64.to_radians().cos(), 10.0)),
+            area: None,
+        };
+        let dir = DVec3::new(15f64.to_radians().sin(), -15f64.to_radians().cos(), 0.0);
+        let (c15, c10, c20) = (15f64.to_radians().cos(), 10f64.to_radians().cos(), 20f64.to_radians().cos());
+        let p = (c15 - c20) / (c10 - c20);
+        let expected = c15.powi(10) * (3.0 - 2.0 * p) * p * p;
+        assert!((attenuation(&light, -dir, 1.0) - expected).abs() < 1e-12);
+        assert_eq!(attenuation(&light, DVec3::new(0.0, -1.0, 0.0), 1.0), 0.0, "behind the spot");
+        assert!((attenuation(&light, DVec3::Y, 1.0) - 1.0).abs() < 1e-12, "on the axis");
+    }
+
+    #[test]
+    fn fade_has_povs_factor_two() {
+        let light = RenderLight {
+            kind: LightKind::Point,
+            position: DVec3::ZERO,
+            color: DVec3::ONE,
+            fade_distance: 5.0,
+            fade_power: 2.0,
+            shadowless: false,
+            axis: DVec3::NEG_Y,
+            spot: None,
+            area: None,
+        };
+        assert!((attenuation(&light, DVec3::X, 10.0) - 0.4).abs() < 1e-12);
+        assert!((attenuation(&light, DVec3::X, 5.0) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn interiors_stack() {
+        let s = Interiors::default().entering(3).entering(5);
+        assert_eq!(s.innermost(), Some(5));
+        let s = s.leaving(3);
+        assert!(!s.contains(3) && s.contains(5));
+    }
+}

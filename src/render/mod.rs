@@ -1,0 +1,168 @@
+//! `render`: tiles in parallel (rayon); each pixel's samples depend only on
+//! (pixel, sample, dimension, seed), so the image is bit-identical for any thread count.
+
+pub mod accel;
+pub mod camera;
+pub mod classic;
+pub mod film;
+pub mod sampling;
+pub mod scene;
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+use glam::{DVec2, DVec3};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+
+use classic::{Classic, PathState};
+use film::Film;
+use sampling::{SampleStream, cmj, hash4};
+use scene::RenderScene;
+
+/// Side of a square render tile in pixels.
+pub const TILE_SIZE: u32 = 16;
+
+/// How to run a render.
+#[derive(Clone, Debug, Default)]
+pub struct RenderOptions {
+    /// Worker threads (`None`: one per core).
+    pub threads: Option<usize>,
+    /// Draw a progress bar on stderr (only when stderr is a terminal).
+    pub progress: bool,
+}
+
+/// What a render did.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RenderStats {
+    /// Wall time of the render itself.
+    pub elapsed: Duration,
+    /// Camera rays.
+    pub primary_rays: u64,
+    /// All rays: camera, reflected, refracted and shadow rays.
+    pub total_rays: u64,
+}
+
+impl RenderStats {
+    /// Million rays per second over all rays.
+    pub fn mrays_per_second(&self) -> f64 {
+        self.total_rays as f64 / self.elapsed.as_secs_f64().max(1e-9) / 1e6
+    }
+}
+
+/// Errors a render can stop with.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// The worker threads could not be started.
+    #[error("cannot start {threads} render threads: {source}")]
+    Threads {
+        /// Requested thread count.
+        threads: usize,
+        /// The cause.
+        source: rayon::ThreadPoolBuildError,
+    },
+}
+
+/// Renders the scene into a film.
+pub fn render(scene: &RenderScene, options: &RenderOptions) -> Result<(Film, RenderStats), RenderError> {
+    let threads = options.threads.unwrap_or(0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|source| RenderError::Threads { threads, source })?;
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    let tiles_x = width.div_ceil(TILE_SIZE);
+    let tiles_y = height.div_ceil(TILE_SIZE);
+    let tile_count = u64::from(tiles_x) * u64::from(tiles_y);
+
+    let progress = if options.progress {
+        let bar = ProgressBar::with_draw_target(Some(tile_count), ProgressDrawTarget::stderr());
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+
+    let rays = AtomicU64::new(0);
+    let start = Instant::now();
+    let integrator = Classic::new(scene);
+    let tiles: Vec<(u32, u32, Vec<[f32; 3]>)> = pool.install(|| {
+        (0..tile_count)
+            .into_par_iter()
+            .map(|tile| {
+                let tx = (tile % u64::from(tiles_x)) as u32 * TILE_SIZE;
+                let ty = (tile / u64::from(tiles_x)) as u32 * TILE_SIZE;
+                let (pixels, tile_rays) = render_tile(scene, &integrator, tx, ty);
+                rays.fetch_add(tile_rays, Ordering::Relaxed);
+                progress.inc(1);
+                (tx, ty, pixels)
+            })
+            .collect()
+    });
+    progress.finish_and_clear();
+    let elapsed = start.elapsed();
+
+    let mut film = Film::new(width, height);
+    for (tx, ty, pixels) in tiles {
+        let tile_w = TILE_SIZE.min(width - tx);
+        for (i, p) in pixels.into_iter().enumerate() {
+            let x = tx + i as u32 % tile_w;
+            let y = ty + i as u32 / tile_w;
+            film.pixels[y as usize * width as usize + x as usize] = p;
+        }
+    }
+    let stats = RenderStats {
+        elapsed,
+        primary_rays: u64::from(width) * u64::from(height) * u64::from(scene.settings.samples),
+        total_rays: rays.load(Ordering::Relaxed),
+    };
+    Ok((film, stats))
+}
+
+fn render_tile(scene: &RenderScene, integrator: &Classic, tx: u32, ty: u32) -> (Vec<[f32; 3]>, u64) {
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    let tile_w = TILE_SIZE.min(width - tx);
+    let tile_h = TILE_SIZE.min(height - ty);
+    let mut out = Vec::with_capacity((tile_w * tile_h) as usize);
+    let mut rays = 0;
+    for y in ty..ty + tile_h {
+        for x in tx..tx + tile_w {
+            let (rgb, pixel_rays) = render_pixel(scene, integrator, x, y);
+            rays += pixel_rays;
+            out.push([rgb.x as f32, rgb.y as f32, rgb.z as f32]);
+        }
+    }
+    (out, rays)
+}
+
+/// The mean radiance of one pixel and the rays it took.
+pub fn render_pixel(scene: &RenderScene, integrator: &Classic, x: u32, y: u32) -> (DVec3, u64) {
+    let settings = &scene.settings;
+    let (width, height) = (f64::from(settings.width), f64::from(settings.height));
+    let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
+    let samples = settings.samples;
+    // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels.
+    let pattern = hash4(pixel, 0, u64::MAX, settings.seed);
+    let mut sum = DVec3::ZERO;
+    let mut rays = 0;
+    for s in 0..samples {
+        let stream = SampleStream { pixel, sample: u64::from(s), seed: settings.seed };
+        let offset = if samples == 1 { DVec2::splat(0.5) } else { cmj(s, samples, pattern as u32) };
+        let lens = if scene.camera.aperture > 0.0 {
+            let u = if samples == 1 { stream.uniform2(2) } else { cmj(s, samples, (pattern >> 32) as u32) };
+            classic::lens_sample(u)
+        } else {
+            DVec2::ZERO
+        };
+        let x0 = (f64::from(x) + offset.x) / width - 0.5;
+        let y0 = 0.5 - (f64::from(y) + offset.y) / height;
+        let ray = scene.camera.ray(x0, y0, lens);
+        let mut state = PathState { stream, dimension: 4, rays: 0 };
+        sum += integrator.radiance(&ray, &mut state);
+        rays += state.rays;
+    }
+    (sum / f64::from(samples), rays)
+}

@@ -1,0 +1,406 @@
+//! The ECS components a scene's entities carry, and the scene-wide settings.
+//!
+//! Every component is also the scene-file form of the thing it describes (serde both ways),
+//! so `save` is the exact inverse of `load`.
+
+use std::sync::Arc;
+
+use glam::{DAffine3, DMat3, DMat4, DVec3, EulerRot};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::color::Rgb;
+use crate::diagnostics::Location;
+
+/// A user-visible name (objects can be parents by name).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Name(pub String);
+
+/// Where an entity was defined, for diagnostics found after loading.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Origin(pub Location);
+
+/// The parent whose world transform applies before this entity's own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Parent(pub hecs::Entity);
+
+/// A local transform: scale, then rotate about x, y, z (degrees, right-hand rule), then
+/// translate; or a 4x4 matrix (rows) instead of all three.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Transform {
+    /// Translation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub translate: Option<[f64; 3]>,
+    /// Rotation in degrees about x, then y, then z.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<[f64; 3]>,
+    /// Uniform (a number) or per-axis (`[x, y, z]`) scale.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<Scale>,
+    /// A 4x4 affine matrix given as four rows (the last row must be [0, 0, 0, 1]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub matrix: Option<[[f64; 4]; 4]>,
+}
+
+/// A uniform or per-axis scale.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum Scale {
+    /// The same factor on every axis.
+    Uniform(f64),
+    /// One factor per axis.
+    PerAxis([f64; 3]),
+}
+
+impl Transform {
+    /// True when nothing is set.
+    pub fn is_identity(&self) -> bool {
+        *self == Transform::default()
+    }
+
+    /// The affine map from this entity's space to its parent's space.
+    pub fn parent_from_local(&self) -> DAffine3 {
+        if let Some(rows) = self.matrix {
+            return DAffine3::from_mat4(DMat4::from_cols_array_2d(&rows).transpose());
+        }
+        let scale = match self.scale {
+            None => DVec3::ONE,
+            Some(Scale::Uniform(s)) => DVec3::splat(s),
+            Some(Scale::PerAxis(s)) => DVec3::from_array(s),
+        };
+        let r = DVec3::from_array(self.rotate.unwrap_or_default()) * (std::f64::consts::PI / 180.0);
+        // x first, then y, then z: R = Rz * Ry * Rx.
+        let rotation = DMat3::from_euler(EulerRot::ZYX, r.z, r.y, r.x);
+        let translation = DVec3::from_array(self.translate.unwrap_or_default());
+        DAffine3 { matrix3: rotation * DMat3::from_diagonal(scale), translation }
+    }
+}
+
+/// The resolved transform from object space to world space (set by `resolve_transforms`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldTransform(pub DAffine3);
+
+/// A shape: its type name, its parameters as written, and the built geometry.
+#[derive(Clone, Debug)]
+pub struct ShapeComponent {
+    /// The registered type name (`shape = "..."`).
+    pub kind: String,
+    /// The parameters as written in the scene (for saving).
+    pub params: toml::Table,
+    /// The geometry in object space.
+    pub geometry: Arc<dyn prism_api::Shape>,
+}
+
+/// The material of a shape, and the name it was defined under (for saving).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialComponent {
+    /// `Some(name)` when the object referenced `[materials.name]`.
+    pub name: Option<String>,
+    /// The material itself.
+    pub material: crate::material::Material,
+}
+
+/// Per-object render flags.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ObjectFlags {
+    /// The object casts no shadows (POV-Ray `no_shadow`).
+    pub no_shadow: bool,
+}
+
+/// The kind of a light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum LightKind {
+    /// An invisible point that shines in all directions.
+    Point,
+    /// A point light restricted to a cone around `point_at`.
+    Spot,
+    /// Parallel rays from the direction of `position` toward `point_at` (a sun).
+    Parallel,
+    /// A rectangular (or circular) grid of point lights: soft shadows.
+    Area,
+}
+
+impl LightKind {
+    /// The keys a light of this kind accepts (besides `kind`).
+    pub fn allowed_keys(self) -> &'static [&'static str] {
+        const COMMON: [&str; 6] = ["position", "color", "intensity", "fade_distance", "fade_power", "shadowless"];
+        match self {
+            LightKind::Point => &COMMON,
+            LightKind::Spot => &[
+                "position",
+                "color",
+                "intensity",
+                "fade_distance",
+                "fade_power",
+                "shadowless",
+                "point_at",
+                "radius",
+                "falloff",
+                "tightness",
+            ],
+            LightKind::Parallel => {
+                &["position", "color", "intensity", "fade_distance", "fade_power", "shadowless", "point_at"]
+            }
+            LightKind::Area => &[
+                "position",
+                "color",
+                "intensity",
+                "fade_distance",
+                "fade_power",
+                "shadowless",
+                "axis1",
+                "axis2",
+                "size1",
+                "size2",
+                "adaptive",
+                "jitter",
+                "circular",
+                "orient",
+                "point_at",
+                "radius",
+                "falloff",
+                "tightness",
+                "spot",
+            ],
+        }
+    }
+}
+
+/// A light source. One flat record; which keys apply depends on `kind`
+/// ([`LightKind::allowed_keys`]). Defaults are POV-Ray's.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Light {
+    /// What kind of light.
+    pub kind: LightKind,
+    /// Position (for parallel lights: a point the light comes from).
+    pub position: [f64; 3],
+    /// Colour.
+    pub color: Rgb,
+    /// Multiplies the colour (the seed's source intensity).
+    pub intensity: f64,
+    /// Distance at which the light has its nominal colour (0 = no fading).
+    pub fade_distance: f64,
+    /// Power of the distance fade (0 = no fading; 2 = physically based).
+    pub fade_power: f64,
+    /// Casts no shadows and makes no highlights.
+    pub shadowless: bool,
+    /// Where a spot or parallel light points.
+    pub point_at: [f64; 3],
+    /// Spot: full-intensity cone half-angle in degrees.
+    pub radius: f64,
+    /// Spot: half-angle in degrees where the light reaches zero.
+    pub falloff: f64,
+    /// Spot: exponent that concentrates the light toward the axis.
+    pub tightness: f64,
+    /// Area: makes the area light a spotlight too.
+    pub spot: bool,
+    /// Area: first edge vector of the light's rectangle.
+    pub axis1: [f64; 3],
+    /// Area: second edge vector.
+    pub axis2: [f64; 3],
+    /// Area: samples along axis1.
+    pub size1: u32,
+    /// Area: samples along axis2.
+    pub size2: u32,
+    /// Area: subdivision levels always taken (POV-Ray `adaptive`, 100 = full grid).
+    pub adaptive: u32,
+    /// Area: jitter the sample positions (deterministic per pixel).
+    pub jitter: bool,
+    /// Area: map the grid to a disc.
+    pub circular: bool,
+    /// Area: turn the grid to face each shaded point.
+    pub orient: bool,
+}
+
+impl Default for Light {
+    fn default() -> Self {
+        Self {
+            kind: LightKind::Point,
+            position: [0.0; 3],
+            color: Rgb::WHITE,
+            intensity: 1.0,
+            fade_distance: 0.0,
+            fade_power: 0.0,
+            shadowless: false,
+            point_at: [0.0, 0.0, 0.0],
+            radius: 30.0,
+            falloff: 45.0,
+            tightness: 0.0,
+            spot: false,
+            axis1: [1.0, 0.0, 0.0],
+            axis2: [0.0, 0.0, 1.0],
+            size1: 2,
+            size2: 2,
+            adaptive: 100,
+            jitter: false,
+            circular: false,
+            orient: false,
+        }
+    }
+}
+
+/// The camera. Without a `[camera]` table this is the seed's camera: the eye one unit
+/// behind a viewport of height 2 centred on the origin, looking down -z (90 degree
+/// vertical field of view).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Camera {
+    /// Eye position.
+    pub position: [f64; 3],
+    /// The point looked at (the centre of the image).
+    pub look_at: [f64; 3],
+    /// The up direction (the image's vertical follows it).
+    pub up: [f64; 3],
+    /// Vertical field of view in degrees.
+    pub vfov: f64,
+    /// Width / height of the viewport; the image's pixel aspect when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aspect: Option<f64>,
+    /// Lens diameter for depth of field (0 = pinhole).
+    pub aperture: f64,
+    /// Distance of the sharp plane; the distance to `look_at` when absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub focal_distance: Option<f64>,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Self {
+            position: [0.0, 0.0, 1.0],
+            look_at: [0.0, 0.0, 0.0],
+            up: [0.0, 1.0, 0.0],
+            vfov: 90.0,
+            aspect: None,
+            aperture: 0.0,
+            focal_distance: None,
+        }
+    }
+}
+
+/// How the PNG (or other 8-bit output) maps linear radiance to display values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema, clap::ValueEnum)]
+#[serde(rename_all = "snake_case")]
+pub enum ToneMap {
+    /// Clip to [0, 1] (what POV-Ray writes).
+    #[default]
+    Clamp,
+    /// Reinhard: x / (1 + x).
+    Reinhard,
+    /// The ACES filmic fit of Narkowicz (2015).
+    Aces,
+}
+
+/// Which light transport algorithm renders the image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum IntegratorKind {
+    /// Whitted-style tracing with POV-Ray 3.7's shading model.
+    #[default]
+    Classic,
+}
+
+/// How each pixel is sampled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Antialias {
+    /// `samples` stratified (correlated multi-jittered) samples per pixel; one sample is the
+    /// pixel centre, as POV-Ray without antialiasing.
+    #[default]
+    Stratified,
+}
+
+/// `[render]`: image size, sampling and recursion.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct RenderSettings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel.
+    pub samples: u32,
+    /// Maximum trace depth (POV-Ray `max_trace_level`; the primary ray is level 1).
+    pub max_depth: u32,
+    /// Rays whose weight falls below this return black (POV-Ray `adc_bailout`).
+    pub adc_bailout: f64,
+    /// Seed of every random number (samples are a pure function of pixel, sample and seed).
+    pub seed: u64,
+    /// The light transport algorithm.
+    pub integrator: IntegratorKind,
+    /// How pixels are sampled.
+    pub antialias: Antialias,
+    /// Exposure in stops applied before tone mapping (PNG only; the EXR stays linear).
+    pub exposure: f64,
+    /// Tone-mapping operator for 8-bit output.
+    pub tone_map: ToneMap,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            width: 1000,
+            height: 563,
+            samples: 1,
+            max_depth: 5,
+            adc_bailout: 1.0 / 255.0,
+            seed: 0,
+            integrator: IntegratorKind::Classic,
+            antialias: Antialias::Stratified,
+            exposure: 0.0,
+            tone_map: ToneMap::Clamp,
+        }
+    }
+}
+
+/// `[world]`: what surrounds the objects.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Environment {
+    /// Colour of rays that escape the scene.
+    pub background: Rgb,
+    /// Global ambient light, multiplied by each material's `ambient`.
+    pub ambient_light: Rgb,
+}
+
+impl Default for Environment {
+    fn default() -> Self {
+        Self { background: Rgb::BLACK, ambient_light: Rgb::WHITE }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rotation_order_is_x_then_y_then_z() {
+        let t = Transform { rotate: Some([90.0, 90.0, 0.0]), ..Default::default() };
+        // +y rotated 90 about x -> +z; then 90 about y -> +x.
+        let v = t.parent_from_local().transform_vector3(DVec3::Y);
+        assert!((v - DVec3::X).length() < 1e-12, "{v}");
+    }
+
+    #[test]
+    fn scale_then_rotate_then_translate() {
+        let t = Transform {
+            translate: Some([1.0, 2.0, 3.0]),
+            rotate: Some([0.0, 0.0, 90.0]),
+            scale: Some(Scale::PerAxis([2.0, 1.0, 1.0])),
+            matrix: None,
+        };
+        let p = t.parent_from_local().transform_point3(DVec3::X);
+        assert!((p - DVec3::new(1.0, 4.0, 3.0)).length() < 1e-12, "{p}");
+    }
+
+    #[test]
+    fn matrix_rows() {
+        let t = Transform {
+            matrix: Some([[1.0, 0.0, 0.0, 5.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]]),
+            ..Default::default()
+        };
+        assert_eq!(t.parent_from_local().transform_point3(DVec3::ZERO), DVec3::new(5.0, 0.0, 0.0));
+    }
+}

@@ -1,0 +1,567 @@
+//! `load`: scene files (with includes and named materials) into a hecs `World` plus the
+//! scene-wide settings. Every problem becomes a [`Diagnostic`] with file, line, column and
+//! key path; loading goes on after a problem so one run reports as many as it can.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+
+use super::Scene;
+use super::components::{
+    Camera, Environment, Light, LightKind, MaterialComponent, Name, ObjectFlags, Origin, Parent, RenderSettings,
+    ShapeComponent, Transform,
+};
+use super::source::{ParsedFile, deserialize_at};
+use crate::diagnostics::{Diagnostic, Location, SceneError};
+use crate::material::Material;
+use crate::registry::ShapeRegistry;
+
+/// Top-level keys of a scene file.
+pub const TOP_LEVEL_KEYS: [&str; 7] = ["include", "render", "camera", "world", "materials", "object", "light"];
+
+/// Keys of an `[[object]]` table that are not shape parameters.
+pub const OBJECT_KEYS: [&str; 6] = ["shape", "name", "material", "transform", "parent", "no_shadow"];
+
+/// Where scene files come from: the file system, or text embedded in the binary.
+pub trait SceneSource {
+    /// The text of the file at `path`.
+    fn read(&self, path: &Path) -> std::io::Result<String>;
+    /// A canonical identity for include-cycle detection.
+    fn canonical(&self, path: &Path) -> PathBuf;
+}
+
+/// Reads scene files from disk.
+pub struct FileSystem;
+
+impl SceneSource for FileSystem {
+    fn read(&self, path: &Path) -> std::io::Result<String> {
+        std::fs::read_to_string(path)
+    }
+
+    fn canonical(&self, path: &Path) -> PathBuf {
+        std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
+    }
+}
+
+/// Scene files embedded in the binary, by path.
+pub struct Embedded(pub &'static [(&'static str, &'static str)]);
+
+impl SceneSource for Embedded {
+    fn read(&self, path: &Path) -> std::io::Result<String> {
+        let wanted = normalize(path);
+        self.0
+            .iter()
+            .find(|(p, _)| normalize(Path::new(p)) == wanted)
+            .map(|(_, text)| text.to_string())
+            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such built-in file"))
+    }
+
+    fn canonical(&self, path: &Path) -> PathBuf {
+        normalize(path)
+    }
+}
+
+/// `a/b/../c` -> `a/c` without touching the file system.
+fn normalize(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            std::path::Component::ParentDir => {
+                if !out.pop() {
+                    out.push("..");
+                }
+            }
+            std::path::Component::CurDir => {}
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+/// Loads the scene at `path` from disk.
+pub fn load_file(path: &Path, registry: &ShapeRegistry) -> Result<Scene, SceneError> {
+    load_from(&FileSystem, path, registry)
+}
+
+/// Loads the scene at `path` from `source`.
+pub fn load_from(source: &dyn SceneSource, path: &Path, registry: &ShapeRegistry) -> Result<Scene, SceneError> {
+    let mut loader = Loader {
+        source,
+        registry,
+        stack: Vec::new(),
+        files: Vec::new(),
+        diagnostics: Vec::new(),
+        render: Section::default(),
+        camera: Section::default(),
+        environment: Section::default(),
+        materials: HashMap::new(),
+        objects: Vec::new(),
+        lights: Vec::new(),
+    };
+    loader.load_file(path, None);
+    loader.finish()
+}
+
+/// A `[render]`-like table merged over all files: later files override single keys.
+#[derive(Default)]
+struct Section {
+    table: toml::Table,
+    /// For each top-level key: the file it came from.
+    origin: HashMap<String, usize>,
+    present: bool,
+}
+
+struct ObjectDef {
+    file: usize,
+    key: String,
+    table: toml::Table,
+}
+
+struct Loader<'a> {
+    source: &'a dyn SceneSource,
+    registry: &'a ShapeRegistry,
+    stack: Vec<PathBuf>,
+    files: Vec<ParsedFile>,
+    diagnostics: Vec<Diagnostic>,
+    render: Section,
+    camera: Section,
+    environment: Section,
+    materials: HashMap<String, (Material, usize)>,
+    objects: Vec<ObjectDef>,
+    lights: Vec<(Light, Location)>,
+}
+
+impl Loader<'_> {
+    fn load_file(&mut self, path: &Path, included_from: Option<Location>) {
+        let display = path.display().to_string();
+        let canonical = self.source.canonical(path);
+        if let Some(pos) = self.stack.iter().position(|p| *p == canonical) {
+            let chain: Vec<String> =
+                self.stack[pos..].iter().chain(std::iter::once(&canonical)).map(|p| p.display().to_string()).collect();
+            let location = included_from.unwrap_or_else(|| Location::file_only(display.as_str(), "include"));
+            self.diagnostics.push(Diagnostic::new(location, format!("include cycle: {}", chain.join(" -> "))));
+            return;
+        }
+        let text = match self.source.read(path) {
+            Ok(text) => text,
+            Err(e) => {
+                let location = included_from.unwrap_or_else(|| Location::file_only(display.as_str(), ""));
+                let what = if location.key.is_empty() { "cannot read scene file" } else { "cannot read included file" };
+                self.diagnostics.push(Diagnostic::new(location, format!("{what} `{display}`: {e}")));
+                return;
+            }
+        };
+        let parsed = match ParsedFile::parse(&display, text) {
+            Ok(p) => p,
+            Err(d) => {
+                self.diagnostics.push(d);
+                return;
+            }
+        };
+        self.stack.push(canonical);
+        let index = self.files.len();
+        let table = parsed.table.clone();
+        self.files.push(parsed);
+
+        for key in table.keys() {
+            if !TOP_LEVEL_KEYS.contains(&key.as_str()) {
+                let d = Diagnostic::new(self.files[index].locate(key), format!("unknown top-level key `{key}`"))
+                    .suggest(key, TOP_LEVEL_KEYS);
+                let d = if d.help.is_none() {
+                    d.with_help(format!("valid top-level keys: {}", TOP_LEVEL_KEYS.join(", ")))
+                } else {
+                    d
+                };
+                self.diagnostics.push(d);
+            }
+        }
+        if let Some(value) = table.get("include") {
+            self.includes(index, path, value);
+        }
+        for (name, section) in [("render", 0), ("camera", 1), ("world", 2)] {
+            if let Some(value) = table.get(name) {
+                self.merge_section(index, name, section, value);
+            }
+        }
+        if let Some(value) = table.get("materials") {
+            self.materials(index, value);
+        }
+        if let Some(value) = table.get("object") {
+            for (i, t) in self.array_of_tables(index, "object", value) {
+                self.objects.push(ObjectDef { file: index, key: format!("object[{i}]"), table: t });
+            }
+        }
+        if let Some(value) = table.get("light") {
+            for (i, t) in self.array_of_tables(index, "light", value) {
+                let key = format!("light[{i}]");
+                if let Some(light) = self.light(index, &key, t) {
+                    let location = self.files[index].locate(&key);
+                    self.lights.push((light, location));
+                }
+            }
+        }
+        self.stack.pop();
+    }
+
+    fn includes(&mut self, index: usize, path: &Path, value: &toml::Value) {
+        let entries: Vec<(String, String)> = match value {
+            toml::Value::String(s) => vec![("include".into(), s.clone())],
+            toml::Value::Array(items) => {
+                let mut out = Vec::new();
+                for (i, item) in items.iter().enumerate() {
+                    let key = format!("include[{i}]");
+                    match item {
+                        toml::Value::String(s) => out.push((key, s.clone())),
+                        _ => self.diagnostics.push(Diagnostic::new(
+                            self.files[index].locate_value(&key),
+                            "an include must be a path string",
+                        )),
+                    }
+                }
+                out
+            }
+            _ => {
+                self.diagnostics.push(Diagnostic::new(
+                    self.files[index].locate_value("include"),
+                    "`include` must be a path or an array of paths",
+                ));
+                return;
+            }
+        };
+        let dir = path.parent().unwrap_or(Path::new(""));
+        for (key, relative) in entries {
+            let location = self.files[index].locate_value(&key);
+            self.load_file(&dir.join(relative), Some(location));
+        }
+    }
+
+    fn merge_section(&mut self, index: usize, name: &str, which: usize, value: &toml::Value) {
+        let toml::Value::Table(table) = value else {
+            self.diagnostics
+                .push(Diagnostic::new(self.files[index].locate_value(name), format!("`{name}` must be a table")));
+            return;
+        };
+        let section = match which {
+            0 => &mut self.render,
+            1 => &mut self.camera,
+            _ => &mut self.environment,
+        };
+        section.present = true;
+        for (k, v) in table {
+            section.table.insert(k.clone(), v.clone());
+            section.origin.insert(k.clone(), index);
+        }
+    }
+
+    fn materials(&mut self, index: usize, value: &toml::Value) {
+        let toml::Value::Table(table) = value else {
+            self.diagnostics.push(Diagnostic::new(
+                self.files[index].locate_value("materials"),
+                "`materials` must be a table of named materials",
+            ));
+            return;
+        };
+        for (name, def) in table {
+            let key = format!("materials.{name}");
+            if let Some(material) = self.material(index, &key, def.clone()) {
+                self.materials.insert(name.clone(), (material, index));
+            }
+        }
+    }
+
+    fn material(&mut self, index: usize, key: &str, value: toml::Value) -> Option<Material> {
+        let material: Material = self.deserialize(index, key, value)?;
+        if let Err((field, message)) = material.check() {
+            let k = format!("{key}.{field}");
+            self.diagnostics.push(Diagnostic::new(self.files[index].locate(&k), message));
+            return None;
+        }
+        Some(material)
+    }
+
+    fn deserialize<T: DeserializeOwned>(&mut self, index: usize, key: &str, value: toml::Value) -> Option<T> {
+        match deserialize_at(&self.files[index], key, value) {
+            Ok(v) => Some(v),
+            Err(d) => {
+                self.diagnostics.push(d);
+                None
+            }
+        }
+    }
+
+    fn array_of_tables(&mut self, index: usize, name: &str, value: &toml::Value) -> Vec<(usize, toml::Table)> {
+        let toml::Value::Array(items) = value else {
+            self.diagnostics.push(
+                Diagnostic::new(self.files[index].locate_value(name), format!("`{name}` must be an array of tables"))
+                    .with_help(format!("write each one as a [[{name}]] table")),
+            );
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for (i, item) in items.iter().enumerate() {
+            match item {
+                toml::Value::Table(t) => out.push((i, t.clone())),
+                _ => self.diagnostics.push(Diagnostic::new(
+                    self.files[index].locate_value(&format!("{name}[{i}]")),
+                    format!("each `{name}` must be a table"),
+                )),
+            }
+        }
+        out
+    }
+
+    fn light(&mut self, index: usize, key: &str, table: toml::Table) -> Option<Light> {
+        let kind = match table.get("kind") {
+            None => LightKind::Point,
+            Some(v) => self.deserialize::<LightKind>(index, &format!("{key}.kind"), v.clone())?,
+        };
+        let allowed = kind.allowed_keys();
+        let mut ok = true;
+        for k in table.keys() {
+            if k != "kind" && !allowed.contains(&k.as_str()) {
+                let known_elsewhere = LightKind::Area.allowed_keys().contains(&k.as_str())
+                    || LightKind::Spot.allowed_keys().contains(&k.as_str());
+                let message = if known_elsewhere {
+                    format!("key `{k}` does not apply to a {kind:?} light", kind = kind).to_lowercase()
+                } else {
+                    format!("unknown key `{k}`")
+                };
+                let d = Diagnostic::new(self.files[index].locate(&format!("{key}.{k}")), message)
+                    .suggest(k, allowed.iter().copied().chain(["kind"]));
+                self.diagnostics.push(d);
+                ok = false;
+            }
+        }
+        let light: Light = self.deserialize(index, key, toml::Value::Table(table))?;
+        ok.then_some(light)
+    }
+
+    fn section<T: DeserializeOwned + Default>(&mut self, which: usize, name: &str) -> Option<T> {
+        let section = match which {
+            0 => &self.render,
+            1 => &self.camera,
+            _ => &self.environment,
+        };
+        if !section.present {
+            return Some(T::default());
+        }
+        match serde_path_to_error::deserialize(toml::Value::Table(section.table.clone())) {
+            Ok(v) => Some(v),
+            Err(e) => {
+                let inner_path = super::source::path_string("", e.path());
+                let message = e.inner().message().trim().to_string();
+                // The file that set the offending key (or the last one that set the section).
+                let first = inner_path.split(['.', '[']).next().unwrap_or("");
+                let unknown = crate::diagnostics::parse_unknown_field(&message).map(|(f, _)| f);
+                let top = unknown.as_deref().filter(|_| first.is_empty()).unwrap_or(first);
+                let file = section.origin.get(top).copied().unwrap_or(self.files.len().saturating_sub(1));
+                let path = if inner_path.is_empty() { name.to_string() } else { format!("{name}.{inner_path}") };
+                self.diagnostics.push(super::source::serde_diagnostic(&self.files[file], &path, &message));
+                None
+            }
+        }
+    }
+
+    fn finish(mut self) -> Result<Scene, SceneError> {
+        if !self.diagnostics.is_empty() && self.files.is_empty() {
+            return Err(SceneError { diagnostics: self.diagnostics });
+        }
+        let render: Option<RenderSettings> = self.section(0, "render");
+        let camera: Option<Camera> = self.section(1, "camera");
+        let environment: Option<Environment> = self.section(2, "world");
+
+        let mut world = hecs::World::new();
+        let mut by_name: HashMap<String, (hecs::Entity, Location)> = HashMap::new();
+        let mut parents: Vec<(hecs::Entity, String, Location)> = Vec::new();
+        let objects = std::mem::take(&mut self.objects);
+        for object in objects {
+            self.object(&mut world, object, &mut by_name, &mut parents);
+        }
+        for (entity, parent, location) in parents {
+            match by_name.get(&parent) {
+                Some((p, _)) => {
+                    world.insert_one(entity, Parent(*p)).expect("entity was just spawned");
+                }
+                None => {
+                    let d = Diagnostic::new(location, format!("no object is named `{parent}`"))
+                        .suggest(&parent, by_name.keys().map(String::as_str));
+                    self.diagnostics.push(d);
+                }
+            }
+        }
+        let lights = std::mem::take(&mut self.lights);
+        for (i, (light, location)) in lights.into_iter().enumerate() {
+            world.spawn((light, Origin(location), Name(format!("light{i}"))));
+        }
+
+        if !self.diagnostics.is_empty() {
+            return Err(SceneError { diagnostics: self.diagnostics });
+        }
+        let camera_origin = match self.camera.origin.values().next() {
+            Some(&file) => self.files[file].locate("camera"),
+            None => Location::file_only(self.files[0].name.clone(), "camera"),
+        };
+        let camera = world.spawn((camera.expect("no diagnostics"), Name("camera".into()), Origin(camera_origin)));
+        let render_origin = match self.render.origin.get("width").or_else(|| self.render.origin.values().next()) {
+            Some(&file) => self.files[file].locate("render"),
+            None => Location::file_only(self.files[0].name.clone(), "render"),
+        };
+        Ok(Scene {
+            world,
+            render: render.expect("no diagnostics"),
+            render_origin,
+            environment: environment.expect("no diagnostics"),
+            camera,
+        })
+    }
+
+    fn object(
+        &mut self,
+        world: &mut hecs::World,
+        object: ObjectDef,
+        by_name: &mut HashMap<String, (hecs::Entity, Location)>,
+        parents: &mut Vec<(hecs::Entity, String, Location)>,
+    ) {
+        let ObjectDef { file, key, mut table } = object;
+        let location = self.files[file].locate(&key);
+        let Some(kind_value) = table.remove("shape") else {
+            let d = Diagnostic::new(location, "missing key `shape`")
+                .with_help(format!("known shapes: {}", self.registry.names().collect::<Vec<_>>().join(", ")));
+            self.diagnostics.push(d);
+            return;
+        };
+        let toml::Value::String(kind) = kind_value else {
+            let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.shape")), "`shape` must be a string");
+            self.diagnostics.push(d);
+            return;
+        };
+        let Some(shape_type) = self.registry.get(&kind) else {
+            let d = Diagnostic::new(
+                self.files[file].locate_value(&format!("{key}.shape")),
+                format!("unknown shape `{kind}`"),
+            )
+            .suggest(&kind, self.registry.names());
+            let d = if d.help.is_none() {
+                d.with_help(format!("known shapes: {}", self.registry.names().collect::<Vec<_>>().join(", ")))
+            } else {
+                d
+            };
+            self.diagnostics.push(d);
+            return;
+        };
+
+        let name = match table.remove("name") {
+            None => None,
+            Some(toml::Value::String(s)) => Some(s),
+            Some(_) => {
+                self.diagnostics.push(Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.name")),
+                    "`name` must be a string",
+                ));
+                return;
+            }
+        };
+        let transform: Transform = match table.remove("transform") {
+            None => Transform::default(),
+            Some(v) => match self.deserialize(file, &format!("{key}.transform"), v) {
+                Some(t) => t,
+                None => return,
+            },
+        };
+        if transform.matrix.is_some()
+            && (transform.translate.is_some() || transform.rotate.is_some() || transform.scale.is_some())
+        {
+            let d = Diagnostic::new(
+                self.files[file].locate(&format!("{key}.transform.matrix")),
+                "`matrix` cannot be combined with translate, rotate or scale",
+            )
+            .with_help("fold the other parts into the matrix, or drop the matrix");
+            self.diagnostics.push(d);
+            return;
+        }
+        let material = match table.remove("material") {
+            None => Some(MaterialComponent { name: None, material: Material::default() }),
+            Some(toml::Value::String(name)) => match self.materials.get(&name) {
+                Some((m, _)) => Some(MaterialComponent { name: Some(name), material: m.clone() }),
+                None => {
+                    let d = Diagnostic::new(
+                        self.files[file].locate_value(&format!("{key}.material")),
+                        format!("no material is named `{name}`"),
+                    )
+                    .suggest(&name, self.materials.keys().map(String::as_str));
+                    self.diagnostics.push(d);
+                    None
+                }
+            },
+            Some(v @ toml::Value::Table(_)) => self
+                .material(file, &format!("{key}.material"), v)
+                .map(|m| MaterialComponent { name: None, material: m }),
+            Some(_) => {
+                self.diagnostics.push(Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.material")),
+                    "`material` must be the name of a [materials.NAME] table or an inline table",
+                ));
+                None
+            }
+        };
+        let parent = match table.remove("parent") {
+            None => None,
+            Some(toml::Value::String(s)) => Some(s),
+            Some(_) => {
+                self.diagnostics.push(Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.parent")),
+                    "`parent` must be the name of another object",
+                ));
+                return;
+            }
+        };
+        let flags = match table.remove("no_shadow") {
+            None => ObjectFlags::default(),
+            Some(toml::Value::Boolean(b)) => ObjectFlags { no_shadow: b },
+            Some(_) => {
+                self.diagnostics.push(Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.no_shadow")),
+                    "`no_shadow` must be true or false",
+                ));
+                return;
+            }
+        };
+        let geometry = match (shape_type.build)(table.clone()) {
+            Ok(g) => g,
+            Err(e) => {
+                let d = if let Some((field, expected)) = crate::diagnostics::parse_unknown_field(&e.message) {
+                    let k = format!("{key}.{field}");
+                    Diagnostic::new(self.files[file].locate(&k), format!("unknown key `{field}` for shape `{kind}`"))
+                        .suggest(&field, expected.iter().map(String::as_str).chain(OBJECT_KEYS))
+                } else if e.key.is_empty() {
+                    Diagnostic::new(location.clone(), format!("shape `{kind}`: {}", e.message))
+                } else {
+                    let k = format!("{key}.{}", e.key);
+                    Diagnostic::new(self.files[file].locate_value(&k), e.message.clone())
+                };
+                self.diagnostics.push(d);
+                return;
+            }
+        };
+        let Some(material) = material else { return };
+        let shape = ShapeComponent { kind, params: table, geometry };
+        let entity = world.spawn((shape, transform, material, flags, Origin(location.clone())));
+        if let Some(name) = name {
+            if let Some((_, first)) = by_name.get(&name) {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.name")),
+                    format!("duplicate object name `{name}`"),
+                )
+                .with_help(format!("first used at {first}"));
+                self.diagnostics.push(d);
+            } else {
+                by_name.insert(name.clone(), (entity, location));
+            }
+            world.insert_one(entity, Name(name)).expect("entity was just spawned");
+        }
+        if let Some(parent) = parent {
+            parents.push((entity, parent, self.files[file].locate_value(&format!("{key}.parent"))));
+        }
+    }
+}

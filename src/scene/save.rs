@@ -1,0 +1,89 @@
+//! `save`: the inverse of `load`. Writes a world back as one self-contained TOML scene
+//! (includes are flattened) that loads to the identical image.
+
+use std::collections::BTreeMap;
+
+use super::Scene;
+use super::components::{Light, MaterialComponent, Name, ObjectFlags, Parent, ShapeComponent, Transform};
+use crate::material::Material;
+
+/// The scene as TOML text.
+pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
+    let mut doc = toml::Table::new();
+    doc.insert("render".into(), toml::Value::try_from(&scene.render)?);
+    doc.insert("camera".into(), toml::Value::try_from(scene.camera())?);
+    doc.insert("world".into(), toml::Value::try_from(&scene.environment)?);
+
+    let mut objects: Vec<(hecs::Entity, toml::Table)> = Vec::new();
+    let mut materials: BTreeMap<String, Material> = BTreeMap::new();
+    let mut query = scene.world.query::<(
+        hecs::Entity,
+        &ShapeComponent,
+        &Transform,
+        &MaterialComponent,
+        &ObjectFlags,
+        Option<&Name>,
+        Option<&Parent>,
+    )>();
+    for (entity, shape, transform, material, flags, name, parent) in query.iter() {
+        let mut t = toml::Table::new();
+        t.insert("shape".into(), shape.kind.clone().into());
+        if let Some(name) = name {
+            t.insert("name".into(), name.0.clone().into());
+        }
+        match &material.name {
+            Some(n) => {
+                materials.insert(n.clone(), material.material.clone());
+                t.insert("material".into(), n.clone().into());
+            }
+            None => {
+                t.insert("material".into(), toml::Value::try_from(&material.material)?);
+            }
+        }
+        if !transform.is_identity() {
+            t.insert("transform".into(), toml::Value::try_from(transform)?);
+        }
+        if let Some(parent) = parent
+            && let Ok(parent_name) = scene.world.get::<&Name>(parent.0)
+        {
+            t.insert("parent".into(), parent_name.0.clone().into());
+        }
+        if flags.no_shadow {
+            t.insert("no_shadow".into(), true.into());
+        }
+        for (k, v) in &shape.params {
+            t.insert(k.clone(), v.clone());
+        }
+        objects.push((entity, t));
+    }
+    objects.sort_by_key(|(e, _)| e.id());
+
+    let mut lights: Vec<(hecs::Entity, toml::Table)> = Vec::new();
+    for (entity, light) in scene.world.query::<(hecs::Entity, &Light)>().iter() {
+        let toml::Value::Table(all) = toml::Value::try_from(light)? else {
+            unreachable!("a struct serialises to a table")
+        };
+        let allowed = light.kind.allowed_keys();
+        let t = all.into_iter().filter(|(k, _)| k == "kind" || allowed.contains(&k.as_str())).collect();
+        lights.push((entity, t));
+    }
+    lights.sort_by_key(|(e, _)| e.id());
+
+    if !materials.is_empty() {
+        let mut table = toml::Table::new();
+        for (name, m) in materials {
+            table.insert(name, toml::Value::try_from(&m)?);
+        }
+        doc.insert("materials".into(), table.into());
+    }
+    let objects: Vec<toml::Value> = objects.into_iter().map(|(_, t)| t.into()).collect();
+    if !objects.is_empty() {
+        doc.insert("object".into(), objects.into());
+    }
+    let lights: Vec<toml::Value> = lights.into_iter().map(|(_, t)| t.into()).collect();
+    if !lights.is_empty() {
+        doc.insert("light".into(), lights.into());
+    }
+    let body = toml::to_string_pretty(&doc)?;
+    Ok(format!("# Written by `prism save`: a self-contained copy of the scene (includes flattened).\n\n{body}"))
+}

@@ -1,0 +1,181 @@
+//! `validate`: checks that need the whole scene (sizes, camera, transforms, lights) and
+//! reports every problem with the location it came from.
+
+use glam::DVec3;
+
+use super::Scene;
+use super::components::{Light, LightKind, Origin, WorldTransform};
+use crate::diagnostics::{Diagnostic, Location, SceneError};
+
+/// Largest accepted image side, and pixel count (a 64k x 64k float image is 48 GiB).
+pub const MAX_IMAGE_SIDE: u32 = 65_536;
+/// Largest accepted number of pixels.
+pub const MAX_PIXELS: u64 = 268_435_456;
+/// Largest accepted samples per pixel.
+pub const MAX_SAMPLES: u32 = 1 << 20;
+
+/// Checks the scene; `Ok` means it can be extracted and rendered.
+pub fn validate(scene: &Scene) -> Result<(), SceneError> {
+    let mut out = Vec::new();
+    check_render(scene, &mut out);
+    check_camera(scene, &mut out);
+    let env = &scene.environment;
+    for (key, c) in [("background", env.background), ("ambient_light", env.ambient_light)] {
+        if !c.is_finite() {
+            out.push(Diagnostic::new(scene.render_origin.child(key), format!("`world.{key}` must be finite")));
+        }
+    }
+    for (transform, origin) in scene.world.query::<(&WorldTransform, &Origin)>().iter() {
+        let m = transform.0;
+        let det = m.matrix3.determinant();
+        if !m.matrix3.is_finite() || !m.translation.is_finite() {
+            out.push(Diagnostic::new(origin.0.child("transform"), "transform is not finite (NaN or infinity)"));
+        } else if det.abs() < 1e-18 {
+            out.push(
+                Diagnostic::new(origin.0.child("transform"), "transform is singular (it flattens the object)")
+                    .with_help("a scale of 0 on some axis, or a matrix without an inverse"),
+            );
+        }
+    }
+    for (light, origin) in scene.world.query::<(&Light, &Origin)>().iter() {
+        check_light(light, &origin.0, &mut out);
+    }
+    if out.is_empty() {
+        Ok(())
+    } else {
+        out.sort_by(|a, b| {
+            (a.location.file.as_ref(), a.location.line, a.location.column).cmp(&(
+                b.location.file.as_ref(),
+                b.location.line,
+                b.location.column,
+            ))
+        });
+        Err(SceneError { diagnostics: out })
+    }
+}
+
+fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
+    let r = &scene.render;
+    let at = |key: &str| scene.render_origin.child(key);
+    for (key, v) in [("width", r.width), ("height", r.height)] {
+        if v == 0 || v > MAX_IMAGE_SIDE {
+            out.push(Diagnostic::new(at(key), format!("image {key} must be between 1 and {MAX_IMAGE_SIDE}, got {v}")));
+        }
+    }
+    let pixels = u64::from(r.width) * u64::from(r.height);
+    if pixels > MAX_PIXELS {
+        out.push(Diagnostic::new(at("width"), format!("image of {pixels} pixels exceeds the limit of {MAX_PIXELS}")));
+    }
+    if r.samples == 0 || r.samples > MAX_SAMPLES {
+        out.push(Diagnostic::new(
+            at("samples"),
+            format!("samples must be between 1 and {MAX_SAMPLES}, got {}", r.samples),
+        ));
+    }
+    if r.max_depth == 0 || r.max_depth > 1000 {
+        out.push(Diagnostic::new(
+            at("max_depth"),
+            format!("max_depth must be between 1 and 1000, got {}", r.max_depth),
+        ));
+    }
+    if !(r.adc_bailout.is_finite() && (0.0..1.0).contains(&r.adc_bailout)) {
+        out.push(Diagnostic::new(at("adc_bailout"), format!("adc_bailout must be in [0, 1), got {}", r.adc_bailout)));
+    }
+    if !r.exposure.is_finite() {
+        out.push(Diagnostic::new(at("exposure"), "exposure must be finite"));
+    }
+}
+
+fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
+    let camera = scene.camera();
+    let origin = scene
+        .world
+        .get::<&Origin>(scene.camera)
+        .map(|o| o.0.clone())
+        .unwrap_or_else(|_| Location::file_only("", "camera"));
+    let position = DVec3::from_array(camera.position);
+    let look_at = DVec3::from_array(camera.look_at);
+    let up = DVec3::from_array(camera.up);
+    for (key, v) in [("position", position), ("look_at", look_at), ("up", up)] {
+        if !v.is_finite() {
+            out.push(Diagnostic::new(origin.child(key), format!("camera {key} must be finite")));
+            return;
+        }
+    }
+    let forward = look_at - position;
+    if forward.length() < 1e-12 {
+        out.push(Diagnostic::new(origin.child("look_at"), "camera look_at is the camera position"));
+    } else if up.length() < 1e-12 || forward.normalize().cross(up.normalize()).length() < 1e-9 {
+        out.push(
+            Diagnostic::new(origin.child("up"), "camera up is zero or parallel to the viewing direction")
+                .with_help("choose an up vector that is not along look_at - position"),
+        );
+    }
+    if !(camera.vfov.is_finite() && camera.vfov > 0.0 && camera.vfov < 180.0) {
+        out.push(Diagnostic::new(
+            origin.child("vfov"),
+            format!("vfov must be between 0 and 180 degrees, got {}", camera.vfov),
+        ));
+    }
+    if let Some(a) = camera.aspect
+        && !(a.is_finite() && a > 0.0)
+    {
+        out.push(Diagnostic::new(origin.child("aspect"), format!("aspect must be positive, got {a}")));
+    }
+    if !(camera.aperture.is_finite() && camera.aperture >= 0.0) {
+        out.push(Diagnostic::new(origin.child("aperture"), "aperture must be 0 or positive"));
+    }
+    if let Some(f) = camera.focal_distance
+        && !(f.is_finite() && f > 0.0)
+    {
+        out.push(Diagnostic::new(origin.child("focal_distance"), "focal_distance must be positive"));
+    }
+}
+
+fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
+    let vectors =
+        [("position", light.position), ("point_at", light.point_at), ("axis1", light.axis1), ("axis2", light.axis2)];
+    for (key, v) in vectors {
+        if !DVec3::from_array(v).is_finite() {
+            out.push(Diagnostic::new(origin.child(key), format!("`{key}` must be finite")));
+        }
+    }
+    let numbers = [
+        ("intensity", light.intensity),
+        ("fade_distance", light.fade_distance),
+        ("fade_power", light.fade_power),
+        ("radius", light.radius),
+        ("falloff", light.falloff),
+        ("tightness", light.tightness),
+    ];
+    for (key, v) in numbers {
+        if !v.is_finite() {
+            out.push(Diagnostic::new(origin.child(key), format!("`{key}` must be finite, got {v}")));
+        }
+    }
+    if !light.color.is_finite() {
+        out.push(Diagnostic::new(origin.child("color"), "`color` must be finite"));
+    }
+    let position = DVec3::from_array(light.position);
+    let point_at = DVec3::from_array(light.point_at);
+    let aims = light.kind == LightKind::Spot || light.kind == LightKind::Parallel || light.spot;
+    if aims && (point_at - position).length() < 1e-12 {
+        out.push(
+            Diagnostic::new(origin.child("point_at"), "point_at equals position, so the light has no direction")
+                .with_help("set point_at to where the light shines"),
+        );
+    }
+    if light.kind == LightKind::Area {
+        for (key, n) in [("size1", light.size1), ("size2", light.size2)] {
+            if n == 0 || n > 1024 {
+                out.push(Diagnostic::new(origin.child(key), format!("`{key}` must be between 1 and 1024, got {n}")));
+            }
+        }
+        if light.circular && (light.size1 < 2 || light.size2 < 2) {
+            out.push(Diagnostic::new(
+                origin.child("circular"),
+                "a circular area light needs size1 and size2 of at least 2",
+            ));
+        }
+    }
+}
