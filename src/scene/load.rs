@@ -396,6 +396,10 @@ impl Loader<'_> {
         }
 
         if !self.diagnostics.is_empty() {
+            let files = &self.files;
+            self.diagnostics.sort_by_key(|d| {
+                (files.iter().position(|f| f.name == d.location.file), d.location.line, d.location.column)
+            });
             return Err(SceneError { diagnostics: self.diagnostics });
         }
         let camera_origin = match self.camera.origin.values().next() {
@@ -469,6 +473,20 @@ impl Loader<'_> {
                 None => return,
             },
         };
+        let matrix = transform.parent_from_local();
+        if !(matrix.matrix3.is_finite() && matrix.translation.is_finite()) {
+            let k = format!("{key}.transform");
+            self.diagnostics
+                .push(Diagnostic::new(self.files[file].locate(&k), "transform is not finite (NaN or infinity)"));
+            return;
+        }
+        if matrix.matrix3.determinant().abs() < 1e-18 {
+            let k = format!("{key}.transform");
+            let d = Diagnostic::new(self.files[file].locate(&k), "transform is singular (it flattens the object)")
+                .with_help("a scale of 0 on some axis, or a matrix without an inverse");
+            self.diagnostics.push(d);
+            return;
+        }
         if transform.matrix.is_some()
             && (transform.translate.is_some() || transform.rotate.is_some() || transform.scale.is_some())
         {
@@ -531,7 +549,9 @@ impl Loader<'_> {
             Ok(g) => g,
             Err(e) => {
                 let d = if let Some((field, expected)) = crate::diagnostics::parse_unknown_field(&e.message) {
-                    let k = format!("{key}.{field}");
+                    // The parameter path ends with the unknown key (`components[0].centre`).
+                    let inner = if e.key.is_empty() { field.clone() } else { e.key.clone() };
+                    let k = format!("{key}.{inner}");
                     Diagnostic::new(self.files[file].locate(&k), format!("unknown key `{field}` for shape `{kind}`"))
                         .suggest(&field, expected.iter().map(String::as_str).chain(OBJECT_KEYS))
                 } else if e.key.is_empty() {

@@ -136,7 +136,9 @@ pub fn deserialize_at<T: serde::de::DeserializeOwned>(
 /// A diagnostic for a serde `message` about key path `path`.
 pub fn serde_diagnostic(file: &ParsedFile, path: &str, message: &str) -> Diagnostic {
     if let Some((field, expected)) = crate::diagnostics::parse_unknown_field(message) {
-        let key = join(path, &field);
+        // serde_path_to_error already ends the path with the unknown key; other callers don't.
+        let key =
+            if path == field || path.ends_with(&format!(".{field}")) { path.to_string() } else { join(path, &field) };
         let diagnostic = Diagnostic::new(file.locate(&key), format!("unknown key `{field}`"));
         let with_help = diagnostic.clone().suggest(&field, expected.iter().map(String::as_str));
         return if with_help.help.is_some() || expected.is_empty() {

@@ -1,0 +1,259 @@
+//! Bad input through the CLI: every broken scene gives a clear message naming the file, line
+//! and key, a non-zero exit, no panic, and no output file.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const SPHERE: &str = "[[object]]\nshape = \"sphere\"\n";
+
+struct Case {
+    name: &'static str,
+    /// The scene text (written to `scene.toml`).
+    scene: String,
+    /// Extra files (relative path, text) written beside the scene.
+    extra: Vec<(&'static str, &'static str)>,
+    /// Substrings the error must contain.
+    expect: Vec<&'static str>,
+    /// Output path override (relative to the case directory unless absolute).
+    output: Option<&'static str>,
+}
+
+fn case(name: &'static str, scene: &str, expect: &[&'static str]) -> Case {
+    Case { name, scene: scene.to_string(), extra: Vec::new(), expect: expect.to_vec(), output: None }
+}
+
+fn cases() -> Vec<Case> {
+    vec![
+        case("syntax error", "[render\nwidth = 10\n", &["scene.toml:1:", "syntax"]),
+        case(
+            "unknown top-level key",
+            "[rendr]\nwidth = 10\n",
+            &["scene.toml:1:", "unknown top-level key `rendr`", "did you mean `render`"],
+        ),
+        case(
+            "unknown render key",
+            "[render]\nwidht = 10\n",
+            &["scene.toml:2:1", "render.widht", "did you mean `width`"],
+        ),
+        case("wrong type", "[render]\nwidth = \"big\"\n", &["scene.toml:2:", "render.width", "invalid type"]),
+        case(
+            "unknown shape",
+            "[[object]]\nshape = \"sphear\"\n",
+            &["scene.toml:2:", "unknown shape `sphear`", "did you mean `sphere`"],
+        ),
+        case(
+            "negative radius",
+            "[[object]]\nshape = \"sphere\"\nradius = -1\n",
+            &["scene.toml:3:", "object[0].radius", "greater than 0"],
+        ),
+        case(
+            "zero-length normal",
+            "[[object]]\nshape = \"plane\"\nnormal = [0, 0, 0]\n",
+            &["scene.toml:3:", "object[0].normal"],
+        ),
+        case(
+            "NaN translate",
+            &format!("{SPHERE}transform = {{ translate = [nan, 0, 0] }}\n"),
+            &["scene.toml:1:", "not finite"],
+        ),
+        case(
+            "missing include",
+            "include = [\"nowhere.toml\"]\n",
+            &["scene.toml:1:", "cannot read included file", "nowhere.toml"],
+        ),
+        Case {
+            extra: vec![("b.toml", "include = [\"scene.toml\"]\n")],
+            ..case("include cycle", "include = [\"b.toml\"]\n", &["include cycle", "b.toml", "scene.toml"])
+        },
+        Case {
+            output: Some("/nonexistent-dir/out.png"),
+            ..case("unwritable output", SPHERE, &["/nonexistent-dir/out.png", "cannot write"])
+        },
+        Case { output: Some("out.xyz"), ..case("unknown output format", SPHERE, &["out.xyz", "unknown image format"]) },
+        case("zero width", "[render]\nwidth = 0\n", &["scene.toml:1:", "width must be between 1 and"]),
+        case("absurd size", "[render]\nwidth = 60000\nheight = 60000\n", &["scene.toml:", "exceeds the limit"]),
+        case("zero samples", "[render]\nsamples = 0\n", &["scene.toml:", "samples must be between"]),
+        case("negative width", "[render]\nwidth = -5\n", &["scene.toml:2:", "render.width"]),
+        case(
+            "unknown material",
+            &format!("{SPHERE}material = \"chrom\"\n[materials.chrome]\nreflection = 1\n"),
+            &["scene.toml:3:", "no material is named `chrom`", "did you mean `chrome`"],
+        ),
+        case(
+            "unknown material key",
+            "[materials.red]\ncolr = [1, 0, 0]\n",
+            &["scene.toml:2:1", "materials.red.colr", "did you mean `color`"],
+        ),
+        case(
+            "bad reflection key",
+            "[materials.m]\nreflection = { mni = 0.1 }\n",
+            &["scene.toml:2:", "materials.m.reflection", "mni"],
+        ),
+        case(
+            "camera looks at itself",
+            "[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, 0]\n",
+            &["scene.toml:", "look_at is the camera position"],
+        ),
+        case(
+            "unknown light kind",
+            "[[light]]\nkind = \"laser\"\n",
+            &["scene.toml:2:", "light[0].kind", "unknown variant"],
+        ),
+        case(
+            "key for another light kind",
+            "[[light]]\nkind = \"point\"\nradius = 10\n",
+            &["scene.toml:3:1", "does not apply to a point light"],
+        ),
+        case("missing shape", "[[object]]\nradius = 1\n", &["scene.toml:1:", "missing key `shape`", "known shapes"]),
+        case(
+            "duplicate name",
+            &format!("{SPHERE}name = \"a\"\n{SPHERE}name = \"a\"\n"),
+            &["scene.toml:6:", "duplicate object name `a`"],
+        ),
+        case(
+            "unknown parent",
+            &format!("{SPHERE}name = \"body\"\n{SPHERE}parent = \"bdy\"\n"),
+            &["scene.toml:6:", "no object is named `bdy`", "did you mean `body`"],
+        ),
+        case(
+            "parent cycle",
+            &format!("{SPHERE}name = \"a\"\nparent = \"b\"\n{SPHERE}name = \"b\"\nparent = \"a\"\n"),
+            &["scene.toml:", "parent chain forms a cycle"],
+        ),
+        case(
+            "singular transform",
+            &format!("{SPHERE}transform = {{ scale = [1, 0, 1] }}\n"),
+            &["scene.toml:1:", "singular"],
+        ),
+        case(
+            "matrix with translate",
+            &format!(
+                "{SPHERE}transform = {{ translate = [1, 0, 0], matrix = [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]] }}\n"
+            ),
+            &["scene.toml:3:", "cannot be combined"],
+        ),
+        case(
+            "degenerate cone",
+            "[[object]]\nshape = \"cone\"\nbase = [0, 0, 0]\napex = [0, 0, 0]\n",
+            &["scene.toml:4:", "object[0].apex"],
+        ),
+        case(
+            "unknown shape parameter",
+            "[[object]]\nshape = \"sphere\"\nradus = 2\n",
+            &["scene.toml:3:1", "unknown key `radus`", "did you mean `radius`"],
+        ),
+        case("objects not an array", "object = 5\n", &["scene.toml:1:", "must be an array of tables"]),
+        case("infinite light", "[[light]]\nposition = [inf, 0, 0]\n", &["scene.toml:", "position", "finite"]),
+    ]
+}
+
+fn prism() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_prism"))
+}
+
+fn files_in(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn broken_scenes_fail_clearly_without_output() {
+    let all = cases();
+    assert!(all.len() >= 20);
+    let root = tempfile::tempdir().unwrap();
+    let mut failures = Vec::new();
+    for (i, c) in all.iter().enumerate() {
+        let dir = root.path().join(format!("case{i}"));
+        std::fs::create_dir(&dir).unwrap();
+        std::fs::write(dir.join("scene.toml"), &c.scene).unwrap();
+        for (name, text) in &c.extra {
+            std::fs::write(dir.join(name), text).unwrap();
+        }
+        let before = files_in(&dir);
+        let output = c.output.map_or_else(|| dir.join("out.png"), |o| dir.join(o));
+        let run = prism()
+            .current_dir(&dir)
+            .args(["render", "scene.toml", "-o"])
+            .arg(&output)
+            .args(["--exr"])
+            .arg(dir.join("out.exr"))
+            .args(["--width", "8", "--height", "6"].iter().filter(|_| !c.scene.contains("width")))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        let mut problems = Vec::new();
+        if run.status.success() {
+            problems.push("exited 0".to_string());
+        }
+        if run.status.code().is_none() || stderr.contains("panicked") {
+            problems.push("panicked or was killed".to_string());
+        }
+        for e in &c.expect {
+            if !stderr.contains(e) {
+                problems.push(format!("message lacks `{e}`"));
+            }
+        }
+        if files_in(&dir) != before {
+            problems.push(format!("files changed: {:?}", files_in(&dir)));
+        }
+        if !problems.is_empty() {
+            failures.push(format!("{}: {}\n--- stderr:\n{stderr}", c.name, problems.join("; ")));
+        }
+    }
+    assert!(failures.is_empty(), "{} of {} cases failed:\n{}", failures.len(), all.len(), failures.join("\n"));
+}
+
+#[test]
+fn missing_scene_file_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = prism().current_dir(dir.path()).args(["render", "no-such-scene.toml"]).output().unwrap();
+    assert!(!run.status.success());
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("no-such-scene.toml") && stderr.contains("cannot read scene file"), "{stderr}");
+    assert!(files_in(dir.path()).is_empty());
+}
+
+#[test]
+fn errors_are_all_reported_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("s.toml"), "[[object]]\nshape = \"sphear\"\n[[object]]\nshape = \"bx\"\n").unwrap();
+    let run = prism().current_dir(dir.path()).args(["render", "s.toml"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("s.toml:2:") && stderr.contains("s.toml:4:"), "{stderr}");
+}
+
+#[test]
+fn default_command_renders_the_room() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = prism().current_dir(dir.path()).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let img = image::open(dir.path().join("prism.png")).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (1000, 563));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("Mrays/s") && stderr.contains("primary rays"), "summary line: {stderr}");
+    // The left wall is red, the right wall green.
+    let left = img.get_pixel(20, 280).0;
+    let right = img.get_pixel(980, 280).0;
+    assert!(left[0] > left[1] + 40 && right[1] > right[0] + 40, "{left:?} {right:?}");
+}
+
+#[test]
+fn shapes_lists_parameters_from_the_plugins() {
+    let run = prism().arg("shapes").output().unwrap();
+    assert!(run.status.success());
+    let out = String::from_utf8_lossy(&run.stdout);
+    for needle in ["sphere", "radius", "plane", "normal", "cone", "base_radius", "disc", "cylinder", "box", "triangle"]
+    {
+        assert!(out.contains(needle), "`prism shapes` lacks {needle}:\n{out}");
+    }
+}
+
+#[test]
+fn help_is_available_everywhere() {
+    for args in [vec!["--help"], vec!["render", "--help"], vec!["shapes", "--help"], vec!["save", "--help"]] {
+        let run = prism().args(&args).output().unwrap();
+        assert!(run.status.success(), "{args:?}");
+        assert!(String::from_utf8_lossy(&run.stdout).contains("Usage"), "{args:?}");
+    }
+}
