@@ -1,0 +1,144 @@
+//! Closed scenes with known answers: single-pixel renders whose values POV-Ray 3.7 was
+//! measured to produce (shared/povray/REPORT.md, section 7), so each formula of the classic
+//! integrator is pinned to the reference renderer.
+
+use std::path::Path;
+
+use prism::render::{RenderOptions, render};
+
+/// Renders `scene` (TOML) as a 1x1 image and returns the pixel.
+fn pixel(scene: &str) -> [f64; 3] {
+    pixel_with_render("", scene)
+}
+
+/// Like [`pixel`], with extra `[render]` keys.
+fn pixel_with_render(render_keys: &str, scene: &str) -> [f64; 3] {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.toml");
+    let text = format!("[render]\nwidth = 1\nheight = 1\n{render_keys}\n{scene}");
+    std::fs::write(&path, text).unwrap();
+    let mut loaded = prism::scene::load::load_file(Path::new(&path), &prism::plugins::registry()).unwrap();
+    let render_scene = prism::prepare(&mut loaded).unwrap();
+    let (film, _) = render(&render_scene, &RenderOptions { threads: Some(1), progress: false }).unwrap();
+    film.pixels[0].map(f64::from)
+}
+
+fn assert_close(got: [f64; 3], want: [f64; 3], tol: f64) {
+    for c in 0..3 {
+        assert!((got[c] - want[c]).abs() <= tol, "got {got:?}, want {want:?}");
+    }
+}
+
+/// A wall at z = 0 facing the seed camera (which looks at it head-on from z = 1).
+fn wall(material: &str) -> String {
+    format!("[[object]]\nshape = \"plane\"\nnormal = [0, 0, 1]\noffset = 0\nmaterial = {{ {material} }}\n")
+}
+
+fn light(x: f64, y: f64, z: f64, extra: &str) -> String {
+    format!("[[light]]\nposition = [{x}, {y}, {z}]\n{extra}\n")
+}
+
+#[test]
+fn ambient_plus_diffuse_head_on() {
+    let got = pixel(&(wall("color = [0.5, 0.4, 0.3], ambient = 0.1, diffuse = 0.6") + &light(0.0, 0.0, 10.0, "")));
+    assert_close(got, [0.35, 0.28, 0.21], 1e-6);
+}
+
+#[test]
+fn ambient_light_scales_ambient() {
+    let scene = wall("color = [0.5, 0.4, 0.3], ambient = 0.2, diffuse = 0") + "[world]\nambient_light = [0.5, 1, 2]\n";
+    assert_close(pixel(&scene), [0.05, 0.08, 0.12], 1e-6);
+}
+
+#[test]
+fn brilliance_at_sixty_degrees() {
+    let (s, c) = (60f64.to_radians().sin(), 60f64.to_radians().cos());
+    let scene = wall("color = [0.5, 0.4, 0.3], ambient = 0, diffuse = 0.6, brilliance = 2")
+        + &light(10.0 * s, 0.0, 10.0 * c, "");
+    assert_close(pixel(&scene), [0.075, 0.06, 0.045], 1e-6);
+}
+
+#[test]
+fn light_fade_has_the_factor_two() {
+    let scene =
+        wall("color = 1, ambient = 0, diffuse = 1") + &light(0.0, 0.0, 10.0, "fade_distance = 5\nfade_power = 2");
+    assert_close(pixel(&scene), [0.4, 0.4, 0.4], 1e-6);
+}
+
+#[test]
+fn phong_ten_degrees_off_the_mirror_direction() {
+    // The mirror of the view ray is the normal; the light is 10 degrees off it.
+    let (s, c) = (10f64.to_radians().sin(), 10f64.to_radians().cos());
+    let scene =
+        wall("color = 1, ambient = 0, diffuse = 0, phong = 0.8, phong_size = 40") + &light(10.0 * s, 0.0, 10.0 * c, "");
+    assert_close(pixel(&scene), [0.43366; 3], 2e-5);
+}
+
+#[test]
+fn specular_at_twenty_degrees() {
+    let (s, c) = (20f64.to_radians().sin(), 20f64.to_radians().cos());
+    let scene = wall("color = 1, ambient = 0, diffuse = 0, specular = 0.7, roughness = 0.05")
+        + &light(1e4 * s, 0.0, 1e4 * c, "");
+    assert_close(pixel(&scene), [0.51538; 3], 2e-5);
+}
+
+/// A floor seen at 60 degrees from its normal, reflecting a white sky.
+fn floor_at_sixty_degrees(material: &str) -> String {
+    format!(
+        "[camera]\nposition = [0, 0.5, 0.8660254037844386]\nlook_at = [0, 0, 0]\n[world]\nbackground = 1\n\
+         [[object]]\nshape = \"plane\"\nnormal = [0, 1, 0]\nmaterial = {{ {material} }}\n"
+    )
+}
+
+#[test]
+fn reflection_falloff() {
+    let scene = floor_at_sixty_degrees(
+        "color = 0, ambient = 0, diffuse = 0, reflection = { min = 0.2, max = 0.8, falloff = 2 }",
+    );
+    assert_close(pixel(&scene), [0.35; 3], 1e-6);
+}
+
+#[test]
+fn fresnel_reflection_with_ior() {
+    let scene = floor_at_sixty_degrees(
+        "color = 0, ambient = 0, diffuse = 0, ior = 1.5, reflection = { min = 0, max = 1, fresnel = true }",
+    );
+    assert_close(pixel(&scene), [0.08919; 3], 1e-5);
+}
+
+#[test]
+fn fresnel_needs_an_ior() {
+    let scene = floor_at_sixty_degrees(
+        "color = 0, ambient = 0, diffuse = 0, reflection = { min = 0, max = 1, fresnel = true }",
+    );
+    assert_close(pixel(&scene), [0.0; 3], 1e-12);
+}
+
+#[test]
+fn area_light_uses_hierarchical_weights() {
+    // A 3x3 grid above the wall; a bar blocks exactly the right column of shadow rays.
+    // POV-Ray weighs columns (1, 2, 1) / 4, so the visibility is 0.75, not 2/3.
+    let scene = wall("color = 1, ambient = 0, diffuse = 1")
+        + &light(0.0, 0.0, 10.0, "kind = \"area\"\naxis1 = [2, 0, 0]\naxis2 = [0, 2, 0]\nsize1 = 3\nsize2 = 3")
+        + "[[object]]\nshape = \"box\"\nmin = [0.3, -1, 4.9]\nmax = [0.7, 1, 5.1]\n";
+    assert_close(pixel(&scene), [0.75; 3], 1e-6);
+}
+
+#[test]
+fn stopped_rays_are_black_not_background() {
+    // Two facing mirrors: ambient 0.1, reflection 0.5, max_depth 5 -> sum_{k<5} 0.1 * 0.5^k.
+    let scene = "[world]\nbackground = 1\n[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\n\
+        [[object]]\nshape = \"plane\"\nnormal = [0, 0, 1]\noffset = -1\nmaterial = { color = 1, ambient = 0.1, diffuse = 0, reflection = 0.5 }\n\
+        [[object]]\nshape = \"plane\"\nnormal = [0, 0, -1]\noffset = -1\nmaterial = { color = 1, ambient = 0.1, diffuse = 0, reflection = 0.5 }\n";
+    let want: f64 = (0..5).map(|k| 0.1 * 0.5f64.powi(k)).sum();
+    assert_close(pixel_with_render("max_depth = 5", scene), [want; 3], 1e-6);
+}
+
+#[test]
+fn transparent_sphere_filters_its_shadow_at_each_crossing() {
+    // A transmit-0.5 sphere between the wall and the light lets 0.25 through.
+    let scene = wall("color = 1, ambient = 0, diffuse = 1")
+        + &light(0.0, 0.0, 10.0, "")
+        + "[[object]]\nshape = \"sphere\"\nradius = 0.5\ntransform = { translate = [0, 0, 5] }\nmaterial = { color = 1, transmit = 0.5 }\n";
+    assert_close(pixel(&scene), [0.25; 3], 1e-6);
+}
