@@ -15,6 +15,7 @@ pub mod plugins;
 pub mod registry;
 pub mod render;
 pub mod scene;
+pub mod schema;
 
 use diagnostics::SceneError;
 use render::scene::RenderScene;

@@ -26,6 +26,12 @@ enum Command {
     Render(RenderArgs),
     /// List the registered shape types and their parameters.
     Shapes,
+    /// Write a JSON Schema of the scene format (for editors such as taplo / Even Better TOML).
+    Schema {
+        /// Where to write it (standard output when absent).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
     /// Load a scene and write it back as one self-contained TOML file (includes flattened).
     Save {
         /// The scene file.
@@ -80,6 +86,7 @@ fn main() -> ExitCode {
             Ok(())
         }
         Some(Command::Save { scene, output }) => save_command(&scene, output.as_deref()),
+        Some(Command::Schema { output }) => schema_command(output.as_deref()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -165,6 +172,18 @@ fn save_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
     let registry = plugins::registry();
     let scene = load_file(path, &registry).map_err(|e| e.to_string())?;
     let text = prism::scene::save::save(&scene).map_err(|e| format!("{}: cannot write scene: {e}", path.display()))?;
+    match output {
+        Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
+        None => {
+            print!("{text}");
+            Ok(())
+        }
+    }
+}
+
+fn schema_command(output: Option<&Path>) -> Result<(), String> {
+    let schema = prism::schema::scene_schema(&plugins::registry());
+    let text = serde_json::to_string_pretty(&schema).map_err(|e| e.to_string())? + "\n";
     match output {
         Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
         None => {

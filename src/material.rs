@@ -145,8 +145,7 @@ impl Material {
 
 /// Mirror reflection: written as a number, a colour, or a table
 /// `{ min, max, falloff, fresnel, metallic, exponent }` (POV-Ray's `reflection { }`).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Reflection {
     /// Reflectivity facing the viewer head-on.
     pub min: Rgb,
@@ -175,17 +174,39 @@ impl Reflection {
     }
 }
 
-#[derive(Deserialize)]
+impl JsonSchema for Reflection {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Reflection".into()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let table = generator.subschema_for::<ReflectionTable>();
+        let color = generator.subschema_for::<Rgb>();
+        schemars::json_schema!({
+            "description": "Mirror reflection: a number or colour (constant), or a table.",
+            "anyOf": [color, table]
+        })
+    }
+}
+
+/// The table form of `reflection`.
+#[derive(Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct ReflectionTable {
+    /// Reflectivity facing the viewer.
     min: Option<Rgb>,
+    /// Reflectivity at grazing angles.
     max: Option<Rgb>,
+    /// Exponent of the change from max to min.
     #[serde(default = "one")]
     falloff: f64,
+    /// Use Fresnel's equations (needs an `ior`).
     #[serde(default)]
     fresnel: bool,
+    /// Tint the reflection by the pigment (0..1).
     #[serde(default)]
     metallic: f64,
+    /// The reflected colour enters as L^(1 / exponent).
     #[serde(default = "one")]
     exponent: f64,
 }

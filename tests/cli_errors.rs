@@ -251,9 +251,26 @@ fn shapes_lists_parameters_from_the_plugins() {
 
 #[test]
 fn help_is_available_everywhere() {
-    for args in [vec!["--help"], vec!["render", "--help"], vec!["shapes", "--help"], vec!["save", "--help"]] {
+    for args in [
+        vec!["--help"],
+        vec!["render", "--help"],
+        vec!["shapes", "--help"],
+        vec!["save", "--help"],
+        vec!["schema", "--help"],
+    ] {
         let run = prism().args(&args).output().unwrap();
         assert!(run.status.success(), "{args:?}");
         assert!(String::from_utf8_lossy(&run.stdout).contains("Usage"), "{args:?}");
+    }
+}
+
+#[test]
+fn schema_is_json_with_every_shape() {
+    let run = prism().arg("schema").output().unwrap();
+    assert!(run.status.success());
+    let schema: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    let text = schema.to_string();
+    for shape in ["sphere", "torus", "superellipsoid", "blob", "capsule"] {
+        assert!(text.contains(&format!("\"{shape}\"")), "{shape} missing");
     }
 }
