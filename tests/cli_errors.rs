@@ -54,7 +54,7 @@ fn cases() -> Vec<Case> {
         case(
             "NaN translate",
             &format!("{SPHERE}transform = {{ translate = [nan, 0, 0] }}\n"),
-            &["scene.toml:1:", "not finite"],
+            &["scene.toml:3:", "object[0].transform", "not finite"],
         ),
         case(
             "missing include",
@@ -123,7 +123,7 @@ fn cases() -> Vec<Case> {
         case(
             "singular transform",
             &format!("{SPHERE}transform = {{ scale = [1, 0, 1] }}\n"),
-            &["scene.toml:1:", "singular"],
+            &["scene.toml:3:", "object[0].transform", "singular"],
         ),
         case(
             "matrix with translate",
