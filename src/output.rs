@@ -120,9 +120,9 @@ pub fn to_ldr(film: &Film, exposure: f64, op: ToneMap) -> RgbImage {
     let scale = exposure.exp2();
     let mut img = RgbImage::new(film.width, film.height);
     for (dst, src) in img.pixels_mut().zip(&film.pixels) {
-        for c in 0..3 {
-            let v = tone_map(f64::from(src[c]) * scale, op).clamp(0.0, 1.0);
-            dst.0[c] = (srgb_encode(v) * 255.0 + 0.5).floor() as u8;
+        for (out, &linear) in dst.0.iter_mut().zip(src) {
+            let v = tone_map(f64::from(linear) * scale, op).clamp(0.0, 1.0);
+            *out = (srgb_encode(v) * 255.0 + 0.5).floor() as u8;
         }
     }
     img

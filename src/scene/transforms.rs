@@ -38,12 +38,12 @@ pub fn resolve_transforms(scene: &mut Scene) -> Result<(), SceneError> {
         }
         let mut world_from_object = DAffine3::IDENTITY;
         for e in chain.iter().rev() {
-            world_from_object = world_from_object * local.get(e).map_or(DAffine3::IDENTITY, |(m, _)| *m);
+            world_from_object *= local.get(e).map_or(DAffine3::IDENTITY, |(m, _)| *m);
         }
         resolved.insert(entity, world_from_object);
     }
     if !diagnostics.is_empty() {
-        diagnostics.sort_by(|a, b| (a.location.line, a.location.column).cmp(&(b.location.line, b.location.column)));
+        diagnostics.sort_by_key(|d| (d.location.line, d.location.column));
         diagnostics.dedup();
         return Err(SceneError { diagnostics });
     }
