@@ -1,0 +1,104 @@
+//! Criterion benchmarks of the hot kernels: shape intersection (per plugin), the top-level
+//! BVH's closest-hit and occlusion queries, and a whole small render of the seed room.
+//! Run with `cargo bench --bench kernels`; report ratios measured in one run.
+
+use std::hint::black_box;
+use std::path::Path;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use prism::render::{RenderOptions, render};
+use prism_api::contract::TestRng;
+use prism_api::{DVec3, Ray};
+
+/// Rays aimed from a sphere of radius 4 at random points in the unit cube.
+fn rays(count: usize) -> Vec<Ray> {
+    let mut rng = TestRng::new(7);
+    (0..count)
+        .map(|_| {
+            let origin = rng.unit_vector() * 4.0;
+            let target = DVec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+            Ray::new(origin, (target - origin).normalize())
+        })
+        .collect()
+}
+
+fn shape_from(kind: &str, params: &str) -> std::sync::Arc<dyn prism_api::Shape> {
+    let registry = prism::plugins::registry();
+    let table: toml::Table = toml::from_str(params).unwrap();
+    (registry.get(kind).unwrap().build)(table).unwrap()
+}
+
+fn shapes(c: &mut Criterion) {
+    let rays = rays(4096);
+    let mut group = c.benchmark_group("intersect");
+    group.throughput(Throughput::Elements(rays.len() as u64));
+    for (kind, params) in [
+        ("sphere", "radius = 1"),
+        ("box", ""),
+        ("cone", "open = false"),
+        ("cylinder", ""),
+        ("torus", "major_radius = 0.8\nminor_radius = 0.2"),
+        ("superellipsoid", "e = 0.5\nn = 0.5"),
+        (
+            "blob",
+            "components = [{ center = [-0.3, 0, 0], radius = 0.8, strength = 1 }, { center = [0.3, 0, 0], radius = 0.8, strength = 1 }]",
+        ),
+    ] {
+        let shape = shape_from(kind, params);
+        group.bench_function(kind, |b| {
+            b.iter(|| rays.iter().filter(|r| shape.intersect(black_box(r), 1e-6, f64::INFINITY).is_some()).count())
+        });
+    }
+    group.finish();
+}
+
+fn room() -> prism::render::scene::RenderScene {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/room.toml");
+    let mut scene = prism::scene::load::load_file(&path, &prism::plugins::registry()).unwrap();
+    scene.render.width = 200;
+    scene.render.height = 113;
+    prism::prepare(&mut scene).unwrap()
+}
+
+fn queries(c: &mut Criterion) {
+    let scene = room();
+    let camera_rays: Vec<Ray> = (0..4096)
+        .map(|i| {
+            let (x, y) = ((i % 64) as f64 / 64.0 - 0.5, 0.5 - (i / 64) as f64 / 64.0);
+            scene.camera.ray(x, y, glam::DVec2::ZERO)
+        })
+        .collect();
+    let mut group = c.benchmark_group("room_queries");
+    group.throughput(Throughput::Elements(camera_rays.len() as u64));
+    group.bench_function("closest", |b| {
+        b.iter(|| {
+            camera_rays
+                .iter()
+                .filter(|r| scene.accel.closest(&scene.primitives, black_box(r), 1e-6, 1e7, |_| true).is_some())
+                .count()
+        })
+    });
+    group.bench_function("occluded", |b| {
+        b.iter(|| {
+            camera_rays
+                .iter()
+                .filter(|r| scene.accel.occluded(&scene.primitives, black_box(r), 1e-3, 5.0, |_| true))
+                .count()
+        })
+    });
+    group.finish();
+}
+
+fn whole_render(c: &mut Criterion) {
+    let scene = room();
+    let mut group = c.benchmark_group("render");
+    group.sample_size(20);
+    group.throughput(Throughput::Elements(u64::from(scene.settings.width * scene.settings.height)));
+    group.bench_function("room_200x113_1thread", |b| {
+        b.iter(|| render(&scene, &RenderOptions { threads: Some(1), progress: false }).unwrap())
+    });
+    group.finish();
+}
+
+criterion_group!(benches, shapes, queries, whole_render);
+criterion_main!(benches);
