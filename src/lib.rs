@@ -9,7 +9,9 @@
 pub mod builtin;
 pub mod color;
 pub mod diagnostics;
+pub mod export;
 pub mod material;
+pub mod mesh;
 pub mod output;
 pub mod plugins;
 pub mod registry;

@@ -32,8 +32,24 @@ enum Command {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+    /// Write a scene in another renderer's scene language.
+    #[command(subcommand)]
+    Export(ExportCommand),
     /// Load a scene and write it back as one self-contained TOML file (includes flattened).
     Save {
+        /// The scene file.
+        scene: PathBuf,
+        /// Where to write it (standard output when absent).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+    },
+}
+
+#[derive(Subcommand)]
+enum ExportCommand {
+    /// POV-Ray 3.7 scene language, rendering to the image of the classic integrator. The
+    /// POV-Ray options for the same size and antialiasing are in its `// povray-options:` line.
+    Pov {
         /// The scene file.
         scene: PathBuf,
         /// Where to write it (standard output when absent).
@@ -87,6 +103,7 @@ fn main() -> ExitCode {
         }
         Some(Command::Save { scene, output }) => save_command(&scene, output.as_deref()),
         Some(Command::Schema { output }) => schema_command(output.as_deref()),
+        Some(Command::Export(ExportCommand::Pov { scene, output })) => export_pov_command(&scene, output.as_deref()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -184,6 +201,22 @@ fn save_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
 fn schema_command(output: Option<&Path>) -> Result<(), String> {
     let schema = prism::schema::scene_schema(&plugins::registry());
     let text = serde_json::to_string_pretty(&schema).map_err(|e| e.to_string())? + "\n";
+    match output {
+        Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
+        None => {
+            print!("{text}");
+            Ok(())
+        }
+    }
+}
+
+fn export_pov_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
+    let registry = plugins::registry();
+    let mut scene = load_file(path, &registry).map_err(|e| e.to_string())?;
+    prism::scene::transforms::resolve_transforms(&mut scene).map_err(|e| e.to_string())?;
+    prism::scene::validate::validate(&scene).map_err(|e| e.to_string())?;
+    let source = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let text = prism::export::pov::export(&scene, &source).map_err(|e| e.to_string())?;
     match output {
         Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
         None => {

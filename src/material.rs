@@ -7,13 +7,16 @@
 //! either. Every default is POV-Ray 3.7's, except the colour, which is white (POV-Ray's
 //! default pigment is black; the exporter always writes the colour).
 
+use std::borrow::Cow;
 use std::fmt;
 
+use glam::{DVec2, DVec3};
 use schemars::JsonSchema;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
 use crate::color::Rgb;
+use crate::mesh::texture::{ColorSpace, TextureRef};
 
 /// A surface and interior description.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -55,6 +58,56 @@ pub struct Material {
     pub fade_power: f64,
     /// Colour the interior fades toward.
     pub fade_color: Rgb,
+    /// An image whose (linear) colour multiplies `color`: a path relative to the scene file,
+    /// or a table `{ file, wrap, offset, scale, rotation }`. Needs a shape with texture
+    /// coordinates (meshes from glTF or OBJ files).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub texture: Option<TextureRef>,
+    /// glTF metallic-roughness parameters. When present, the classic finish (diffuse,
+    /// highlights, reflection) is derived from them at every hit (see `docs/meshes.md`)
+    /// instead of read from the fields above.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pbr: Option<Pbr>,
+}
+
+/// glTF 2.0 metallic-roughness parameters (the core material model plus emission).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Pbr {
+    /// Metalness factor (0 = dielectric, 1 = metal).
+    pub metallic: f64,
+    /// Perceptual roughness factor (0 = mirror-smooth, 1 = fully rough).
+    pub roughness: f64,
+    /// Texture whose blue channel multiplies `metallic` and green channel `roughness`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metallic_roughness_texture: Option<TextureRef>,
+    /// Emitted radiance (linear RGB, not multiplied by the colour).
+    pub emissive: Rgb,
+    /// Texture (sRGB) multiplying `emissive`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub emissive_texture: Option<TextureRef>,
+}
+
+impl Default for Pbr {
+    fn default() -> Self {
+        Self {
+            metallic: 1.0,
+            roughness: 1.0,
+            metallic_roughness_texture: None,
+            emissive: Rgb::BLACK,
+            emissive_texture: None,
+        }
+    }
+}
+
+/// A material resolved at one surface point: textures looked up and the glTF parameters
+/// turned into the classic finish.
+#[derive(Debug)]
+pub struct ShadedMaterial<'a> {
+    /// The finish to shade with (borrowed when the material has no maps).
+    pub material: Cow<'a, Material>,
+    /// Radiance emitted toward the viewer, added as is.
+    pub emitted: DVec3,
 }
 
 impl Default for Material {
@@ -78,6 +131,8 @@ impl Default for Material {
             fade_distance: 0.0,
             fade_power: 0.0,
             fade_color: Rgb::BLACK,
+            texture: None,
+            pbr: None,
         }
     }
 }
@@ -129,7 +184,111 @@ impl Material {
         if self.reflection.exponent <= 0.0 {
             return Err(("reflection.exponent", "must be greater than 0".into()));
         }
+        if let Some(t) = &self.texture {
+            t.check()?;
+        }
+        if let Some(p) = &self.pbr {
+            for (key, v) in [("pbr.metallic", p.metallic), ("pbr.roughness", p.roughness)] {
+                if !(0.0..=1.0).contains(&v) {
+                    return Err((key, format!("must be between 0 and 1, got {v}")));
+                }
+            }
+            if !p.emissive.is_finite() {
+                return Err(("pbr.emissive", "must be finite".into()));
+            }
+            for t in [&p.metallic_roughness_texture, &p.emissive_texture].into_iter().flatten() {
+                t.check()?;
+            }
+        }
         Ok(())
+    }
+
+    /// Every texture reference of the material with the colour space of its image, for
+    /// loading the images.
+    pub fn textures_mut(&mut self) -> Vec<(&mut TextureRef, ColorSpace)> {
+        let mut out: Vec<(&mut TextureRef, ColorSpace)> = Vec::new();
+        if let Some(t) = self.texture.as_mut() {
+            out.push((t, ColorSpace::Srgb));
+        }
+        if let Some(p) = self.pbr.as_mut() {
+            if let Some(t) = p.metallic_roughness_texture.as_mut() {
+                out.push((t, ColorSpace::Linear));
+            }
+            if let Some(t) = p.emissive_texture.as_mut() {
+                out.push((t, ColorSpace::Srgb));
+            }
+        }
+        out
+    }
+
+    /// The material at a surface point with texture coordinates `uv`, for a ray footprint
+    /// `footprint` wide in uv units (it selects the mip level). Without textures or glTF
+    /// parameters this is the material itself.
+    ///
+    /// The classic finish derived from glTF parameters (documented in `docs/meshes.md`):
+    /// with `m` = metallic, `r` = roughness and `g = (1 - r)^2`: diffuse `0.6 (1 - m)`,
+    /// Blinn specular `g (0.25 + 0.75 m)` with POV-Ray roughness `a^2 / (2 - 2 a^2)` for GGX
+    /// `a = r^2` (exponent 2 / a^2 - 2), highlights and reflection tinted by the base colour
+    /// by `m`, mirror reflection `m g`.
+    pub fn at_surface(&self, uv: DVec2, footprint: f64) -> ShadedMaterial<'_> {
+        if self.texture.is_none() && self.pbr.is_none() {
+            return ShadedMaterial { material: Cow::Borrowed(self), emitted: DVec3::ZERO };
+        }
+        let mut m = self.without_maps();
+        if let Some(t) = &self.texture {
+            let texel = t.sample(uv, footprint);
+            m.color = Rgb(m.color.0 * texel.truncate().as_dvec3());
+        }
+        let mut emitted = DVec3::ZERO;
+        if let Some(p) = &self.pbr {
+            let (mut metallic, mut roughness) = (p.metallic, p.roughness);
+            if let Some(t) = &p.metallic_roughness_texture {
+                let texel = t.sample(uv, footprint);
+                roughness *= f64::from(texel.y);
+                metallic *= f64::from(texel.z);
+            }
+            emitted = p.emissive.0;
+            if let Some(t) = &p.emissive_texture {
+                emitted *= t.sample(uv, footprint).truncate().as_dvec3();
+            }
+            let gloss = (1.0 - roughness).powi(2);
+            let alpha2 = roughness.powi(4).max(1e-4);
+            m.diffuse = 0.6 * (1.0 - metallic);
+            m.specular = gloss * (0.25 + 0.75 * metallic);
+            m.roughness = (alpha2 / (2.0 - 2.0 * alpha2)).clamp(5e-4, 1.0);
+            m.metallic = metallic;
+            m.phong = 0.0;
+            let mirror = metallic * gloss;
+            m.reflection =
+                Reflection { min: Rgb::grey(mirror), max: Rgb::grey(mirror), metallic, ..Reflection::default() };
+        }
+        ShadedMaterial { material: Cow::Owned(m), emitted }
+    }
+
+    /// A copy without textures or glTF parameters (cheap: nothing to allocate).
+    fn without_maps(&self) -> Material {
+        Material {
+            color: self.color,
+            filter: self.filter,
+            transmit: self.transmit,
+            ambient: self.ambient,
+            emission: self.emission,
+            diffuse: self.diffuse,
+            brilliance: self.brilliance,
+            phong: self.phong,
+            phong_size: self.phong_size,
+            specular: self.specular,
+            roughness: self.roughness,
+            metallic: self.metallic,
+            reflection: self.reflection,
+            conserve_energy: self.conserve_energy,
+            ior: self.ior,
+            fade_distance: self.fade_distance,
+            fade_power: self.fade_power,
+            fade_color: self.fade_color,
+            texture: None,
+            pbr: None,
+        }
     }
 
     /// Opacity (1 - filter - transmit), as POV-Ray scales ambient and diffuse.

@@ -2,7 +2,7 @@
 //! types and the shape registry, so editors (taplo, Even Better TOML) complete and check
 //! scenes. A shape's parameters come from its plugin's own schema.
 
-use schemars::{JsonSchema, SchemaGenerator};
+use schemars::SchemaGenerator;
 use serde_json::{Map, Value, json};
 
 use crate::material::Material;
@@ -28,24 +28,33 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
             object.insert("title".into(), json!(shape_type.name));
             object.insert("description".into(), json!(shape_type.description));
             object.insert("additionalProperties".into(), json!(false));
-            let properties = object.entry("properties").or_insert_with(|| json!({}));
-            let properties = properties.as_object_mut().expect("properties is an object");
-            properties.insert("shape".into(), json!({ "const": shape_type.name }));
-            properties.insert("name".into(), json!({ "type": "string", "description": "Name other objects use as `parent`." }));
-            properties.insert(
-                "material".into(),
-                json!({ "description": "A [materials.NAME] name or an inline material.", "anyOf": [{ "type": "string" }, material] }),
-            );
-            properties.insert("transform".into(), transform.clone());
-            properties.insert("parent".into(), json!({ "type": "string", "description": "Name of the parent object." }));
-            properties.insert("no_shadow".into(), json!({ "type": "boolean", "description": "Cast no shadow." }));
-            let required = object.entry("required").or_insert_with(|| json!([]));
-            if let Value::Array(list) = required {
-                list.push(json!("shape"));
-            }
+            insert_common_keys(&mut params, shape_type.name, &material, &transform);
             params
         })
         .collect();
+
+    let mut objects = objects;
+    let mut mesh = json!({
+        "title": crate::mesh::spawn::MESH_SHAPE,
+        "description": "A triangle mesh imported from an OBJ or glTF 2.0 file (see docs/meshes.md).",
+        "type": "object",
+        "additionalProperties": false,
+        "required": ["shape", "file"],
+        "properties": {
+            "file": { "type": "string", "description": "The .obj, .gltf or .glb file, relative to the scene file." },
+            "smooth_angle": {
+                "type": "number", "exclusiveMinimum": 0, "maximum": 180,
+                "description": "For files without normals: smooth across edges sharper than this angle (degrees)."
+            },
+            "material_map": {
+                "type": "object",
+                "description": "Replace the file's materials by name with scene materials.",
+                "additionalProperties": { "anyOf": [{ "type": "string" }, material] }
+            }
+        }
+    });
+    insert_common_keys(&mut mesh, crate::mesh::spawn::MESH_SHAPE, &material, &transform);
+    objects.push(mesh);
 
     let definitions: Map<String, Value> = generator.take_definitions(true);
     json!({
@@ -71,7 +80,25 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
     })
 }
 
-/// The schema of one component type, for documentation.
-pub fn component_schema<T: JsonSchema>() -> Value {
-    schemars::schema_for!(T).to_value()
+/// Adds the keys every `[[object]]` has (shape, name, material, transform, parent,
+/// no_shadow) to an object variant's schema, and requires `shape`.
+fn insert_common_keys(variant: &mut Value, shape: &str, material: &Value, transform: &Value) {
+    let object = variant.as_object_mut().expect("an object variant is a JSON object");
+    let properties = object.entry("properties").or_insert_with(|| json!({}));
+    let properties = properties.as_object_mut().expect("properties is an object");
+    properties.insert("shape".into(), json!({ "const": shape }));
+    properties.insert("name".into(), json!({ "type": "string", "description": "Name other objects use as `parent`." }));
+    properties.insert(
+        "material".into(),
+        json!({ "description": "A [materials.NAME] name or an inline material.", "anyOf": [{ "type": "string" }, material] }),
+    );
+    properties.insert("transform".into(), transform.clone());
+    properties.insert("parent".into(), json!({ "type": "string", "description": "Name of the parent object." }));
+    properties.insert("no_shadow".into(), json!({ "type": "boolean", "description": "Cast no shadow." }));
+    let required = object.entry("required").or_insert_with(|| json!([]));
+    if let Value::Array(list) = required
+        && !list.contains(&json!("shape"))
+    {
+        list.push(json!("shape"));
+    }
 }

@@ -22,25 +22,60 @@ pub struct RenderCamera {
     pub aperture: f64,
     /// Distance of the sharp plane along the view axis.
     pub focal_distance: f64,
+    /// Unit `right` and `up`, the lens axes.
+    lens_axes: (DVec3, DVec3),
+}
+
+/// A camera's orthonormal frame and viewport height, the part that does not depend on the
+/// image size (the POV-Ray exporter writes the same numbers the renderer uses).
+#[derive(Clone, Copy, Debug)]
+pub struct CameraFrame {
+    /// Eye position.
+    pub position: DVec3,
+    /// Unit viewing direction.
+    pub direction: DVec3,
+    /// Unit vector toward the image's right edge.
+    pub right: DVec3,
+    /// Unit vector toward the image's top edge.
+    pub up: DVec3,
+    /// Viewport height at distance 1 (POV-Ray's `up` length).
+    pub height: f64,
+    /// Distance of the sharp plane along the view axis.
+    pub focal_distance: f64,
+}
+
+impl CameraFrame {
+    /// The frame of `camera`.
+    pub fn new(camera: &Camera) -> Self {
+        let position = DVec3::from_array(camera.position);
+        let look_at = DVec3::from_array(camera.look_at);
+        let direction = (look_at - position).normalize();
+        let right = direction.cross(DVec3::from_array(camera.up)).normalize();
+        let up = right.cross(direction);
+        Self {
+            position,
+            direction,
+            right,
+            up,
+            height: 2.0 * (camera.vfov.to_radians() * 0.5).tan(),
+            focal_distance: camera.focal_distance.unwrap_or((look_at - position).length()),
+        }
+    }
 }
 
 impl RenderCamera {
     /// The camera for an image of `width` x `height` pixels.
     pub fn new(camera: &Camera, width: u32, height: u32) -> Self {
-        let position = DVec3::from_array(camera.position);
-        let look_at = DVec3::from_array(camera.look_at);
-        let direction = (look_at - position).normalize();
-        let right_unit = direction.cross(DVec3::from_array(camera.up)).normalize();
-        let up_unit = right_unit.cross(direction);
-        let height_len = 2.0 * (camera.vfov.to_radians() * 0.5).tan();
+        let frame = CameraFrame::new(camera);
         let aspect = camera.aspect.unwrap_or(f64::from(width) / f64::from(height));
         Self {
-            position,
-            direction,
-            right: right_unit * height_len * aspect,
-            up: up_unit * height_len,
+            position: frame.position,
+            direction: frame.direction,
+            right: frame.right * frame.height * aspect,
+            up: frame.up * frame.height,
             aperture: camera.aperture,
-            focal_distance: camera.focal_distance.unwrap_or((look_at - position).length()),
+            focal_distance: frame.focal_distance,
+            lens_axes: (frame.right, frame.up),
         }
     }
 
@@ -51,12 +86,19 @@ impl RenderCamera {
         if self.aperture <= 0.0 {
             return Ray::new(self.position, through.normalize());
         }
-        let x_axis = self.right.normalize();
-        let y_axis = self.up.normalize();
+        let (x_axis, y_axis) = self.lens_axes;
         let offset = 0.5 * self.aperture * (lens.x * x_axis + lens.y * y_axis);
         let focus = through * self.focal_distance;
         Ray::new(self.position + offset, (focus - offset).normalize())
     }
+}
+
+/// POV-Ray's screen coordinates (x0, y0) in [-0.5, 0.5] of the image position (x, y), where
+/// (i, j) is the centre of pixel column i, row j (`TracePixel::CreateCameraRay`, written the
+/// way POV-Ray computes it so that both renderers send the same rays).
+pub fn pov_screen(x: f64, y: f64, width: f64, height: f64) -> (f64, f64) {
+    let (x, y) = (x + 0.5, y - 0.5);
+    (x / width - 0.5, ((height - 1.0) - y) / height - 0.5)
 }
 
 #[cfg(test)]
@@ -71,6 +113,14 @@ mod tests {
         assert!((c.right - DVec3::new(32.0 / 9.0, 0.0, 0.0)).length() < 1e-12);
         let corner = c.ray(0.5, 0.5, DVec2::ZERO);
         assert!(corner.direction.x > 0.0 && corner.direction.y > 0.0, "top right is +x +y");
+    }
+
+    #[test]
+    fn pov_screen_puts_pixel_centres_at_integers() {
+        let (x0, y0) = pov_screen(0.0, 0.0, 8.0, 6.0);
+        assert!((x0 - (0.5 / 8.0 - 0.5)).abs() < 1e-15 && (y0 - (0.5 - 0.5 / 6.0)).abs() < 1e-15);
+        let (x0, y0) = pov_screen(7.5, 5.5, 8.0, 6.0);
+        assert!((x0 - 0.5).abs() < 1e-15 && (y0 + 0.5).abs() < 1e-15, "bottom-right corner");
     }
 
     #[test]

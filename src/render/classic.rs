@@ -19,8 +19,18 @@ const SHADOW_TOLERANCE: f64 = 1e-3;
 const RAY_EPSILON: f64 = 1e-6;
 /// POV-Ray ignores intersections farther than this.
 const MAX_DISTANCE: f64 = 1e7;
+/// POV-Ray's `EPSILON`: index ratios and fade distances closer than this to 1 and 0 count
+/// as equal.
+const IOR_EPSILON: f64 = 1e-10;
 /// Deepest nesting of interiors tracked (deeper ones are treated as leaving the outermost).
 const MAX_INTERIORS: usize = 16;
+
+thread_local! {
+    /// Each render thread's memo of one area light's grid samples, stamped per use so that it
+    /// never needs clearing (clearing and allocating it per shading point was a tenth of an
+    /// area-lit render).
+    static AREA_SAMPLES: std::cell::RefCell<(u32, Vec<(u32, DVec3)>)> = const { std::cell::RefCell::new((0, Vec::new())) };
+}
 
 /// The interiors a ray is inside, innermost last (primitive indices).
 #[derive(Clone, Copy, Debug, Default)]
@@ -70,12 +80,43 @@ pub struct PathState {
 /// The classic integrator over one render scene.
 pub struct Classic<'a> {
     scene: &'a RenderScene,
+    /// Angle between neighbouring camera rays (radians): ray footprints for texture filtering.
+    pixel_spread: f64,
 }
 
 impl<'a> Classic<'a> {
     /// An integrator for `scene`.
     pub fn new(scene: &'a RenderScene) -> Self {
-        Self { scene }
+        let pixel_spread = scene.camera.up.length() / f64::from(scene.settings.height.max(1));
+        Self { scene, pixel_spread }
+    }
+
+    /// The material at a hit with textures looked up: the footprint of a pixel's ray cone
+    /// (from the camera, or from the last bounce for deeper rays, which underestimates it)
+    /// picks the mip level.
+    fn shade<'m>(
+        &self,
+        material: &'m Material,
+        primitive: &super::scene::Primitive,
+        surface: &prism_api::Surface,
+        distance: f64,
+        cosine: f64,
+    ) -> crate::material::ShadedMaterial<'m> {
+        if material.texture.is_none() && material.pbr.is_none() {
+            return crate::material::ShadedMaterial {
+                material: std::borrow::Cow::Borrowed(material),
+                emitted: DVec3::ZERO,
+            };
+        }
+        let area_scale = if primitive.identity {
+            1.0
+        } else {
+            primitive.world_from_object.matrix3.determinant().abs()
+                * (primitive.normal_to_world * surface.normal).length()
+        };
+        let footprint =
+            crate::mesh::texture::uv_footprint(self.pixel_spread * distance, surface.uv_density, area_scale, cosine);
+        material.at_surface(surface.uv, footprint)
     }
 
     /// Radiance along a camera ray.
@@ -89,6 +130,19 @@ impl<'a> Classic<'a> {
 
     fn material_of(&self, primitive: u32) -> &Material {
         &self.scene.materials[self.scene.primitives[primitive as usize].material as usize]
+    }
+
+    /// The relative index (n_to / n_from) POV-Ray's Fresnel reflection uses for a ray inside
+    /// `interiors` hitting primitive `p` (`ComputeRelativeIOR`). Unlike refraction, leaving a
+    /// nested object compares it with the innermost interior the ray is in, which is the
+    /// object itself: Fresnel then sees no index change (a POV-Ray quirk kept for parity).
+    fn fresnel_eta(&self, interiors: &Interiors, p: u32, ior: f64) -> f64 {
+        match interiors.innermost() {
+            None => ior,
+            Some(_) if interiors.contains(p) && interiors.len == 1 => 1.0 / ior,
+            Some(back) if interiors.contains(p) => self.material_of(back).ior / ior,
+            Some(back) => ior / self.material_of(back).ior,
+        }
     }
 
     fn trace(&self, ray: &Ray, level: u32, weight: f64, interiors: Interiors, state: &mut PathState) -> DVec3 {
@@ -117,8 +171,10 @@ impl<'a> Classic<'a> {
         // Two-sided: shade with the normal facing the viewer.
         let n = if shading.dot(d) > 0.0 { -shading } else { shading };
         let entering = !interiors.contains(closest.primitive);
+        let shaded = self.shade(material, primitive, &surface, closest.hit.t * d.length(), n.dot(d) / d.length());
+        let material: &Material = &shaded.material;
 
-        let mut colour = self.local_shading(point, n, d, material, state);
+        let mut colour = self.local_shading(point, n, d, material, &interiors, state) + shaded.emitted;
 
         // Reflection and refraction.
         let c = -d.dot(n);
@@ -131,7 +187,7 @@ impl<'a> Classic<'a> {
         if reflection.is_reflective() {
             let (min, max) = (reflection.min.0, reflection.max.0);
             rf = if reflection.fresnel {
-                min + (max - min) * fresnel(n_to / n_from, c)
+                min + (max - min) * fresnel(self.fresnel_eta(&interiors, closest.primitive, material.ior), c)
             } else {
                 min + (max - min) * (1.0 - c).max(0.0).powf(reflection.falloff)
             };
@@ -144,28 +200,39 @@ impl<'a> Classic<'a> {
         if material.is_transparent() {
             let mut filter = material.color.0 * material.filter + DVec3::splat(material.transmit);
             if material.conserve_energy {
-                filter *= DVec3::ONE - rf;
+                filter *= (DVec3::ONE - rf).min(DVec3::ONE);
             }
             let strength = (0.297 * filter.x + 0.589 * filter.y + 0.114 * filter.z).abs().min(1.0);
             if strength > scene.settings.adc_bailout {
-                let child_weight = weight * filter.max_element();
-                if n_from == n_to {
-                    // No refraction: the ray continues, at the same level.
-                    let through = Ray::new(point, d);
-                    colour += filter * self.trace(&through, level, child_weight, inner, state);
+                let child_weight = weight * filter.abs().max_element();
+                let eta = n_from / n_to;
+                let transmitted = if (eta - 1.0).abs() < IOR_EPSILON {
+                    // No refraction: the ray continues at the same level, but POV-Ray still
+                    // tests the level limit first, as if it were one deeper.
+                    if level >= scene.settings.max_depth {
+                        DVec3::ZERO
+                    } else {
+                        filter * self.trace(&Ray::new(point, d), level, child_weight, inner, state)
+                    }
                 } else {
-                    let eta = n_from / n_to;
                     let k = 1.0 + eta * eta * (c * c - 1.0);
                     if k < 0.0 {
+                        // Total internal reflection: traced without the filter colour.
                         total_internal = true;
                         let mirror = Ray::new(point, (d - 2.0 * d.dot(n) * n).normalize());
-                        colour += self.trace(&mirror, level + 1, child_weight, interiors, state);
+                        self.trace(&mirror, level + 1, child_weight, interiors, state)
                     } else {
                         let direction = (eta * d + (eta * c - k.sqrt()) * n).normalize();
-                        let refracted = Ray::new(point, direction);
-                        colour += filter * self.trace(&refracted, level + 1, child_weight, inner, state);
+                        filter * self.trace(&Ray::new(point, direction), level + 1, child_weight, inner, state)
                     }
-                }
+                };
+                // Interior fade applies where the ray leaves the object, over the distance it
+                // travelled inside, and only to the light coming through (POV-Ray's attCol).
+                colour += if entering {
+                    transmitted
+                } else {
+                    transmitted * interior_fade(material, closest.hit.t * d.length(), false)
+                };
             }
         }
 
@@ -182,16 +249,19 @@ impl<'a> Classic<'a> {
             }
             colour += rf * reflected;
         }
-
-        // Light travelling inside an interior fades over the distance to this hit.
-        if let Some(inside) = interiors.innermost() {
-            colour *= interior_fade(self.material_of(inside), closest.hit.t * d.length());
-        }
         colour
     }
 
     /// Ambient, emission, diffuse and highlights from every light.
-    fn local_shading(&self, point: DVec3, n: DVec3, d: DVec3, m: &Material, state: &mut PathState) -> DVec3 {
+    fn local_shading(
+        &self,
+        point: DVec3,
+        n: DVec3,
+        d: DVec3,
+        m: &Material,
+        interiors: &Interiors,
+        state: &mut PathState,
+    ) -> DVec3 {
         let scene = self.scene;
         let pigment = m.color.0;
         let opacity = m.opacity();
@@ -222,15 +292,15 @@ impl<'a> Classic<'a> {
             }
             if !light.shadowless {
                 e *= match &light.area {
-                    Some(grid) => self.area_visibility(point, l, light, grid, state),
-                    None => self.transmittance(point, l, distance, state),
+                    Some(grid) => self.area_visibility(point, l, light, grid, interiors, state),
+                    None => self.transmittance(point, l, distance, interiors, state),
                 };
                 if e == DVec3::ZERO {
                     continue;
                 }
             }
             if m.diffuse != 0.0 {
-                let cosine = if m.brilliance == 1.0 { n_dot_l } else { n_dot_l.powf(m.brilliance) };
+                let cosine = if m.brilliance == 1.0 { n_dot_l } else { pow(n_dot_l, m.brilliance) };
                 colour += m.diffuse * opacity * cosine * pigment * e;
             }
             if light.shadowless {
@@ -244,14 +314,14 @@ impl<'a> Classic<'a> {
             if m.phong != 0.0 {
                 let r_dot_l = mirror.dot(l);
                 if r_dot_l > 0.0 && !(m.phong_size >= 60.0 && r_dot_l <= 0.0008) {
-                    colour += m.phong * r_dot_l.powf(m.phong_size) * highlight;
+                    colour += m.phong * pow(r_dot_l, m.phong_size) * highlight;
                 }
             }
             if m.specular != 0.0 {
                 let h = (l - d).normalize();
                 let n_dot_h = n.dot(h);
                 if n_dot_h > 0.0 {
-                    colour += m.specular * n_dot_h.powf(1.0 / m.roughness) * highlight;
+                    colour += m.specular * pow(n_dot_h, 1.0 / m.roughness) * highlight;
                 }
             }
         }
@@ -259,34 +329,60 @@ impl<'a> Classic<'a> {
     }
 
     /// Light that reaches `point` from `distance` along `l`: 1 when unblocked, 0 behind an
-    /// opaque object, and filtered by every transparent surface crossed (straight through).
-    fn transmittance(&self, point: DVec3, l: DVec3, distance: f64, state: &mut PathState) -> DVec3 {
+    /// opaque object, and filtered by every transparent surface crossed (straight through),
+    /// faded over each stretch inside an object with interior fade. The shadow ray starts in
+    /// the `interiors` of the ray that found `point` and, like POV-Ray's, restarts at each
+    /// surface it crosses, ignoring hits within `SHADOW_TOLERANCE` of either end.
+    fn transmittance(
+        &self,
+        point: DVec3,
+        l: DVec3,
+        distance: f64,
+        interiors: &Interiors,
+        state: &mut PathState,
+    ) -> DVec3 {
         let scene = self.scene;
         let t_max = distance - SHADOW_TOLERANCE;
         if t_max <= SHADOW_TOLERANCE {
             return DVec3::ONE;
         }
-        let ray = Ray::new(point, l);
         let casts = |p: u32| !scene.primitives[p as usize].no_shadow;
         state.rays += 1;
         if !scene.has_transparency {
+            let ray = Ray::new(point, l);
             let blocked = scene.accel.occluded(&scene.primitives, &ray, SHADOW_TOLERANCE, t_max, casts);
             return if blocked { DVec3::ZERO } else { DVec3::ONE };
         }
         let mut filter = DVec3::ONE;
-        let mut t_min = SHADOW_TOLERANCE;
-        while let Some(hit) = scene.accel.closest(&scene.primitives, &ray, t_min, t_max, casts) {
+        let mut inside = *interiors;
+        let mut origin = point;
+        let mut remaining = distance;
+        loop {
+            let ray = Ray::new(origin, l);
+            let t_max = remaining - SHADOW_TOLERANCE;
+            if t_max <= SHADOW_TOLERANCE {
+                return filter;
+            }
+            let Some(hit) = scene.accel.closest(&scene.primitives, &ray, SHADOW_TOLERANCE, t_max, casts) else {
+                return filter;
+            };
             let m = self.material_of(hit.primitive);
             if !m.is_transparent() {
                 return DVec3::ZERO;
             }
             filter *= m.color.0 * m.filter + DVec3::splat(m.transmit);
+            if inside.contains(hit.primitive) {
+                filter *= interior_fade(m, hit.hit.t, true);
+                inside = inside.leaving(hit.primitive);
+            } else {
+                inside = inside.entering(hit.primitive);
+            }
             if filter.max_element() <= 0.0 {
                 return DVec3::ZERO;
             }
-            t_min = hit.hit.t + RAY_EPSILON * (1.0 + hit.hit.t);
+            origin = ray.at(hit.hit.t);
+            remaining -= hit.hit.t;
         }
-        filter
     }
 
     /// POV-Ray's hierarchical (trapezoid-like) average of the shadow over the area grid.
@@ -296,6 +392,7 @@ impl<'a> Classic<'a> {
         l: DVec3,
         light: &RenderLight,
         grid: &AreaGrid,
+        interiors: &Interiors,
         state: &mut PathState,
     ) -> DVec3 {
         let (mut axis1, mut axis2) = (grid.axis1, grid.axis2);
@@ -308,9 +405,37 @@ impl<'a> Classic<'a> {
         let (n1, n2) = (grid.size1 as usize, grid.size2 as usize);
         let jitter_base = state.dimension;
         state.dimension += 2 * (n1 * n2) as u64;
-        let mut cache: Vec<Option<DVec3>> = vec![None; n1 * n2];
+        AREA_SAMPLES.with_borrow_mut(|(stamp, cache)| {
+            *stamp = stamp.wrapping_add(1);
+            if *stamp == 0 {
+                cache.fill((0, DVec3::ZERO));
+                *stamp = 1;
+            }
+            if cache.len() < n1 * n2 {
+                cache.resize(n1 * n2, (0, DVec3::ZERO));
+            }
+            self.area_grid_average(point, light, grid, (axis1, axis2), interiors, jitter_base, (*stamp, cache), state)
+        })
+    }
+
+    /// The hierarchical average of one area light's shadow at `point`, memoising grid samples
+    /// in `cache` under `stamp`.
+    #[allow(clippy::too_many_arguments)]
+    fn area_grid_average(
+        &self,
+        point: DVec3,
+        light: &RenderLight,
+        grid: &AreaGrid,
+        (axis1, axis2): (DVec3, DVec3),
+        interiors: &Interiors,
+        jitter_base: u64,
+        (stamp, cache): (u32, &mut [(u32, DVec3)]),
+        state: &mut PathState,
+    ) -> DVec3 {
+        let (n1, n2) = (grid.size1 as usize, grid.size2 as usize);
         let mut sample = |u: usize, v: usize, state: &mut PathState| -> DVec3 {
-            if let Some(c) = cache[v * n1 + u] {
+            let (seen, c) = cache[v * n1 + u];
+            if seen == stamp {
                 return c;
             }
             let (mut ju, mut jv) = (u as f64, v as f64);
@@ -331,8 +456,8 @@ impl<'a> Classic<'a> {
             let target = light.position + axis1 * fu + axis2 * fv;
             let to = target - point;
             let distance = to.length();
-            let c = self.transmittance(point, to / distance, distance, state);
-            cache[v * n1 + u] = Some(c);
+            let c = self.transmittance(point, to / distance, distance, interiors, state);
+            cache[v * n1 + u] = (stamp, c);
             c
         };
         block(&mut sample, 0, 0, n1 - 1, n2 - 1, 0, grid.adaptive, state)
@@ -378,7 +503,7 @@ fn attenuation(light: &RenderLight, l: DVec3, distance: f64) -> f64 {
         if cos_theta <= 0.0 {
             return 0.0;
         }
-        a = if tightness != 0.0 { cos_theta.powf(tightness) } else { 1.0 };
+        a = if tightness != 0.0 { pow(cos_theta, tightness) } else { 1.0 };
         if cos_theta < cos_radius {
             let p = (cos_theta - cos_falloff) / (cos_radius - cos_falloff);
             a *= if p < 0.0 {
@@ -391,9 +516,16 @@ fn attenuation(light: &RenderLight, l: DVec3, distance: f64) -> f64 {
         }
     }
     if light.fade_power > 0.0 && light.fade_distance != 0.0 {
-        a *= 2.0 / (1.0 + (distance / light.fade_distance).powf(light.fade_power));
+        a *= 2.0 / (1.0 + pow(distance / light.fade_distance, light.fade_power));
     }
     a
+}
+
+/// `x^e`, with whole exponents (phong sizes, tightness, fade powers are usually whole) by
+/// repeated multiplication, which is several times faster than `powf` and as accurate.
+#[inline]
+fn pow(x: f64, e: f64) -> f64 {
+    if e.fract() == 0.0 && e.abs() <= 1024.0 { x.powi(e as i32) } else { x.powf(e) }
 }
 
 /// POV-Ray's approximate Fresnel term for metallic highlights and reflection.
@@ -414,9 +546,11 @@ fn fresnel(eta: f64, c: f64) -> f64 {
     0.5 * a * a * (1.0 + b * b)
 }
 
-/// Interior attenuation over path length `s`.
-fn interior_fade(m: &Material, s: f64) -> DVec3 {
-    if m.fade_distance <= 0.0 || m.fade_power <= 0.0 {
+/// Interior attenuation over path length `s`. POV-Ray tests the two ray kinds differently:
+/// a camera-side ray fades whenever `fade_distance` is not 0 (with `fade_power` 0 that is a
+/// constant halfway blend), a shadow ray only when `fade_power` is positive as well.
+fn interior_fade(m: &Material, s: f64, shadow: bool) -> DVec3 {
+    if m.fade_distance.abs() <= IOR_EPSILON || (shadow && m.fade_power <= 0.0) {
         return DVec3::ONE;
     }
     let fade_color = m.fade_color.0;
@@ -491,5 +625,23 @@ mod tests {
         assert_eq!(s.innermost(), Some(5));
         let s = s.leaving(3);
         assert!(!s.contains(3) && s.contains(5));
+    }
+
+    #[test]
+    fn interior_fade_tests_camera_and_shadow_rays_as_pov_ray_does() {
+        let grey = crate::color::Rgb::grey(0.2);
+        let m = Material { fade_distance: 2.0, fade_power: 0.0, fade_color: grey, ..Material::default() };
+        // fade_power 0: a constant halfway blend for camera-side rays, nothing for shadows.
+        assert!((interior_fade(&m, 5.0, false) - DVec3::splat(0.6)).length() < 1e-12);
+        assert_eq!(interior_fade(&m, 5.0, true), DVec3::ONE);
+        let m = Material { fade_power: 2.0, ..m };
+        let expected = 0.2 + 0.8 / (1.0 + 2.5f64 * 2.5);
+        for shadow in [false, true] {
+            assert!((interior_fade(&m, 5.0, shadow) - DVec3::splat(expected)).length() < 1e-12);
+        }
+        let m = Material { fade_power: 1000.0, ..m };
+        assert!((interior_fade(&m, 5.0, true) - DVec3::splat((-0.8f64 * 2.5).exp())).length() < 1e-12);
+        let none = Material { fade_distance: 0.0, fade_power: 2.0, ..m };
+        assert_eq!(interior_fade(&none, 5.0, false), DVec3::ONE);
     }
 }

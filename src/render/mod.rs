@@ -2,6 +2,7 @@
 //! (pixel, sample, dimension, seed), so the image is bit-identical for any thread count.
 
 pub mod accel;
+pub mod antialias;
 pub mod camera;
 pub mod classic;
 pub mod film;
@@ -15,9 +16,10 @@ use glam::{DVec2, DVec3};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
+use camera::pov_screen;
 use classic::{Classic, PathState};
 use film::Film;
-use sampling::{SampleStream, cmj, hash4};
+use sampling::{CmjPattern, SampleStream, hash4};
 use scene::RenderScene;
 
 /// Side of a square render tile in pixels.
@@ -71,8 +73,11 @@ pub fn render(scene: &RenderScene, options: &RenderOptions) -> Result<(Film, Ren
         .build()
         .map_err(|source| RenderError::Threads { threads, source })?;
     let (width, height) = (scene.settings.width, scene.settings.height);
-    let tiles_x = width.div_ceil(TILE_SIZE);
-    let tiles_y = height.div_ceil(TILE_SIZE);
+    // POV-Ray's antialiasing works on whole 32 x 32 blocks, each one task.
+    let pov_method = antialias::PovMethod::from_setting(scene.settings.antialias);
+    let tile_size = if pov_method.is_some() { antialias::BLOCK_SIZE } else { TILE_SIZE };
+    let tiles_x = width.div_ceil(tile_size);
+    let tiles_y = height.div_ceil(tile_size);
     let tile_count = u64::from(tiles_x) * u64::from(tiles_y);
 
     let progress = if options.progress {
@@ -87,16 +92,28 @@ pub fn render(scene: &RenderScene, options: &RenderOptions) -> Result<(Film, Ren
     };
 
     let rays = AtomicU64::new(0);
+    let primary_rays = AtomicU64::new(0);
     let start = Instant::now();
     let integrator = Classic::new(scene);
     let tiles: Vec<(u32, u32, Vec<[f32; 3]>)> = pool.install(|| {
         (0..tile_count)
             .into_par_iter()
             .map(|tile| {
-                let tx = (tile % u64::from(tiles_x)) as u32 * TILE_SIZE;
-                let ty = (tile / u64::from(tiles_x)) as u32 * TILE_SIZE;
-                let (pixels, tile_rays) = render_tile(scene, &integrator, tx, ty);
+                let tx = (tile % u64::from(tiles_x)) as u32 * tile_size;
+                let ty = (tile / u64::from(tiles_x)) as u32 * tile_size;
+                let (pixels, tile_rays, tile_primary) = match pov_method {
+                    Some(method) => {
+                        let block = antialias::render_block(scene, &integrator, method, tx, ty);
+                        (block.pixels, block.rays, block.primary_rays)
+                    }
+                    None => {
+                        let (pixels, tile_rays) = render_tile(scene, &integrator, tx, ty);
+                        let primary = pixels.len() as u64 * u64::from(scene.settings.samples);
+                        (pixels, tile_rays, primary)
+                    }
+                };
                 rays.fetch_add(tile_rays, Ordering::Relaxed);
+                primary_rays.fetch_add(tile_primary, Ordering::Relaxed);
                 progress.inc(1);
                 (tx, ty, pixels)
             })
@@ -107,7 +124,7 @@ pub fn render(scene: &RenderScene, options: &RenderOptions) -> Result<(Film, Ren
 
     let mut film = Film::new(width, height);
     for (tx, ty, pixels) in tiles {
-        let tile_w = TILE_SIZE.min(width - tx);
+        let tile_w = tile_size.min(width - tx);
         for (i, p) in pixels.into_iter().enumerate() {
             let x = tx + i as u32 % tile_w;
             let y = ty + i as u32 / tile_w;
@@ -116,7 +133,7 @@ pub fn render(scene: &RenderScene, options: &RenderOptions) -> Result<(Film, Ren
     }
     let stats = RenderStats {
         elapsed,
-        primary_rays: u64::from(width) * u64::from(height) * u64::from(scene.settings.samples),
+        primary_rays: primary_rays.load(Ordering::Relaxed),
         total_rays: rays.load(Ordering::Relaxed),
     };
     Ok((film, stats))
@@ -145,20 +162,23 @@ pub fn render_pixel(scene: &RenderScene, integrator: &Classic, x: u32, y: u32) -
     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
     let samples = settings.samples;
     // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels.
-    let pattern = hash4(pixel, 0, u64::MAX, settings.seed);
+    let patterns = (samples > 1).then(|| {
+        let key = hash4(pixel, 0, u64::MAX, settings.seed);
+        (CmjPattern::new(samples, key as u32), CmjPattern::new(samples, (key >> 32) as u32))
+    });
     let mut sum = DVec3::ZERO;
     let mut rays = 0;
     for s in 0..samples {
         let stream = SampleStream { pixel, sample: u64::from(s), seed: settings.seed };
-        let offset = if samples == 1 { DVec2::splat(0.5) } else { cmj(s, samples, pattern as u32) };
+        let offset = patterns.as_ref().map_or(DVec2::splat(0.5), |(p, _)| p.sample(s));
         let lens = if scene.camera.aperture > 0.0 {
-            let u = if samples == 1 { stream.uniform2(2) } else { cmj(s, samples, (pattern >> 32) as u32) };
+            let u = patterns.as_ref().map_or_else(|| stream.uniform2(2), |(_, p)| p.sample(s));
             classic::lens_sample(u)
         } else {
             DVec2::ZERO
         };
-        let x0 = (f64::from(x) + offset.x) / width - 0.5;
-        let y0 = 0.5 - (f64::from(y) + offset.y) / height;
+        // POV-Ray's pixel coordinates put pixel centres at integers.
+        let (x0, y0) = pov_screen(f64::from(x) + offset.x - 0.5, f64::from(y) + offset.y - 0.5, width, height);
         let ray = scene.camera.ray(x0, y0, lens);
         let mut state = PathState { stream, dimension: 4, rays: 0 };
         sum += integrator.radiance(&ray, &mut state);

@@ -192,7 +192,8 @@ fn render_light(light: &Light) -> RenderLight {
             size2: light.size2,
             adaptive: light.adaptive,
             jitter: light.jitter,
-            circular: light.circular,
+            // POV-Ray makes an oriented area light circular.
+            circular: light.circular || light.orient,
             orient: light.orient,
         }),
     }

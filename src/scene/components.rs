@@ -302,14 +302,44 @@ pub enum IntegratorKind {
     Classic,
 }
 
-/// How each pixel is sampled.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
+/// How each pixel is sampled: `antialias = { method = "stratified" }` (the default) or one of
+/// POV-Ray's methods, `antialias = { method = "pov1", threshold = 0.3, depth = 3 }`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "method", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Antialias {
     /// `samples` stratified (correlated multi-jittered) samples per pixel; one sample is the
     /// pixel centre, as POV-Ray without antialiasing.
     #[default]
     Stratified,
+    /// POV-Ray's method 1 without jitter (`+AM1 +A<threshold> +R<depth> -J`): pixels that
+    /// differ from a neighbour get depth x depth extra samples. With an aperture, each
+    /// position traced averages `samples` lens samples (POV-Ray's `blur_samples`).
+    Pov1 {
+        /// Colour distance (after POV-Ray's antialiasing gamma 2.5) that triggers supersampling.
+        #[serde(default = "default_aa_threshold")]
+        threshold: f64,
+        /// Samples per axis of a supersampled pixel (1 to 9).
+        #[serde(default = "default_aa_depth")]
+        depth: u32,
+    },
+    /// POV-Ray's method 2 without jitter (`+AM2 +A<threshold> +R<depth> -J`): adaptive
+    /// subdivision of pixels whose corners differ, down to 1 / 2^(depth - 1) pixel.
+    Pov2 {
+        /// Colour distance (after POV-Ray's antialiasing gamma 2.5) that triggers subdivision.
+        #[serde(default = "default_aa_threshold")]
+        threshold: f64,
+        /// Subdivision depth (1 to 9).
+        #[serde(default = "default_aa_depth")]
+        depth: u32,
+    },
+}
+
+fn default_aa_threshold() -> f64 {
+    0.3
+}
+
+fn default_aa_depth() -> u32 {
+    3
 }
 
 /// `[render]`: image size, sampling and recursion.

@@ -15,6 +15,8 @@ use super::components::{
 use super::source::{ParsedFile, deserialize_at};
 use crate::diagnostics::{Diagnostic, Location, SceneError};
 use crate::material::Material;
+use crate::mesh::spawn::{MESH_KEYS, MESH_SHAPE};
+use crate::mesh::{ImportOptions, MeshSource, MeshStore};
 use crate::registry::ShapeRegistry;
 
 /// Top-level keys of a scene file.
@@ -98,6 +100,7 @@ pub fn load_from(source: &dyn SceneSource, path: &Path, registry: &ShapeRegistry
         materials: HashMap::new(),
         objects: Vec::new(),
         lights: Vec::new(),
+        meshes: MeshStore::new(),
     };
     loader.load_file(path, None);
     loader.finish()
@@ -130,6 +133,8 @@ struct Loader<'a> {
     materials: HashMap<String, (Material, usize)>,
     objects: Vec<ObjectDef>,
     lights: Vec<(Light, Location)>,
+    /// Imported mesh files and decoded textures, shared by every object that uses them.
+    meshes: MeshStore,
 }
 
 impl Loader<'_> {
@@ -271,13 +276,13 @@ impl Loader<'_> {
     }
 
     fn material(&mut self, index: usize, key: &str, value: toml::Value) -> Option<Material> {
-        let material: Material = self.deserialize(index, key, value)?;
+        let mut material: Material = self.deserialize(index, key, value)?;
         if let Err((field, message)) = material.check() {
             let k = format!("{key}.{field}");
             self.diagnostics.push(Diagnostic::new(self.files[index].locate(&k), message));
             return None;
         }
-        Some(material)
+        self.material_textures(index, key, &mut material).then_some(material)
     }
 
     fn deserialize<T: DeserializeOwned>(&mut self, index: usize, key: &str, value: toml::Value) -> Option<T> {
@@ -429,6 +434,8 @@ impl Loader<'_> {
     ) {
         let ObjectDef { file, key, mut table } = object;
         let location = self.files[file].locate(&key);
+        // Meshes keep their files' materials unless the object names one.
+        let explicit_material = table.contains_key("material");
         let Some(kind_value) = table.remove("shape") else {
             let d = Diagnostic::new(location, "missing key `shape`")
                 .with_help(format!("known shapes: {}", self.registry.names().collect::<Vec<_>>().join(", ")));
@@ -440,20 +447,21 @@ impl Loader<'_> {
             self.diagnostics.push(d);
             return;
         };
-        let Some(shape_type) = self.registry.get(&kind) else {
+        let shape_type = self.registry.get(&kind);
+        if shape_type.is_none() && kind != MESH_SHAPE {
             let d = Diagnostic::new(
                 self.files[file].locate_value(&format!("{key}.shape")),
                 format!("unknown shape `{kind}`"),
             )
-            .suggest(&kind, self.registry.names());
+            .suggest(&kind, self.registry.names().chain([MESH_SHAPE]));
             let d = if d.help.is_none() {
-                d.with_help(format!("known shapes: {}", self.registry.names().collect::<Vec<_>>().join(", ")))
+                d.with_help(format!("known shapes: {}, mesh", self.registry.names().collect::<Vec<_>>().join(", ")))
             } else {
                 d
             };
             self.diagnostics.push(d);
             return;
-        };
+        }
 
         let name = match table.remove("name") {
             None => None,
@@ -545,28 +553,48 @@ impl Loader<'_> {
                 return;
             }
         };
-        let geometry = match (shape_type.build)(table.clone()) {
-            Ok(g) => g,
-            Err(e) => {
-                let d = if let Some((field, expected)) = crate::diagnostics::parse_unknown_field(&e.message) {
-                    // The parameter path ends with the unknown key (`components[0].centre`).
-                    let inner = if e.key.is_empty() { field.clone() } else { e.key.clone() };
-                    let k = format!("{key}.{inner}");
-                    Diagnostic::new(self.files[file].locate(&k), format!("unknown key `{field}` for shape `{kind}`"))
-                        .suggest(&field, expected.iter().map(String::as_str).chain(OBJECT_KEYS))
-                } else if e.key.is_empty() {
-                    Diagnostic::new(location.clone(), format!("shape `{kind}`: {}", e.message))
-                } else {
-                    let k = format!("{key}.{}", e.key);
-                    Diagnostic::new(self.files[file].locate_value(&k), e.message.clone())
+        let entity = match shape_type {
+            None => match self.mesh_object(
+                world,
+                file,
+                &key,
+                table,
+                transform,
+                material.filter(|_| explicit_material),
+                flags,
+                &location,
+            ) {
+                Some(entity) => entity,
+                None => return,
+            },
+            Some(shape_type) => {
+                let geometry = match (shape_type.build)(table.clone()) {
+                    Ok(g) => g,
+                    Err(e) => {
+                        let d = if let Some((field, expected)) = crate::diagnostics::parse_unknown_field(&e.message) {
+                            // The parameter path ends with the unknown key (`components[0].centre`).
+                            let inner = if e.key.is_empty() { field.clone() } else { e.key.clone() };
+                            let k = format!("{key}.{inner}");
+                            Diagnostic::new(
+                                self.files[file].locate(&k),
+                                format!("unknown key `{field}` for shape `{kind}`"),
+                            )
+                            .suggest(&field, expected.iter().map(String::as_str).chain(OBJECT_KEYS))
+                        } else if e.key.is_empty() {
+                            Diagnostic::new(location.clone(), format!("shape `{kind}`: {}", e.message))
+                        } else {
+                            let k = format!("{key}.{}", e.key);
+                            Diagnostic::new(self.files[file].locate_value(&k), e.message.clone())
+                        };
+                        self.diagnostics.push(d);
+                        return;
+                    }
                 };
-                self.diagnostics.push(d);
-                return;
+                let Some(material) = material else { return };
+                let shape = ShapeComponent { kind, params: table, geometry };
+                world.spawn((shape, transform, material, flags, Origin(location.clone())))
             }
         };
-        let Some(material) = material else { return };
-        let shape = ShapeComponent { kind, params: table, geometry };
-        let entity = world.spawn((shape, transform, material, flags, Origin(location.clone())));
         if let Some(name) = name {
             if let Some((_, first)) = by_name.get(&name) {
                 let d = Diagnostic::new(
@@ -583,5 +611,169 @@ impl Loader<'_> {
         if let Some(parent) = parent {
             parents.push((entity, parent, self.files[file].locate_value(&format!("{key}.parent"))));
         }
+    }
+
+    /// The directory of scene file `index` (mesh and texture paths are relative to it).
+    fn directory(&self, index: usize) -> PathBuf {
+        Path::new(&*self.files[index].name).parent().unwrap_or(Path::new("")).to_path_buf()
+    }
+
+    /// A `shape = "mesh"` object: imports the file (once per file) and spawns the root
+    /// entity and its parts; `None` after reporting a problem.
+    #[allow(clippy::too_many_arguments)]
+    fn mesh_object(
+        &mut self,
+        world: &mut hecs::World,
+        file: usize,
+        key: &str,
+        mut table: toml::Table,
+        transform: Transform,
+        material: Option<MaterialComponent>,
+        flags: ObjectFlags,
+        location: &Location,
+    ) -> Option<hecs::Entity> {
+        let material_failed = material.is_none()
+            && self.diagnostics.iter().any(|d| d.location.key.starts_with(&format!("{key}.material")));
+        let mut ok = true;
+        for k in table.keys() {
+            if !MESH_KEYS.contains(&k.as_str()) {
+                let d = Diagnostic::new(
+                    self.files[file].locate(&format!("{key}.{k}")),
+                    format!("unknown key `{k}` for shape `mesh`"),
+                )
+                .suggest(k, MESH_KEYS.into_iter().chain(OBJECT_KEYS));
+                self.diagnostics.push(d);
+                ok = false;
+            }
+        }
+        let smooth_angle = match table.get("smooth_angle") {
+            None => None,
+            Some(v) => match v.as_float().or_else(|| v.as_integer().map(|i| i as f64)) {
+                Some(a) if a.is_finite() && a > 0.0 && a <= 180.0 => Some(a),
+                _ => {
+                    let d = Diagnostic::new(
+                        self.files[file].locate_value(&format!("{key}.smooth_angle")),
+                        "`smooth_angle` must be an angle in degrees, greater than 0 and at most 180",
+                    );
+                    self.diagnostics.push(d);
+                    return None;
+                }
+            },
+        };
+        let relative = match table.remove("file") {
+            Some(toml::Value::String(s)) => s,
+            Some(_) => {
+                let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.file")), "`file` must be a path");
+                self.diagnostics.push(d);
+                return None;
+            }
+            None => {
+                let d =
+                    Diagnostic::new(location.clone(), "a mesh needs `file`: the path of an .obj, .gltf or .glb file")
+                        .with_help("the path is relative to this scene file");
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        let path = self.directory(file).join(&relative);
+        let model = match self.meshes.get(&path, &ImportOptions { smooth_angle }) {
+            Ok(model) => model,
+            Err(e) => {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.file")),
+                    format!("cannot import mesh: {e}"),
+                );
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        let mut material_map = std::collections::BTreeMap::new();
+        if let Some(value) = table.remove("material_map") {
+            let map_key = format!("{key}.material_map");
+            let toml::Value::Table(entries) = value else {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&map_key),
+                    "`material_map` must be a table from the file's material names to materials",
+                );
+                self.diagnostics.push(d);
+                return None;
+            };
+            let known: Vec<&str> = model.parts.iter().filter_map(|p| p.material_name.as_deref()).collect();
+            for (name, value) in entries {
+                let entry_key = format!("{map_key}.{name}");
+                if !known.contains(&name.as_str()) {
+                    let d = Diagnostic::new(
+                        self.files[file].locate(&entry_key),
+                        format!("`{relative}` has no material named `{name}`"),
+                    )
+                    .suggest(&name, known.iter().copied());
+                    let d =
+                        if d.help.is_none() { d.with_help(format!("its materials: {}", known.join(", "))) } else { d };
+                    self.diagnostics.push(d);
+                    ok = false;
+                    continue;
+                }
+                let component = match value {
+                    toml::Value::String(scene_name) => match self.materials.get(&scene_name) {
+                        Some((m, _)) => MaterialComponent { name: Some(scene_name), material: m.clone() },
+                        None => {
+                            let d = Diagnostic::new(
+                                self.files[file].locate_value(&entry_key),
+                                format!("no material is named `{scene_name}`"),
+                            )
+                            .suggest(&scene_name, self.materials.keys().map(String::as_str));
+                            self.diagnostics.push(d);
+                            ok = false;
+                            continue;
+                        }
+                    },
+                    v @ toml::Value::Table(_) => match self.material(file, &entry_key, v) {
+                        Some(m) => MaterialComponent { name: None, material: m },
+                        None => {
+                            ok = false;
+                            continue;
+                        }
+                    },
+                    _ => {
+                        let d = Diagnostic::new(
+                            self.files[file].locate_value(&entry_key),
+                            "each entry must name a [materials.NAME] table or be an inline material table",
+                        );
+                        self.diagnostics.push(d);
+                        ok = false;
+                        continue;
+                    }
+                };
+                material_map.insert(name, component);
+            }
+        }
+        if !ok || material_failed {
+            return None;
+        }
+        // Saved scenes may be written elsewhere: they keep the absolute path.
+        let absolute = std::fs::canonicalize(&path).unwrap_or(path).display().to_string();
+        let source = MeshSource { file: absolute, material, material_map, params: table, model };
+        Some(crate::mesh::spawn::spawn_model(world, source, transform, flags, location))
+    }
+
+    /// Resolves the texture paths of a scene material (relative to scene file `index`) to
+    /// absolute paths and decodes the images; reports unreadable images at `key`.
+    fn material_textures(&mut self, index: usize, key: &str, material: &mut Material) -> bool {
+        let dir = self.directory(index);
+        let mut ok = true;
+        for (texture, space) in material.textures_mut() {
+            let path = dir.join(&texture.file);
+            match self.meshes.textures.load_file(&path, space) {
+                Ok(t) => {
+                    texture.file = std::fs::canonicalize(&path).unwrap_or(path).display().to_string();
+                    texture.texture = Some(t);
+                }
+                Err(e) => {
+                    self.diagnostics.push(Diagnostic::new(self.files[index].locate(key), e));
+                    ok = false;
+                }
+            }
+        }
+        ok
     }
 }

@@ -6,6 +6,8 @@ use std::collections::BTreeMap;
 use super::Scene;
 use super::components::{Light, MaterialComponent, Name, ObjectFlags, Parent, ShapeComponent, Transform};
 use crate::material::Material;
+use crate::mesh::spawn::MESH_SHAPE;
+use crate::mesh::{Imported, MeshSource};
 
 /// The scene as TOML text.
 pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
@@ -16,7 +18,7 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
 
     let mut objects: Vec<(hecs::Entity, toml::Table)> = Vec::new();
     let mut materials: BTreeMap<String, Material> = BTreeMap::new();
-    let mut query = scene.world.query::<(
+    let query = scene.world.query::<(
         hecs::Entity,
         &ShapeComponent,
         &Transform,
@@ -25,7 +27,8 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
         Option<&Name>,
         Option<&Parent>,
     )>();
-    for (entity, shape, transform, material, flags, name, parent) in query.iter() {
+    // Parts and nodes imported from mesh files are recreated by loading the file again.
+    for (entity, shape, transform, material, flags, name, parent) in query.without::<&Imported>().iter() {
         let mut t = toml::Table::new();
         t.insert("shape".into(), shape.kind.clone().into());
         if let Some(name) = name {
@@ -52,6 +55,55 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
             t.insert("no_shadow".into(), true.into());
         }
         for (k, v) in &shape.params {
+            t.insert(k.clone(), v.clone());
+        }
+        objects.push((entity, t));
+    }
+    let mut meshes =
+        scene.world.query::<(hecs::Entity, &MeshSource, &Transform, &ObjectFlags, Option<&Name>, Option<&Parent>)>();
+    for (entity, source, transform, flags, name, parent) in meshes.iter() {
+        let mut t = toml::Table::new();
+        t.insert("shape".into(), MESH_SHAPE.into());
+        t.insert("file".into(), source.file.clone().into());
+        if let Some(name) = name {
+            t.insert("name".into(), name.0.clone().into());
+        }
+        match &source.material {
+            Some(MaterialComponent { name: Some(n), material }) => {
+                materials.insert(n.clone(), material.clone());
+                t.insert("material".into(), n.clone().into());
+            }
+            Some(MaterialComponent { name: None, material }) => {
+                t.insert("material".into(), toml::Value::try_from(material)?);
+            }
+            None => {}
+        }
+        if !transform.is_identity() {
+            t.insert("transform".into(), toml::Value::try_from(transform)?);
+        }
+        if let Some(parent) = parent
+            && let Ok(parent_name) = scene.world.get::<&Name>(parent.0)
+        {
+            t.insert("parent".into(), parent_name.0.clone().into());
+        }
+        if flags.no_shadow {
+            t.insert("no_shadow".into(), true.into());
+        }
+        if !source.material_map.is_empty() {
+            let mut map = toml::Table::new();
+            for (file_name, component) in &source.material_map {
+                let value = match &component.name {
+                    Some(n) => {
+                        materials.insert(n.clone(), component.material.clone());
+                        n.clone().into()
+                    }
+                    None => toml::Value::try_from(&component.material)?,
+                };
+                map.insert(file_name.clone(), value);
+            }
+            t.insert("material_map".into(), map.into());
+        }
+        for (k, v) in &source.params {
             t.insert(k.clone(), v.clone());
         }
         objects.push((entity, t));

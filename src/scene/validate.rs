@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::Scene;
-use super::components::{Light, LightKind, Origin, WorldTransform};
+use super::components::{Antialias, Light, LightKind, Origin, WorldTransform};
 use crate::diagnostics::{Diagnostic, Location, SceneError};
 
 /// Largest accepted image side, and pixel count (a 64k x 64k float image is 48 GiB).
@@ -80,6 +80,20 @@ fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
     }
     if !(r.adc_bailout.is_finite() && (0.0..1.0).contains(&r.adc_bailout)) {
         out.push(Diagnostic::new(at("adc_bailout"), format!("adc_bailout must be in [0, 1), got {}", r.adc_bailout)));
+    }
+    if let Antialias::Pov1 { threshold, depth } | Antialias::Pov2 { threshold, depth } = r.antialias {
+        if !(threshold.is_finite() && threshold >= 0.0) {
+            out.push(Diagnostic::new(
+                at("antialias.threshold"),
+                format!("antialias threshold must be 0 or positive, got {threshold}"),
+            ));
+        }
+        if !(1..=9).contains(&depth) {
+            out.push(Diagnostic::new(
+                at("antialias.depth"),
+                format!("antialias depth must be between 1 and 9 (as POV-Ray's +R), got {depth}"),
+            ));
+        }
     }
     if !r.exposure.is_finite() {
         out.push(Diagnostic::new(at("exposure"), "exposure must be finite"));
@@ -171,10 +185,11 @@ fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
                 out.push(Diagnostic::new(origin.child(key), format!("`{key}` must be between 1 and 1024, got {n}")));
             }
         }
-        if light.circular && (light.size1 < 2 || light.size2 < 2) {
+        // POV-Ray makes an oriented area light circular.
+        if (light.circular || light.orient) && (light.size1 < 2 || light.size2 < 2) {
             out.push(Diagnostic::new(
-                origin.child("circular"),
-                "a circular area light needs size1 and size2 of at least 2",
+                origin.child(if light.circular { "circular" } else { "orient" }),
+                "a circular (or oriented) area light needs size1 and size2 of at least 2",
             ));
         }
     }

@@ -41,12 +41,16 @@ pub struct Surface {
     pub shading_normal: DVec3,
     /// Surface parameterisation for texturing, each component in [0, 1] where defined.
     pub uv: DVec2,
+    /// How fast `uv` changes along the surface: uv units per unit of object-space length
+    /// (the square root of the uv-to-surface area ratio; meshes know it per triangle). Texture
+    /// filtering turns a ray's footprint into texels with it; 0 when unknown.
+    pub uv_density: f64,
 }
 
 impl Surface {
     /// A surface point whose shading normal is its geometric normal.
     pub fn new(point: DVec3, normal: DVec3, uv: DVec2) -> Self {
-        Self { point, normal, shading_normal: normal, uv }
+        Self { point, normal, shading_normal: normal, uv, uv_density: 0.0 }
     }
 }
 

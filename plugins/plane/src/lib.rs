@@ -77,7 +77,8 @@ impl Shape for Plane {
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         let along = self.normal.dot(ray.direction);
-        if along.abs() <= PARALLEL_EPSILON * ray.direction.length() {
+        // |along| <= eps |d|, squared: no square root on this hot path.
+        if along * along <= PARALLEL_EPSILON * PARALLEL_EPSILON * ray.direction.length_squared() {
             return None;
         }
         let t = (self.offset - self.normal.dot(ray.origin)) / along;

@@ -40,6 +40,9 @@ pub struct Sphere {
     pub radius: f64,
 }
 
+/// Squared half chords up to this count as tangent and miss (POV-Ray's `EPSILON`).
+pub const TANGENT_EPSILON: f64 = 1e-10;
+
 impl Shape for Sphere {
     fn bounds(&self) -> Aabb {
         Aabb::from_corners(self.center - self.radius, self.center + self.radius)
@@ -52,10 +55,13 @@ impl Shape for Sphere {
         let a = ray.direction.length_squared();
         let b_half = oc.dot(ray.direction);
         let closest = oc - (b_half / a) * ray.direction;
-        let disc = a * (self.radius * self.radius - closest.length_squared());
-        if disc < 0.0 {
+        let half_chord_squared = self.radius * self.radius - closest.length_squared();
+        // POV-Ray misses a ray whose half chord (for a unit direction) is not longer than
+        // 1e-5: exactly tangent rays would otherwise hit or miss by rounding.
+        if half_chord_squared <= TANGENT_EPSILON {
             return None;
         }
+        let disc = a * half_chord_squared;
         let c = oc.length_squared() - self.radius * self.radius;
         let q = -(b_half + b_half.signum() * disc.sqrt());
         let (t0, t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
@@ -104,6 +110,15 @@ mod tests {
         check_shape(&unit());
         check_shape(&Sphere { center: DVec3::new(3.0, -2.0, 1.0), radius: 0.25 });
         check_shape(&Sphere { center: DVec3::ZERO, radius: 1e3 });
+    }
+
+    #[test]
+    fn tangent_rays_miss_as_in_pov_ray() {
+        let s = unit();
+        let tangent = Ray::new(DVec3::new(-5.0, 1.0, 0.0), DVec3::X);
+        assert!(s.intersect(&tangent, 1e-6, f64::INFINITY).is_none());
+        let grazing = Ray::new(DVec3::new(-5.0, 1.0 - 1e-4, 0.0), DVec3::X * 3.0);
+        assert!(s.intersect(&grazing, 1e-6, f64::INFINITY).is_some(), "a chord of 0.028 hits");
     }
 
     #[test]

@@ -1,0 +1,223 @@
+//! Prism and POV-Ray side by side on the same scenes: every parity scene and the seed room,
+//! at 1000 x 563 with and without antialiasing, each renderer as a whole process (`prism
+//! render` and `povray` on the file `prism export pov` writes), same size, same samples.
+//! Prints wall time, CPU time, their ratios, each renderer's own render-only time, and the
+//! difference between the two images.
+//!
+//! ```text
+//! cargo bench --bench pov_compare -- [--runs N] [--threads 1,2] [--size 1000x563] [NAME...]
+//! ```
+//!
+//! "aa" is the scene's own POV-Ray antialiasing method, else method 1 with threshold 0.3 and
+//! depth 3 (`+A0.3 +AM1 +R3 -J`), which both renderers sample identically. Each figure is the
+//! best of `--runs` runs (default 3): the machine is shared, and the best run is the one
+//! least disturbed. Needs `povray` (Debian: `apt-get install povray`).
+
+use std::fs::File;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+use prism::output::{read_exr, srgb_encode};
+
+struct Options {
+    runs: usize,
+    threads: Vec<usize>,
+    size: (u32, u32),
+    names: Vec<String>,
+}
+
+fn options() -> Options {
+    let mut o = Options { runs: 3, threads: vec![1, 2], size: (1000, 563), names: Vec::new() };
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        let mut value = || args.next().unwrap_or_else(|| panic!("{a} needs a value"));
+        match a.as_str() {
+            "--runs" => o.runs = value().parse().expect("--runs N"),
+            "--threads" => o.threads = value().split(',').map(|t| t.parse().expect("--threads 1,2")).collect(),
+            "--size" => {
+                let v = value();
+                let (w, h) = v.split_once('x').expect("--size WxH");
+                o.size = (w.parse().expect("width"), h.parse().expect("height"));
+            }
+            // `cargo bench` passes --bench; other harness flags do not apply.
+            flag if flag.starts_with("--") => {}
+            name => o.names.push(name.to_string()),
+        }
+    }
+    o
+}
+
+/// One measured process: wall seconds, CPU seconds (user + system), and its stderr.
+struct Run {
+    wall: f64,
+    cpu: f64,
+    log: String,
+}
+
+fn children_cpu() -> f64 {
+    // SAFETY: getrusage only writes the struct it is given.
+    let usage = unsafe {
+        let mut usage: libc::rusage = std::mem::zeroed();
+        libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage);
+        usage
+    };
+    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    seconds(usage.ru_utime) + seconds(usage.ru_stime)
+}
+
+fn measure(mut command: Command, log: &Path) -> Run {
+    let cpu = children_cpu();
+    let start = Instant::now();
+    let status = command
+        .stdout(Stdio::null())
+        .stderr(File::create(log).expect("log file"))
+        .status()
+        .unwrap_or_else(|e| panic!("cannot start {command:?}: {e}"));
+    let wall = start.elapsed().as_secs_f64();
+    assert!(status.success(), "{command:?} failed, see {}", log.display());
+    let log = std::fs::read_to_string(log).unwrap_or_default();
+    Run { wall, cpu: children_cpu() - cpu, log }
+}
+
+fn best(runs: Vec<Run>) -> Run {
+    runs.into_iter().min_by(|a, b| a.wall.total_cmp(&b.wall)).expect("at least one run")
+}
+
+/// Prism's own render time ("rendered ... in X s").
+fn prism_render_time(log: &str) -> Option<f64> {
+    log.split(" in ").nth(1)?.split(" s").next()?.trim().parse().ok()
+}
+
+/// POV-Ray's "Trace Time: ... (X seconds)".
+fn povray_trace_time(log: &str) -> Option<f64> {
+    let line = log.lines().find(|l| l.contains("Trace Time"))?;
+    line.rsplit('(').next()?.split_whitespace().next()?.parse().ok()
+}
+
+/// RMSE in linear light and the percentage of pixels off by more than 2/255 after sRGB
+/// encoding, as tests/parity.rs measures them.
+fn image_error(a: &Path, b: &Path) -> (f64, f64) {
+    let (a, b) = (read_exr(a).expect("prism image"), read_exr(b).expect("povray image"));
+    assert_eq!((a.width, a.height), (b.width, b.height));
+    let enc = |v: f32| srgb_encode(f64::from(v).clamp(0.0, 1.0));
+    let (mut sum, mut over) = (0.0, 0usize);
+    for (p, q) in a.pixels.iter().zip(&b.pixels) {
+        let mut worst: f64 = 0.0;
+        for c in 0..3 {
+            sum += (f64::from(p[c]) - f64::from(q[c])).powi(2);
+            worst = worst.max((enc(p[c]) - enc(q[c])).abs());
+        }
+        over += usize::from(worst > 2.0 / 255.0);
+    }
+    let n = a.pixels.len() as f64;
+    ((sum / (3.0 * n)).sqrt(), 100.0 * over as f64 / n)
+}
+
+fn main() {
+    let o = options();
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    if Command::new("povray").arg("--version").stdout(Stdio::null()).stderr(Stdio::null()).status().is_err() {
+        eprintln!("error: povray is not installed; install it with: apt-get install povray");
+        std::process::exit(1);
+    }
+    let prism = env!("CARGO_BIN_EXE_prism");
+    let work = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pov_compare");
+    std::fs::create_dir_all(&work).unwrap();
+
+    let mut scenes: Vec<(String, PathBuf)> = std::fs::read_dir(root.join("scenes/parity"))
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            (p.extension()? == "toml").then(|| (p.file_stem().unwrap().to_string_lossy().into_owned(), p))
+        })
+        .collect();
+    scenes.sort();
+    scenes.push(("seed-room".into(), root.join("scenes/room.toml")));
+    if !o.names.is_empty() {
+        scenes.retain(|(n, _)| o.names.contains(n));
+    }
+
+    let (w, h) = o.size;
+    println!(
+        "{w}x{h}, best of {} runs; wall and CPU of the whole process (POV-Ray's include ~0.6 s of start-up)",
+        o.runs
+    );
+    println!("render = each renderer's own render time (Prism's \"rendered in\", POV-Ray's \"Trace Time\")\n");
+    println!(
+        "| scene | AA | threads | Prism wall s | POV wall s | wall ratio | Prism CPU s | POV CPU s | CPU ratio | Prism render s | POV trace s | RMSE | % > 2/255 |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    for (name, path) in &scenes {
+        let text = std::fs::read_to_string(path).unwrap();
+        let own_method = text.lines().find(|l| l.trim_start().starts_with("antialias"));
+        for aa in [false, true] {
+            let antialias = match (aa, own_method) {
+                (false, _) => "antialias = { method = \"stratified\" }".to_string(),
+                (true, Some(line)) => line.trim().to_string(),
+                (true, None) => "antialias = { method = \"pov1\", threshold = 0.3, depth = 3 }".to_string(),
+            };
+            // The scene at the benchmark size and sampling, by including it.
+            let tag = format!("{name}-{}", if aa { "aa" } else { "noaa" });
+            let toml = work.join(format!("{tag}.toml"));
+            let include = path.display().to_string().replace('\\', "/");
+            std::fs::write(
+                &toml,
+                format!("include = [\"{include}\"]\n\n[render]\nwidth = {w}\nheight = {h}\n{antialias}\n"),
+            )
+            .unwrap();
+            let pov = work.join(format!("{tag}.pov"));
+            let status = Command::new(prism).args(["export", "pov"]).arg(&toml).arg("-o").arg(&pov).status().unwrap();
+            assert!(status.success(), "export of {tag} failed");
+            let pov_text = std::fs::read_to_string(&pov).unwrap();
+            let pov_options = prism::export::pov::options_of(&pov_text).expect("options line").to_string();
+            let aa_label: String = pov_options
+                .split_whitespace()
+                .filter(|t| !t.starts_with("+W") && !t.starts_with("+H"))
+                .collect::<Vec<_>>()
+                .join(" ");
+            for &threads in &o.threads {
+                let ours = work.join(format!("{tag}-{threads}.prism.exr"));
+                let theirs = work.join(format!("{tag}-{threads}.povray.exr"));
+                let prism_run = best(
+                    (0..o.runs)
+                        .map(|_| {
+                            let mut c = Command::new(prism);
+                            c.arg("render")
+                                .arg(&toml)
+                                .arg("--threads")
+                                .arg(threads.to_string())
+                                .arg("--exr")
+                                .arg(&ours);
+                            measure(c, &work.join(format!("{tag}.prism.log")))
+                        })
+                        .collect(),
+                );
+                let pov_run = best(
+                    (0..o.runs)
+                        .map(|_| {
+                            let mut c = Command::new("povray");
+                            c.arg(&pov).args(pov_options.split_whitespace());
+                            c.args(["-D", &format!("+WT{threads}"), "+FE"]).arg(format!("+O{}", theirs.display()));
+                            measure(c, &work.join(format!("{tag}.povray.log")))
+                        })
+                        .collect(),
+                );
+                let (rmse, over) = image_error(&ours, &theirs);
+                let show = |t: Option<f64>| t.map_or("?".into(), |t| format!("{t:.3}"));
+                println!(
+                    "| {name} | {} | {threads} | {:.3} | {:.3} | {:.2}x | {:.3} | {:.3} | {:.2}x | {} | {} | {rmse:.1e} | {over:.2} |",
+                    if aa { aa_label.as_str() } else { "no" },
+                    prism_run.wall,
+                    pov_run.wall,
+                    pov_run.wall / prism_run.wall,
+                    prism_run.cpu,
+                    pov_run.cpu,
+                    pov_run.cpu / prism_run.cpu,
+                    show(prism_render_time(&prism_run.log)),
+                    show(povray_trace_time(&pov_run.log)),
+                );
+            }
+        }
+    }
+}

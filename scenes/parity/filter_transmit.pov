@@ -1,0 +1,150 @@
+// POV-Ray 3.7 scene written by `prism export pov` from filter_transmit.toml; regenerate, do not edit.
+// Prism is right-handed, POV-Ray left-handed: points, directions and normals are written as
+// (x, y, -z) and transforms as S*M*S with S = diag(1, 1, -1); the image is not mirrored.
+// povray-options: +W320 +H180 -A
+#version 3.7;
+
+global_settings {
+  assumed_gamma 1.0
+  max_trace_level 5
+  adc_bailout 0.00392156862745098
+  ambient_light rgb <1.0, 1.0, 1.0>
+}
+
+background { rgb <0.5, 0.55, 0.6> }
+
+camera {
+  perspective
+  location <0.0, 1.2, -1.5>
+  direction <0.0, -0.279329540830131, 0.9601952966035754>
+  up <0.0, 0.9996920670131647, 0.2908195104038297>
+  right <0.9999999999999999, -0.0, -0.0> * 1.0411341011034925 * image_width / image_height
+}
+
+light_source { <1.5, 4.0, 1.0>, color rgb <1.0, 1.0, 1.0>
+}
+
+// "floor" plane
+plane { <0.0, 1.0, -0.0>, -1.0
+  texture {
+    pigment { rgbft <0.9, 0.9, 0.88, 0.0, 0.0> }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.8 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "wall" plane
+plane { <0.0, 0.0, -1.0>, -8.0
+  texture {
+    pigment { rgbft <0.8, 0.8, 0.8, 0.0, 0.0> }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "stripe" box
+box { <-4.0, -0.3, 7.95>, <4.0, 0.3, 7.9>
+  texture {
+    pigment { rgbft <0.1, 0.1, 0.1, 0.0, 0.0> }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "red_filter" sphere
+sphere { <0.0, 0.0, -0.0>, 0.55
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, -1.3, -0.45, 4.0>
+  texture {
+    pigment { rgbft <1.0, 0.2, 0.1, 0.75, 0.0> }
+    finish {
+      ambient rgb <0.05, 0.05, 0.05> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.2 brilliance 1.0
+      phong 0.6 phong_size 60.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "blue_transmit" sphere
+sphere { <0.0, 0.0, -0.0>, 0.55
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, -0.5, -0.35, 4.6>
+  texture {
+    pigment { rgbft <0.2, 0.3, 1.0, 0.0, 0.6> }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.5 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "green_both" sphere
+sphere { <0.0, 0.0, -0.0>, 0.5
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 0.5, -0.5, 4.1>
+  texture {
+    pigment { rgbft <0.2, 1.0, 0.3, 0.45, 0.3> }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.4 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.5 roughness 0.02
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "yellow_box" box
+box { <1.1, -0.98, 5.2>, <1.9, 0.1, 4.4>
+  texture {
+    pigment { rgbft <1.0, 0.9, 0.1, 0.6, 0.0> }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.3 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "solid" sphere
+sphere { <0.0, 0.0, -0.0>, 0.3
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 1.5, -0.45, 4.8>
+  texture {
+    pigment { rgbft <0.6, 0.3, 0.7, 0.0, 0.0> }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+

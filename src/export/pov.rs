@@ -1,0 +1,419 @@
+//! `prism export pov`: a scene as POV-Ray 3.7 scene description language.
+//!
+//! The file renders in POV-Ray to the image the `classic` integrator renders (see
+//! `shared/povray/REPORT.md`): `#version 3.7`, `assumed_gamma 1.0`, the camera's `right`, `up`
+//! and `direction` written out, every shape through its plugin's [`prism_api::Shape::to_pov`]
+//! with its world transform, materials as pigment / finish / interior with every value
+//! explicit, lights, ambient light, background, `max_trace_level` and `adc_bailout`.
+//!
+//! Prism is right-handed and POV-Ray left-handed. Every point, direction and normal is
+//! written as `(x, y, -z)` (the map S) and every transform M as S·M·S; the mirror and the
+//! change of handedness cancel, so the picture is not mirrored.
+//!
+//! Antialiasing is a POV-Ray command-line option, not scene language: the options that
+//! render the same samples are written in a `// povray-options:` comment line, which
+//! `scripts/povray-references.sh` passes to `povray`.
+
+use std::fmt::Write;
+
+use glam::{DAffine3, DVec3};
+use prism_api::pov::{number, vector};
+
+use crate::color::Rgb;
+use crate::diagnostics::{Diagnostic, SceneError};
+use crate::material::{Material, Reflection};
+use crate::render::camera::CameraFrame;
+use crate::scene::Scene;
+use crate::scene::components::{
+    Antialias, Camera, Environment, IntegratorKind, Light, LightKind, MaterialComponent, Name, ObjectFlags, Origin,
+    RenderSettings, ShapeComponent, WorldTransform,
+};
+
+/// The deepest `max_trace_level` POV-Ray 3.7 accepts.
+pub const MAX_TRACE_LEVEL: u32 = 256;
+
+/// The prefix of the comment line that holds the POV-Ray command-line options.
+pub const OPTIONS_PREFIX: &str = "// povray-options: ";
+
+/// The scene as POV-Ray 3.7 SDL. `source` names the scene in the header comment. The scene
+/// must have been through `resolve_transforms` and `validate`. Every feature that has no
+/// exact POV-Ray equivalent is reported, each naming the object, light or setting.
+pub fn export(scene: &Scene, source: &str) -> Result<String, SceneError> {
+    let mut errors = Vec::new();
+    let mut out = String::new();
+    let options = povray_options(scene, &mut errors);
+    let _ = writeln!(out, "// POV-Ray 3.7 scene written by `prism export pov` from {source}; regenerate, do not edit.");
+    out.push_str(
+        "// Prism is right-handed, POV-Ray left-handed: points, directions and normals are written as\n\
+         // (x, y, -z) and transforms as S*M*S with S = diag(1, 1, -1); the image is not mirrored.\n",
+    );
+    let _ = writeln!(out, "{OPTIONS_PREFIX}{options}");
+    out.push_str("#version 3.7;\n\n");
+    globals(&mut out, scene, &mut errors);
+    camera(&mut out, &scene.camera(), scene.render.samples);
+    lights(&mut out, scene);
+    objects(&mut out, scene, &mut errors);
+    if errors.is_empty() { Ok(out) } else { Err(SceneError { diagnostics: errors }) }
+}
+
+/// The POV-Ray options in the header line of an exported file, if it has one.
+pub fn options_of(pov: &str) -> Option<&str> {
+    pov.lines().find_map(|l| l.strip_prefix(OPTIONS_PREFIX))
+}
+
+/// Image size and antialiasing as POV-Ray command-line options.
+fn povray_options(scene: &Scene, errors: &mut Vec<Diagnostic>) -> String {
+    let RenderSettings {
+        width,
+        height,
+        samples,
+        max_depth: _,
+        adc_bailout: _,
+        seed: _,
+        integrator,
+        antialias,
+        exposure: _,
+        tone_map: _,
+    } = &scene.render;
+    match integrator {
+        IntegratorKind::Classic => {}
+    }
+    let aa = match *antialias {
+        Antialias::Stratified => {
+            if *samples > 1 && scene.camera().aperture <= 0.0 {
+                errors.push(
+                    Diagnostic::new(
+                        scene.render_origin.child("samples"),
+                        format!("{samples} stratified samples per pixel have no POV-Ray equivalent"),
+                    )
+                    .with_help(
+                        "use `antialias = { method = \"pov1\" }` (POV-Ray's +AM1) or `\"pov2\"` for antialiasing \
+                         that POV-Ray renders alike, or samples = 1",
+                    ),
+                );
+            }
+            "-A".to_string()
+        }
+        Antialias::Pov1 { threshold, depth } => format!("+A{threshold:?} +AM1 +R{depth} -J"),
+        Antialias::Pov2 { threshold, depth } => format!("+A{threshold:?} +AM2 +R{depth} -J"),
+    };
+    format!("+W{width} +H{height} {aa}")
+}
+
+fn rgb(c: Rgb) -> String {
+    format!("rgb <{}, {}, {}>", number(c.0.x), number(c.0.y), number(c.0.z))
+}
+
+fn globals(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
+    let Environment { background, ambient_light } = &scene.environment;
+    let render = &scene.render;
+    if render.max_depth > MAX_TRACE_LEVEL {
+        errors.push(Diagnostic::new(
+            scene.render_origin.child("max_depth"),
+            format!("max_depth {} is deeper than POV-Ray's limit of {MAX_TRACE_LEVEL}", render.max_depth),
+        ));
+    }
+    let _ = write!(
+        out,
+        "global_settings {{\n  assumed_gamma 1.0\n  max_trace_level {}\n  adc_bailout {}\n  ambient_light {}\n}}\n\n\
+         background {{ {} }}\n\n",
+        render.max_depth,
+        number(render.adc_bailout),
+        rgb(*ambient_light),
+        rgb(*background),
+    );
+}
+
+fn camera(out: &mut String, camera: &Camera, samples: u32) {
+    let Camera { position: _, look_at: _, up: _, vfov: _, aspect, aperture, focal_distance: _ } = camera;
+    let frame = CameraFrame::new(camera);
+    // Without an explicit aspect the viewport follows the image, as in Prism.
+    let right = match aspect {
+        Some(a) => vector(frame.right * frame.height * a),
+        None => format!("{} * {} * image_width / image_height", vector(frame.right), number(frame.height)),
+    };
+    let _ = write!(
+        out,
+        "camera {{\n  perspective\n  location {}\n  direction {}\n  up {}\n  right {right}\n",
+        vector(frame.position),
+        vector(frame.direction),
+        vector(frame.up * frame.height),
+    );
+    if *aperture > 0.0 {
+        // POV-Ray's lens samples fill a disc of radius aperture / 4 (its sample grid spans
+        // [-0.5, 0.5] and is scaled by aperture / 2), Prism's of radius aperture / 2.
+        // Variance 0 makes POV-Ray take all blur samples, as Prism does.
+        let _ = write!(
+            out,
+            "  aperture {}\n  blur_samples {samples}\n  focal_point {}\n  variance 0\n",
+            number(2.0 * aperture),
+            vector(frame.position + frame.direction * frame.focal_distance),
+        );
+    }
+    out.push_str("}\n\n");
+}
+
+fn lights(out: &mut String, scene: &Scene) {
+    let mut lights: Vec<(hecs::Entity, Light)> =
+        scene.world.query::<(hecs::Entity, &Light)>().iter().map(|(e, l)| (e, l.clone())).collect();
+    lights.sort_by_key(|(e, _)| e.id());
+    for (_, light) in lights {
+        light_source(out, &light);
+    }
+}
+
+fn light_source(out: &mut String, light: &Light) {
+    let Light {
+        kind,
+        position,
+        color,
+        intensity,
+        fade_distance,
+        fade_power,
+        shadowless,
+        point_at,
+        radius,
+        falloff,
+        tightness,
+        spot,
+        axis1,
+        axis2,
+        size1,
+        size2,
+        adaptive,
+        jitter,
+        circular,
+        orient,
+    } = light;
+    let v = |a: &[f64; 3]| vector(DVec3::from_array(*a));
+    let _ = writeln!(out, "light_source {{ {}, color {}", v(position), rgb(Rgb(color.0 * *intensity)));
+    let spotlight = *kind == LightKind::Spot || (*kind == LightKind::Area && *spot);
+    if spotlight {
+        let _ = writeln!(
+            out,
+            "  spotlight point_at {} radius {} falloff {} tightness {}",
+            v(point_at),
+            number(*radius),
+            number(*falloff),
+            number(*tightness)
+        );
+    }
+    if *kind == LightKind::Parallel {
+        let _ = writeln!(out, "  parallel point_at {}", v(point_at));
+    }
+    if *kind == LightKind::Area {
+        let _ = write!(out, "  area_light {}, {}, {size1}, {size2} adaptive {adaptive}", v(axis1), v(axis2));
+        for (flag, word) in [(*jitter, "jitter"), (*circular || *orient, "circular"), (*orient, "orient")] {
+            if flag {
+                let _ = write!(out, " {word}");
+            }
+        }
+        out.push('\n');
+    }
+    if *fade_distance != 0.0 || *fade_power != 0.0 {
+        let _ = writeln!(out, "  fade_distance {} fade_power {}", number(*fade_distance), number(*fade_power));
+    }
+    if *shadowless {
+        out.push_str("  shadowless\n");
+    }
+    out.push_str("}\n\n");
+}
+
+fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
+    let mut query = scene.world.query::<(
+        hecs::Entity,
+        Option<&ShapeComponent>,
+        Option<&WorldTransform>,
+        Option<&MaterialComponent>,
+        Option<&ObjectFlags>,
+        Option<&Origin>,
+        Option<&Name>,
+    )>();
+    let mut entries: Vec<_> = query.iter().collect();
+    entries.sort_by_key(|(e, ..)| e.id());
+    for (_, shape, transform, material, flags, origin, name) in entries {
+        let Some(origin) = origin else { continue };
+        let (shape, material) = match (shape, material) {
+            (Some(shape), Some(material)) => (shape, material),
+            // Cameras and lights have neither; anything else drawable must not vanish.
+            (None, None) => continue,
+            _ => {
+                errors.push(Diagnostic::new(origin.0.clone(), "this object cannot be exported to POV-Ray"));
+                continue;
+            }
+        };
+        let label = name.map_or(String::new(), |n| format!(" \"{}\"", n.0));
+        let Some(sdl) = shape.geometry.to_pov() else {
+            errors.push(
+                Diagnostic::new(
+                    origin.0.child("shape"),
+                    format!("shape `{}` has no POV-Ray equivalent, so the scene cannot be exported", shape.kind),
+                )
+                .with_help("its plugin must implement `Shape::to_pov`"),
+            );
+            continue;
+        };
+        let Some(body) = sdl.trim_end().strip_suffix('}') else {
+            errors.push(Diagnostic::new(
+                origin.0.child("shape"),
+                format!("shape `{}` wrote POV-Ray code that does not end in `}}`: {sdl}", shape.kind),
+            ));
+            continue;
+        };
+        let mut modifiers = String::new();
+        let world_from_object = transform.map_or(DAffine3::IDENTITY, |t| t.0);
+        if world_from_object != DAffine3::IDENTITY {
+            let _ = writeln!(modifiers, "  matrix {}", pov_matrix(&world_from_object));
+        }
+        if let Err(problems) = texture(&mut modifiers, &material.material) {
+            for (key, message) in problems {
+                errors.push(Diagnostic::new(origin.0.child(&format!("material.{key}")), message));
+            }
+            continue;
+        }
+        if flags.is_some_and(|f| f.no_shadow) {
+            modifiers.push_str("  no_shadow\n");
+        }
+        let _ = writeln!(out, "//{label} {}", shape.kind);
+        let _ = write!(out, "{}\n{modifiers}}}\n\n", body.trim_end());
+    }
+}
+
+/// S·M·S in POV-Ray's `matrix` layout: four rows of three, the rows of the 3x3 part (POV-Ray
+/// multiplies row vectors) and then the translation.
+pub fn pov_matrix(m: &DAffine3) -> String {
+    let s = DVec3::new(1.0, 1.0, -1.0);
+    // (S A S) has entries a_ij * s_i * s_j; its column j is POV-Ray's row j.
+    let cols = [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis];
+    let mut values = Vec::with_capacity(12);
+    for (j, col) in cols.iter().enumerate() {
+        let c = *col * s * s[j];
+        values.extend([c.x, c.y, c.z]);
+    }
+    let t = m.translation * s;
+    values.extend([t.x, t.y, t.z]);
+    let text: Vec<String> = values.into_iter().map(number).collect();
+    format!("<{}>", text.join(", "))
+}
+
+/// The material as `texture { pigment finish }` and `interior`, or the keys POV-Ray cannot
+/// express with messages.
+fn texture(out: &mut String, m: &Material) -> Result<(), Vec<(&'static str, String)>> {
+    let Material {
+        color,
+        filter,
+        transmit,
+        ambient,
+        emission,
+        diffuse,
+        brilliance,
+        phong,
+        phong_size,
+        specular,
+        roughness,
+        metallic,
+        reflection,
+        conserve_energy,
+        ior,
+        fade_distance,
+        fade_power,
+        fade_color,
+        texture,
+        pbr,
+    } = m;
+    let mut problems = Vec::new();
+    if texture.is_some() {
+        problems.push(("texture", "image textures are not exported to POV-Ray".to_string()));
+    }
+    if pbr.is_some() {
+        problems.push(("pbr", "glTF metallic-roughness materials have no POV-Ray finish equivalent".to_string()));
+    }
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    let c = color.0;
+    let _ = write!(
+        out,
+        "  texture {{\n    pigment {{ rgbft <{}, {}, {}, {}, {}> }}\n    finish {{\n      ambient {} emission {}\n      \
+         diffuse {} brilliance {}\n      phong {} phong_size {}\n      specular {} roughness {}\n      metallic {}\n",
+        number(c.x),
+        number(c.y),
+        number(c.z),
+        number(*filter),
+        number(*transmit),
+        rgb(*ambient),
+        rgb(*emission),
+        number(*diffuse),
+        number(*brilliance),
+        number(*phong),
+        number(*phong_size),
+        number(*specular),
+        number(*roughness),
+        number(*metallic),
+    );
+    let Reflection { min, max, falloff, fresnel, metallic: reflection_metallic, exponent } = reflection;
+    if reflection.is_reflective() {
+        let _ = write!(
+            out,
+            "      reflection {{ {}, {} falloff {} exponent {} metallic {}",
+            rgb(*min),
+            rgb(*max),
+            number(*falloff),
+            number(*exponent),
+            number(*reflection_metallic)
+        );
+        if *fresnel {
+            out.push_str(" fresnel on");
+        }
+        out.push_str(" }\n");
+    }
+    if *conserve_energy {
+        out.push_str("      conserve_energy\n");
+    }
+    let _ = write!(out, "    }}\n  }}\n  interior {{ ior {}", number(*ior));
+    if *fade_distance != 0.0 {
+        let _ = write!(
+            out,
+            " fade_distance {} fade_power {} fade_color {}",
+            number(*fade_distance),
+            number(*fade_power),
+            rgb(*fade_color)
+        );
+    }
+    out.push_str(" }\n");
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DMat3;
+
+    #[test]
+    fn matrix_is_mirrored_conjugate_in_row_layout() {
+        // Rotate 90 degrees about y (+x -> -z) and translate by (1, 2, 3).
+        let m = DAffine3 {
+            matrix3: DMat3::from_rotation_y(std::f64::consts::FRAC_PI_2),
+            translation: DVec3::new(1.0, 2.0, 3.0),
+        };
+        let text = pov_matrix(&m);
+        let numbers: Vec<f64> =
+            text.trim_matches(|c| c == '<' || c == '>').split(", ").map(|v| v.parse().unwrap()).collect();
+        // POV-Ray maps a row vector p to p * M; S(m(p)) must equal that for S(p).
+        let p = DVec3::new(0.3, -0.7, 1.1);
+        let s = DVec3::new(1.0, 1.0, -1.0);
+        let q = p * s;
+        let pov = DVec3::new(
+            q.x * numbers[0] + q.y * numbers[3] + q.z * numbers[6] + numbers[9],
+            q.x * numbers[1] + q.y * numbers[4] + q.z * numbers[7] + numbers[10],
+            q.x * numbers[2] + q.y * numbers[5] + q.z * numbers[8] + numbers[11],
+        );
+        assert!((pov - m.transform_point3(p) * s).length() < 1e-12, "{pov}");
+    }
+
+    #[test]
+    fn options_line_round_trips() {
+        let text = format!("// header\n{OPTIONS_PREFIX}+W320 +H180 -A\n#version 3.7;\n");
+        assert_eq!(options_of(&text), Some("+W320 +H180 -A"));
+    }
+}

@@ -1,0 +1,1095 @@
+//! The bottom level of Prism's two-level BVH: one tree per mesh over its triangles, in f32
+//! object space.
+//!
+//! obvhs builds a binary tree (PLOC, reinsertion, SAH leaf collapse to at most four
+//! triangles); it is then collapsed into an 8-wide tree whose nodes hold their children's
+//! boxes as structure-of-arrays, so one AVX2 instruction tests a ray against eight boxes,
+//! and whose leaves are packets of four triangles tested together with the watertight test
+//! of [`super::intersect`] in SSE lanes. Children are visited nearest first. Without AVX2
+//! (or off x86-64) the same kernels run as plain loops.
+
+use std::mem::MaybeUninit;
+use std::time::Duration;
+
+use glam::{Vec3, Vec3A};
+use obvhs::BvhBuildParams;
+use obvhs::bvh2::builder::build_bvh2;
+
+use super::intersect::{TriangleHit, WatertightRay};
+
+/// Children per node.
+const WIDTH: usize = 8;
+/// Triangles per leaf packet (and at most per leaf).
+const PACKET: usize = 8;
+/// Child slot marker: the child is a leaf (the low bits index a packet).
+const LEAF: u32 = 1 << 31;
+/// An unused child slot.
+const EMPTY: u32 = u32::MAX;
+/// Ize's conservative slab test: far distances grow by 2 gamma(3) so rounding never loses a box.
+const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+
+/// An 8-wide node: child boxes as structure-of-arrays and child references.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct Node {
+    /// min x, min y, min z, max x, max y, max z of each child.
+    bounds: [[f32; WIDTH]; 6],
+    /// Inner node index, `LEAF | packet`, or `EMPTY`.
+    child: [u32; WIDTH],
+}
+
+impl Node {
+    const EMPTY: Node = Node {
+        bounds: [
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+        ],
+        child: [EMPTY; WIDTH],
+    };
+}
+
+/// Four triangles, vertices as structure-of-arrays (`a[axis][lane]`). Unused lanes repeat
+/// the last triangle, so they can only report hits that are already reported.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct Packet {
+    a: [[f32; PACKET]; 3],
+    b: [[f32; PACKET]; 3],
+    c: [[f32; PACKET]; 3],
+    /// Triangle index (into the mesh's triangle list) of each lane.
+    prim: [u32; PACKET],
+}
+
+/// A BVH over triangles.
+#[derive(Clone)]
+pub struct TriangleBvh {
+    nodes: Vec<Node>,
+    packets: Vec<Packet>,
+    /// Vertices of each triangle, in input order (for refining hits in f64).
+    triangles: Vec<[Vec3; 3]>,
+    /// Deepest stack a traversal can need.
+    stack_size: usize,
+}
+
+impl std::fmt::Debug for TriangleBvh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "TriangleBvh({} triangles, {} nodes, {} packets)",
+            self.triangles.len(),
+            self.nodes.len(),
+            self.packets.len()
+        )
+    }
+}
+
+/// A ray prepared for traversal: the slab test's reciprocal direction and near/far planes
+/// per axis, and the watertight test's shear.
+struct Prepared {
+    wt: WatertightRay,
+    rdir: [f32; 3],
+    org_rdir: [f32; 3],
+    /// Index into `Node::bounds` of the near plane on each axis (the far one is +3 mod 6).
+    near: [usize; 3],
+    far: [usize; 3],
+    /// Origin, permuted to the watertight test's (kx, ky, kz).
+    org: [f32; 3],
+    perm: [usize; 3],
+    shear: [f32; 3],
+}
+
+impl Prepared {
+    fn new(wt: &WatertightRay) -> Self {
+        let d = wt.direction;
+        let o = wt.origin;
+        // Zero components become tiny ones (as Embree does): infinite reciprocals would turn
+        // the slab test's products into NaN.
+        let rdir = [0, 1, 2].map(|k| 1.0 / if d[k].abs() < 1e-18 { 1e-18f32.copysign(d[k]) } else { d[k] });
+        let org_rdir = [o.x * rdir[0], o.y * rdir[1], o.z * rdir[2]];
+        let near = [0, 1, 2].map(|k| if rdir[k] >= 0.0 { k } else { k + 3 });
+        let far = near.map(|n| (n + 3) % 6);
+        let (perm, shear) = wt.shear();
+        Self { wt: *wt, rdir, org_rdir, near, far, org: perm.map(|k| o[k]), perm, shear }
+    }
+}
+
+impl TriangleBvh {
+    /// Builds the tree over `triangles` (given by their vertices). Returns it and the
+    /// identity order (triangles keep their indices; kept for the caller's bookkeeping).
+    ///
+    /// # Panics
+    ///
+    /// When `triangles` is empty (meshes without triangles are rejected at import).
+    pub fn build(triangles: &[[Vec3; 3]]) -> (Self, Vec<u32>) {
+        assert!(!triangles.is_empty(), "a mesh BVH needs at least one triangle");
+        let boxes: Vec<obvhs::aabb::Aabb> = triangles
+            .iter()
+            .map(|t| {
+                let min = t[0].min(t[1]).min(t[2]);
+                let max = t[0].max(t[1]).max(t[2]);
+                obvhs::aabb::Aabb { min: Vec3A::from(min), max: Vec3A::from(max) }
+            })
+            .collect();
+        let mut build_time = Duration::default();
+        // One triangle per BVH2 leaf: the collapse below forms the leaves.
+        let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
+        let bvh2 = build_bvh2(&boxes, params, &mut build_time);
+        let mut counts = vec![0u32; bvh2.nodes.len()];
+        count_prims(&bvh2, 0, &mut counts);
+        let mut out =
+            TriangleBvh { nodes: Vec::new(), packets: Vec::new(), triangles: triangles.to_vec(), stack_size: 0 };
+        let mut depth = 0;
+        if counts[0] as usize <= PACKET {
+            // A small mesh: a root node with one leaf.
+            let mut node = Node::EMPTY;
+            let packet = out.packet(&bvh2, 0);
+            set_child(&mut node, 0, &bvh2.nodes[0], LEAF | packet);
+            out.nodes.push(node);
+            depth = 1;
+        } else {
+            out.nodes.push(Node::EMPTY);
+            out.collapse(&bvh2, &counts, 0, 0, 1, &mut depth);
+        }
+        out.stack_size = depth * (WIDTH - 1) + 2;
+        (out, (0..triangles.len() as u32).collect())
+    }
+
+    /// Fills node `index` from the BVH2 inner node `bvh2_index`: its eight most promising
+    /// descendants (repeatedly opening the one with the largest surface area).
+    fn collapse(
+        &mut self,
+        bvh2: &obvhs::bvh2::Bvh2,
+        counts: &[u32],
+        bvh2_index: usize,
+        index: usize,
+        level: usize,
+        depth: &mut usize,
+    ) {
+        *depth = (*depth).max(level);
+        let first = bvh2.nodes[bvh2_index].first_index as usize;
+        let mut children = vec![first, first + 1];
+        while children.len() < WIDTH {
+            // Subtrees small enough for one packet stay whole: they become leaves.
+            let open = children
+                .iter()
+                .enumerate()
+                .filter(|&(_, &c)| counts[c] as usize > PACKET)
+                .max_by(|a, b| half_area(&bvh2.nodes[*a.1]).total_cmp(&half_area(&bvh2.nodes[*b.1])))
+                .map(|(i, _)| i);
+            // With slots to spare, split leaf-sized subtrees too: fuller nodes, smaller leaves.
+            let open = open.or_else(|| {
+                children
+                    .iter()
+                    .enumerate()
+                    .filter(|&(_, &c)| counts[c] as usize > PACKET / 2)
+                    .max_by(|a, b| half_area(&bvh2.nodes[*a.1]).total_cmp(&half_area(&bvh2.nodes[*b.1])))
+                    .map(|(i, _)| i)
+            });
+            let Some(i) = open else { break };
+            let c = children.swap_remove(i);
+            let f = bvh2.nodes[c].first_index as usize;
+            children.push(f);
+            children.push(f + 1);
+        }
+        for (slot, &c) in children.iter().enumerate() {
+            let child = &bvh2.nodes[c];
+            if counts[c] as usize <= PACKET {
+                let packet = self.packet(bvh2, c);
+                set_child(&mut self.nodes[index], slot, child, LEAF | packet);
+            } else {
+                let inner = self.nodes.len();
+                self.nodes.push(Node::EMPTY);
+                set_child(&mut self.nodes[index], slot, child, inner as u32);
+                self.collapse(bvh2, counts, c, inner, level + 1, depth);
+            }
+        }
+    }
+
+    /// The packet of the triangles under BVH2 node `subtree` (at most `PACKET`); returns
+    /// its index.
+    fn packet(&mut self, bvh2: &obvhs::bvh2::Bvh2, subtree: usize) -> u32 {
+        let mut prims = Vec::with_capacity(PACKET);
+        leaf_prims(bvh2, subtree, &mut prims);
+        let count = prims.len().clamp(1, PACKET);
+        let mut p = Packet { a: [[0.0; PACKET]; 3], b: [[0.0; PACKET]; 3], c: [[0.0; PACKET]; 3], prim: [0; PACKET] };
+        for lane in 0..PACKET {
+            let prim = prims[lane.min(count - 1)];
+            let [a, b, c] = self.triangles[prim as usize];
+            for axis in 0..3 {
+                p.a[axis][lane] = a[axis];
+                p.b[axis][lane] = b[axis];
+                p.c[axis][lane] = c[axis];
+            }
+            p.prim[lane] = prim;
+        }
+        self.packets.push(p);
+        (self.packets.len() - 1) as u32
+    }
+
+    /// Number of triangles.
+    pub fn len(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// True when the tree holds no triangle (never, once built).
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// Vertices of triangle `index`.
+    #[inline]
+    pub fn triangle(&self, index: usize) -> &[Vec3; 3] {
+        &self.triangles[index]
+    }
+
+    /// Shape statistics: (nodes, leaf packets, mean children per node, mean distinct
+    /// triangles per packet).
+    pub fn stats(&self) -> (usize, usize, f64, f64) {
+        let children: usize = self.nodes.iter().map(|n| n.child.iter().filter(|&&c| c != EMPTY).count()).sum();
+        let distinct: usize =
+            self.packets.iter().map(|p| (0..PACKET).filter(|&l| l == 0 || p.prim[l] != p.prim[l - 1]).count()).sum();
+        (
+            self.nodes.len(),
+            self.packets.len(),
+            children as f64 / self.nodes.len() as f64,
+            distinct as f64 / self.packets.len() as f64,
+        )
+    }
+
+    /// Bytes used by the nodes and the leaf packets (not the triangle list kept for
+    /// shading).
+    pub fn memory_bytes(&self) -> usize {
+        self.nodes.len() * std::mem::size_of::<Node>() + self.packets.len() * std::mem::size_of::<Packet>()
+    }
+
+    /// Visits the triangles the ray may hit, nearest boxes first. `accept(triangle, hit)` is
+    /// called for each f32 hit below the current bound and returns the new bound (the
+    /// accepted distance, which the traversal uses to prune) or `None` to reject the hit.
+    #[inline]
+    pub fn closest(&self, ray: &WatertightRay, t_max: f32, accept: impl FnMut(usize, TriangleHit) -> Option<f32>) {
+        let prepared = Prepared::new(ray);
+        // Left uninitialised: the traversal writes every slot before reading it.
+        let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; 160];
+        let mut heap;
+        let stack: &mut [MaybeUninit<(u32, f32)>] = if self.stack_size <= stack.len() {
+            &mut stack
+        } else {
+            heap = vec![MaybeUninit::uninit(); self.stack_size];
+            &mut heap
+        };
+        #[cfg(target_arch = "x86_64")]
+        if simd::available() {
+            // SAFETY: the CPU has AVX2 and FMA (checked at run time).
+            unsafe { simd::closest(self, &prepared, t_max, stack, accept) };
+            return;
+        }
+        traverse::<Scalar, false>(self, &prepared, t_max, stack, &mut AcceptClosest(accept));
+    }
+
+    /// True when `accept` takes any f32 hit with `t < t_max`.
+    #[inline]
+    pub fn any(&self, ray: &WatertightRay, t_max: f32, accept: impl FnMut(usize, TriangleHit) -> bool) -> bool {
+        let prepared = Prepared::new(ray);
+        // Left uninitialised: the traversal writes every slot before reading it.
+        let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; 160];
+        let mut heap;
+        let stack: &mut [MaybeUninit<(u32, f32)>] = if self.stack_size <= stack.len() {
+            &mut stack
+        } else {
+            heap = vec![MaybeUninit::uninit(); self.stack_size];
+            &mut heap
+        };
+        #[cfg(target_arch = "x86_64")]
+        if simd::available() {
+            // SAFETY: the CPU has AVX2 and FMA (checked at run time).
+            return unsafe { simd::any(self, &prepared, t_max, stack, accept) };
+        }
+        traverse::<Scalar, true>(self, &prepared, t_max, stack, &mut AcceptAny(accept, false))
+    }
+}
+
+impl TriangleBvh {
+    /// Closest hits of eight rays traced together (a 4x2 tile of camera rays, say): each
+    /// node and leaf is fetched once for all eight, and its boxes and triangles are tested
+    /// with the rays in SIMD lanes. `accept(ray, triangle, hit)` works as in
+    /// [`TriangleBvh::closest`] for ray `ray`. The results are exactly those of eight
+    /// [`TriangleBvh::closest`] calls: rays whose directions do not share a dominant axis
+    /// and sign (the watertight test's frame) are traced one by one.
+    pub fn closest8(
+        &self,
+        rays: &[WatertightRay; 8],
+        t_max: [f32; 8],
+        mut accept: impl FnMut(usize, usize, TriangleHit) -> Option<f32>,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if simd::available() {
+            let first = rays[0].shear().0;
+            let same_frame = rays.iter().all(|r| {
+                let (perm, _) = r.shear();
+                perm == first && (r.direction[perm[2]] < 0.0) == (rays[0].direction[first[2]] < 0.0)
+            });
+            if same_frame && self.stack_size <= 160 {
+                // SAFETY: the CPU has AVX2 and FMA (checked at run time).
+                unsafe { simd::closest8(self, rays, t_max, &mut accept) };
+                return;
+            }
+        }
+        for (lane, ray) in rays.iter().enumerate() {
+            self.closest(ray, t_max[lane], |prim, hit| accept(lane, prim, hit));
+        }
+    }
+}
+
+/// Triangles under each BVH2 node.
+fn count_prims(bvh2: &obvhs::bvh2::Bvh2, index: usize, counts: &mut [u32]) -> u32 {
+    let node = &bvh2.nodes[index];
+    let n = if node.prim_count > 0 {
+        node.prim_count
+    } else {
+        let first = node.first_index as usize;
+        count_prims(bvh2, first, counts) + count_prims(bvh2, first + 1, counts)
+    };
+    counts[index] = n;
+    n
+}
+
+/// The triangles under BVH2 node `index`.
+fn leaf_prims(bvh2: &obvhs::bvh2::Bvh2, index: usize, out: &mut Vec<u32>) {
+    let node = &bvh2.nodes[index];
+    let first = node.first_index as usize;
+    if node.prim_count > 0 {
+        out.extend_from_slice(&bvh2.primitive_indices[first..first + node.prim_count as usize]);
+    } else {
+        leaf_prims(bvh2, first, out);
+        leaf_prims(bvh2, first + 1, out);
+    }
+}
+
+fn half_area(n: &obvhs::bvh2::node::Bvh2Node) -> f32 {
+    let d = n.aabb().max - n.aabb().min;
+    d.x * d.y + d.y * d.z + d.z * d.x
+}
+
+fn set_child(node: &mut Node, slot: usize, child: &obvhs::bvh2::node::Bvh2Node, reference: u32) {
+    let (min, max) = (child.aabb().min, child.aabb().max);
+    for axis in 0..3 {
+        node.bounds[axis][slot] = min[axis];
+        node.bounds[axis + 3][slot] = max[axis];
+    }
+    node.child[slot] = reference;
+}
+
+/// What the traversal does with a candidate hit.
+trait Acceptor {
+    /// Offers a hit; returns the new bound on t if it was taken.
+    fn offer(&mut self, prim: usize, hit: TriangleHit) -> Option<f32>;
+    /// True when traversal can stop (any-hit queries).
+    fn done(&self) -> bool;
+}
+
+struct AcceptClosest<F>(F);
+
+impl<F: FnMut(usize, TriangleHit) -> Option<f32>> Acceptor for AcceptClosest<F> {
+    #[inline(always)]
+    fn offer(&mut self, prim: usize, hit: TriangleHit) -> Option<f32> {
+        (self.0)(prim, hit)
+    }
+
+    #[inline(always)]
+    fn done(&self) -> bool {
+        false
+    }
+}
+
+struct AcceptAny<F>(F, bool);
+
+impl<F: FnMut(usize, TriangleHit) -> bool> Acceptor for AcceptAny<F> {
+    #[inline(always)]
+    fn offer(&mut self, prim: usize, hit: TriangleHit) -> Option<f32> {
+        if (self.0)(prim, hit) {
+            self.1 = true;
+            Some(0.0)
+        } else {
+            None
+        }
+    }
+
+    #[inline(always)]
+    fn done(&self) -> bool {
+        self.1
+    }
+}
+
+/// The two SIMD kernels: eight boxes, four triangles.
+trait Kernels {
+    /// Bit mask of the children whose boxes the ray enters before `t_max`, and their
+    /// entry distances.
+    fn boxes(node: &Node, r: &Prepared, t_max: f32, near: &mut [f32; WIDTH]) -> u32;
+    /// Bit mask of the lanes hit with 0 < t < t_max, and per lane t, b1, b2; lanes whose
+    /// edge functions rounded to zero are left to the scalar test (their bits are in
+    /// `edge`).
+    fn triangles(p: &Packet, r: &Prepared, t_max: f32, out: &mut [[f32; PACKET]; 3], edge: &mut u32) -> u32;
+}
+
+/// Plain loops (used without AVX2).
+struct Scalar;
+
+impl Kernels for Scalar {
+    #[inline(always)]
+    fn boxes(node: &Node, r: &Prepared, t_max: f32, near: &mut [f32; WIDTH]) -> u32 {
+        let mut mask = 0;
+        for (i, entry) in near.iter_mut().enumerate() {
+            let mut t0 = 0.0f32;
+            let mut t1 = t_max;
+            for axis in 0..3 {
+                let n = node.bounds[r.near[axis]][i] * r.rdir[axis] - r.org_rdir[axis];
+                let f = (node.bounds[r.far[axis]][i] * r.rdir[axis] - r.org_rdir[axis]) * FAR_SCALE;
+                t0 = if n > t0 { n } else { t0 };
+                t1 = if f < t1 { f } else { t1 };
+            }
+            *entry = t0;
+            if t0 <= t1 {
+                mask |= 1 << i;
+            }
+        }
+        mask
+    }
+
+    #[inline(always)]
+    fn triangles(p: &Packet, r: &Prepared, t_max: f32, out: &mut [[f32; PACKET]; 3], edge: &mut u32) -> u32 {
+        let mut mask = 0;
+        for lane in 0..PACKET {
+            let v = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
+            if let Some(h) = r.wt.intersect(v(&p.a), v(&p.b), v(&p.c), t_max) {
+                out[0][lane] = h.t;
+                out[1][lane] = h.b1;
+                out[2][lane] = h.b2;
+                mask |= 1 << lane;
+            }
+        }
+        *edge = 0;
+        mask
+    }
+}
+
+/// The traversal, generic over the kernels and the query.
+#[inline(always)]
+fn traverse<K: Kernels, const ANY: bool>(
+    bvh: &TriangleBvh,
+    r: &Prepared,
+    t_max: f32,
+    stack: &mut [MaybeUninit<(u32, f32)>],
+    acceptor: &mut impl Acceptor,
+) -> bool {
+    let mut t_max = t_max;
+    let mut sp = 0usize;
+    let mut current = 0u32;
+    let mut near = [0f32; WIDTH];
+    let mut hits = [[0f32; PACKET]; 3];
+    loop {
+        if current & LEAF == 0 {
+            let node = &bvh.nodes[current as usize];
+            let mut mask = K::boxes(node, r, t_max, &mut near);
+            match mask.count_ones() {
+                0 => {}
+                1 => {
+                    current = node.child[mask.trailing_zeros() as usize];
+                    continue;
+                }
+                2 => {
+                    // The common case: go to the nearer child, keep the farther one.
+                    let i = mask.trailing_zeros() as usize;
+                    let j = (mask & (mask - 1)).trailing_zeros() as usize;
+                    let (near_i, far_i) = if near[i] <= near[j] { (i, j) } else { (j, i) };
+                    stack[sp] = MaybeUninit::new((node.child[far_i], near[far_i]));
+                    sp += 1;
+                    current = node.child[near_i];
+                    continue;
+                }
+                _ => {
+                    // Push every hit child, farthest first, then continue with the nearest.
+                    let base = sp;
+                    while mask != 0 {
+                        let i = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let entry = (node.child[i], near[i]);
+                        // Insertion sort by distance, descending (nearest on top). Slots below
+                        // `sp` are initialised.
+                        let mut j = sp;
+                        // SAFETY: j - 1 < sp, a slot written earlier.
+                        while j > base && unsafe { stack[j - 1].assume_init() }.1 < entry.1 {
+                            stack[j] = stack[j - 1];
+                            j -= 1;
+                        }
+                        stack[j] = MaybeUninit::new(entry);
+                        sp += 1;
+                    }
+                    sp -= 1;
+                    // SAFETY: sp < the number of slots written.
+                    current = unsafe { stack[sp].assume_init() }.0;
+                    continue;
+                }
+            }
+        } else {
+            let packet = &bvh.packets[(current & !LEAF) as usize];
+            let mut edge = 0;
+            let mut mask = K::triangles(packet, r, t_max, &mut hits, &mut edge);
+            while edge != 0 {
+                let lane = edge.trailing_zeros() as usize;
+                edge &= edge - 1;
+                let v = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
+                if let Some(h) = r.wt.intersect(v(&packet.a), v(&packet.b), v(&packet.c), t_max) {
+                    hits[0][lane] = h.t;
+                    hits[1][lane] = h.b1;
+                    hits[2][lane] = h.b2;
+                    mask |= 1 << lane;
+                }
+            }
+            while mask != 0 {
+                let lane = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let hit = TriangleHit { t: hits[0][lane], b1: hits[1][lane], b2: hits[2][lane] };
+                if hit.t < t_max
+                    && let Some(bound) = acceptor.offer(packet.prim[lane] as usize, hit)
+                {
+                    if ANY && acceptor.done() {
+                        return true;
+                    }
+                    t_max = t_max.min(bound);
+                }
+            }
+        }
+        // Pop the next node that is still nearer than the best hit.
+        loop {
+            if sp == 0 {
+                return acceptor.done();
+            }
+            sp -= 1;
+            // SAFETY: sp < the number of slots written.
+            let (node, distance) = unsafe { stack[sp].assume_init() };
+            if distance <= t_max {
+                current = node;
+                break;
+            }
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+mod simd {
+    use std::arch::x86_64::*;
+    use std::sync::OnceLock;
+
+    use super::*;
+
+    /// True when the CPU runs the AVX2 + FMA kernels.
+    pub fn available() -> bool {
+        static AVAILABLE: OnceLock<bool> = OnceLock::new();
+        *AVAILABLE.get_or_init(|| {
+            is_x86_feature_detected!("avx2")
+                && is_x86_feature_detected!("fma")
+                && is_x86_feature_detected!("popcnt")
+                && is_x86_feature_detected!("bmi1")
+        })
+    }
+
+    struct Avx2;
+
+    impl Kernels for Avx2 {
+        #[inline(always)]
+        fn boxes(node: &Node, r: &Prepared, t_max: f32, near: &mut [f32; WIDTH]) -> u32 {
+            // SAFETY: only instantiated inside functions compiled with AVX2 and FMA enabled,
+            // which run only after `available()`; loads are of 32-byte aligned arrays.
+            unsafe {
+                let b = &node.bounds;
+                // Macros, not closures: a closure is a function of its own without AVX, and
+                // the intrinsics in it would not be inlined.
+                macro_rules! plane {
+                    ($k:expr, $axis:expr) => {
+                        _mm256_fmsub_ps(
+                            _mm256_load_ps(b[$k].as_ptr()),
+                            _mm256_set1_ps(r.rdir[$axis]),
+                            _mm256_set1_ps(r.org_rdir[$axis]),
+                        )
+                    };
+                }
+                let nx = plane!(r.near[0], 0);
+                let ny = plane!(r.near[1], 1);
+                let nz = plane!(r.near[2], 2);
+                let fx = plane!(r.far[0], 0);
+                let fy = plane!(r.far[1], 1);
+                let fz = plane!(r.far[2], 2);
+                let t0 = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, _mm256_setzero_ps()));
+                let t1 = _mm256_min_ps(_mm256_min_ps(fx, fy), fz);
+                let t1 = _mm256_min_ps(_mm256_mul_ps(t1, _mm256_set1_ps(FAR_SCALE)), _mm256_set1_ps(t_max));
+                _mm256_storeu_ps(near.as_mut_ptr(), t0);
+                _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(t0, t1)) as u32
+            }
+        }
+
+        #[inline(always)]
+        fn triangles(p: &Packet, r: &Prepared, t_max: f32, out: &mut [[f32; PACKET]; 3], edge: &mut u32) -> u32 {
+            // SAFETY: as for `boxes`; packet arrays are 32-byte aligned.
+            unsafe {
+                let [kx, ky, kz] = r.perm;
+                let (ox, oy, oz) = (_mm256_set1_ps(r.org[0]), _mm256_set1_ps(r.org[1]), _mm256_set1_ps(r.org[2]));
+                let (sx, sy, sz) = (_mm256_set1_ps(r.shear[0]), _mm256_set1_ps(r.shear[1]), _mm256_set1_ps(r.shear[2]));
+                // The same operations, in the same order, as the scalar test (no fused
+                // multiply-adds): shared edges then give exactly opposite edge functions.
+                macro_rules! sheared {
+                    ($v:expr) => {{
+                        let x = _mm256_sub_ps(_mm256_load_ps($v[kx].as_ptr()), ox);
+                        let y = _mm256_sub_ps(_mm256_load_ps($v[ky].as_ptr()), oy);
+                        let z = _mm256_sub_ps(_mm256_load_ps($v[kz].as_ptr()), oz);
+                        (_mm256_sub_ps(x, _mm256_mul_ps(sx, z)), _mm256_sub_ps(y, _mm256_mul_ps(sy, z)), z)
+                    }};
+                }
+                let (ax, ay, az) = sheared!(p.a);
+                let (bx, by, bz) = sheared!(p.b);
+                let (cx, cy, cz) = sheared!(p.c);
+                let u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
+                let v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
+                let w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
+                let zero = _mm256_setzero_ps();
+                macro_rules! any3 {
+                    ($op:ident) => {
+                        _mm256_or_ps(
+                            _mm256_or_ps(_mm256_cmp_ps::<$op>(u, zero), _mm256_cmp_ps::<$op>(v, zero)),
+                            _mm256_cmp_ps::<$op>(w, zero),
+                        )
+                    };
+                }
+                let negative = any3!(_CMP_LT_OQ);
+                let positive = any3!(_CMP_GT_OQ);
+                let on_edge = any3!(_CMP_EQ_OQ);
+                let outside = _mm256_and_ps(negative, positive);
+                // Lanes with a zero edge function go to the scalar test (which redoes them
+                // in f64) unless they are already certainly outside.
+                *edge = _mm256_movemask_ps(_mm256_andnot_ps(outside, on_edge)) as u32;
+                let det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+                let t_scaled = _mm256_add_ps(
+                    _mm256_add_ps(_mm256_mul_ps(u, _mm256_mul_ps(sz, az)), _mm256_mul_ps(v, _mm256_mul_ps(sz, bz))),
+                    _mm256_mul_ps(w, _mm256_mul_ps(sz, cz)),
+                );
+                let inv = _mm256_div_ps(_mm256_set1_ps(1.0), det);
+                let t = _mm256_mul_ps(t_scaled, inv);
+                let in_range = _mm256_and_ps(
+                    _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
+                    _mm256_cmp_ps::<_CMP_LT_OQ>(t, _mm256_set1_ps(t_max)),
+                );
+                let valid = _mm256_andnot_ps(
+                    _mm256_or_ps(outside, on_edge),
+                    _mm256_and_ps(_mm256_cmp_ps::<_CMP_NEQ_OQ>(det, zero), in_range),
+                );
+                let mask = _mm256_movemask_ps(valid) as u32;
+                if mask != 0 {
+                    _mm256_storeu_ps(out[0].as_mut_ptr(), t);
+                    _mm256_storeu_ps(out[1].as_mut_ptr(), _mm256_mul_ps(v, inv));
+                    _mm256_storeu_ps(out[2].as_mut_ptr(), _mm256_mul_ps(w, inv));
+                }
+                mask
+            }
+        }
+    }
+
+    /// Closest-hit traversal with the AVX2 kernels.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX2 and FMA ([`available`]).
+    #[target_feature(enable = "avx2,fma,popcnt,bmi1")]
+    pub unsafe fn closest(
+        bvh: &TriangleBvh,
+        r: &Prepared,
+        t_max: f32,
+        stack: &mut [MaybeUninit<(u32, f32)>],
+        accept: impl FnMut(usize, TriangleHit) -> Option<f32>,
+    ) {
+        traverse::<Avx2, false>(bvh, r, t_max, stack, &mut AcceptClosest(accept));
+    }
+
+    pub use super::packet::closest8;
+
+    /// Any-hit traversal with the AVX2 kernels.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX2 and FMA ([`available`]).
+    #[target_feature(enable = "avx2,fma,popcnt,bmi1")]
+    pub unsafe fn any(
+        bvh: &TriangleBvh,
+        r: &Prepared,
+        t_max: f32,
+        stack: &mut [MaybeUninit<(u32, f32)>],
+        accept: impl FnMut(usize, TriangleHit) -> bool,
+    ) -> bool {
+        traverse::<Avx2, true>(bvh, r, t_max, stack, &mut AcceptAny(accept, false))
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+mod packet {
+    use std::arch::x86_64::*;
+
+    use super::*;
+
+    /// Eight rays in SIMD lanes.
+    struct Rays8 {
+        rdir: [__m256; 3],
+        org_rdir: [__m256; 3],
+        /// Origins permuted to the shared watertight frame.
+        org: [__m256; 3],
+        shear: [__m256; 3],
+        perm: [usize; 3],
+    }
+
+    /// See [`TriangleBvh::closest8`].
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX2 and FMA, all eight rays must share the watertight frame
+    /// (`shear().0` and the sign of the dominant direction component), and the tree's stack
+    /// size must be at most 160.
+    #[target_feature(enable = "avx2,fma,popcnt,bmi1")]
+    pub unsafe fn closest8(
+        bvh: &TriangleBvh,
+        rays: &[WatertightRay; 8],
+        t_max: [f32; 8],
+        accept: &mut impl FnMut(usize, usize, TriangleHit) -> Option<f32>,
+    ) {
+        // SAFETY: the caller guarantees AVX2 and FMA; every load and store is of a local or
+        // node array of the accessed length.
+        unsafe {
+            let prepared: [Prepared; 8] = std::array::from_fn(|i| Prepared::new(&rays[i]));
+            // A macro, not a closure: intrinsics inside a closure would not be inlined.
+            macro_rules! lanes {
+                ($field:ident, $k:expr) => {{
+                    let v: [f32; 8] = std::array::from_fn(|i| prepared[i].$field[$k]);
+                    _mm256_loadu_ps(v.as_ptr())
+                }};
+            }
+            // The slab test orders each lane's planes with min/max, so the rays may differ in
+            // the signs of their other two direction components.
+            let r = Rays8 {
+                rdir: [lanes!(rdir, 0), lanes!(rdir, 1), lanes!(rdir, 2)],
+                org_rdir: [lanes!(org_rdir, 0), lanes!(org_rdir, 1), lanes!(org_rdir, 2)],
+                org: [lanes!(org, 0), lanes!(org, 1), lanes!(org, 2)],
+                shear: [lanes!(shear, 0), lanes!(shear, 1), lanes!(shear, 2)],
+                perm: prepared[0].perm,
+            };
+            let mut t_max_v = _mm256_loadu_ps(t_max.as_ptr());
+            let mut stack = [(0u32, 0f32); 160];
+            let mut sp = 0usize;
+            let mut current = 0u32;
+            let zero = _mm256_setzero_ps();
+            loop {
+                if current & LEAF == 0 {
+                    let node = &bvh.nodes[current as usize];
+                    let mut hits = [(0u32, 0f32); WIDTH];
+                    let mut count = 0;
+                    for slot in 0..WIDTH {
+                        let child = node.child[slot];
+                        // Children fill the slots from the first one.
+                        if child == EMPTY {
+                            break;
+                        }
+                        let b = &node.bounds;
+                        let mut t0 = zero;
+                        let mut t1 = t_max_v;
+                        for axis in 0..3 {
+                            let lo = _mm256_set1_ps(b[axis][slot]);
+                            let hi = _mm256_set1_ps(b[axis + 3][slot]);
+                            let ta = _mm256_fmsub_ps(lo, r.rdir[axis], r.org_rdir[axis]);
+                            let tb = _mm256_fmsub_ps(hi, r.rdir[axis], r.org_rdir[axis]);
+                            t0 = _mm256_max_ps(t0, _mm256_min_ps(ta, tb));
+                            t1 = _mm256_min_ps(t1, _mm256_mul_ps(_mm256_max_ps(ta, tb), _mm256_set1_ps(FAR_SCALE)));
+                        }
+                        let hit = _mm256_cmp_ps::<_CMP_LE_OQ>(t0, t1);
+                        if _mm256_movemask_ps(hit) != 0 {
+                            // Order by the nearest entry among the rays that enter.
+                            let entry = _mm256_blendv_ps(_mm256_set1_ps(f32::INFINITY), t0, hit);
+                            let m = _mm256_min_ps(entry, _mm256_permute2f128_ps::<1>(entry, entry));
+                            let m = _mm_min_ps(
+                                _mm256_castps256_ps128(m),
+                                _mm_movehl_ps(_mm256_castps256_ps128(m), _mm256_castps256_ps128(m)),
+                            );
+                            let m = _mm_min_ss(m, _mm_shuffle_ps::<1>(m, m));
+                            hits[count] = (child, _mm_cvtss_f32(m));
+                            count += 1;
+                        }
+                    }
+                    if count > 0 {
+                        // Farthest first onto the stack; continue with the nearest.
+                        hits[..count].sort_unstable_by(|a, b| b.1.total_cmp(&a.1));
+                        for h in &hits[..count - 1] {
+                            stack[sp] = *h;
+                            sp += 1;
+                        }
+                        current = hits[count - 1].0;
+                        continue;
+                    }
+                } else {
+                    let packet = &bvh.packets[(current & !LEAF) as usize];
+                    let [kx, ky, kz] = r.perm;
+                    for lane in 0..PACKET {
+                        if lane > 0 && packet.prim[lane] == packet.prim[lane - 1] {
+                            break;
+                        }
+                        // One triangle against eight rays: the scalar test's operations per lane.
+                        macro_rules! sheared {
+                            ($v:expr) => {{
+                                let x = _mm256_sub_ps(_mm256_set1_ps($v[kx][lane]), r.org[0]);
+                                let y = _mm256_sub_ps(_mm256_set1_ps($v[ky][lane]), r.org[1]);
+                                let z = _mm256_sub_ps(_mm256_set1_ps($v[kz][lane]), r.org[2]);
+                                (
+                                    _mm256_sub_ps(x, _mm256_mul_ps(r.shear[0], z)),
+                                    _mm256_sub_ps(y, _mm256_mul_ps(r.shear[1], z)),
+                                    z,
+                                )
+                            }};
+                        }
+                        let (ax, ay, az) = sheared!(packet.a);
+                        let (bx, by, bz) = sheared!(packet.b);
+                        let (cx, cy, cz) = sheared!(packet.c);
+                        let u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
+                        let v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
+                        let w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
+                        macro_rules! any3 {
+                            ($op:ident) => {
+                                _mm256_or_ps(
+                                    _mm256_or_ps(_mm256_cmp_ps::<$op>(u, zero), _mm256_cmp_ps::<$op>(v, zero)),
+                                    _mm256_cmp_ps::<$op>(w, zero),
+                                )
+                            };
+                        }
+                        let outside = _mm256_and_ps(any3!(_CMP_LT_OQ), any3!(_CMP_GT_OQ));
+                        let on_edge = any3!(_CMP_EQ_OQ);
+                        let det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+                        let sz = r.shear[2];
+                        let t_scaled = _mm256_add_ps(
+                            _mm256_add_ps(
+                                _mm256_mul_ps(u, _mm256_mul_ps(sz, az)),
+                                _mm256_mul_ps(v, _mm256_mul_ps(sz, bz)),
+                            ),
+                            _mm256_mul_ps(w, _mm256_mul_ps(sz, cz)),
+                        );
+                        let inv = _mm256_div_ps(_mm256_set1_ps(1.0), det);
+                        let t = _mm256_mul_ps(t_scaled, inv);
+                        let valid = _mm256_andnot_ps(
+                            _mm256_or_ps(outside, on_edge),
+                            _mm256_and_ps(
+                                _mm256_cmp_ps::<_CMP_NEQ_OQ>(det, zero),
+                                _mm256_and_ps(
+                                    _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
+                                    _mm256_cmp_ps::<_CMP_LT_OQ>(t, t_max_v),
+                                ),
+                            ),
+                        );
+                        let mut mask = _mm256_movemask_ps(valid) as u32;
+                        let mut edge = _mm256_movemask_ps(_mm256_andnot_ps(outside, on_edge)) as u32;
+                        if mask == 0 && edge == 0 {
+                            continue;
+                        }
+                        let mut ts = [0f32; 8];
+                        let mut b1 = [0f32; 8];
+                        let mut b2 = [0f32; 8];
+                        _mm256_storeu_ps(ts.as_mut_ptr(), t);
+                        _mm256_storeu_ps(b1.as_mut_ptr(), _mm256_mul_ps(v, inv));
+                        _mm256_storeu_ps(b2.as_mut_ptr(), _mm256_mul_ps(w, inv));
+                        let mut bounds = [0f32; 8];
+                        _mm256_storeu_ps(bounds.as_mut_ptr(), t_max_v);
+                        let vertex = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
+                        while edge != 0 {
+                            let ray = edge.trailing_zeros() as usize;
+                            edge &= edge - 1;
+                            if let Some(h) = rays[ray].intersect(
+                                vertex(&packet.a),
+                                vertex(&packet.b),
+                                vertex(&packet.c),
+                                bounds[ray],
+                            ) {
+                                ts[ray] = h.t;
+                                b1[ray] = h.b1;
+                                b2[ray] = h.b2;
+                                mask |= 1 << ray;
+                            }
+                        }
+                        while mask != 0 {
+                            let ray = mask.trailing_zeros() as usize;
+                            mask &= mask - 1;
+                            let hit = TriangleHit { t: ts[ray], b1: b1[ray], b2: b2[ray] };
+                            if hit.t < bounds[ray]
+                                && let Some(bound) = accept(ray, packet.prim[lane] as usize, hit)
+                            {
+                                bounds[ray] = bounds[ray].min(bound);
+                            }
+                        }
+                        t_max_v = _mm256_loadu_ps(bounds.as_ptr());
+                    }
+                }
+                // Pop the next node some ray may still reach before its best hit.
+                let farthest = {
+                    let m = _mm256_max_ps(t_max_v, _mm256_permute2f128_ps::<1>(t_max_v, t_max_v));
+                    let m = _mm_max_ps(
+                        _mm256_castps256_ps128(m),
+                        _mm_movehl_ps(_mm256_castps256_ps128(m), _mm256_castps256_ps128(m)),
+                    );
+                    _mm_cvtss_f32(_mm_max_ss(m, _mm_shuffle_ps::<1>(m, m)))
+                };
+                loop {
+                    if sp == 0 {
+                        return;
+                    }
+                    sp -= 1;
+                    let (node, distance) = stack[sp];
+                    if distance <= farthest {
+                        current = node;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use prism_api::contract::TestRng;
+
+    /// A bumpy grid of triangles.
+    fn grid(n: usize) -> Vec<[Vec3; 3]> {
+        let p = |i: usize, j: usize| {
+            let (x, z) = (i as f32 / n as f32, j as f32 / n as f32);
+            Vec3::new(x, 0.1 * (7.0 * x).sin() * (5.0 * z).cos(), z)
+        };
+        let mut out = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                out.push([p(i, j), p(i, j + 1), p(i + 1, j)]);
+                out.push([p(i + 1, j), p(i, j + 1), p(i + 1, j + 1)]);
+            }
+        }
+        out
+    }
+
+    fn brute(tris: &[[Vec3; 3]], r: &WatertightRay) -> Option<(usize, f32)> {
+        let mut best: Option<(usize, f32)> = None;
+        for (i, t) in tris.iter().enumerate() {
+            if let Some(h) = r.intersect(t[0], t[1], t[2], best.map_or(f32::INFINITY, |b| b.1)) {
+                best = Some((i, h.t));
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn matches_brute_force_and_is_watertight() {
+        let tris = grid(40);
+        let (bvh, _) = TriangleBvh::build(&tris);
+        let mut rng = TestRng::new(3);
+        for i in 0..4000 {
+            // From above the grid to below it, inside its footprint: the ray must cross it.
+            let o = Vec3::new(rng.range(0.05, 0.95) as f32, rng.range(0.3, 2.0) as f32, rng.range(0.05, 0.95) as f32);
+            let target = Vec3::new(rng.range(0.05, 0.95) as f32, -0.2, rng.range(0.05, 0.95) as f32);
+            let r = WatertightRay::new(o, (target - o) * rng.range(0.2, 3.0) as f32).unwrap();
+            let mut got: Option<(usize, f32)> = None;
+            bvh.closest(&r, f32::INFINITY, |prim, h| {
+                if got.is_none_or(|g| h.t < g.1) {
+                    got = Some((prim, h.t));
+                }
+                Some(h.t)
+            });
+            let expected = brute(&tris, &r);
+            // Every ray aimed into the grid from above hits it (no cracks).
+            assert!(got.is_some(), "ray {i} slipped through");
+            assert_eq!(got.map(|g| g.1), expected.map(|e| e.1), "ray {i}");
+            let any = bvh.any(&r, f32::INFINITY, |_, _| true);
+            assert!(any);
+            let short = bvh.any(&r, got.unwrap().1 * 0.999, |_, _| true);
+            assert!(!short || brute(&tris, &r).is_some_and(|e| e.1 < got.unwrap().1 * 0.999));
+        }
+    }
+
+    #[test]
+    fn scalar_and_simd_kernels_agree() {
+        let tris = grid(16);
+        let (bvh, _) = TriangleBvh::build(&tris);
+        let mut rng = TestRng::new(9);
+        for _ in 0..2000 {
+            let o = Vec3::new(rng.range(-0.5, 1.5) as f32, rng.range(-1.0, 2.0) as f32, rng.range(-0.5, 1.5) as f32);
+            let d = Vec3::new(rng.range(-1.0, 1.0) as f32, rng.range(-1.0, 1.0) as f32, rng.range(-1.0, 1.0) as f32);
+            let Some(r) = WatertightRay::new(o, d) else { continue };
+            let p = Prepared::new(&r);
+            let mut stack = vec![MaybeUninit::uninit(); bvh.stack_size];
+            let mut scalar = None;
+            traverse::<Scalar, false>(
+                &bvh,
+                &p,
+                f32::INFINITY,
+                &mut stack,
+                &mut AcceptClosest(|prim: usize, h: TriangleHit| {
+                    scalar = Some((prim, h.t));
+                    Some(h.t)
+                }),
+            );
+            let mut fast = None;
+            bvh.closest(&r, f32::INFINITY, |prim, h| {
+                fast = Some((prim, h.t));
+                Some(h.t)
+            });
+            assert_eq!(scalar.map(|s| s.1), fast.map(|f| f.1));
+        }
+    }
+
+    #[test]
+    fn packets_match_single_rays() {
+        let tris = grid(30);
+        let (bvh, _) = TriangleBvh::build(&tris);
+        let mut rng = TestRng::new(5);
+        for _ in 0..500 {
+            let eye = Vec3::new(rng.range(-0.5, 1.5) as f32, rng.range(0.2, 1.5) as f32, rng.range(-0.5, 1.5) as f32);
+            let centre = Vec3::new(rng.uniform() as f32, 0.0, rng.uniform() as f32);
+            // A 4x2 tile, sometimes spread so wide that the rays change frames.
+            let spread = if rng.uniform() < 0.2 { 2.0 } else { 0.01 };
+            let rays: [WatertightRay; 8] = std::array::from_fn(|i| {
+                let offset = Vec3::new((i % 4) as f32, 0.0, (i / 4) as f32) * spread;
+                WatertightRay::new(eye, centre + offset - eye).unwrap()
+            });
+            let mut packet = [None; 8];
+            bvh.closest8(&rays, [f32::INFINITY; 8], |lane, prim, h| {
+                if packet[lane].is_none_or(|(_, t): (usize, f32)| h.t < t) {
+                    packet[lane] = Some((prim, h.t));
+                }
+                Some(h.t)
+            });
+            for (lane, ray) in rays.iter().enumerate() {
+                let mut single = None;
+                bvh.closest(ray, f32::INFINITY, |prim, h| {
+                    if single.is_none_or(|(_, t): (usize, f32)| h.t < t) {
+                        single = Some((prim, h.t));
+                    }
+                    Some(h.t)
+                });
+                assert_eq!(packet[lane].map(|p| p.1), single.map(|s| s.1), "lane {lane}");
+            }
+        }
+    }
+
+    #[test]
+    fn tiny_meshes_build() {
+        let one = vec![[Vec3::ZERO, Vec3::X, Vec3::Y]];
+        let (bvh, _) = TriangleBvh::build(&one);
+        let r = WatertightRay::new(Vec3::new(0.2, 0.2, 1.0), Vec3::NEG_Z).unwrap();
+        let mut hit = None;
+        bvh.closest(&r, f32::INFINITY, |p, h| {
+            hit = Some((p, h.t));
+            Some(h.t)
+        });
+        assert_eq!(hit, Some((0, 1.0)));
+    }
+}

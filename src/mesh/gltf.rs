@@ -1,0 +1,473 @@
+//! glTF 2.0 import (`.gltf` with external or data-URI buffers, `.glb`) through the gltf
+//! crate. The default scene's node tree becomes [`ModelNode`]s; every triangle primitive
+//! (indexed or not; strips and fans converted) becomes a [`ModelPart`] with its material
+//! mapped to Prism's. Points and lines are skipped with a warning.
+//!
+//! The crate validates the JSON; this module checks what it does not: buffer views and
+//! accessors inside their buffers, index ranges, node cycles, and finite positions. A
+//! broken file is an error naming the file, never a panic.
+
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Arc;
+
+use glam::{DAffine3, DMat4, Vec2, Vec3, Vec4};
+use gltf::mesh::Mode;
+
+use super::texture::{ColorSpace, TextureRef, TextureStore, Wrap};
+use super::{
+    AlphaMask, ImportError, MeshBuilder, MeshData, MeshShape, Model, ModelNode, ModelPart, NormalMap, SurfaceMaps,
+};
+use crate::color::Rgb;
+use crate::material::{Material, Pbr};
+
+/// Deepest node nesting accepted (deeper trees are almost certainly broken files).
+const MAX_DEPTH: usize = 256;
+
+/// Reads a glTF or GLB file.
+pub fn import(path: &Path, textures: &mut TextureStore) -> Result<Model, ImportError> {
+    let err = |m: String| ImportError::new(path, m);
+    let bytes = std::fs::read(path).map_err(|e| err(format!("cannot read: {e}")))?;
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice(&bytes).map_err(|e| err(format!("invalid glTF: {e}")))?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    let buffers =
+        gltf::import_buffers(&document, Some(base), blob).map_err(|e| err(format!("cannot load buffers: {e}")))?;
+    check_views_and_accessors(&document, &buffers).map_err(err)?;
+    let canonical = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+
+    let scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+        .ok_or_else(|| err("the file has no scene".into()))?;
+    let mut importer = Importer {
+        path,
+        canonical: &canonical,
+        buffers: &buffers,
+        textures,
+        model: Model::default(),
+        meshes: HashMap::new(),
+        materials: HashMap::new(),
+    };
+    for root in scene.nodes() {
+        importer.node(root, None, &mut Vec::new())?;
+    }
+    let mut model = importer.model;
+    if model.parts.is_empty() {
+        model.warnings.push("no triangles in the default scene: nothing to render".into());
+    }
+    if document.skins().next().is_some() {
+        model.warnings.push("skins are ignored: meshes are rendered in their bind pose".into());
+    }
+    if document.animations().next().is_some() {
+        model.warnings.push("animations are ignored".into());
+    }
+    Ok(model)
+}
+
+/// Buffer views inside their buffers and accessors inside their views: the crate's reader
+/// slices without checking some of these, and silently stops early on others.
+fn check_views_and_accessors(document: &gltf::Document, buffers: &[gltf::buffer::Data]) -> Result<(), String> {
+    let view_len = |view: &gltf::buffer::View| -> Result<usize, String> {
+        let buffer = buffers.get(view.buffer().index()).ok_or("a buffer view names a missing buffer")?;
+        let end = view.offset().checked_add(view.length()).ok_or("buffer view size overflows")?;
+        if end > buffer.len() {
+            return Err(format!(
+                "buffer view {} (bytes {}..{end}) runs past the end of buffer {} ({} bytes)",
+                view.index(),
+                view.offset(),
+                view.buffer().index(),
+                buffer.len()
+            ));
+        }
+        Ok(view.length())
+    };
+    for view in document.views() {
+        view_len(&view)?;
+    }
+    for accessor in document.accessors() {
+        let count = accessor.count();
+        if count == 0 {
+            return Err(format!("accessor {} has no elements", accessor.index()));
+        }
+        let size = accessor.size();
+        if let Some(view) = accessor.view() {
+            let stride = view.stride().unwrap_or(size);
+            if stride < size {
+                return Err(format!(
+                    "accessor {}: stride {stride} is smaller than its element ({size} bytes)",
+                    accessor.index()
+                ));
+            }
+            let end = (count - 1)
+                .checked_mul(stride)
+                .and_then(|x| x.checked_add(size))
+                .and_then(|x| x.checked_add(accessor.offset()))
+                .ok_or_else(|| format!("accessor {} size overflows", accessor.index()))?;
+            if end > view_len(&view)? {
+                return Err(format!(
+                    "accessor {} needs {end} bytes of buffer view {}, which has {}",
+                    accessor.index(),
+                    view.index(),
+                    view.length()
+                ));
+            }
+        }
+        if let Some(sparse) = accessor.sparse() {
+            let n = sparse.count();
+            let indices = sparse.indices();
+            let values = sparse.values();
+            let index_end = indices.offset() + n * indices.index_type().size();
+            let value_end = values.offset() + n * size;
+            if n == 0 || index_end > view_len(&indices.view())? || value_end > view_len(&values.view())? {
+                return Err(format!("accessor {}: sparse data runs past its buffer view", accessor.index()));
+            }
+        }
+    }
+    Ok(())
+}
+
+struct Importer<'a> {
+    path: &'a Path,
+    canonical: &'a Path,
+    buffers: &'a [gltf::buffer::Data],
+    textures: &'a mut TextureStore,
+    model: Model,
+    /// (mesh, primitive) -> geometry (a mesh used by several nodes is built once).
+    meshes: HashMap<(usize, usize), Option<Arc<MeshData>>>,
+    /// material index (None = default) -> mapped material and maps.
+    materials: HashMap<Option<usize>, (Material, SurfaceMaps, Option<String>)>,
+}
+
+impl Importer<'_> {
+    fn err(&self, message: String) -> ImportError {
+        ImportError::new(self.path, message)
+    }
+
+    fn node(&mut self, node: gltf::Node, parent: Option<usize>, stack: &mut Vec<usize>) -> Result<(), ImportError> {
+        if stack.contains(&node.index()) {
+            let chain: Vec<String> =
+                stack.iter().chain(std::iter::once(&node.index())).map(|i| i.to_string()).collect();
+            return Err(self.err(format!("the node tree has a cycle: nodes {}", chain.join(" -> "))));
+        }
+        if stack.len() >= MAX_DEPTH {
+            return Err(self.err(format!("the node tree is deeper than {MAX_DEPTH} levels")));
+        }
+        let columns = node.transform().matrix();
+        let m = DMat4::from_cols_array_2d(&columns.map(|c| c.map(f64::from)));
+        let local = DAffine3::from_mat4(m);
+        if !local.matrix3.is_finite() || !local.translation.is_finite() {
+            return Err(self.err(format!("node {} has a non-finite transform", node.index())));
+        }
+        if local.matrix3.determinant().abs() < 1e-18 {
+            // Scale 0 is how glTF files hide things: drop the subtree.
+            self.model.warnings.push(format!(
+                "node {} has a singular transform (scale 0); it and its children are skipped",
+                node.index()
+            ));
+            return Ok(());
+        }
+        let index = self.model.nodes.len();
+        self.model.nodes.push(ModelNode { name: node.name().map(str::to_string), parent, local });
+        if let Some(mesh) = node.mesh() {
+            for primitive in mesh.primitives() {
+                self.primitive(index, &mesh, &primitive)?;
+            }
+        }
+        stack.push(node.index());
+        for child in node.children() {
+            self.node(child, Some(index), stack)?;
+        }
+        stack.pop();
+        Ok(())
+    }
+
+    fn primitive(&mut self, node: usize, mesh: &gltf::Mesh, primitive: &gltf::Primitive) -> Result<(), ImportError> {
+        let key = (mesh.index(), primitive.index());
+        let data = match self.meshes.get(&key) {
+            Some(d) => d.clone(),
+            None => {
+                let d = self.geometry(mesh, primitive)?;
+                self.meshes.insert(key, d.clone());
+                d
+            }
+        };
+        let Some(data) = data else { return Ok(()) };
+        let material_key = primitive.material().index();
+        if !self.materials.contains_key(&material_key) {
+            let mapped = self.material(&primitive.material())?;
+            self.materials.insert(material_key, mapped);
+        }
+        let (material, maps, name) = self.materials[&material_key].clone();
+        self.model.parts.push(ModelPart {
+            node,
+            shape: Arc::new(MeshShape::with_maps(data, maps)),
+            material,
+            material_name: name,
+        });
+        Ok(())
+    }
+
+    /// The triangles of a primitive; `None` (with a warning) for points, lines and
+    /// primitives without positions.
+    fn geometry(
+        &mut self,
+        mesh: &gltf::Mesh,
+        primitive: &gltf::Primitive,
+    ) -> Result<Option<Arc<MeshData>>, ImportError> {
+        let what = format!("mesh {} primitive {}", mesh.index(), primitive.index());
+        let mode = primitive.mode();
+        if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+            self.model.warnings.push(format!("{what}: {mode:?} primitives are not rendered; skipped"));
+            return Ok(None);
+        }
+        let buffers = self.buffers;
+        let reader = primitive.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+        let Some(positions) = reader.read_positions() else {
+            self.model.warnings.push(format!("{what}: no POSITION attribute; skipped"));
+            return Ok(None);
+        };
+        let positions: Vec<Vec3> = positions.map(Vec3::from).collect();
+        let n = positions.len();
+        let count_of = |semantic: &gltf::Semantic| primitive.get(semantic).map(|a| a.count());
+        if let Some(expected) = count_of(&gltf::Semantic::Positions)
+            && expected != n
+        {
+            return Err(self.err(format!("{what}: POSITION has {n} readable values of {expected}")));
+        }
+        let attribute = |semantic: gltf::Semantic, len: usize| -> Result<bool, ImportError> {
+            match count_of(&semantic) {
+                Some(c) if c != n => Err(self.err(format!("{what}: {semantic:?} has {c} values for {n} positions"))),
+                Some(_) if len != n => Err(self.err(format!("{what}: {semantic:?} could not be read"))),
+                Some(_) => Ok(true),
+                None => Ok(false),
+            }
+        };
+        let normals: Vec<Vec3> = reader.read_normals().map(|it| it.map(Vec3::from).collect()).unwrap_or_default();
+        let normals = if attribute(gltf::Semantic::Normals, normals.len())? { normals } else { Vec::new() };
+        let uvs: Vec<Vec2> =
+            reader.read_tex_coords(0).map(|it| it.into_f32().map(Vec2::from).collect()).unwrap_or_default();
+        let uvs = if attribute(gltf::Semantic::TexCoords(0), uvs.len())? { uvs } else { Vec::new() };
+        let tangents: Vec<Vec4> = reader.read_tangents().map(|it| it.map(Vec4::from).collect()).unwrap_or_default();
+        let tangents = if attribute(gltf::Semantic::Tangents, tangents.len())? { tangents } else { Vec::new() };
+
+        let indices: Vec<u32> = match reader.read_indices() {
+            Some(it) => {
+                let indices: Vec<u32> = it.into_u32().collect();
+                if let Some(expected) = primitive.indices().map(|a| a.count())
+                    && indices.len() != expected
+                {
+                    return Err(
+                        self.err(format!("{what}: indices could not be read ({} of {expected})", indices.len()))
+                    );
+                }
+                if let Some((k, &i)) = indices.iter().enumerate().find(|&(_, &i)| i as usize >= n) {
+                    return Err(self.err(format!("{what}: index {k} is {i}, but there are only {n} vertices")));
+                }
+                indices
+            }
+            None => (0..n as u32).collect(),
+        };
+        let triangles = assemble(mode, &indices);
+        if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(self.err(format!("{what}: vertex {i} has a non-finite position {:?}", positions[i].to_array())));
+        }
+        if triangles.is_empty() {
+            self.model.warnings.push(format!("{what}: no triangles; skipped"));
+            return Ok(None);
+        }
+        let builder = MeshBuilder { positions, normals, uvs, tangents, triangles };
+        match builder.build() {
+            Ok(d) => Ok(Some(Arc::new(d))),
+            Err(e) if e.starts_with("no triangles") => {
+                self.model.warnings.push(format!("{what}: {e}; skipped"));
+                Ok(None)
+            }
+            Err(e) => Err(self.err(format!("{what}: {e}"))),
+        }
+    }
+
+    fn texture(
+        &mut self,
+        texture: gltf::Texture,
+        tex_coord: u32,
+        transform: Option<gltf::texture::TextureTransform>,
+        space: ColorSpace,
+    ) -> Result<TextureRef, ImportError> {
+        if tex_coord != 0 {
+            self.model
+                .warnings
+                .push(format!("texture {} uses TEXCOORD_{tex_coord}; TEXCOORD_0 is used instead", texture.index()));
+        }
+        let image = texture.source();
+        let index = image.index() as u32;
+        let (path, buffers) = (self.path, self.buffers);
+        let base = path.parent().unwrap_or(Path::new(""));
+        let loaded = self.textures.load_embedded(self.canonical, index, space, || {
+            let data = gltf::image::Data::from_source(image.source(), Some(base), buffers)
+                .map_err(|e| format!("image {index}: {e}"))?;
+            rgba8(&data).ok_or_else(|| format!("image {index}: unsupported pixel format {:?}", data.format))
+        });
+        let loaded = loaded.map_err(|e| self.err(e))?;
+        let sampler = texture.sampler();
+        let wrap = |m: gltf::texture::WrappingMode| match m {
+            gltf::texture::WrappingMode::ClampToEdge => Wrap::Clamp,
+            gltf::texture::WrappingMode::MirroredRepeat => Wrap::Mirror,
+            gltf::texture::WrappingMode::Repeat => Wrap::Repeat,
+        };
+        let mut r = TextureRef::new(self.canonical.display().to_string());
+        r.image = Some(index);
+        r.wrap = [wrap(sampler.wrap_s()), wrap(sampler.wrap_t())];
+        if let Some(t) = transform {
+            r.offset = t.offset().map(f64::from);
+            r.scale = t.scale().map(f64::from);
+            r.rotation = f64::from(t.rotation()).to_degrees();
+        }
+        r.texture = Some(loaded);
+        Ok(r)
+    }
+
+    /// glTF metallic-roughness to Prism (see `docs/meshes.md`).
+    fn material(&mut self, m: &gltf::Material) -> Result<(Material, SurfaceMaps, Option<String>), ImportError> {
+        let pbr = m.pbr_metallic_roughness();
+        let [r, g, b, alpha] = pbr.base_color_factor().map(f64::from);
+        let mut material = Material { color: Rgb::new(r, g, b), ..Material::default() };
+        let mut maps = SurfaceMaps::default();
+        if let Some(info) = pbr.base_color_texture() {
+            material.texture =
+                Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Srgb)?);
+        }
+        let mut params = Pbr {
+            metallic: f64::from(pbr.metallic_factor()).clamp(0.0, 1.0),
+            roughness: f64::from(pbr.roughness_factor()).clamp(0.0, 1.0),
+            ..Pbr::default()
+        };
+        if let Some(info) = pbr.metallic_roughness_texture() {
+            params.metallic_roughness_texture =
+                Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Linear)?);
+        }
+        let strength = f64::from(m.emissive_strength().unwrap_or(1.0));
+        let [er, eg, eb] = m.emissive_factor().map(|c| f64::from(c) * strength);
+        params.emissive = Rgb::new(er, eg, eb);
+        if let Some(info) = m.emissive_texture() {
+            params.emissive_texture =
+                Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Srgb)?);
+        }
+        material.pbr = Some(params);
+        if let Some(normal) = m.normal_texture() {
+            let t = self.texture(normal.texture(), normal.tex_coord(), None, ColorSpace::Linear)?;
+            maps.normal_map = Some(NormalMap { texture: t, scale: f64::from(normal.scale()), height: false });
+        }
+        match m.alpha_mode() {
+            gltf::material::AlphaMode::Opaque => {}
+            gltf::material::AlphaMode::Mask => {
+                let texture = match pbr.base_color_texture() {
+                    Some(info) => Some(self.texture(
+                        info.texture(),
+                        info.tex_coord(),
+                        info.texture_transform(),
+                        ColorSpace::Linear,
+                    )?),
+                    None => None,
+                };
+                maps.alpha_mask =
+                    Some(AlphaMask { texture, factor: alpha as f32, cutoff: m.alpha_cutoff().unwrap_or(0.5) });
+            }
+            gltf::material::AlphaMode::Blend => {
+                // Whitted tracing has no partial coverage: blending becomes transmission.
+                material.transmit = (1.0 - alpha).clamp(0.0, 1.0);
+                if pbr.base_color_texture().is_some() {
+                    self.model.warnings.push(format!(
+                        "material {}: alpha BLEND uses the factor's alpha only, not the texture's",
+                        m.index().map_or("default".into(), |i| i.to_string())
+                    ));
+                }
+            }
+        }
+        if let Err((key, message)) = material.check() {
+            return Err(self.err(format!(
+                "material {}: `{key}` {message}",
+                m.index().map_or("default".into(), |i| i.to_string())
+            )));
+        }
+        Ok((material, maps, m.name().map(str::to_string)))
+    }
+}
+
+/// Triangles from a triangle list, strip or fan (glTF 2.0 section 3.7.2.1 winding rules).
+pub fn assemble(mode: Mode, indices: &[u32]) -> Vec<[u32; 3]> {
+    match mode {
+        Mode::Triangles => indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+        Mode::TriangleStrip => (0..indices.len().saturating_sub(2))
+            .map(|i| {
+                if i % 2 == 0 {
+                    [indices[i], indices[i + 1], indices[i + 2]]
+                } else {
+                    [indices[i + 1], indices[i], indices[i + 2]]
+                }
+            })
+            .collect(),
+        Mode::TriangleFan => {
+            (1..indices.len().saturating_sub(1)).map(|i| [indices[i], indices[i + 1], indices[0]]).collect()
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// Decoded glTF image data as RGBA8 texels.
+fn rgba8(data: &gltf::image::Data) -> Option<(usize, usize, Vec<[u8; 4]>)> {
+    use gltf::image::Format as F;
+    let (w, h) = (data.width as usize, data.height as usize);
+    let p = &data.pixels;
+    let u16_at = |i: usize| (u16::from_le_bytes([p[2 * i], p[2 * i + 1]]) >> 8) as u8;
+    let f32_at = |i: usize| {
+        let v = f32::from_le_bytes([p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]]);
+        (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8
+    };
+    let (channels, get): (usize, &dyn Fn(usize) -> u8) = match data.format {
+        F::R8 => (1, &|i| p[i]),
+        F::R8G8 => (2, &|i| p[i]),
+        F::R8G8B8 => (3, &|i| p[i]),
+        F::R8G8B8A8 => (4, &|i| p[i]),
+        F::R16 => (1, &u16_at),
+        F::R16G16 => (2, &u16_at),
+        F::R16G16B16 => (3, &u16_at),
+        F::R16G16B16A16 => (4, &u16_at),
+        F::R32G32B32FLOAT => (3, &f32_at),
+        F::R32G32B32A32FLOAT => (4, &f32_at),
+    };
+    let bytes_per = match data.format {
+        F::R8 | F::R8G8 | F::R8G8B8 | F::R8G8B8A8 => 1,
+        F::R16 | F::R16G16 | F::R16G16B16 | F::R16G16B16A16 => 2,
+        _ => 4,
+    };
+    if w == 0 || h == 0 || p.len() < w * h * channels * bytes_per {
+        return None;
+    }
+    let texels = (0..w * h)
+        .map(|t| {
+            let c = |k: usize| get(t * channels + k);
+            match channels {
+                1 => [c(0), c(0), c(0), 255],
+                2 => [c(0), c(0), c(0), c(1)],
+                3 => [c(0), c(1), c(2), 255],
+                _ => [c(0), c(1), c(2), c(3)],
+            }
+        })
+        .collect();
+    Some((w, h, texels))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_and_fans_keep_winding() {
+        assert_eq!(assemble(Mode::TriangleStrip, &[0, 1, 2, 3]), vec![[0, 1, 2], [2, 1, 3]]);
+        assert_eq!(assemble(Mode::TriangleFan, &[0, 1, 2, 3]), vec![[1, 2, 0], [2, 3, 0]]);
+        assert_eq!(assemble(Mode::Triangles, &[0, 1, 2, 3]), vec![[0, 1, 2]]);
+        assert!(assemble(Mode::TriangleStrip, &[0, 1]).is_empty());
+        assert!(assemble(Mode::Lines, &[0, 1, 2]).is_empty());
+    }
+}

@@ -1,0 +1,824 @@
+//! Triangle meshes: the [`MeshShape`] (an f32 mesh with its own BVH, the bottom level of the
+//! two-level BVH), OBJ and glTF import, and textures.
+//!
+//! A scene writes `shape = "mesh"` and `file = "..."`; [`crate::scene::load`] imports the
+//! file once into a [`Model`] (shared by every object that names the file: instancing is
+//! `Arc` sharing) and spawns one entity per (node, primitive) so each keeps one material.
+//! See `docs/meshes.md` for the import rules and the material mapping.
+
+pub mod bvh;
+pub mod gltf;
+pub mod intersect;
+pub mod obj;
+pub mod spawn;
+pub mod texture;
+pub mod triangulate;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
+
+use glam::{DAffine3, DVec2, DVec3, Vec2, Vec3, Vec4};
+use prism_api::{Aabb, AreaSample, Hit, Ray, Shape, Surface};
+
+use crate::material::Material;
+use bvh::TriangleBvh;
+use intersect::{WatertightRay, plane_t};
+use texture::{TextureRef, TextureStore};
+
+/// Vertex data of a mesh before its BVH is built.
+#[derive(Clone, Debug, Default)]
+pub struct MeshBuilder {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Vertex normals (empty, or one per position).
+    pub normals: Vec<Vec3>,
+    /// Texture coordinates, glTF convention (v down; empty, or one per position).
+    pub uvs: Vec<Vec2>,
+    /// Tangents with handedness in w (empty, or one per position).
+    pub tangents: Vec<Vec4>,
+    /// Triangles as vertex indices.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl MeshBuilder {
+    /// Checks indices and values: every index in range, every position finite, attribute
+    /// arrays empty or as long as the positions. Non-finite normals, uvs or tangents are
+    /// dropped (the mesh falls back to flat shading or barycentric uvs), not fatal.
+    pub fn validate(&mut self) -> Result<(), String> {
+        let n = self.positions.len();
+        if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
+            return Err(format!("vertex {i} has a non-finite position {:?}", self.positions[i].to_array()));
+        }
+        for (what, len) in [
+            ("normals", self.normals.len()),
+            ("texture coordinates", self.uvs.len()),
+            ("tangents", self.tangents.len()),
+        ] {
+            if len != 0 && len != n {
+                return Err(format!("{len} {what} for {n} vertices"));
+            }
+        }
+        if let Some((t, tri)) = self.triangles.iter().enumerate().find(|(_, t)| t.iter().any(|&i| i as usize >= n)) {
+            return Err(format!("triangle {t} uses vertex {:?}, but there are only {n} vertices", tri));
+        }
+        if !self.normals.iter().all(|v| v.is_finite()) {
+            self.normals.clear();
+        }
+        if !self.uvs.iter().all(|v| v.is_finite()) {
+            self.uvs.clear();
+        }
+        if !self.tangents.iter().all(|v| v.is_finite()) {
+            self.tangents.clear();
+        }
+        Ok(())
+    }
+
+    /// Validates and builds the mesh and its BVH. Triangles with zero area (nothing can hit
+    /// them and they have no normal) and repeated triangles are dropped.
+    pub fn build(mut self) -> Result<MeshData, String> {
+        self.validate()?;
+        let positions = &self.positions;
+        self.triangles.retain(|t| {
+            let [a, b, c] = t.map(|i| positions[i as usize].as_dvec3());
+            (b - a).cross(c - a).length_squared() > 0.0
+        });
+        // Repeated faces (the same three corners in any order) add nothing but work, and
+        // many identical boxes make the BVH builder chain them into a very deep tree.
+        let mut seen = std::collections::HashSet::with_capacity(self.triangles.len());
+        self.triangles.retain(|t| {
+            let mut key = t.map(|i| positions[i as usize].to_array().map(f32::to_bits));
+            key.sort_unstable();
+            seen.insert(key)
+        });
+        if self.triangles.is_empty() {
+            return Err("no triangles with a non-zero area".into());
+        }
+        let corners: Vec<[Vec3; 3]> = self.triangles.iter().map(|t| t.map(|i| positions[i as usize])).collect();
+        let (bvh, order) = TriangleBvh::build(&corners);
+        let triangles: Vec<[u32; 3]> = order.iter().map(|&i| self.triangles[i as usize]).collect();
+        let mut bounds = Aabb::EMPTY;
+        let mut area = 0.0;
+        for t in &corners {
+            for p in t {
+                bounds = bounds.grow(p.as_dvec3());
+            }
+            area += 0.5 * (t[1] - t[0]).as_dvec3().cross((t[2] - t[0]).as_dvec3()).length();
+        }
+        Ok(MeshData {
+            positions: self.positions,
+            normals: self.normals,
+            uvs: self.uvs,
+            tangents: self.tangents,
+            triangles,
+            bvh,
+            bounds,
+            area,
+            area_cdf: OnceLock::new(),
+        })
+    }
+}
+
+/// An immutable triangle mesh with its BVH: shared (`Arc`) by every instance.
+#[derive(Debug)]
+pub struct MeshData {
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    tangents: Vec<Vec4>,
+    /// Vertex indices of each triangle, in BVH leaf order.
+    triangles: Vec<[u32; 3]>,
+    bvh: TriangleBvh,
+    bounds: Aabb,
+    area: f64,
+    /// Cumulative triangle areas, built the first time a point is sampled.
+    area_cdf: OnceLock<Vec<f64>>,
+}
+
+impl MeshData {
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Vertex positions.
+    pub fn positions(&self) -> &[Vec3] {
+        &self.positions
+    }
+
+    /// Vertex indices of each triangle.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// True when the mesh has vertex normals (smooth shading).
+    pub fn has_normals(&self) -> bool {
+        !self.normals.is_empty()
+    }
+
+    /// True when the mesh has texture coordinates.
+    pub fn has_uvs(&self) -> bool {
+        !self.uvs.is_empty()
+    }
+
+    /// Bytes of vertex, index and BVH storage.
+    pub fn memory_bytes(&self) -> usize {
+        self.positions.len() * 12
+            + self.normals.len() * 12
+            + self.uvs.len() * 8
+            + self.tangents.len() * 16
+            + self.triangles.len() * 12
+            + self.bvh.memory_bytes()
+    }
+
+    fn uv(&self, tri: &[u32; 3], b1: f64, b2: f64) -> DVec2 {
+        if self.uvs.is_empty() {
+            return DVec2::new(b1, b2);
+        }
+        let [a, b, c] = tri.map(|i| self.uvs[i as usize].as_dvec2());
+        a * (1.0 - b1 - b2) + b * b1 + c * b2
+    }
+}
+
+/// What a mesh part's own (file) material does to its geometry: cut-outs and bumps. These
+/// belong to the shape rather than to [`Material`] because the alpha test runs during
+/// traversal and the normal map changes the shading normal the shape reports.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SurfaceMaps {
+    /// glTF alpha mode MASK: triangles are skipped where alpha < cutoff.
+    pub alpha_mask: Option<AlphaMask>,
+    /// A tangent-space normal map (glTF convention: +y up in the image's green channel).
+    pub normal_map: Option<NormalMap>,
+}
+
+/// An alpha cut-out: alpha = factor * texture alpha, hit where alpha >= cutoff.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AlphaMask {
+    /// The base colour texture whose alpha is tested (`None`: the factor alone decides).
+    pub texture: Option<TextureRef>,
+    /// The base colour factor's alpha.
+    pub factor: f32,
+    /// glTF alphaCutoff.
+    pub cutoff: f32,
+}
+
+/// A tangent-space normal map, or a height (bump) map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalMap {
+    /// The (linear) texture.
+    pub texture: TextureRef,
+    /// Normal maps: glTF normalTexture.scale, multiplying the map's x and y. Height maps: the
+    /// height of a texel value of 1 in object-space units (MTL `-bm`).
+    pub scale: f64,
+    /// True for a height map (MTL `map_Bump`): the normal tilts along the height's gradient.
+    pub height: bool,
+}
+
+/// A triangle mesh in object space: shared mesh data plus the maps of the part's material.
+#[derive(Clone, Debug)]
+pub struct MeshShape {
+    data: Arc<MeshData>,
+    maps: Option<Arc<SurfaceMaps>>,
+}
+
+/// Bending keeps reflected view directions at least this far (as a cosine) above the
+/// geometric surface.
+const TERMINATOR_MARGIN: f64 = 0.01;
+
+impl MeshShape {
+    /// A shape over `data` with no surface maps.
+    pub fn new(data: Arc<MeshData>) -> Self {
+        Self { data, maps: None }
+    }
+
+    /// A shape over `data` with the given maps (`None` when they are empty).
+    pub fn with_maps(data: Arc<MeshData>, maps: SurfaceMaps) -> Self {
+        let maps = (maps != SurfaceMaps::default()).then(|| Arc::new(maps));
+        Self { data, maps }
+    }
+
+    /// The shared mesh data.
+    pub fn data(&self) -> &Arc<MeshData> {
+        &self.data
+    }
+
+    /// The alpha test of triangle slot `slot` at barycentrics (b1, b2): true when solid.
+    #[inline]
+    fn solid(&self, slot: usize, b1: f32, b2: f32) -> bool {
+        let Some(mask) = self.maps.as_ref().and_then(|m| m.alpha_mask.as_ref()) else { return true };
+        let alpha = match &mask.texture {
+            Some(t) => {
+                let uv = self.data.uv(&self.data.triangles[slot], f64::from(b1), f64::from(b2));
+                match &t.texture {
+                    Some(image) => image.nearest(t.transform_uv(uv), t.wrap).w,
+                    None => 1.0,
+                }
+            }
+            None => 1.0,
+        };
+        alpha * mask.factor >= mask.cutoff
+    }
+
+    fn prepare(ray: &Ray) -> Option<WatertightRay> {
+        WatertightRay::new(ray.origin.as_vec3(), ray.direction.as_vec3())
+    }
+
+    fn f32_bound(t_max: f64) -> f32 {
+        if t_max >= f64::from(f32::MAX) { f32::INFINITY } else { next_up(t_max as f32) }
+    }
+
+    /// The shading normal: interpolated vertex normals, then the normal map, then bent
+    /// toward the geometric normal where the reflected view direction would go below the
+    /// surface (the shading-normal terminator; see `shading_normal_for_view`).
+    fn shading_normal(&self, ray: &Ray, tri: &[u32; 3], b: (f64, f64), ng: DVec3, uv: DVec2) -> DVec3 {
+        let d = &self.data;
+        let (b1, b2) = b;
+        let b0 = 1.0 - b1 - b2;
+        let mut ns = if d.normals.is_empty() {
+            ng
+        } else {
+            let [n0, n1, n2] = tri.map(|i| d.normals[i as usize].as_dvec3());
+            let n = n0 * b0 + n1 * b1 + n2 * b2;
+            let n = n.normalize_or_zero();
+            if n == DVec3::ZERO { ng } else { n }
+        };
+        // Vertex normals that disagree with the winding (mirrored exports) follow the winding.
+        if ns.dot(ng) < 0.0 {
+            ns = -ns;
+        }
+        if let Some(map) = self.maps.as_ref().and_then(|m| m.normal_map.as_ref())
+            && let Some(perturbed) = self.normal_mapped(map, tri, b, ns, uv)
+        {
+            ns = perturbed;
+        }
+        shading_normal_for_view(ns, ng, ray.direction)
+    }
+
+    fn normal_mapped(&self, map: &NormalMap, tri: &[u32; 3], b: (f64, f64), n: DVec3, uv: DVec2) -> Option<DVec3> {
+        let d = &self.data;
+        if d.uvs.is_empty() {
+            return None;
+        }
+        let (b1, b2) = b;
+        let (tangent, sign) = if d.tangents.is_empty() {
+            // No TANGENT: the triangle's own dp/du (per-triangle, not MikkTSpace).
+            let [p0, p1, p2] = tri.map(|i| d.positions[i as usize].as_dvec3());
+            let [t0, t1, t2] = tri.map(|i| d.uvs[i as usize].as_dvec2());
+            let (e1, e2) = (p1 - p0, p2 - p0);
+            let (d1, d2) = (t1 - t0, t2 - t0);
+            let det = d1.x * d2.y - d1.y * d2.x;
+            if det == 0.0 {
+                return None;
+            }
+            let dpdu = (e1 * d2.y - e2 * d1.y) / det;
+            let dpdv = (e2 * d1.x - e1 * d2.x) / det;
+            // Images count v downward, so the bitangent (image up) is -dp/dv.
+            let sign = if n.cross(dpdu).dot(-dpdv) < 0.0 { -1.0 } else { 1.0 };
+            (dpdu, sign)
+        } else {
+            let [a, bb, c] = tri.map(|i| d.tangents[i as usize].as_dvec4());
+            let t = a * (1.0 - b1 - b2) + bb * b1 + c * b2;
+            (t.truncate(), if a.w < 0.0 { -1.0 } else { 1.0 })
+        };
+        // Gram-Schmidt against the (interpolated) normal.
+        let t = (tangent - n * n.dot(tangent)).normalize_or_zero();
+        if t == DVec3::ZERO {
+            return None;
+        }
+        let bitangent = n.cross(t) * sign;
+        if map.height {
+            return Some(self.bumped(map, uv, n, tri));
+        }
+        let texel = map.texture.sample(uv, 0.0);
+        let x = (f64::from(texel.x) * 2.0 - 1.0) * map.scale;
+        let y = (f64::from(texel.y) * 2.0 - 1.0) * map.scale;
+        let z = f64::from(texel.z) * 2.0 - 1.0;
+        let mapped = (t * x + bitangent * y + n * z).normalize_or_zero();
+        (mapped != DVec3::ZERO).then_some(mapped)
+    }
+
+    /// Bump mapping from a height map: the surface is displaced along `n` by scale * height,
+    /// and the normal is that of the displaced surface (finite differences one texel apart).
+    fn bumped(&self, map: &NormalMap, uv: DVec2, n: DVec3, tri: &[u32; 3]) -> DVec3 {
+        let d = &self.data;
+        let Some(image) = &map.texture.texture else { return n };
+        let [p0, p1, p2] = tri.map(|i| d.positions[i as usize].as_dvec3());
+        let [t0, t1, t2] = tri.map(|i| d.uvs[i as usize].as_dvec2());
+        let (e1, e2, d1, d2) = (p1 - p0, p2 - p0, t1 - t0, t2 - t0);
+        let det = d1.x * d2.y - d1.y * d2.x;
+        if det == 0.0 {
+            return n;
+        }
+        let dpdu = (e1 * d2.y - e2 * d1.y) / det;
+        let dpdv = (e2 * d1.x - e1 * d2.x) / det;
+        let (du, dv) = (1.0 / image.width() as f64, 1.0 / image.height() as f64);
+        let h = |o: DVec2| f64::from(map.texture.sample(uv + o, 0.0).x) * map.scale;
+        let dhdu = (h(DVec2::new(du, 0.0)) - h(DVec2::new(-du, 0.0))) / (2.0 * du);
+        let dhdv = (h(DVec2::new(0.0, dv)) - h(DVec2::new(0.0, -dv))) / (2.0 * dv);
+        let bumped = (dpdu + n * dhdu).cross(dpdv + n * dhdv).normalize_or_zero();
+        if bumped == DVec3::ZERO {
+            n
+        } else if bumped.dot(n) < 0.0 {
+            -bumped
+        } else {
+            bumped
+        }
+    }
+
+    fn area_cdf(&self) -> &[f64] {
+        self.data.area_cdf.get_or_init(|| {
+            let mut sum = 0.0;
+            self.data
+                .triangles
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| self.data.positions[i as usize].as_dvec3());
+                    sum += 0.5 * (b - a).cross(c - a).length();
+                    sum
+                })
+                .collect()
+        })
+    }
+}
+
+/// The next f32 above a non-negative finite `x` (`f32::next_up`, which needs Rust 1.86).
+#[inline]
+fn next_up(x: f32) -> f32 {
+    if x.is_finite() && x >= 0.0 { f32::from_bits(x.to_bits() + 1) } else { x }
+}
+
+/// The shading-normal terminator fix (Keller et al., "The Iray light transport simulation
+/// and rendering system", 2017, A.3): where an interpolated or mapped normal `ns` would
+/// mirror the view direction to below the geometric surface (a black band or a flipped
+/// highlight at silhouettes of coarse meshes), it is replaced by the normal that mirrors the
+/// view to just above the surface, halfway between the view and that direction. The normal
+/// stays on the same side of the surface as the geometric normal `ng` (both are returned on
+/// the side of `ng`, not of the viewer).
+pub fn shading_normal_for_view(ns: DVec3, ng: DVec3, direction: DVec3) -> DVec3 {
+    let v = -direction.normalize_or_zero();
+    let side = if v.dot(ng) >= 0.0 { 1.0 } else { -1.0 };
+    let (ng_v, ns_v) = (ng * side, ns * side);
+    let r = 2.0 * v.dot(ns_v) * ns_v - v;
+    let height = r.dot(ng_v);
+    if height >= TERMINATOR_MARGIN || v.dot(ng_v) <= 0.0 {
+        return ns;
+    }
+    // Lift the reflection to the margin above the tangent plane, then take the half vector.
+    let tangential = (r - ng_v * height).normalize_or_zero();
+    let lifted = tangential * (1.0 - TERMINATOR_MARGIN * TERMINATOR_MARGIN).sqrt() + ng_v * TERMINATOR_MARGIN;
+    let bent = (v + lifted).normalize_or_zero();
+    if bent == DVec3::ZERO { ng } else { bent * side }
+}
+
+impl Shape for MeshShape {
+    fn bounds(&self) -> Aabb {
+        self.data.bounds
+    }
+
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        let wray = Self::prepare(ray)?;
+        let mut best: Option<Hit> = None;
+        let mut best_t = t_max;
+        let bvh = &self.data.bvh;
+        bvh.closest(&wray, Self::f32_bound(t_max), |slot, h| {
+            let [a, b, c] = *bvh.triangle(slot);
+            let t = plane_t(ray.origin, ray.direction, a, b, c).unwrap_or(f64::from(h.t));
+            if t <= t_min || t >= best_t || !self.solid(slot, h.b1, h.b2) {
+                return None;
+            }
+            best_t = t;
+            best = Some(Hit { t, part: slot as u32, scratch: DVec3::new(f64::from(h.b1), f64::from(h.b2), 0.0) });
+            // Round up so the f32 traversal never prunes a box holding an equally near hit.
+            Some(next_up(t as f32))
+        });
+        best
+    }
+
+    fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        let Some(wray) = Self::prepare(ray) else { return false };
+        let bvh = &self.data.bvh;
+        bvh.any(&wray, Self::f32_bound(t_max), |slot, h| {
+            let [a, b, c] = *bvh.triangle(slot);
+            let t = plane_t(ray.origin, ray.direction, a, b, c).unwrap_or(f64::from(h.t));
+            t > t_min && t < t_max && self.solid(slot, h.b1, h.b2)
+        })
+    }
+
+    fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let d = &self.data;
+        let slot = (hit.part as usize).min(d.triangles.len() - 1);
+        let tri = d.triangles[slot];
+        let [p0, p1, p2] = tri.map(|i| d.positions[i as usize].as_dvec3());
+        let cross = (p1 - p0).cross(p2 - p0);
+        let ng = cross.normalize_or(DVec3::Z);
+        let (b1, b2) = (hit.scratch.x, hit.scratch.y);
+        let uv = d.uv(&tri, b1, b2);
+        let uv_density = if d.uvs.is_empty() {
+            0.0
+        } else {
+            let [t0, t1, t2] = tri.map(|i| d.uvs[i as usize].as_dvec2());
+            let (e1, e2) = (t1 - t0, t2 - t0);
+            let uv_area = (e1.x * e2.y - e1.y * e2.x).abs();
+            (uv_area / cross.length()).sqrt()
+        };
+        let shading_normal = self.shading_normal(ray, &tri, (b1, b2), ng, uv);
+        Surface { point: ray.at(hit.t), normal: ng, shading_normal, uv, uv_density }
+    }
+
+    fn area(&self) -> Option<f64> {
+        Some(self.data.area)
+    }
+
+    fn sample_area(&self, u: DVec2) -> Option<AreaSample> {
+        let cdf = self.area_cdf();
+        let total = *cdf.last()?;
+        let target = u.x * total;
+        let slot = cdf.partition_point(|&c| c <= target).min(cdf.len() - 1);
+        let below = if slot == 0 { 0.0 } else { cdf[slot - 1] };
+        let width = cdf[slot] - below;
+        // Reuse the fraction of u.x inside the chosen triangle as a fresh number.
+        let ux = if width > 0.0 { ((target - below) / width).clamp(0.0, 1.0) } else { 0.5 };
+        let [a, b, c] = self.data.triangles[slot].map(|i| self.data.positions[i as usize].as_dvec3());
+        let su = ux.sqrt();
+        let point = a * (1.0 - su) + b * (su * (1.0 - u.y)) + c * (su * u.y);
+        let normal = (b - a).cross(c - a).normalize_or(DVec3::Z);
+        Some(AreaSample { point, normal, pdf_area: 1.0 / total })
+    }
+
+    fn to_pov(&self) -> Option<String> {
+        use prism_api::pov::vector;
+        let d = &self.data;
+        let mut s = String::from("mesh2 {\n  vertex_vectors { ");
+        s.push_str(&d.positions.len().to_string());
+        for p in &d.positions {
+            s.push_str(",\n    ");
+            s.push_str(&vector(p.as_dvec3()));
+        }
+        s.push_str("\n  }\n");
+        if !d.normals.is_empty() {
+            s.push_str(&format!("  normal_vectors {{ {}", d.normals.len()));
+            for n in &d.normals {
+                s.push_str(",\n    ");
+                s.push_str(&vector(n.as_dvec3()));
+            }
+            s.push_str("\n  }\n");
+        }
+        if !d.uvs.is_empty() {
+            // POV-Ray's v counts up from the bottom of an image map.
+            s.push_str(&format!("  uv_vectors {{ {}", d.uvs.len()));
+            for t in &d.uvs {
+                s.push_str(&format!(",\n    <{:?}, {:?}>", t.x, 1.0 - t.y));
+            }
+            s.push_str("\n  }\n");
+        }
+        s.push_str(&format!("  face_indices {{ {}", d.triangles.len()));
+        for t in &d.triangles {
+            s.push_str(&format!(",\n    <{}, {}, {}>", t[0], t[1], t[2]));
+        }
+        s.push_str("\n  }\n}");
+        Some(s)
+    }
+}
+
+/// A node of an imported file's scene tree (glTF nodes; an OBJ file has one).
+#[derive(Clone, Debug)]
+pub struct ModelNode {
+    /// The node's name in the file, if any.
+    pub name: Option<String>,
+    /// The parent node (earlier in [`Model::nodes`]); `None` for roots.
+    pub parent: Option<usize>,
+    /// Local transform (node space to parent space).
+    pub local: DAffine3,
+}
+
+/// One mesh part: a triangle primitive with one material, hanging from a node.
+#[derive(Clone, Debug)]
+pub struct ModelPart {
+    /// Index into [`Model::nodes`].
+    pub node: usize,
+    /// The geometry (the same `Arc<MeshData>` when a file instances a mesh on several nodes).
+    pub shape: Arc<MeshShape>,
+    /// The material the file gives it, mapped to Prism's [`Material`].
+    pub material: Material,
+    /// The material's name in the file, if any.
+    pub material_name: Option<String>,
+}
+
+/// An imported mesh file: node tree, parts, and what was skipped.
+#[derive(Clone, Debug, Default)]
+pub struct Model {
+    /// Nodes, parents before children.
+    pub nodes: Vec<ModelNode>,
+    /// Mesh parts.
+    pub parts: Vec<ModelPart>,
+    /// Things in the file that were skipped or approximated.
+    pub warnings: Vec<String>,
+}
+
+impl Model {
+    /// Triangles over all parts as instanced by the node tree.
+    pub fn triangle_count(&self) -> usize {
+        self.parts.iter().map(|p| p.shape.data().triangle_count()).sum()
+    }
+}
+
+/// Options of a `shape = "mesh"` object that change what is imported.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ImportOptions {
+    /// OBJ without normals: smooth across edges whose faces meet at less than this angle
+    /// (degrees); `None` = flat shading.
+    pub smooth_angle: Option<f64>,
+}
+
+/// An import error: the file and what is wrong with it (OBJ errors give the line).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ImportError {
+    /// The file as given.
+    pub file: String,
+    /// 1-based line, when known.
+    pub line: Option<usize>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl std::fmt::Display for ImportError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.line {
+            Some(line) => write!(f, "{}:{line}: {}", self.file, self.message),
+            None => write!(f, "{}: {}", self.file, self.message),
+        }
+    }
+}
+
+impl std::error::Error for ImportError {}
+
+impl ImportError {
+    /// An error about `file` with no line.
+    pub fn new(file: &Path, message: impl Into<String>) -> Self {
+        Self { file: file.display().to_string(), line: None, message: message.into() }
+    }
+}
+
+/// Imports `path` by its extension (`.obj`, `.gltf`, `.glb`).
+pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore) -> Result<Model, ImportError> {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+    // A panic inside a parser crate on hostile input must still end as an error.
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| match ext.as_str() {
+        "obj" => obj::import(path, options, textures),
+        "gltf" | "glb" => gltf::import(path, textures),
+        _ => Err(ImportError::new(path, format!("unknown mesh format `.{ext}` (expected .obj, .gltf or .glb)"))),
+    }));
+    result.unwrap_or_else(|_| Err(ImportError::new(path, "the importer failed on malformed data")))
+}
+
+/// Imported files, keyed by canonical path and options: a file used by many objects is
+/// read, triangulated and given its BVH once.
+#[derive(Default)]
+pub struct MeshStore {
+    models: HashMap<(PathBuf, Option<u64>), Arc<Model>>,
+    /// Decoded textures shared by all files and scene materials.
+    pub textures: TextureStore,
+}
+
+impl MeshStore {
+    /// An empty store.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The model for `path`, imported on first use.
+    pub fn get(&mut self, path: &Path, options: &ImportOptions) -> Result<Arc<Model>, ImportError> {
+        let canonical = std::fs::canonicalize(path).map_err(|e| ImportError::new(path, format!("cannot read: {e}")))?;
+        let key = (canonical, options.smooth_angle.map(f64::to_bits));
+        if let Some(m) = self.models.get(&key) {
+            return Ok(m.clone());
+        }
+        let model = Arc::new(import(path, options, &mut self.textures)?);
+        for warning in &model.warnings {
+            eprintln!("warning: {}: {warning}", path.display());
+        }
+        self.models.insert(key, model.clone());
+        Ok(model)
+    }
+
+    /// Number of distinct imported files.
+    pub fn len(&self) -> usize {
+        self.models.len()
+    }
+
+    /// True when nothing was imported.
+    pub fn is_empty(&self) -> bool {
+        self.models.is_empty()
+    }
+}
+
+/// Component of the entity a `shape = "mesh"` object becomes: what to write back on save.
+/// The entity carries the object's `Transform`, `ObjectFlags`, `Origin` and optional `Name`
+/// and `Parent`; the imported parts are its descendants, marked [`Imported`].
+#[derive(Clone, Debug)]
+pub struct MeshSource {
+    /// The mesh file, as an absolute path (so a saved copy of the scene finds it anywhere).
+    pub file: String,
+    /// The material override, if the object gave one.
+    pub material: Option<crate::scene::components::MaterialComponent>,
+    /// Materials replacing the file's materials by name (`material_map`).
+    pub material_map: std::collections::BTreeMap<String, crate::scene::components::MaterialComponent>,
+    /// The other mesh parameters as written (`smooth_angle`; not `file` or `material_map`).
+    pub params: toml::Table,
+    /// The imported model (shared between objects naming the same file).
+    pub model: Arc<Model>,
+}
+
+/// Marks entities created from a mesh file (nodes and parts): `save` skips them, since
+/// loading the file recreates them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Imported;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit square in z = 0 from two triangles, with normals tilted outward and uvs.
+    pub(crate) fn square() -> MeshData {
+        MeshBuilder {
+            positions: vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(1.0, 1.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+            ],
+            normals: vec![
+                Vec3::new(-1.0, -1.0, 2.0).normalize(),
+                Vec3::new(1.0, -1.0, 2.0).normalize(),
+                Vec3::new(1.0, 1.0, 2.0).normalize(),
+                Vec3::new(-1.0, 1.0, 2.0).normalize(),
+            ],
+            uvs: vec![Vec2::new(0.0, 1.0), Vec2::new(1.0, 1.0), Vec2::new(1.0, 0.0), Vec2::new(0.0, 0.0)],
+            tangents: vec![],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+        }
+        .build()
+        .unwrap()
+    }
+
+    #[test]
+    fn hits_and_interpolates() {
+        let shape = MeshShape::new(Arc::new(square()));
+        let ray = Ray::new(DVec3::new(0.5, 0.5, 2.0), DVec3::new(0.0, 0.0, -1.0));
+        let hit = shape.intersect(&ray, 1e-9, f64::INFINITY).unwrap();
+        assert!((hit.t - 2.0).abs() < 1e-12);
+        let s = shape.surface(&ray, &hit);
+        assert!((s.normal - DVec3::Z).length() < 1e-12);
+        // At the centre the four tilted normals average to +z.
+        assert!((s.shading_normal - DVec3::Z).length() < 1e-6, "{}", s.shading_normal);
+        assert!((s.uv - DVec2::new(0.5, 0.5)).length() < 1e-6);
+        assert!((s.uv_density - 1.0).abs() < 1e-9);
+        // Near a corner the normal leans outward.
+        let ray = Ray::new(DVec3::new(0.99, 0.99, 2.0), DVec3::new(0.0, 0.0, -1.0));
+        let s = shape.surface(&ray, &shape.intersect(&ray, 1e-9, f64::INFINITY).unwrap());
+        assert!(
+            s.shading_normal.x > 0.3 && s.shading_normal.y > 0.3 && (s.shading_normal.length() - 1.0).abs() < 1e-12
+        );
+    }
+
+    #[test]
+    fn self_intersection_is_rejected_at_tiny_t_min() {
+        let shape = MeshShape::new(Arc::new(square()));
+        // Far from the origin, f32 rounding is large, but the f64 plane distance is exact.
+        let ray = Ray::new(DVec3::new(0.3, 0.6, 0.0), DVec3::new(0.3, 0.1, 1.0));
+        assert!(shape.intersect(&ray, 1e-6, f64::INFINITY).is_none());
+        assert!(!shape.occluded(&ray, 1e-6, f64::INFINITY));
+    }
+
+    #[test]
+    fn terminator_bend_keeps_reflection_above_surface() {
+        let ng = DVec3::Z;
+        // Shading normal tilted 60 degrees; a grazing view from the other side.
+        let ns = DVec3::new(-(60f64.to_radians().sin()), 0.0, 60f64.to_radians().cos());
+        let d = DVec3::new(1.0, 0.0, -0.2).normalize();
+        let bent = shading_normal_for_view(ns, ng, d);
+        let v = -d;
+        let r = 2.0 * v.dot(bent) * bent - v;
+        assert!(r.dot(ng) >= TERMINATOR_MARGIN - 1e-9, "reflection {r} below the surface");
+        assert!((bent.length() - 1.0).abs() < 1e-12 && bent.dot(ng) > 0.0);
+        // A harmless normal is left alone.
+        assert_eq!(shading_normal_for_view(ng, ng, DVec3::new(0.1, 0.0, -1.0)), ng);
+        // From below, the result stays on the geometric normal's side.
+        let below = shading_normal_for_view(ns, ng, DVec3::new(1.0, 0.0, 0.2).normalize());
+        assert!(below.dot(ng) > 0.0);
+    }
+
+    #[test]
+    fn mesh_meets_the_shape_contract() {
+        let shape = MeshShape::new(Arc::new(square()));
+        prism_api::contract::check_shape(&shape);
+        // A closed mesh: a tetrahedron.
+        let tet = MeshBuilder {
+            positions: vec![
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(1.0, 0.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                Vec3::new(0.0, 0.0, 1.0),
+            ],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+            ..MeshBuilder::default()
+        }
+        .build()
+        .unwrap();
+        prism_api::contract::check_shape(&MeshShape::new(Arc::new(tet)));
+    }
+
+    #[test]
+    fn validation_rejects_bad_data() {
+        let mut bad =
+            MeshBuilder { positions: vec![Vec3::ZERO; 3], triangles: vec![[0, 1, 3]], ..MeshBuilder::default() };
+        assert!(bad.validate().unwrap_err().contains("only 3 vertices"));
+        let mut nan = MeshBuilder { positions: vec![Vec3::new(f32::NAN, 0.0, 0.0)], ..MeshBuilder::default() };
+        assert!(nan.validate().unwrap_err().contains("non-finite"));
+        let flat = MeshBuilder {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::X * 2.0],
+            triangles: vec![[0, 1, 2]],
+            ..MeshBuilder::default()
+        };
+        assert!(flat.build().unwrap_err().contains("no triangles"));
+    }
+
+    #[test]
+    fn alpha_mask_cuts_out() {
+        let data = Arc::new(square());
+        let mut mask = texture::TextureRef::new("mask");
+        // Left half transparent, right half opaque.
+        mask.texture = Some(Arc::new(texture::Texture::from_rgba8(
+            2,
+            1,
+            vec![[255, 255, 255, 0], [255, 255, 255, 255]],
+            texture::ColorSpace::Linear,
+        )));
+        let maps = SurfaceMaps {
+            alpha_mask: Some(AlphaMask { texture: Some(mask), factor: 1.0, cutoff: 0.5 }),
+            normal_map: None,
+        };
+        let shape = MeshShape::with_maps(data, maps);
+        let down = DVec3::new(0.0, 0.0, -1.0);
+        assert!(shape.intersect(&Ray::new(DVec3::new(0.25, 0.5, 1.0), down), 1e-9, f64::INFINITY).is_none());
+        assert!(shape.intersect(&Ray::new(DVec3::new(0.75, 0.5, 1.0), down), 1e-9, f64::INFINITY).is_some());
+        assert!(!shape.occluded(&Ray::new(DVec3::new(0.25, 0.5, 1.0), down), 1e-9, f64::INFINITY));
+    }
+
+    #[test]
+    fn area_sampling_stays_on_the_mesh() {
+        let shape = MeshShape::new(Arc::new(square()));
+        assert!((shape.area().unwrap() - 1.0).abs() < 1e-12);
+        for u in [DVec2::new(0.1, 0.9), DVec2::new(0.99, 0.01), DVec2::new(0.5, 0.5)] {
+            let s = shape.sample_area(u).unwrap();
+            assert!(
+                s.point.z.abs() < 1e-12 && s.point.x >= 0.0 && s.point.x <= 1.0 && s.point.y >= 0.0 && s.point.y <= 1.0
+            );
+        }
+    }
+}

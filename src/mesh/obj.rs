@@ -1,0 +1,556 @@
+//! Wavefront OBJ + MTL import through tobj. tobj parses (negative indices, groups, objects,
+//! `usemtl`, MTL files); polygons are triangulated here by ear clipping (tobj's own
+//! triangulation is a fan, wrong for concave faces). One part per material: groups and
+//! objects that share a material are merged. Errors name the file and, where tobj's error
+//! can be traced to one, the line.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::{DAffine3, DVec3, Vec2, Vec3};
+
+use super::texture::{ColorSpace, TextureRef, TextureStore};
+use super::triangulate::triangulate;
+use super::{ImportError, ImportOptions, MeshBuilder, MeshShape, Model, ModelNode, ModelPart, NormalMap, SurfaceMaps};
+use crate::color::Rgb;
+use crate::material::{Material, Reflection};
+
+/// Reads an OBJ file and its MTL files.
+pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore) -> Result<Model, ImportError> {
+    let bytes = std::fs::read(path).map_err(|e| ImportError::new(path, format!("cannot read: {e}")))?;
+    // UTF-16 and binary files have NUL bytes; other stray bytes (Latin-1 names) are kept
+    // as replacement characters, as they only ever appear in names and comments.
+    if let Some(at) = bytes.iter().position(|&b| b == 0) {
+        let line = bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
+        return Err(ImportError {
+            file: path.display().to_string(),
+            line: Some(line),
+            message: "not a text file (UTF-16 or binary data)".into(),
+        });
+    }
+    let text = String::from_utf8_lossy(&bytes);
+    let text: &str = &text;
+    let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+    let load_options =
+        tobj::LoadOptions { single_index: false, triangulate: false, ignore_points: true, ignore_lines: true };
+    let mut reader = std::io::BufReader::new(text.as_bytes());
+    let mut warnings = Vec::new();
+    let mtl_errors = std::cell::RefCell::new(Vec::new());
+    let (models, materials) = tobj::load_obj_buf(&mut reader, &load_options, |mtl| {
+        let full = dir.join(mtl);
+        let result = tobj::load_mtl(&full);
+        if let Err(e) = &result {
+            mtl_errors
+                .borrow_mut()
+                .push(format!("material library `{}`: {e}; using default materials", full.display()));
+        }
+        // One bad library must not drop the others' materials.
+        result.or_else(|_| empty_library())
+    })
+    .map_err(|e| ImportError {
+        file: path.display().to_string(),
+        line: error_line(text, &e),
+        message: describe(&e),
+    })?;
+    warnings.extend(mtl_errors.into_inner());
+    let materials = materials.unwrap_or_default();
+
+    let mut builders: HashMap<Option<usize>, PartBuilder> = HashMap::new();
+    for (model_index, model) in models.iter().enumerate() {
+        let mesh = &model.mesh;
+        add_model(model_index, mesh, builders.entry(mesh.material_id.filter(|&i| i < materials.len())).or_default())
+            .map_err(|message| ImportError::new(path, format!("object `{}`: {message}", model.name)))?;
+    }
+    if builders.values().all(|b| b.builder.triangles.is_empty()) {
+        warnings.push("no faces: nothing to render (points and lines are skipped)".into());
+    }
+    let mut keys: Vec<Option<usize>> = builders.keys().copied().collect();
+    keys.sort();
+    let mut parts = Vec::new();
+    for key in keys {
+        let mut part = builders.remove(&key).expect("key from the map");
+        if part.builder.triangles.is_empty() {
+            continue;
+        }
+        if part.builder.normals.is_empty()
+            && let Some(angle) = options.smooth_angle
+        {
+            smooth(&mut part, angle);
+        }
+        let data = part.builder.build().map_err(|e| {
+            let line = if e.contains("non-finite") { nonfinite_line(text) } else { None };
+            ImportError { file: path.display().to_string(), line, message: e }
+        });
+        let data = match data {
+            Ok(d) => Arc::new(d),
+            Err(e) if e.message.starts_with("no triangles") => {
+                warnings.push(format!("material group {key:?}: only zero-area faces; skipped"));
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
+        let (material, maps, name) = match key.and_then(|i| materials.get(i)) {
+            Some(m) => {
+                let (material, maps) = map_material(m, path, textures, &mut warnings);
+                (material, maps, Some(m.name.clone()))
+            }
+            None => (Material::default(), SurfaceMaps::default(), None),
+        };
+        parts.push(ModelPart {
+            node: 0,
+            shape: Arc::new(MeshShape::with_maps(data, maps)),
+            material,
+            material_name: name,
+        });
+    }
+    Ok(Model { nodes: vec![ModelNode { name: None, parent: None, local: DAffine3::IDENTITY }], parts, warnings })
+}
+
+fn empty_library() -> tobj::MTLLoadResult {
+    tobj::load_mtl_buf(&mut std::io::BufReader::new(&b""[..]))
+}
+
+/// Faces of one material, deduplicated into vertices.
+#[derive(Default)]
+struct PartBuilder {
+    builder: MeshBuilder,
+    /// (model, position, texcoord, normal) index -> vertex.
+    vertices: HashMap<(usize, u32, u32, u32), u32>,
+    /// Identity of each vertex's position (model, position index), for smoothing.
+    position_id: Vec<(usize, u32)>,
+}
+
+fn add_model(model: usize, mesh: &tobj::Mesh, part: &mut PartBuilder) -> Result<(), String> {
+    let positions = mesh.positions.len() / 3;
+    let normals = mesh.normals.len() / 3;
+    let uvs = mesh.texcoords.len() / 2;
+    let n = mesh.indices.len();
+    let has_normals = !mesh.normal_indices.is_empty() && mesh.normal_indices.len() == n;
+    let has_uvs = !mesh.texcoord_indices.is_empty() && mesh.texcoord_indices.len() == n;
+    // A part takes normals (or uvs) only when every face it holds has them.
+    let first = part.builder.triangles.is_empty();
+    if first {
+        part.builder.normals.clear();
+    }
+    let keep_normals = has_normals && (first || !part.builder.normals.is_empty());
+    let keep_uvs = has_uvs && (first || !part.builder.uvs.is_empty());
+    if !keep_normals && !part.builder.normals.is_empty() {
+        part.builder.normals.clear();
+    }
+    if !keep_uvs && !part.builder.uvs.is_empty() {
+        part.builder.uvs.clear();
+    }
+    let arities: Vec<u32> = if mesh.face_arities.is_empty() { vec![3; n / 3] } else { mesh.face_arities.clone() };
+    let mut start = 0usize;
+    for arity in arities {
+        let arity = arity as usize;
+        if start + arity > n {
+            return Err("face data shorter than its faces".into());
+        }
+        let mut corner_vertices = Vec::with_capacity(arity);
+        let mut corner_points = Vec::with_capacity(arity);
+        for k in start..start + arity {
+            let pi = mesh.indices[k];
+            if pi as usize >= positions {
+                return Err(format!("face uses vertex {} of {positions}", pi + 1));
+            }
+            let ti = if keep_uvs { mesh.texcoord_indices[k] } else { u32::MAX };
+            let ni = if keep_normals { mesh.normal_indices[k] } else { u32::MAX };
+            if keep_uvs && ti as usize >= uvs {
+                return Err(format!("face uses texture coordinate {} of {uvs}", ti + 1));
+            }
+            if keep_normals && ni as usize >= normals {
+                return Err(format!("face uses normal {} of {normals}", ni + 1));
+            }
+            let p = Vec3::from_slice(&mesh.positions[3 * pi as usize..3 * pi as usize + 3]);
+            let vertex = *part.vertices.entry((model, pi, ti, ni)).or_insert_with(|| {
+                let b = &mut part.builder;
+                b.positions.push(p);
+                if keep_normals {
+                    b.normals.push(Vec3::from_slice(&mesh.normals[3 * ni as usize..3 * ni as usize + 3]));
+                }
+                if keep_uvs {
+                    let t = &mesh.texcoords[2 * ti as usize..2 * ti as usize + 2];
+                    // OBJ's v counts up from the bottom of the image; Prism's (glTF's) down.
+                    b.uvs.push(Vec2::new(t[0], 1.0 - t[1]));
+                }
+                part.position_id.push((model, pi));
+                (b.positions.len() - 1) as u32
+            });
+            corner_vertices.push(vertex);
+            corner_points.push(p.as_dvec3());
+        }
+        for [a, b, c] in triangulate(&corner_points) {
+            part.builder.triangles.push([corner_vertices[a], corner_vertices[b], corner_vertices[c]]);
+        }
+        start += arity;
+    }
+    // Attribute arrays must cover every vertex or none.
+    let count = part.builder.positions.len();
+    if part.builder.normals.len() != count {
+        part.builder.normals.clear();
+    }
+    if part.builder.uvs.len() != count {
+        part.builder.uvs.clear();
+    }
+    Ok(())
+}
+
+/// Vertex normals for a mesh without any: at each corner, the area-weighted mean of the
+/// normals of the faces around the corner's position that meet the corner's face at less
+/// than `angle` degrees. Vertices are split where corners get different normals.
+fn smooth(part: &mut PartBuilder, angle: f64) {
+    let b = &mut part.builder;
+    let cos_limit = angle.to_radians().cos();
+    let face_normals: Vec<DVec3> = b
+        .triangles
+        .iter()
+        .map(|t| {
+            let [p0, p1, p2] = t.map(|i| b.positions[i as usize].as_dvec3());
+            (p1 - p0).cross(p2 - p0)
+        })
+        .collect();
+    let mut around: HashMap<(usize, u32), Vec<usize>> = HashMap::new();
+    for (f, t) in b.triangles.iter().enumerate() {
+        for &v in t {
+            around.entry(part.position_id[v as usize]).or_default().push(f);
+        }
+    }
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    let mut uvs = Vec::new();
+    let mut split: HashMap<(u32, [i32; 3]), u32> = HashMap::new();
+    let mut triangles = Vec::with_capacity(b.triangles.len());
+    for (f, t) in b.triangles.iter().enumerate() {
+        let nf = face_normals[f].normalize_or_zero();
+        let mut out = [0u32; 3];
+        for (k, &v) in t.iter().enumerate() {
+            let mut sum = DVec3::ZERO;
+            for &g in &around[&part.position_id[v as usize]] {
+                let ng = face_normals[g];
+                if ng.normalize_or_zero().dot(nf) >= cos_limit - 1e-12 {
+                    sum += ng;
+                }
+            }
+            let n = sum.normalize_or(nf).as_vec3();
+            let key = (v, (n * 1e5).round().as_ivec3().to_array());
+            out[k] = *split.entry(key).or_insert_with(|| {
+                positions.push(b.positions[v as usize]);
+                normals.push(n);
+                if !b.uvs.is_empty() {
+                    uvs.push(b.uvs[v as usize]);
+                }
+                (positions.len() - 1) as u32
+            });
+        }
+        triangles.push(out);
+    }
+    b.positions = positions;
+    b.normals = normals;
+    b.uvs = uvs;
+    b.triangles = triangles;
+}
+
+/// An MTL texture statement: options (`-bm 0.5`, `-clamp on`, `-o u v`, `-s u v`) and the
+/// file name (which may contain spaces).
+struct MapStatement {
+    file: String,
+    bump_multiplier: f64,
+    clamp: bool,
+    offset: [f64; 2],
+    scale: [f64; 2],
+}
+
+fn parse_map(statement: &str) -> MapStatement {
+    let mut out =
+        MapStatement { file: String::new(), bump_multiplier: 1.0, clamp: false, offset: [0.0; 2], scale: [1.0; 2] };
+    let tokens: Vec<&str> = statement.split_whitespace().collect();
+    let mut i = 0;
+    let numbers = |from: usize| tokens[from..].iter().take(3).take_while(|t| t.parse::<f64>().is_ok()).count();
+    while i < tokens.len() && tokens[i].starts_with('-') && tokens[i].len() > 1 {
+        let option = tokens[i];
+        i += 1;
+        let n = numbers(i);
+        let value = |k: usize| tokens.get(i + k).and_then(|t| t.parse::<f64>().ok());
+        match option {
+            "-bm" => out.bump_multiplier = value(0).unwrap_or(1.0),
+            "-o" => out.offset = [value(0).unwrap_or(0.0), value(1).unwrap_or(0.0)],
+            "-s" => out.scale = [value(0).unwrap_or(1.0), value(1).unwrap_or(1.0)],
+            "-clamp" => {
+                out.clamp = tokens.get(i) == Some(&"on");
+                i += 1;
+                continue;
+            }
+            "-blendu" | "-blendv" | "-cc" | "-imfchan" | "-type" | "-texres" => {
+                i += 1;
+                continue;
+            }
+            _ => {}
+        }
+        i += n;
+    }
+    out.file = tokens[i.min(tokens.len())..].join(" ");
+    out
+}
+
+fn load_map(
+    statement: &str,
+    obj: &Path,
+    space: ColorSpace,
+    textures: &mut TextureStore,
+    warnings: &mut Vec<String>,
+) -> Option<(TextureRef, MapStatement)> {
+    let parsed = parse_map(statement);
+    if parsed.file.is_empty() {
+        return None;
+    }
+    let dir = obj.parent().unwrap_or(Path::new(""));
+    // Windows exports write backslashes.
+    let relative = PathBuf::from(parsed.file.replace('\\', "/"));
+    let full = dir.join(&relative);
+    match textures.load_file(&full, space) {
+        Ok(texture) => {
+            let mut r = TextureRef::new(full.display().to_string());
+            r.texture = Some(texture);
+            if parsed.clamp {
+                r.wrap = [super::texture::Wrap::Clamp; 2];
+            }
+            r.offset = parsed.offset;
+            r.scale = parsed.scale;
+            Some((r, parsed))
+        }
+        Err(e) => {
+            warnings.push(format!("{e}; the map is ignored"));
+            None
+        }
+    }
+}
+
+/// MTL to Prism (documented in `docs/meshes.md`): Kd -> colour (map_Kd multiplies it),
+/// Ks and Ns -> Blinn specular (strength = mean of Ks, POV-Ray roughness = 1 / Ns), illum 3
+/// or 5-7 -> mirror reflection Ks, d < 1 (or Tr) -> transmit 1 - d with ior Ni, Ke ->
+/// emission, map_Bump / bump -> height bump, norm -> tangent-space normal map.
+fn map_material(
+    m: &tobj::Material,
+    obj: &Path,
+    textures: &mut TextureStore,
+    warnings: &mut Vec<String>,
+) -> (Material, SurfaceMaps) {
+    let rgb = |c: [f32; 3]| Rgb::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]));
+    let mut material = Material::default();
+    let mut maps = SurfaceMaps::default();
+    if let Some(kd) = m.diffuse {
+        material.color = rgb(kd);
+    }
+    if let Some(map) = &m.diffuse_texture
+        && let Some((t, _)) = load_map(map, obj, ColorSpace::Srgb, textures, warnings)
+    {
+        material.texture = Some(t);
+    }
+    let ks = m.specular.map(rgb).unwrap_or(Rgb::BLACK);
+    let strength = (ks.0.x + ks.0.y + ks.0.z) / 3.0;
+    if strength > 0.0 {
+        material.specular = strength.clamp(0.0, 1.0);
+        let ns = f64::from(m.shininess.unwrap_or(10.0)).max(1.0);
+        material.roughness = (1.0 / ns).clamp(5e-4, 1.0);
+    }
+    let illum = m.illumination_model.unwrap_or(2);
+    if matches!(illum, 3 | 5 | 6 | 7) && strength > 0.0 {
+        material.reflection = Reflection { min: ks, max: ks, ..Reflection::default() };
+    }
+    let dissolve = m
+        .dissolve
+        .map(f64::from)
+        .or_else(|| m.unknown_param.get("Tr").and_then(|t| t.trim().parse::<f64>().ok()).map(|tr| 1.0 - tr))
+        .unwrap_or(1.0)
+        .clamp(0.0, 1.0);
+    if dissolve < 1.0 {
+        material.transmit = 1.0 - dissolve;
+        material.ior = m.optical_density.map(f64::from).filter(|&n| n.is_finite() && n > 0.0).unwrap_or(1.0);
+    }
+    if let Some(ke) = m.emissive.filter(|k| k.iter().any(|&c| c > 0.0)) {
+        // Prism's emission is multiplied by the colour: divide it back out where possible.
+        let c = material.color.0;
+        let ke = rgb(ke).0;
+        let ratio = |e: f64, c: f64| if c > 0.0 { e / c } else { e };
+        material.emission = Rgb::new(ratio(ke.x, c.x), ratio(ke.y, c.y), ratio(ke.z, c.z));
+    }
+    let normal = m.unknown_param.get("norm").map(|s| (s.as_str(), false));
+    let bump = m.normal_texture.as_deref().map(|s| (s, true));
+    if let Some((statement, height)) = normal.or(bump)
+        && let Some((t, parsed)) = load_map(statement, obj, ColorSpace::Linear, textures, warnings)
+    {
+        maps.normal_map =
+            Some(NormalMap { texture: t, scale: if height { parsed.bump_multiplier } else { 1.0 }, height });
+    }
+    if material.check().is_err() {
+        warnings.push(format!("material `{}` has out-of-range values; using defaults", m.name));
+        return (Material::default(), maps);
+    }
+    (material, maps)
+}
+
+/// A sentence for a tobj error.
+fn describe(e: &tobj::LoadError) -> String {
+    use tobj::LoadError as E;
+    match e {
+        E::PositionParseError => "cannot parse a vertex position (`v x y z`)".into(),
+        E::NormalParseError => "cannot parse a vertex normal (`vn x y z`)".into(),
+        E::TexcoordParseError => "cannot parse a texture coordinate (`vt u v`)".into(),
+        E::FaceParseError => "cannot parse a face (`f v/vt/vn ...`)".into(),
+        E::FaceVertexOutOfBounds => "a face refers to a vertex that does not exist".into(),
+        E::FaceTexCoordOutOfBounds => "a face refers to a texture coordinate that does not exist".into(),
+        E::FaceNormalOutOfBounds => "a face refers to a normal that does not exist".into(),
+        E::MaterialParseError => "cannot parse a material statement (`usemtl` or `mtllib` without a name?)".into(),
+        other => other.to_string(),
+    }
+}
+
+/// The line tobj most likely stopped at: the first line of the kind its error names that
+/// does not parse (tobj itself reports no line numbers).
+fn error_line(text: &str, e: &tobj::LoadError) -> Option<usize> {
+    use tobj::LoadError as E;
+    let floats_ok = |rest: &[&str], min: usize, max: usize| {
+        (min..=max).contains(&rest.len()) && rest.iter().all(|t| t.parse::<f32>().is_ok())
+    };
+    let (mut v, mut vt, mut vn) = (0i64, 0i64, 0i64);
+    for (i, line) in text.lines().enumerate() {
+        let tokens: Vec<&str> = line.split_whitespace().collect();
+        let Some((&head, rest)) = tokens.split_first() else { continue };
+        let bad = match (head, e) {
+            ("v", E::PositionParseError) => !floats_ok(rest, 3, 7),
+            ("vn", E::NormalParseError) => !floats_ok(rest, 3, 3),
+            ("vt", E::TexcoordParseError) => !floats_ok(rest, 1, 3),
+            ("usemtl" | "mtllib", E::MaterialParseError) => rest.is_empty(),
+            (
+                "f",
+                E::FaceParseError | E::FaceVertexOutOfBounds | E::FaceTexCoordOutOfBounds | E::FaceNormalOutOfBounds,
+            ) => {
+                rest.len() < 3
+                    || rest.iter().any(|corner| {
+                        let mut fields = corner.split('/');
+                        let check = |field: Option<&str>, count: i64, required: bool| match field {
+                            None | Some("") => required,
+                            Some(s) => match s.parse::<i64>() {
+                                Ok(i) if i > 0 => i > count,
+                                Ok(i) if i < 0 => count + i < 0,
+                                _ => true,
+                            },
+                        };
+                        check(fields.next(), v, true)
+                            || check(fields.next(), vt, false)
+                            || check(fields.next(), vn, false)
+                    })
+            }
+            _ => false,
+        };
+        if bad {
+            return Some(i + 1);
+        }
+        match head {
+            "v" => v += 1,
+            "vt" => vt += 1,
+            "vn" => vn += 1,
+            _ => {}
+        }
+    }
+    None
+}
+
+/// The first `v` line with a non-finite coordinate.
+fn nonfinite_line(text: &str) -> Option<usize> {
+    text.lines()
+        .position(|line| {
+            let mut t = line.split_whitespace();
+            t.next() == Some("v") && t.take(3).any(|x| x.parse::<f32>().is_ok_and(|f| !f.is_finite()))
+        })
+        .map(|i| i + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    #[test]
+    fn negative_indices_quads_and_materials() {
+        let dir = tempfile::tempdir().unwrap();
+        write(
+            dir.path(),
+            "m.mtl",
+            "newmtl red\nKd 1 0 0\nKs 0.5 0.5 0.5\nNs 100\nnewmtl glass\nKd 1 1 1\nd 0.2\nNi 1.5\n",
+        );
+        let p = write(
+            dir.path(),
+            "q.obj",
+            "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl red\nf -4 -3 -2 -1\ng other\nusemtl glass\nf 1 2 3\n",
+        );
+        let model = import(&p, &ImportOptions::default(), &mut TextureStore::new()).unwrap();
+        assert_eq!(model.parts.len(), 2);
+        let red = model.parts.iter().find(|p| p.material_name.as_deref() == Some("red")).unwrap();
+        assert_eq!(red.shape.data().triangle_count(), 2);
+        assert_eq!(red.material.color, Rgb::new(1.0, 0.0, 0.0));
+        assert!((red.material.roughness - 0.01).abs() < 1e-12 && red.material.specular == 0.5);
+        let glass = model.parts.iter().find(|p| p.material_name.as_deref() == Some("glass")).unwrap();
+        assert!((glass.material.transmit - 0.8).abs() < 1e-6 && (glass.material.ior - 1.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn concave_face_and_smoothing() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = write(dir.path(), "l.obj", "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4 5 6\n");
+        let model = import(&p, &ImportOptions::default(), &mut TextureStore::new()).unwrap();
+        let shape = &model.parts[0].shape;
+        assert_eq!(shape.data().triangle_count(), 4);
+        // The notch (1.5, 1.5) is empty; a fan from vertex 1 would have covered it.
+        use prism_api::Shape;
+        let down = DVec3::new(0.0, 0.0, -1.0);
+        assert!(shape.intersect(&prism_api::Ray::new(DVec3::new(1.5, 1.5, 1.0), down), 1e-9, f64::INFINITY).is_none());
+        assert!(shape.intersect(&prism_api::Ray::new(DVec3::new(0.5, 1.5, 1.0), down), 1e-9, f64::INFINITY).is_some());
+
+        // A ridge: two faces at 90 degrees; smoothing at 100 degrees blends them, at 30 not.
+        let ridge =
+            write(dir.path(), "r.obj", "v 0 0 0\nv 1 0 0\nv 1 1 1\nv 0 1 1\nv 1 2 0\nv 0 2 0\nf 1 2 3 4\nf 4 3 5 6\n");
+        let flat = import(&ridge, &ImportOptions { smooth_angle: Some(30.0) }, &mut TextureStore::new()).unwrap();
+        assert_eq!(flat.parts[0].shape.data().vertex_count(), 8, "split at the crease");
+        let smooth = import(&ridge, &ImportOptions { smooth_angle: Some(100.0) }, &mut TextureStore::new()).unwrap();
+        assert_eq!(smooth.parts[0].shape.data().vertex_count(), 6);
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = write(dir.path(), "b.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+        let e = import(&p, &ImportOptions::default(), &mut TextureStore::new()).unwrap_err();
+        assert_eq!(e.line, Some(5), "{e}");
+        let p = write(dir.path(), "c.obj", "v 0 0 0\nv 1 x 0\n");
+        let e = import(&p, &ImportOptions::default(), &mut TextureStore::new()).unwrap_err();
+        assert_eq!(e.line, Some(2), "{e}");
+        let p = write(dir.path(), "d.obj", "v 0 0 0\nv 1 0 0\n");
+        let m = import(&p, &ImportOptions::default(), &mut TextureStore::new()).unwrap();
+        assert!(m.parts.is_empty() && m.warnings[0].contains("no faces"), "{m:?}");
+        std::fs::write(dir.path().join("u.obj"), [0xfe, 0xff, 0, b'v']).unwrap();
+        let e = import(&dir.path().join("u.obj"), &ImportOptions::default(), &mut TextureStore::new()).unwrap_err();
+        assert!(e.message.contains("not a text file"), "{e}");
+        // Latin-1 in a material name is not an error.
+        std::fs::write(dir.path().join("l.obj"), b"v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Terraind\xe6k\nf 1 2 3\n")
+            .unwrap();
+        assert_eq!(
+            import(&dir.path().join("l.obj"), &ImportOptions::default(), &mut TextureStore::new()).unwrap().parts.len(),
+            1
+        );
+    }
+
+    #[test]
+    fn map_statement_options() {
+        let m = parse_map("-bm 0.3 -clamp on -s 2 2 1 tex ture.png");
+        assert_eq!((m.bump_multiplier, m.clamp, m.scale, m.file.as_str()), (0.3, true, [2.0, 2.0], "tex ture.png"));
+        assert_eq!(parse_map("a.png").file, "a.png");
+    }
+}

@@ -1,0 +1,380 @@
+//! POV-Ray 3.7's antialiasing, methods 1 and 2 without jitter (`+AM1 -J`, `+AM2 -J`;
+//! `shared/povray/REPORT.md` section 5, `TraceTask` in POV-Ray's `tracetask.cpp`), so that a
+//! scene rendered with `antialias = { method = "pov1" }` takes exactly the samples POV-Ray
+//! takes and the two images can be compared pixel by pixel.
+//!
+//! Both methods work on 32 x 32 blocks of the image (POV-Ray's default `Render_Block_Size`).
+//! Method 1's decisions depend on the order pixels are visited inside a block but never on
+//! other blocks, so a block is one task and the image does not depend on the thread count.
+
+use glam::{DVec2, DVec3};
+
+use super::camera::pov_screen;
+use super::classic::{Classic, PathState, lens_sample};
+use super::sampling::{CmjPattern, SampleStream, hash4, mix64};
+use super::scene::RenderScene;
+use crate::scene::components::Antialias;
+
+/// Side of the square blocks POV-Ray antialiases independently (`Render_Block_Size`).
+pub const BLOCK_SIZE: u32 = 32;
+
+/// POV-Ray's `Antialias_Gamma`: colours are compared after encoding with 1 / 2.5.
+const AA_GAMMA: f64 = 2.5;
+
+/// POV-Ray's `EPSILON`, which ends its sub-pixel loops.
+const EPSILON: f64 = 1e-10;
+
+/// One of POV-Ray's two antialiasing methods with its threshold and depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PovMethod {
+    /// Method 1: non-adaptive supersampling of pixels that differ from a neighbour.
+    NonAdaptive {
+        /// Colour distance at which neighbours count as different.
+        threshold: f64,
+        /// Samples per axis of a supersampled pixel.
+        depth: u32,
+    },
+    /// Method 2: recursive subdivision of pixels whose corners differ.
+    Adaptive {
+        /// Colour distance at which corners count as different.
+        threshold: f64,
+        /// Subdivision depth; the finest spacing is 1 / 2^(depth - 1) pixel.
+        depth: u32,
+    },
+}
+
+impl PovMethod {
+    /// The method an [`Antialias`] setting asks for, if it is one of POV-Ray's.
+    pub fn from_setting(antialias: Antialias) -> Option<Self> {
+        match antialias {
+            Antialias::Stratified => None,
+            Antialias::Pov1 { threshold, depth } => Some(PovMethod::NonAdaptive { threshold, depth }),
+            Antialias::Pov2 { threshold, depth } => Some(PovMethod::Adaptive { threshold, depth }),
+        }
+    }
+}
+
+/// Traces single positions on the image plane in POV-Ray's pixel coordinates.
+struct Sampler<'a> {
+    scene: &'a RenderScene,
+    integrator: &'a Classic<'a>,
+    width: f64,
+    height: f64,
+    /// All rays traced so far.
+    rays: u64,
+    /// Camera rays traced so far.
+    primary: u64,
+}
+
+impl Sampler<'_> {
+    /// The colour at image position (x, y), pixel centres at integers (POV-Ray's
+    /// `TracePixel::operator()`). With an aperture it averages `samples` lens samples spread
+    /// over the pixel, as POV-Ray's focal blur does.
+    fn trace(&mut self, x: f64, y: f64) -> DVec3 {
+        let settings = &self.scene.settings;
+        // Random numbers keyed by the exact position, so every block and thread agrees.
+        let key = mix64(x.to_bits() ^ mix64(y.to_bits()));
+        if self.scene.camera.aperture <= 0.0 {
+            let (x0, y0) = pov_screen(x, y, self.width, self.height);
+            let stream = SampleStream { pixel: key, sample: 0, seed: settings.seed };
+            return self.radiance(x0, y0, DVec2::ZERO, stream);
+        }
+        let samples = settings.samples;
+        let pattern = hash4(key, 0, u64::MAX, settings.seed);
+        let (offsets, lenses) =
+            (CmjPattern::new(samples, pattern as u32), CmjPattern::new(samples, (pattern >> 32) as u32));
+        let mut sum = DVec3::ZERO;
+        for s in 0..samples {
+            let offset = offsets.sample(s) - DVec2::splat(0.5);
+            let lens = lens_sample(lenses.sample(s));
+            let (x0, y0) = pov_screen(x + offset.x, y + offset.y, self.width, self.height);
+            let stream = SampleStream { pixel: key, sample: u64::from(s), seed: settings.seed };
+            sum += self.radiance(x0, y0, lens, stream);
+        }
+        sum / f64::from(samples)
+    }
+
+    fn radiance(&mut self, x0: f64, y0: f64, lens: DVec2, stream: SampleStream) -> DVec3 {
+        let ray = self.scene.camera.ray(x0, y0, lens);
+        let mut state = PathState { stream, dimension: 4, rays: 0 };
+        let c = self.integrator.radiance(&ray, &mut state);
+        self.rays += state.rays;
+        self.primary += 1;
+        c
+    }
+}
+
+/// POV-Ray's colour distance after antialiasing gamma: sum over the channels of the
+/// differences of max(v, 0)^(1 / 2.5) (the transmit channel is 0 without an alpha channel).
+fn distance(a: DVec3, b: DVec3) -> f64 {
+    let g = |c: DVec3| c.max(DVec3::ZERO).powf(1.0 / AA_GAMMA);
+    (g(a) - g(b)).abs().element_sum()
+}
+
+/// What rendering one block produced.
+pub struct Block {
+    /// Pixels row by row, `min(BLOCK_SIZE, width - left)` wide.
+    pub pixels: Vec<[f32; 3]>,
+    /// All rays traced.
+    pub rays: u64,
+    /// Camera rays traced.
+    pub primary_rays: u64,
+}
+
+/// Renders the block whose top-left pixel is (`left`, `top`) with `method`.
+pub fn render_block(scene: &RenderScene, integrator: &Classic, method: PovMethod, left: u32, top: u32) -> Block {
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    let w = BLOCK_SIZE.min(width - left) as usize;
+    let h = BLOCK_SIZE.min(height - top) as usize;
+    let mut sampler =
+        Sampler { scene, integrator, width: f64::from(width), height: f64::from(height), rays: 0, primary: 0 };
+    let (left, top) = (f64::from(left), f64::from(top));
+    let colours = match method {
+        PovMethod::NonAdaptive { threshold, depth } => non_adaptive(&mut sampler, left, top, w, h, threshold, depth),
+        PovMethod::Adaptive { threshold, depth } => adaptive(&mut sampler, left, top, w, h, threshold, depth),
+    };
+    Block {
+        pixels: colours.into_iter().map(|c| [c.x as f32, c.y as f32, c.z as f32]).collect(),
+        rays: sampler.rays,
+        primary_rays: sampler.primary,
+    }
+}
+
+/// Method 1 (`TraceTask::NonAdaptiveSupersamplingM1`): trace each pixel centre, compare it
+/// with its left and upper neighbours (as they are at that moment) and supersample every
+/// pixel of a differing pair that was not supersampled yet. The row above the block and the
+/// pixel left of each row are traced only to compare with and are never supersampled.
+fn non_adaptive(s: &mut Sampler, left: f64, top: f64, w: usize, h: usize, threshold: f64, depth: u32) -> Vec<DVec3> {
+    let above: Vec<DVec3> = (0..w).map(|x| s.trace(left + x as f64, top - 1.0)).collect();
+    let mut pixels = vec![DVec3::ZERO; w * h];
+    let mut done = vec![false; w * h];
+    for y in 0..h {
+        let py = top + y as f64;
+        let before_row = s.trace(left - 1.0, py);
+        for (x, &above_colour) in above.iter().enumerate() {
+            let px = left + x as f64;
+            let i = y * w + x;
+            let current = s.trace(px, py);
+            pixels[i] = current;
+            let (left_colour, left_done) = if x == 0 { (before_row, true) } else { (pixels[i - 1], done[i - 1]) };
+            let (top_colour, top_done) = if y == 0 { (above_colour, true) } else { (pixels[i - w], done[i - w]) };
+            let left_differs = distance(left_colour, current) >= threshold;
+            let top_differs = distance(top_colour, current) >= threshold;
+            if left_differs && !left_done {
+                pixels[i - 1] = supersample(s, px - 1.0, py, pixels[i - 1], depth);
+                done[i - 1] = true;
+            }
+            if top_differs && !top_done {
+                pixels[i - w] = supersample(s, px, py - 1.0, pixels[i - w], depth);
+                done[i - w] = true;
+            }
+            if left_differs || top_differs {
+                pixels[i] = supersample(s, px, py, current, depth);
+                done[i] = true;
+            }
+        }
+    }
+    pixels
+}
+
+/// `depth` x `depth` samples at (k + 0.5) / depth across the pixel, added to the centre
+/// sample already traced: the mean of depth^2 + 1 samples (`TraceTask::SupersampleOnePixel`).
+fn supersample(s: &mut Sampler, x: f64, y: f64, centre: DVec3, depth: u32) -> DVec3 {
+    let step = 1.0 / f64::from(depth);
+    let range = 0.5 - step * 0.5;
+    let mut sum = centre;
+    // POV-Ray steps by accumulation; doing the same keeps the positions bit-identical.
+    let mut yy = -range;
+    while yy <= range + EPSILON {
+        let mut xx = -range;
+        while xx <= range + EPSILON {
+            sum += s.trace(x + xx, y + yy);
+            xx += step;
+        }
+        yy += step;
+    }
+    sum / f64::from(depth * depth + 1)
+}
+
+/// Method 2 (`TraceTask::AdaptiveSupersamplingM2`): trace every pixel corner, then
+/// subdivide each pixel while any two of a square's corners differ, down to 1 / 2^(depth-1).
+fn adaptive(s: &mut Sampler, left: f64, top: f64, w: usize, h: usize, threshold: f64, depth: u32) -> Vec<DVec3> {
+    let mut corners = Vec::with_capacity((w + 1) * (h + 1));
+    for y in 0..=h {
+        for x in 0..=w {
+            corners.push(s.trace(left + x as f64 - 0.5, top + y as f64 - 0.5));
+        }
+    }
+    let size = 1usize << depth;
+    let mut grid = SubdivisionGrid { size: size + 1, samples: vec![None; (size + 1) * (size + 1)] };
+    let mut pixels = Vec::with_capacity(w * h);
+    for y in 0..h {
+        for x in 0..w {
+            grid.samples.fill(None);
+            grid.set(0, 0, corners[y * (w + 1) + x]);
+            grid.set(0, size, corners[(y + 1) * (w + 1) + x]);
+            grid.set(size, 0, corners[y * (w + 1) + x + 1]);
+            grid.set(size, size, corners[(y + 1) * (w + 1) + x + 1]);
+            let (px, py) = (left + x as f64, top + y as f64);
+            let square = Square { x: px, y: py, d: 0.5, bx: 0, by: 0, step: size };
+            pixels.push(subdivide(s, &mut grid, square, depth as i32 - 1, threshold));
+        }
+    }
+    pixels
+}
+
+/// The sub-pixel samples of one pixel in method 2, on a (2^depth + 1)^2 grid.
+struct SubdivisionGrid {
+    size: usize,
+    samples: Vec<Option<DVec3>>,
+}
+
+impl SubdivisionGrid {
+    fn get(&self, x: usize, y: usize) -> DVec3 {
+        self.samples[x + y * self.size].unwrap_or(DVec3::ZERO)
+    }
+
+    fn set(&mut self, x: usize, y: usize, c: DVec3) {
+        self.samples[x + y * self.size] = Some(c);
+    }
+
+    /// The sample at grid (x, y), traced at image position `at` if not yet known.
+    fn sample(&mut self, s: &mut Sampler, x: usize, y: usize, at: (f64, f64)) {
+        if self.samples[x + y * self.size].is_none() {
+            let c = s.trace(at.0, at.1);
+            self.set(x, y, c);
+        }
+    }
+}
+
+/// A square of method 2: centre (x, y) in image coordinates, half side `d`, and its top-left
+/// corner and side on the sample grid.
+#[derive(Clone, Copy)]
+struct Square {
+    x: f64,
+    y: f64,
+    d: f64,
+    bx: usize,
+    by: usize,
+    step: usize,
+}
+
+/// `TraceTask::SubdivideOnePixel`: the value of one square.
+fn subdivide(s: &mut Sampler, grid: &mut SubdivisionGrid, q: Square, level: i32, threshold: f64) -> DVec3 {
+    let c00 = grid.get(q.bx, q.by);
+    let c02 = grid.get(q.bx, q.by + q.step);
+    let c20 = grid.get(q.bx + q.step, q.by);
+    let c22 = grid.get(q.bx + q.step, q.by + q.step);
+    let differ = |a: DVec3, b: DVec3| distance(a, b) >= threshold;
+    let split = level > 0
+        && (differ(c00, c02)
+            || differ(c00, c20)
+            || differ(c00, c22)
+            || differ(c02, c20)
+            || differ(c02, c22)
+            || differ(c20, c22));
+    if !split {
+        return (c00 + c02 + c20 + c22) / 4.0;
+    }
+    let (half, d2) = (q.step / 2, q.d * 0.5);
+    grid.sample(s, q.bx, q.by + half, (q.x - q.d, q.y));
+    grid.sample(s, q.bx + half, q.by, (q.x, q.y - q.d));
+    grid.sample(s, q.bx + q.step, q.by + half, (q.x + q.d, q.y));
+    grid.sample(s, q.bx + half, q.by + q.step, (q.x, q.y + q.d));
+    grid.sample(s, q.bx + half, q.by + half, (q.x, q.y));
+    let quarter =
+        |dx: f64, dy: f64, bx: usize, by: usize| Square { x: q.x + dx, y: q.y + dy, d: d2, bx, by, step: half };
+    let r00 = subdivide(s, grid, quarter(-d2, -d2, q.bx, q.by), level - 1, threshold);
+    let r01 = subdivide(s, grid, quarter(-d2, d2, q.bx, q.by + half), level - 1, threshold);
+    let r10 = subdivide(s, grid, quarter(d2, -d2, q.bx + half, q.by), level - 1, threshold);
+    let r11 = subdivide(s, grid, quarter(d2, d2, q.bx + half, q.by + half), level - 1, threshold);
+    (r00 + r01 + r10 + r11) / 4.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::{RenderOptions, render};
+    use crate::scene::load::{Embedded, load_from};
+
+    const SCENE: &str = "[render]\nwidth = 40\nheight = 24\n\
+        [[object]]\nshape = \"sphere\"\nradius = 0.6\nmaterial = { color = [1.0, 0.5, 0.2], phong = 0.8 }\n\
+        [[object]]\nshape = \"plane\"\noffset = -0.7\n\
+        [[light]]\nposition = [2.0, 3.0, 4.0]\n";
+
+    fn scene(antialias: Antialias) -> RenderScene {
+        const FILES: Embedded = Embedded(&[("s.toml", SCENE)]);
+        let mut scene = load_from(&FILES, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+        scene.render.antialias = antialias;
+        crate::prepare(&mut scene).unwrap()
+    }
+
+    fn sampler<'a>(scene: &'a RenderScene, integrator: &'a Classic<'a>) -> Sampler<'a> {
+        Sampler { scene, integrator, width: 40.0, height: 24.0, rays: 0, primary: 0 }
+    }
+
+    #[test]
+    fn method_1_with_threshold_0_supersamples_every_pixel() {
+        let scene = scene(Antialias::Pov1 { threshold: 0.0, depth: 3 });
+        let film = render(&scene, &RenderOptions { threads: Some(2), progress: false }).unwrap().0;
+        let integrator = Classic::new(&scene);
+        let mut s = sampler(&scene, &integrator);
+        for (x, y) in [(0u32, 0u32), (17, 9), (39, 23), (31, 5)] {
+            let (px, py) = (f64::from(x), f64::from(y));
+            let mut sum = s.trace(px, py);
+            for j in [-1.0, 0.0, 1.0] {
+                for i in [-1.0, 0.0, 1.0] {
+                    sum += s.trace(px + i / 3.0, py + j / 3.0);
+                }
+            }
+            let expected = sum / 10.0;
+            let got = film.get(x, y);
+            for c in 0..3 {
+                assert!((f64::from(got[c]) - expected[c]).abs() < 1e-5, "pixel ({x}, {y}): {got:?} vs {expected}");
+            }
+        }
+    }
+
+    #[test]
+    fn method_2_with_threshold_0_is_the_trapezoid_rule() {
+        let scene = scene(Antialias::Pov2 { threshold: 0.0, depth: 2 });
+        let film = render(&scene, &RenderOptions { threads: Some(2), progress: false }).unwrap().0;
+        let integrator = Classic::new(&scene);
+        let mut s = sampler(&scene, &integrator);
+        for (x, y) in [(0u32, 0u32), (17, 9), (39, 23)] {
+            let (px, py) = (f64::from(x), f64::from(y));
+            let at = |s: &mut Sampler, i: f64, j: f64| s.trace(px - 0.5 + i * 0.5, py - 0.5 + j * 0.5);
+            let weights = [1.0, 2.0, 1.0];
+            let mut sum = DVec3::ZERO;
+            for (j, wj) in weights.iter().enumerate() {
+                for (i, wi) in weights.iter().enumerate() {
+                    sum += wi * wj * at(&mut s, i as f64, j as f64);
+                }
+            }
+            let expected = sum / 16.0;
+            let got = film.get(x, y);
+            for c in 0..3 {
+                assert!((f64::from(got[c]) - expected[c]).abs() < 1e-5, "pixel ({x}, {y}): {got:?} vs {expected}");
+            }
+        }
+    }
+
+    #[test]
+    fn blocks_make_the_image_independent_of_threads() {
+        for antialias in [Antialias::Pov1 { threshold: 0.1, depth: 3 }, Antialias::Pov2 { threshold: 0.1, depth: 3 }] {
+            let scene = scene(antialias);
+            let one = render(&scene, &RenderOptions { threads: Some(1), progress: false }).unwrap().0;
+            let two = render(&scene, &RenderOptions { threads: Some(2), progress: false }).unwrap().0;
+            assert_eq!(one, two, "{antialias:?}");
+        }
+    }
+
+    #[test]
+    fn distance_is_povs_gamma_encoded_sum() {
+        let a = DVec3::new(1.0, 0.0, 0.0);
+        let b = DVec3::new(0.0, 0.0, -1.0);
+        assert!((distance(a, b) - 1.0).abs() < 1e-15, "negative values count as 0");
+        let d = distance(DVec3::splat(0.5), DVec3::ZERO);
+        assert!((d - 3.0 * 0.5f64.powf(0.4)).abs() < 1e-15);
+    }
+}

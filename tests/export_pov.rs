@@ -1,0 +1,176 @@
+//! `prism export pov`: the POV-Ray exporter through the command line (a scene that exports,
+//! and scenes it must refuse, each with a message naming what it cannot express), and a
+//! plugin shape without `to_pov` through the library.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::Arc;
+
+use prism::registry::ShapeRegistry;
+use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, shape_type};
+use schemars::JsonSchema;
+use serde::Deserialize;
+
+fn prism() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_prism"))
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+#[test]
+fn exports_the_seed_room() {
+    let run = prism().arg("export").arg("pov").arg(root().join("scenes/room.toml")).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = String::from_utf8(run.stdout).unwrap();
+    for needle in [
+        "#version 3.7;",
+        "assumed_gamma 1.0",
+        "max_trace_level 5",
+        "adc_bailout 0.00392156862745098",
+        "ambient_light rgb <1.0, 1.0, 1.0>",
+        "location <0.0, 0.0, -1.0>",
+        "direction <0.0, 0.0, 1.0>",
+        "up <0.0, 1.9999999999999998, -0.0>",
+        "right <1.0, -0.0, -0.0> * 1.9999999999999998 * image_width / image_height",
+        // The light at (0, 2.5, -3) in Prism's right-handed frame.
+        "light_source { <0.0, 2.5, 3.0>, color rgb <1.0, 1.0, 1.0>",
+        // The orange sphere, translated by (-1.2, -0.5, -3.5): z mirrored.
+        "matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, -1.2, -0.5, 3.5>",
+        "pigment { rgbft <0.9, 0.3, 0.1, 0.0, 0.0> }",
+        "reflection { rgb <0.8, 0.8, 0.8>, rgb <0.8, 0.8, 0.8> falloff 1.0 exponent 1.0 metallic 0.0 }",
+        "cone { <0.0, -0.2, 5.0>, 0.6, <0.0, 1.2, 6.0>, 0.0 open",
+        "// povray-options: +W1000 +H563 -A",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+    assert_eq!(pov.matches("plane {").count(), 6);
+    assert_eq!(pov.matches("interior { ior 1.0 }").count(), 10);
+}
+
+#[test]
+fn writes_the_file_given_with_o() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("room.pov");
+    let run =
+        prism().args(["export", "pov"]).arg(root().join("scenes/parity/room_pov1.toml")).arg("-o").arg(&out).output();
+    let run = run.unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = std::fs::read_to_string(&out).unwrap();
+    assert!(pov.contains("// povray-options: +W320 +H180 +A0.3 +AM1 +R3 -J"), "{pov}");
+    assert!(run.stdout.is_empty());
+}
+
+/// Writes `scene` to a temporary scene file and exports it; returns (success, stderr).
+fn export(scene: &str) -> (bool, String, tempfile::TempDir) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
+    let out = dir.path().join("scene.pov");
+    let run = prism().current_dir(dir.path()).args(["export", "pov", "scene.toml", "-o"]).arg(&out).output().unwrap();
+    assert!(!String::from_utf8_lossy(&run.stderr).contains("panicked"));
+    (run.status.success(), String::from_utf8_lossy(&run.stderr).into_owned(), dir)
+}
+
+#[test]
+fn refuses_what_pov_ray_cannot_render_alike() {
+    let cases = [
+        (
+            "stratified supersampling",
+            "[render]\nsamples = 4\n[[object]]\nshape = \"sphere\"\n",
+            vec!["scene.toml:", "render.samples", "no POV-Ray equivalent", "pov1"],
+        ),
+        (
+            "trace depth beyond POV-Ray's limit",
+            "[render]\nmax_depth = 300\n[[object]]\nshape = \"sphere\"\n",
+            vec!["scene.toml:", "render.max_depth", "limit of 256"],
+        ),
+        (
+            "antialiasing deeper than POV-Ray's +R9",
+            "[render]\nantialias = { method = \"pov1\", depth = 12 }\n",
+            vec!["scene.toml:", "render.antialias.depth", "between 1 and 9"],
+        ),
+        (
+            "a negative antialiasing threshold",
+            "[render]\nantialias = { method = \"pov2\", threshold = -0.1 }\n",
+            vec!["scene.toml:", "render.antialias.threshold", "0 or positive"],
+        ),
+        (
+            "an unknown antialiasing method",
+            "[render]\nantialias = { method = \"pov3\" }\n",
+            vec!["scene.toml:2:", "render.antialias", "pov3"],
+        ),
+    ];
+    for (what, scene, expect) in cases {
+        let (ok, stderr, dir) = export(scene);
+        assert!(!ok, "{what}: exported");
+        for e in expect {
+            assert!(stderr.contains(e), "{what}: message lacks `{e}`: {stderr}");
+        }
+        assert!(!dir.path().join("scene.pov").exists(), "{what}: wrote a file anyway");
+    }
+}
+
+#[test]
+fn refuses_a_broken_scene_with_its_diagnostics() {
+    let (ok, stderr, _dir) = export("[[object]]\nshape = \"sphere\"\nradius = -1\n");
+    assert!(!ok);
+    assert!(stderr.contains("scene.toml:3:") && stderr.contains("object[0].radius"), "{stderr}");
+}
+
+#[test]
+fn focal_blur_maps_the_lens() {
+    let (ok, stderr, dir) = export(
+        "[render]\nsamples = 9\n[camera]\naperture = 0.5\nfocal_distance = 3.0\n[[object]]\nshape = \"sphere\"\n",
+    );
+    assert!(ok, "{stderr}");
+    let pov = std::fs::read_to_string(dir.path().join("scene.pov")).unwrap();
+    // POV-Ray's lens disc has radius aperture / 4, Prism's aperture / 2.
+    for needle in ["aperture 1.0", "blur_samples 9", "focal_point <0.0, 0.0, 2.0>", "variance 0", "+W1000 +H563 -A"] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+}
+
+/// A plugin shape without a POV-Ray equivalent.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct LumpParams {}
+
+#[derive(Debug)]
+struct Lump;
+
+impl ShapeParams for LumpParams {
+    fn build(self) -> Result<Arc<dyn Shape>, ParamError> {
+        Ok(Arc::new(Lump))
+    }
+}
+
+impl Shape for Lump {
+    fn bounds(&self) -> Aabb {
+        Aabb::from_corners(DVec3::splat(-1.0), DVec3::splat(1.0))
+    }
+
+    fn intersect(&self, _: &Ray, _: f64, _: f64) -> Option<Hit> {
+        None
+    }
+
+    fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        Surface::new(ray.at(hit.t), DVec3::Y, DVec2::ZERO)
+    }
+}
+
+#[test]
+fn a_shape_without_to_pov_is_named() {
+    let mut registry = ShapeRegistry::new();
+    registry.add(shape_type::<LumpParams>("lump", "A shape POV-Ray does not know."));
+    registry.add(shape_type::<prism_sphere::SphereParams>("sphere", "A sphere."));
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, "[[object]]\nshape = \"sphere\"\n\n[[object]]\nname = \"odd\"\nshape = \"lump\"\n").unwrap();
+    let mut scene = prism::scene::load::load_file(Path::new(&path), &registry).unwrap();
+    prism::scene::transforms::resolve_transforms(&mut scene).unwrap();
+    let error = prism::export::pov::export(&scene, "scene.toml").unwrap_err().to_string();
+    for needle in ["scene.toml:4:", "object[1].shape", "shape `lump` has no POV-Ray equivalent", "Shape::to_pov"] {
+        assert!(error.contains(needle), "missing `{needle}` in: {error}");
+    }
+}

@@ -1,0 +1,268 @@
+//! Mesh import end to end: every valid model among the shared assets loads and renders a
+//! small image, every deliberately broken one is an error naming the file (never a panic),
+//! instancing shares geometry, and mesh objects survive save and load.
+//!
+//! The shared assets are looked for in `$PRISM_ASSETS`, then in `../shared/assets` beside the
+//! repository. When they are absent the asset tests say so on stderr and check only the
+//! files committed under `assets/`.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::DVec3;
+use prism::plugins::registry;
+use prism::render::camera::RenderCamera;
+use prism::render::{RenderOptions, render};
+use prism::scene::components::{Camera, ShapeComponent};
+use prism::scene::load::load_file;
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The shared asset folder, or `None` (with a message) when it is not there.
+fn shared_assets() -> Option<PathBuf> {
+    let candidates: Vec<PathBuf> = std::env::var_os("PRISM_ASSETS")
+        .map(PathBuf::from)
+        .into_iter()
+        .chain([repo().join("../shared/assets")])
+        .collect();
+    let found = candidates.iter().find(|p| p.join("obj").is_dir() || p.join("gltf").is_dir()).cloned();
+    if found.is_none() {
+        eprintln!(
+            "SKIPPED: shared mesh assets not found (looked in {}); set PRISM_ASSETS to run the asset tests",
+            candidates.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+        );
+    }
+    found
+}
+
+/// A scene holding one mesh object for `file`, written to a temporary directory.
+fn scene_for(dir: &Path, file: &Path, extra: &str) -> PathBuf {
+    let text = format!(
+        "[render]\nwidth = 64\nheight = 36\n[world]\nbackground = [0.25, 0.5, 0.75]\n\n[[object]]\nshape = \"mesh\"\nfile = {:?}\n{extra}\n[[light]]\nposition = [0.0, 0.0, 0.0]\n",
+        file.display().to_string()
+    );
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Loads `file` as a mesh, frames it with the camera, renders 64x36 and returns the number
+/// of pixels that are not background (0 for files with nothing to render).
+fn render_mesh(file: &Path) -> Result<usize, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let scene_path = scene_for(dir.path(), file, "");
+    let mut scene = load_file(&scene_path, &registry()).map_err(|e| e.to_string())?;
+    let mut render_scene = prism::prepare(&mut scene).map_err(|e| e.to_string())?;
+    if render_scene.primitives.is_empty() {
+        return Ok(0);
+    }
+    let bounds = render_scene.primitives.iter().fold(prism_api::Aabb::EMPTY, |b, p| b.union(p.world_bounds));
+    let center = bounds.center();
+    let radius = ((bounds.max - bounds.min).length() * 0.5).max(1e-6);
+    let eye = center + DVec3::new(0.4, 0.5, 1.0).normalize() * radius * 2.5;
+    let camera = Camera { position: eye.to_array(), look_at: center.to_array(), vfov: 50.0, ..Camera::default() };
+    render_scene.camera = RenderCamera::new(&camera, 64, 36);
+    if let Some(light) = render_scene.lights.first_mut() {
+        light.position = eye;
+    }
+    let (film, _) = render(&render_scene, &RenderOptions::default()).map_err(|e| e.to_string())?;
+    Ok(film.pixels.iter().filter(|p| **p != [0.25, 0.5, 0.75]).count())
+}
+
+/// Deliberately broken files (relative to the shared assets) and a word the error must contain.
+const BROKEN: &[(&str, &str)] = &[
+    ("gltf/assimp-robustness/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "BoxWithInfinites.glb"),
+    ("gltf/assimp-robustness/IncorrectVertexArrays/Cube.gltf", "Cube.gltf"),
+    ("gltf/assimp-robustness/MissingBin/BoxTextured.gltf", "buffers"),
+    ("gltf/assimp-robustness/SchemaFailures/sceneWrongType.gltf", "invalid glTF"),
+    ("gltf/assimp-robustness/TestNoRootNode/NoScene.gltf", "NoScene.gltf"),
+    ("gltf/assimp-robustness/TestNoRootNode/SceneWithoutNodes.gltf", "SceneWithoutNodes.gltf"),
+    ("gltf/assimp-robustness/wrongTypes/badArray.gltf", "invalid glTF"),
+    ("gltf/assimp-robustness/wrongTypes/badExtension.gltf", "invalid glTF"),
+    ("gltf/assimp-robustness/wrongTypes/badNumber.gltf", "invalid glTF"),
+    ("gltf/assimp-robustness/wrongTypes/badObject.gltf", "invalid glTF"),
+    ("gltf/assimp-robustness/wrongTypes/badString.gltf", "invalid glTF"),
+    ("gltf/assimp-robustness/wrongTypes/badUint.gltf", "invalid glTF"),
+    ("gltf/assimp-robustness/draco-2CylinderEngine/2CylinderEngine.gltf", "2CylinderEngine.gltf"),
+    ("gltf/assimp-robustness/IndexOutOfRange/IndexOutOfRange.gltf", "only 24 vertices"),
+    ("gltf/assimp-robustness/IndexOutOfRange/AllIndicesOutOfRange.gltf", "vertices"),
+    ("gltf/assimp-robustness/RecursiveNodes/RecursiveNodes.gltf", "cycle"),
+    ("obj/assimp-cases/box_UTF16BE.obj", "not a text file"),
+    ("obj/assimp-cases/empty_mat.obj", "empty_mat.obj:"),
+    ("obj/assimp-cases/number_formats.obj", "number_formats.obj:"),
+    ("obj/tinyobjloader-cases/test-nan.obj", "test-nan.obj:"),
+    ("obj/tinyobjloader-cases/invalid-relative-texture-index.obj", "invalid-relative-texture-index.obj:2"),
+    ("obj/tinyobjloader-cases/invalid-relative-vertex-index.obj", "vertex"),
+    ("obj/tinyobjloader-cases/issue-140-zero-face-idx.obj", "issue-140-zero-face-idx.obj"),
+];
+
+fn mesh_files(root: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(root) else { return };
+    let mut entries: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            mesh_files(&p, out);
+        } else if matches!(p.extension().and_then(|e| e.to_str()), Some("obj" | "gltf" | "glb")) {
+            out.push(p);
+        }
+    }
+}
+
+#[test]
+fn every_valid_shared_asset_loads_and_renders() {
+    let Some(assets) = shared_assets() else { return };
+    let mut files = Vec::new();
+    for folder in ["obj", "gltf", "derived/obj"] {
+        mesh_files(&assets.join(folder), &mut files);
+    }
+    let broken: Vec<PathBuf> = BROKEN.iter().map(|(f, _)| assets.join(f)).collect();
+    let mut failures = Vec::new();
+    let mut rendered = 0;
+    let mut empty = Vec::new();
+    for file in files.iter().filter(|f| !broken.contains(f)) {
+        match render_mesh(file) {
+            Ok(0) => empty.push(file.strip_prefix(&assets).unwrap_or(file).display().to_string()),
+            Ok(_) => rendered += 1,
+            Err(e) => failures.push(format!("{}: {e}", file.display())),
+        }
+    }
+    eprintln!("{rendered} mesh files rendered; {} had nothing to render: {}", empty.len(), empty.join(", "));
+    assert!(failures.is_empty(), "valid files failed:\n{}", failures.join("\n"));
+    assert!(rendered >= 60, "only {rendered} files rendered");
+    // Files without triangles are points, lines and empty-scene conformance cases only.
+    for e in &empty {
+        assert!(
+            e.contains("PrimitiveMode")
+                || e.contains("point")
+                || e.contains("line")
+                || e.contains("issue-356")
+                || e.contains("invalid-face"),
+            "{e} rendered nothing"
+        );
+    }
+}
+
+#[test]
+fn every_broken_shared_asset_is_an_error_naming_the_file() {
+    let Some(assets) = shared_assets() else { return };
+    let mut skipped = Vec::new();
+    for (relative, expected) in BROKEN {
+        let file = assets.join(relative);
+        if !file.exists() {
+            skipped.push(*relative);
+            continue;
+        }
+        let result = std::panic::catch_unwind(|| render_mesh(&file));
+        let Ok(result) = result else { panic!("{relative}: panicked") };
+        let error = match result {
+            Ok(_) => panic!("{relative}: loaded without error"),
+            Err(e) => e,
+        };
+        let name = file.file_name().unwrap().to_string_lossy();
+        assert!(error.contains(&*name), "{relative}: the error does not name the file: {error}");
+        assert!(error.contains(expected), "{relative}: expected `{expected}` in: {error}");
+        assert!(error.contains("scene.toml:"), "{relative}: the error does not point into the scene: {error}");
+    }
+    if !skipped.is_empty() {
+        eprintln!("SKIPPED (missing): {}", skipped.join(", "));
+    }
+}
+
+#[test]
+fn committed_assets_render_and_instancing_shares_geometry() {
+    let dir = tempfile::tempdir().unwrap();
+    let cornell = repo().join("assets/cornell_box/cornell_box.obj");
+    let boxed = repo().join("assets/BoxTextured/BoxTextured.gltf");
+    assert!(render_mesh(&cornell).unwrap() > 300);
+    assert!(render_mesh(&boxed).unwrap() > 100);
+    // The same file three times: one import, shared geometry.
+    let text = format!(
+        "[[object]]\nshape = \"mesh\"\nfile = {f:?}\n[[object]]\nshape = \"mesh\"\nfile = {f:?}\ntransform = {{ translate = [2, 0, 0] }}\n[[object]]\nshape = \"mesh\"\nfile = {f:?}\nmaterial = {{ color = [1, 0, 0] }}\n",
+        f = boxed.display().to_string()
+    );
+    std::fs::write(dir.path().join("s.toml"), text).unwrap();
+    let scene = load_file(&dir.path().join("s.toml"), &registry()).unwrap();
+    let shapes: Vec<Arc<dyn prism_api::Shape>> =
+        scene.world.query::<&ShapeComponent>().iter().map(|s| s.geometry.clone()).collect();
+    assert_eq!(shapes.len(), 3);
+    assert!(Arc::ptr_eq(&shapes[0], &shapes[1]), "instances without overrides share one shape");
+}
+
+#[test]
+fn mesh_objects_round_trip_through_save() {
+    let dir = tempfile::tempdir().unwrap();
+    let cornell = repo().join("assets/cornell_box/cornell_box.obj");
+    let boxed = repo().join("assets/BoxTextured/BoxTextured.gltf");
+    let texture = repo().join("assets/BoxTextured/CesiumLogoFlat.png");
+    let text = format!(
+        "[render]\nwidth = 48\nheight = 32\n[camera]\nposition = [278, 273, -800]\nlook_at = [278, 273, 0]\nvfov = 40\n\
+         [materials.red]\ncolor = [0.6, 0.05, 0.05]\ntexture = {{ file = {t:?}, wrap = \"clamp\" }}\n\
+         [[object]]\nshape = \"mesh\"\nname = \"room\"\nfile = {c:?}\nsmooth_angle = 30\nmaterial_map = {{ red = \"red\", green = {{ color = [0, 0.5, 0] }} }}\n\
+         [[object]]\nshape = \"mesh\"\nfile = {b:?}\nparent = \"room\"\ntransform = {{ translate = [278, 100, 200], scale = 80 }}\n\
+         [[light]]\nposition = [278, 500, -300]\n",
+        c = cornell.display().to_string(),
+        b = boxed.display().to_string(),
+        t = texture.display().to_string()
+    );
+    let path = dir.path().join("a.toml");
+    std::fs::write(&path, text).unwrap();
+    let registry = registry();
+    let mut first = load_file(&path, &registry).unwrap();
+    let saved = prism::scene::save::save(&first).unwrap();
+    assert!(
+        saved.contains("shape = \"mesh\"") && saved.contains("material_map") && saved.contains("smooth_angle"),
+        "{saved}"
+    );
+    // Written elsewhere, the copy still finds its files and textures (paths are saved absolute).
+    let other = tempfile::tempdir().unwrap();
+    let copy = other.path().join("copy.toml");
+    std::fs::write(&copy, &saved).unwrap();
+    let mut second = load_file(&copy, &registry).unwrap();
+    let a = render(&prism::prepare(&mut first).unwrap(), &RenderOptions::default()).unwrap().0;
+    let b = render(&prism::prepare(&mut second).unwrap(), &RenderOptions::default()).unwrap().0;
+    assert_eq!(a.pixels, b.pixels, "the saved scene renders differently");
+    assert!(a.pixels.iter().any(|p| p[0] > 0.0));
+}
+
+#[test]
+fn mesh_object_errors_point_into_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let cornell = repo().join("assets/cornell_box/cornell_box.obj");
+    let cases = [
+        ("[[object]]\nshape = \"mesh\"\n".to_string(), "needs `file`"),
+        ("[[object]]\nshape = \"mesh\"\nfile = \"nowhere.obj\"\n".to_string(), "nowhere.obj"),
+        ("[[object]]\nshape = \"mesh\"\nfile = \"x.stl\"\n".to_string(), "x.stl"),
+        (
+            format!("[[object]]\nshape = \"mesh\"\nfile = {:?}\nfil = 1\n", cornell.display().to_string()),
+            "did you mean `file`",
+        ),
+        (
+            format!(
+                "[[object]]\nshape = \"mesh\"\nfile = {:?}\nmaterial_map = {{ rde = \"x\" }}\n",
+                cornell.display().to_string()
+            ),
+            "did you mean `red`",
+        ),
+        (
+            format!("[[object]]\nshape = \"mesh\"\nfile = {:?}\nsmooth_angle = -3\n", cornell.display().to_string()),
+            "smooth_angle",
+        ),
+        ("[[object]]\nshape = \"sphere\"\nmaterial = { texture = \"missing.png\" }\n".to_string(), "missing.png"),
+        ("[[object]]\nshape = \"mesh\"\nfile = \"bad.obj\"\n".to_string(), "bad.obj:3"),
+    ];
+    std::fs::write(dir.path().join("x.stl"), "solid").unwrap();
+    std::fs::write(dir.path().join("bad.obj"), "v 0 0 0\nv 1 0 0\nf 1 2 3\n").unwrap();
+    for (text, expected) in cases {
+        let path = dir.path().join("e.toml");
+        std::fs::write(&path, &text).unwrap();
+        let e = match load_file(&path, &registry()) {
+            Ok(_) => panic!("loaded: {text}"),
+            Err(e) => e.to_string(),
+        };
+        assert!(e.contains("e.toml:"), "no location in: {e}");
+        assert!(e.contains(expected), "expected `{expected}` in: {e}");
+    }
+}
