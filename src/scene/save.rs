@@ -31,29 +31,8 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
     for (entity, shape, transform, material, flags, name, parent) in query.without::<&Imported>().iter() {
         let mut t = toml::Table::new();
         t.insert("shape".into(), shape.kind.clone().into());
-        if let Some(name) = name {
-            t.insert("name".into(), name.0.clone().into());
-        }
-        match &material.name {
-            Some(n) => {
-                materials.insert(n.clone(), material.material.clone());
-                t.insert("material".into(), n.clone().into());
-            }
-            None => {
-                t.insert("material".into(), toml::Value::try_from(&material.material)?);
-            }
-        }
-        if !transform.is_identity() {
-            t.insert("transform".into(), toml::Value::try_from(transform)?);
-        }
-        if let Some(parent) = parent
-            && let Ok(parent_name) = scene.world.get::<&Name>(parent.0)
-        {
-            t.insert("parent".into(), parent_name.0.clone().into());
-        }
-        if flags.no_shadow {
-            t.insert("no_shadow".into(), true.into());
-        }
+        let common = CommonKeys { name, material: Some(material), transform, parent, flags };
+        common.write(scene, &mut t, &mut materials)?;
         for (k, v) in &shape.params {
             t.insert(k.clone(), v.clone());
         }
@@ -65,30 +44,8 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
         let mut t = toml::Table::new();
         t.insert("shape".into(), MESH_SHAPE.into());
         t.insert("file".into(), source.file.clone().into());
-        if let Some(name) = name {
-            t.insert("name".into(), name.0.clone().into());
-        }
-        match &source.material {
-            Some(MaterialComponent { name: Some(n), material }) => {
-                materials.insert(n.clone(), material.clone());
-                t.insert("material".into(), n.clone().into());
-            }
-            Some(MaterialComponent { name: None, material }) => {
-                t.insert("material".into(), toml::Value::try_from(material)?);
-            }
-            None => {}
-        }
-        if !transform.is_identity() {
-            t.insert("transform".into(), toml::Value::try_from(transform)?);
-        }
-        if let Some(parent) = parent
-            && let Ok(parent_name) = scene.world.get::<&Name>(parent.0)
-        {
-            t.insert("parent".into(), parent_name.0.clone().into());
-        }
-        if flags.no_shadow {
-            t.insert("no_shadow".into(), true.into());
-        }
+        let common = CommonKeys { name, material: source.material.as_ref(), transform, parent, flags };
+        common.write(scene, &mut t, &mut materials)?;
         if !source.material_map.is_empty() {
             let mut map = toml::Table::new();
             for (file_name, component) in &source.material_map {
@@ -138,4 +95,49 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
     }
     let body = toml::to_string_pretty(&doc)?;
     Ok(format!("# Written by `prism save`: a self-contained copy of the scene (includes flattened).\n\n{body}"))
+}
+
+/// The keys every `[[object]]` shares: name, material, transform, parent, no_shadow.
+struct CommonKeys<'a> {
+    name: Option<&'a Name>,
+    material: Option<&'a MaterialComponent>,
+    transform: &'a Transform,
+    parent: Option<&'a Parent>,
+    flags: &'a ObjectFlags,
+}
+
+impl CommonKeys<'_> {
+    /// Writes the keys into `table`; named materials are collected into `materials`.
+    fn write(
+        &self,
+        scene: &Scene,
+        table: &mut toml::Table,
+        materials: &mut BTreeMap<String, Material>,
+    ) -> Result<(), toml::ser::Error> {
+        if let Some(name) = self.name {
+            table.insert("name".into(), name.0.clone().into());
+        }
+        match self.material {
+            Some(MaterialComponent { name: Some(n), material }) => {
+                materials.insert(n.clone(), material.clone());
+                table.insert("material".into(), n.clone().into());
+            }
+            Some(MaterialComponent { name: None, material }) => {
+                table.insert("material".into(), toml::Value::try_from(material)?);
+            }
+            None => {}
+        }
+        if !self.transform.is_identity() {
+            table.insert("transform".into(), toml::Value::try_from(self.transform)?);
+        }
+        if let Some(parent) = self.parent
+            && let Ok(parent_name) = scene.world.get::<&Name>(parent.0)
+        {
+            table.insert("parent".into(), parent_name.0.clone().into());
+        }
+        if self.flags.no_shadow {
+            table.insert("no_shadow".into(), true.into());
+        }
+        Ok(())
+    }
 }
