@@ -272,44 +272,39 @@ impl TriangleBvh {
     #[inline]
     pub fn closest(&self, ray: &WatertightRay, t_max: f32, accept: impl FnMut(usize, TriangleHit) -> Option<f32>) {
         let prepared = Prepared::new(ray);
-        // Left uninitialised: the traversal writes every slot before reading it.
-        let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; 160];
-        let mut heap;
-        let stack: &mut [MaybeUninit<(u32, f32)>] = if self.stack_size <= stack.len() {
-            &mut stack
-        } else {
-            heap = vec![MaybeUninit::uninit(); self.stack_size];
-            &mut heap
-        };
-        #[cfg(target_arch = "x86_64")]
-        if simd::available() {
-            // SAFETY: the CPU has AVX2 and FMA (checked at run time).
-            unsafe { simd::closest(self, &prepared, t_max, stack, accept) };
-            return;
-        }
-        traverse::<Scalar, false>(self, &prepared, t_max, stack, &mut AcceptClosest(accept));
+        with_traversal_stack(self.stack_size, |stack| {
+            #[cfg(target_arch = "x86_64")]
+            if simd::available() {
+                // SAFETY: the CPU has AVX2 and FMA (checked at run time).
+                unsafe { simd::closest(self, &prepared, t_max, stack, accept) };
+                return;
+            }
+            traverse::<Scalar, false>(self, &prepared, t_max, stack, &mut AcceptClosest(accept));
+        })
     }
 
     /// True when `accept` takes any f32 hit with `t < t_max`.
     #[inline]
     pub fn any(&self, ray: &WatertightRay, t_max: f32, accept: impl FnMut(usize, TriangleHit) -> bool) -> bool {
         let prepared = Prepared::new(ray);
-        // Left uninitialised: the traversal writes every slot before reading it.
-        let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; 160];
-        let mut heap;
-        let stack: &mut [MaybeUninit<(u32, f32)>] = if self.stack_size <= stack.len() {
-            &mut stack
-        } else {
-            heap = vec![MaybeUninit::uninit(); self.stack_size];
-            &mut heap
-        };
-        #[cfg(target_arch = "x86_64")]
-        if simd::available() {
-            // SAFETY: the CPU has AVX2 and FMA (checked at run time).
-            return unsafe { simd::any(self, &prepared, t_max, stack, accept) };
-        }
-        traverse::<Scalar, true>(self, &prepared, t_max, stack, &mut AcceptAny(accept, false))
+        with_traversal_stack(self.stack_size, |stack| {
+            #[cfg(target_arch = "x86_64")]
+            if simd::available() {
+                // SAFETY: the CPU has AVX2 and FMA (checked at run time).
+                return unsafe { simd::any(self, &prepared, t_max, stack, accept) };
+            }
+            traverse::<Scalar, true>(self, &prepared, t_max, stack, &mut AcceptAny(accept, false))
+        })
     }
+}
+
+/// Runs `f` with a traversal stack of `size` slots: on the call stack when it fits (the
+/// usual case), on the heap for degenerate, very deep trees.
+#[inline(always)]
+fn with_traversal_stack<R>(size: usize, f: impl FnOnce(&mut [MaybeUninit<(u32, f32)>]) -> R) -> R {
+    // Left uninitialised: the traversal writes every slot before reading it.
+    let mut local = [const { MaybeUninit::<(u32, f32)>::uninit() }; 160];
+    if size <= local.len() { f(&mut local) } else { f(&mut vec![MaybeUninit::uninit(); size]) }
 }
 
 impl TriangleBvh {

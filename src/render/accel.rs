@@ -41,6 +41,13 @@ fn to_obvhs_aabb(b: &prism_api::Aabb) -> obvhs::aabb::Aabb {
     obvhs::aabb::Aabb { min: Vec3A::from(min), max: Vec3A::from(max) }
 }
 
+/// The f32 ray the BVH traverses, reaching up to `t_max` rounded up so that f32 pruning
+/// never drops a box holding a hit at exactly `t_max`.
+fn bvh_ray(ray: &Ray, t_max: f64) -> obvhs::ray::Ray {
+    let tmax = if t_max.is_finite() { (t_max as f32).next_up() } else { f32::INFINITY };
+    obvhs::ray::Ray::new(Vec3A::from(ray.origin.as_vec3()), Vec3A::from(ray.direction.as_vec3()), 0.0, tmax)
+}
+
 impl Accel {
     /// Builds the BVH over `primitives`' world bounds.
     pub fn build(primitives: &[Primitive]) -> Self {
@@ -98,14 +105,9 @@ impl Accel {
         }
         if let Some(bvh) = &self.bvh {
             let mut hit = obvhs::ray::RayHit::none();
-            let tmax = if best_t.is_finite() { (best_t as f32).next_up() } else { f32::INFINITY };
-            let bvh_ray = obvhs::ray::Ray::new(
-                Vec3A::from(ray.origin.as_vec3()),
-                Vec3A::from(ray.direction.as_vec3()),
-                0.0,
-                tmax,
-            );
-            bvh.ray_traverse(bvh_ray, &mut hit, |_, slot| test(self.leaf_primitive[slot], &mut best_t, &mut best));
+            bvh.ray_traverse(bvh_ray(ray, best_t), &mut hit, |_, slot| {
+                test(self.leaf_primitive[slot], &mut best_t, &mut best)
+            });
         }
         best
     }
@@ -130,12 +132,9 @@ impl Accel {
             return true;
         }
         let Some(bvh) = &self.bvh else { return false };
-        let bvh_ray = obvhs::ray::Ray::new(
-            Vec3A::from(ray.origin.as_vec3()),
-            Vec3A::from(ray.direction.as_vec3()),
-            0.0,
-            (t_max as f32).next_up(),
-        );
-        !bvh.ray_traverse_miss(bvh_ray, |_, slot| if test(self.leaf_primitive[slot]) { 0.0 } else { f32::INFINITY })
+        !bvh.ray_traverse_miss(
+            bvh_ray(ray, t_max),
+            |_, slot| if test(self.leaf_primitive[slot]) { 0.0 } else { f32::INFINITY },
+        )
     }
 }

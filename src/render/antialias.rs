@@ -10,7 +10,8 @@
 use glam::{DVec2, DVec3};
 
 use super::camera::pov_screen;
-use super::classic::{Classic, PathState, lens_sample};
+use super::classic::{Classic, PathState};
+use super::sampling::concentric_disc;
 use super::sampling::{CmjPattern, SampleStream, hash4, mix64};
 use super::scene::RenderScene;
 use crate::scene::components::Antialias;
@@ -86,7 +87,7 @@ impl Sampler<'_> {
         let mut sum = DVec3::ZERO;
         for s in 0..samples {
             let offset = offsets.sample(s) - DVec2::splat(0.5);
-            let lens = lens_sample(lenses.sample(s));
+            let lens = concentric_disc(lenses.sample(s));
             let (x0, y0) = pov_screen(x + offset.x, y + offset.y, self.width, self.height);
             let stream = SampleStream { pixel: key, sample: u64::from(s), seed: settings.seed };
             sum += self.radiance(x0, y0, lens, stream);

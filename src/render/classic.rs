@@ -5,7 +5,7 @@
 //! Fresnel, metallic, exponent), refraction with an interior stack, interior fade, and the
 //! max_trace_level / adc_bailout limits that return black.
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use prism_api::Ray;
 
 use super::sampling::SampleStream;
@@ -560,11 +560,6 @@ fn interior_fade(m: &Material, s: f64, shadow: bool) -> DVec3 {
     } else {
         fade_color + (DVec3::ONE - fade_color) / (1.0 + (s / m.fade_distance).powf(m.fade_power))
     }
-}
-
-/// A unit-disc lens sample for thin-lens depth of field.
-pub fn lens_sample(u: DVec2) -> DVec2 {
-    super::sampling::concentric_disc(u)
 }
 
 #[cfg(test)]

@@ -173,7 +173,7 @@ pub fn render_pixel(scene: &RenderScene, integrator: &Classic, x: u32, y: u32) -
         let offset = patterns.as_ref().map_or(DVec2::splat(0.5), |(p, _)| p.sample(s));
         let lens = if scene.camera.aperture > 0.0 {
             let u = patterns.as_ref().map_or_else(|| stream.uniform2(2), |(_, p)| p.sample(s));
-            classic::lens_sample(u)
+            sampling::concentric_disc(u)
         } else {
             DVec2::ZERO
         };
