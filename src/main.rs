@@ -39,7 +39,8 @@ enum Command {
     Save {
         /// The scene file.
         scene: PathBuf,
-        /// Where to write it (standard output when absent).
+        /// Where to write it (standard output when absent). Mesh and texture paths are written
+        /// relative to this file when possible, absolute on standard output.
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
@@ -165,6 +166,9 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
         output::check_writable(path).map_err(|e| e.to_string())?;
     }
     let render_scene = prepare(&mut scene).map_err(|e| e.to_string())?;
+    for warning in prism::scene::validate::warnings(&scene) {
+        eprintln!("warning: {warning}");
+    }
     let options = RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal() };
     let (film, stats) = render(&render_scene, &options).map_err(|e| e.to_string())?;
     for path in &outputs {
@@ -188,7 +192,13 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
 fn save_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
     let registry = plugins::registry();
     let scene = load_file(path, &registry).map_err(|e| e.to_string())?;
-    let text = prism::scene::save::save(&scene).map_err(|e| format!("{}: cannot write scene: {e}", path.display()))?;
+    // Written to a file, mesh and texture paths are relative to it; on standard output,
+    // whose destination is unknown, they stay absolute.
+    let text = match output {
+        Some(out) => prism::scene::save::save_for(&scene, out),
+        None => prism::scene::save::save(&scene),
+    };
+    let text = text.map_err(|e| format!("{}: cannot write scene: {e}", path.display()))?;
     match output {
         Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
         None => {

@@ -50,6 +50,14 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
                 "type": "object",
                 "description": "Replace the file's materials by name with scene materials.",
                 "additionalProperties": { "anyOf": [{ "type": "string" }, material] }
+            },
+            "import_lights": {
+                "type": "boolean",
+                "description": "glTF: add the file's KHR_lights_punctual lights, placed by their nodes under this object's transform."
+            },
+            "import_camera": {
+                "description": "glTF: the scene's camera is the file's camera (true: the first; a number: its index in the file's cameras; a string: its name or its node's name). [camera] may then set only aperture and focal_distance.",
+                "anyOf": [{ "type": "boolean" }, { "type": "integer", "minimum": 0 }, { "type": "string" }]
             }
         }
     });

@@ -216,14 +216,30 @@ fn mesh_objects_round_trip_through_save() {
         saved.contains("shape = \"mesh\"") && saved.contains("material_map") && saved.contains("smooth_angle"),
         "{saved}"
     );
-    // Written elsewhere, the copy still finds its files and textures (paths are saved absolute).
+    // Without a destination the paths are absolute: the text loads wherever it is written.
+    let absolute = std::fs::canonicalize(&cornell).unwrap().display().to_string();
+    assert!(saved.contains(&format!("file = {absolute:?}")), "{saved}");
     let other = tempfile::tempdir().unwrap();
     let copy = other.path().join("copy.toml");
     std::fs::write(&copy, &saved).unwrap();
     let mut second = load_file(&copy, &registry).unwrap();
+    // Saved for a file elsewhere, the paths are relative to that file's directory.
+    let nested = other.path().join("deeper/still");
+    std::fs::create_dir_all(&nested).unwrap();
+    let relative_copy = nested.join("relative.toml");
+    let relative_text = prism::scene::save::save_for(&first, &relative_copy).unwrap();
+    assert!(!relative_text.contains(&format!("{absolute:?}")), "{relative_text}");
+    assert!(relative_text.contains("file = \"../../../") && relative_text.contains("cornell_box/cornell_box.obj\""));
+    let texture_absolute = std::fs::canonicalize(&texture).unwrap().display().to_string();
+    assert!(!relative_text.contains(&format!("{texture_absolute:?}")), "texture paths are relative too");
+    assert!(relative_text.contains("BoxTextured/CesiumLogoFlat.png\""), "{relative_text}");
+    std::fs::write(&relative_copy, &relative_text).unwrap();
+    let mut third = load_file(&relative_copy, &registry).unwrap();
     let a = render(&prism::prepare(&mut first).unwrap(), &RenderOptions::default()).unwrap().0;
     let b = render(&prism::prepare(&mut second).unwrap(), &RenderOptions::default()).unwrap().0;
+    let c = render(&prism::prepare(&mut third).unwrap(), &RenderOptions::default()).unwrap().0;
     assert_eq!(a.pixels, b.pixels, "the saved scene renders differently");
+    assert_eq!(a.pixels, c.pixels, "the scene saved with relative paths renders differently");
     assert!(a.pixels.iter().any(|p| p[0] > 0.0));
 }
 

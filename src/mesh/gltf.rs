@@ -1,7 +1,9 @@
 //! glTF 2.0 import (`.gltf` with external or data-URI buffers, `.glb`) through the gltf
 //! crate. The default scene's node tree becomes [`ModelNode`]s; every triangle primitive
 //! (indexed or not; strips and fans converted) becomes a [`ModelPart`] with its material
-//! mapped to Prism's. Points and lines are skipped with a warning.
+//! mapped to Prism's. Points and lines are skipped with a warning. Cameras and
+//! `KHR_lights_punctual` lights on nodes are recorded ([`ModelCamera`], [`ModelLight`]); the
+//! scene decides whether to use them (`mesh::cameras_lights`).
 //!
 //! The crate validates the JSON; this module checks what it does not: buffer views and
 //! accessors inside their buffers, index ranges, node cycles, and finite positions. A
@@ -16,7 +18,8 @@ use gltf::mesh::Mode;
 
 use super::texture::{ColorSpace, TextureRef, TextureStore, Wrap};
 use super::{
-    AlphaMask, ImportError, MeshBuilder, MeshData, MeshShape, Model, ModelNode, ModelPart, NormalMap, SurfaceMaps,
+    AlphaMask, CameraProjection, ImportError, MeshBuilder, MeshData, MeshShape, Model, ModelCamera, ModelLight,
+    ModelNode, ModelPart, NormalMap, PunctualKind, SurfaceMaps,
 };
 use crate::color::Rgb;
 use crate::material::{Material, Pbr};
@@ -42,6 +45,7 @@ pub fn import(path: &Path, textures: &mut TextureStore) -> Result<Model, ImportE
         .ok_or_else(|| err("the file has no scene".into()))?;
     let mut importer = Importer {
         path,
+        document: &document,
         canonical: &canonical,
         buffers: &buffers,
         textures,
@@ -129,6 +133,7 @@ fn check_views_and_accessors(document: &gltf::Document, buffers: &[gltf::buffer:
 
 struct Importer<'a> {
     path: &'a Path,
+    document: &'a gltf::Document,
     canonical: &'a Path,
     buffers: &'a [gltf::buffer::Data],
     textures: &'a mut TextureStore,
@@ -174,12 +179,60 @@ impl Importer<'_> {
                 self.primitive(index, &mesh, &primitive)?;
             }
         }
+        if let Some(camera) = node.camera() {
+            let projection = self.projection(camera.index());
+            self.model.cameras.push(ModelCamera {
+                node: index,
+                index: camera.index(),
+                name: camera.name().map(str::to_string),
+                projection,
+            });
+        }
+        if let Some(light) = node.light() {
+            let kind = match light.kind() {
+                gltf::khr_lights_punctual::Kind::Point => PunctualKind::Point,
+                gltf::khr_lights_punctual::Kind::Directional => PunctualKind::Directional,
+                gltf::khr_lights_punctual::Kind::Spot { inner_cone_angle, outer_cone_angle } => PunctualKind::Spot {
+                    inner_cone_angle: f64::from(inner_cone_angle),
+                    outer_cone_angle: f64::from(outer_cone_angle),
+                },
+            };
+            self.model.lights.push(ModelLight {
+                node: index,
+                index: light.index(),
+                name: light.name().map(str::to_string),
+                kind,
+                color: light.color().map(f64::from),
+                intensity: f64::from(light.intensity()),
+                range: light.range().map(f64::from),
+            });
+        }
         stack.push(node.index());
         for child in node.children() {
             self.node(child, Some(index), stack)?;
         }
         stack.pop();
         Ok(())
+    }
+
+    /// Camera `index`'s projection, read from the JSON (the crate's accessor panics when the
+    /// `type` and the parameters disagree).
+    fn projection(&self, index: usize) -> Result<CameraProjection, String> {
+        use gltf::json::camera::Type;
+        use gltf::json::validation::Checked;
+        let camera = self.document.as_json().cameras.get(index).ok_or("the camera does not exist")?;
+        match (&camera.type_, &camera.perspective, &camera.orthographic) {
+            (Checked::Valid(Type::Perspective), Some(p), _) => Ok(CameraProjection::Perspective {
+                yfov: f64::from(p.yfov),
+                aspect_ratio: p.aspect_ratio.map(f64::from),
+            }),
+            (Checked::Valid(Type::Orthographic), _, Some(o)) => {
+                Ok(CameraProjection::Orthographic { xmag: f64::from(o.xmag), ymag: f64::from(o.ymag) })
+            }
+            (Checked::Valid(Type::Perspective), None, _) => Err("type `perspective` without `perspective`".into()),
+            (Checked::Valid(Type::Orthographic), _, None) => Err("type `orthographic` without `orthographic`".into()),
+            (Checked::Invalid, _, _) => Err("unknown camera type".into()),
+        }
     }
 
     fn primitive(&mut self, node: usize, mesh: &gltf::Mesh, primitive: &gltf::Primitive) -> Result<(), ImportError> {

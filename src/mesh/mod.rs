@@ -7,6 +7,7 @@
 //! See `docs/meshes.md` for the import rules and the material mapping.
 
 pub mod bvh;
+pub mod cameras_lights;
 pub mod gltf;
 pub mod intersect;
 pub mod obj;
@@ -549,13 +550,86 @@ pub struct ModelPart {
     pub material_name: Option<String>,
 }
 
-/// An imported mesh file: node tree, parts, and what was skipped.
+/// A camera on a node of an imported file (glTF `cameras`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelCamera {
+    /// Index into [`Model::nodes`] of the node that holds the camera.
+    pub node: usize,
+    /// The camera's index in the file's `cameras` array.
+    pub index: usize,
+    /// The camera's name in the file, if any.
+    pub name: Option<String>,
+    /// The projection, or what is wrong with the file's description of it.
+    pub projection: Result<CameraProjection, String>,
+}
+
+/// The projection of a [`ModelCamera`] (glTF units: radians, file units).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CameraProjection {
+    /// A pinhole camera.
+    Perspective {
+        /// Vertical field of view in radians.
+        yfov: f64,
+        /// Width / height of the viewport the file was made for, if it says.
+        aspect_ratio: Option<f64>,
+    },
+    /// A parallel projection.
+    Orthographic {
+        /// Half the viewport's width.
+        xmag: f64,
+        /// Half the viewport's height.
+        ymag: f64,
+    },
+}
+
+/// The kind of a [`ModelLight`] (`KHR_lights_punctual` types).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PunctualKind {
+    /// Shines in all directions from the node's origin; intensity in candela.
+    Point,
+    /// Shines down the node's -z within a cone; intensity in candela.
+    Spot {
+        /// Angle in radians from the axis where the falloff begins.
+        inner_cone_angle: f64,
+        /// Angle in radians from the axis where the light reaches zero.
+        outer_cone_angle: f64,
+    },
+    /// Parallel light down the node's -z, infinitely far; intensity in lux.
+    Directional,
+}
+
+/// A `KHR_lights_punctual` light on a node of an imported file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelLight {
+    /// Index into [`Model::nodes`] of the node that holds the light.
+    pub node: usize,
+    /// The light's index in the file's `KHR_lights_punctual.lights` array.
+    pub index: usize,
+    /// The light's name in the file, if any.
+    pub name: Option<String>,
+    /// Point, spot or directional.
+    pub kind: PunctualKind,
+    /// Linear RGB colour.
+    pub color: [f64; 3],
+    /// Candela (point, spot) or lux (directional).
+    pub intensity: f64,
+    /// Distance where the file says the light may be considered zero, if given.
+    pub range: Option<f64>,
+}
+
+/// An imported mesh file: node tree, parts, cameras and lights, and what was skipped.
 #[derive(Clone, Debug, Default)]
 pub struct Model {
     /// Nodes, parents before children.
     pub nodes: Vec<ModelNode>,
     /// Mesh parts.
     pub parts: Vec<ModelPart>,
+    /// Cameras on nodes of the imported scene, in depth-first node order (imported only when
+    /// the scene asks: `import_camera`).
+    pub cameras: Vec<ModelCamera>,
+    /// Lights on nodes of the imported scene, in depth-first node order (imported only when
+    /// the scene asks: `import_lights`).
+    pub lights: Vec<ModelLight>,
     /// Things in the file that were skipped or approximated.
     pub warnings: Vec<String>,
 }
@@ -662,20 +736,22 @@ impl MeshStore {
 /// and `Parent`; the imported parts are its descendants, marked [`Imported`].
 #[derive(Clone, Debug)]
 pub struct MeshSource {
-    /// The mesh file, as an absolute path (so a saved copy of the scene finds it anywhere).
+    /// The mesh file, as an absolute path (`save` writes it relative to the saved file when it
+    /// can).
     pub file: String,
     /// The material override, if the object gave one.
     pub material: Option<crate::scene::components::MaterialComponent>,
     /// Materials replacing the file's materials by name (`material_map`).
     pub material_map: std::collections::BTreeMap<String, crate::scene::components::MaterialComponent>,
-    /// The other mesh parameters as written (`smooth_angle`; not `file` or `material_map`).
+    /// The other mesh parameters as written (`smooth_angle`, `import_lights`,
+    /// `import_camera`; not `file` or `material_map`).
     pub params: toml::Table,
     /// The imported model (shared between objects naming the same file).
     pub model: Arc<Model>,
 }
 
-/// Marks entities created from a mesh file (nodes and parts): `save` skips them, since
-/// loading the file recreates them.
+/// Marks entities created from a mesh file (nodes, parts and imported lights): `save` skips
+/// them, since loading the file recreates them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Imported;
 

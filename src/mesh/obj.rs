@@ -104,7 +104,8 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
             material_name: name,
         });
     }
-    Ok(Model { nodes: vec![ModelNode { name: None, parent: None, local: DAffine3::IDENTITY }], parts, warnings })
+    let nodes = vec![ModelNode { name: None, parent: None, local: DAffine3::IDENTITY }];
+    Ok(Model { nodes, parts, warnings, ..Model::default() })
 }
 
 fn empty_library() -> tobj::MTLLoadResult {

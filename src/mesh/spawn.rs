@@ -14,7 +14,16 @@ use crate::scene::components::{MaterialComponent, ObjectFlags, Origin, Parent, S
 pub const MESH_SHAPE: &str = "mesh";
 
 /// Keys of a mesh object besides the common object keys.
-pub const MESH_KEYS: [&str; 3] = ["file", "smooth_angle", "material_map"];
+pub const MESH_KEYS: [&str; 5] = ["file", "smooth_angle", "material_map", "import_lights", "import_camera"];
+
+/// The entities a mesh object became.
+#[derive(Clone, Debug)]
+pub struct SpawnedModel {
+    /// The object's own entity (the one names, parents and saving refer to).
+    pub root: hecs::Entity,
+    /// One entity per node of [`Model::nodes`], in the same order.
+    pub nodes: Vec<hecs::Entity>,
+}
 
 /// A transform component holding `m` as a matrix (or nothing for the identity).
 pub fn transform_of(m: &DAffine3) -> Transform {
@@ -25,15 +34,14 @@ pub fn transform_of(m: &DAffine3) -> Transform {
     Transform { matrix: Some(rows), ..Transform::default() }
 }
 
-/// Spawns the root entity of a mesh object and its imported descendants; returns the root
-/// (the entity that names, parents and saving refer to).
+/// Spawns the root entity of a mesh object and its imported descendants (nodes and parts).
 pub fn spawn_model(
     world: &mut hecs::World,
     source: MeshSource,
     transform: Transform,
     flags: ObjectFlags,
     origin: &Location,
-) -> hecs::Entity {
+) -> SpawnedModel {
     let model: Arc<Model> = source.model.clone();
     let material_override = source.material.clone();
     let material_map = source.material_map.clone();
@@ -66,5 +74,5 @@ pub fn spawn_model(
             Origin(origin.clone()),
         ));
     }
-    root
+    SpawnedModel { root, nodes }
 }

@@ -13,10 +13,12 @@ use super::components::{
     ShapeComponent, Transform,
 };
 use super::source::{ParsedFile, deserialize_at};
+use super::transforms::world_from_local;
 use crate::diagnostics::{Diagnostic, Location, SceneError};
 use crate::material::Material;
+use crate::mesh::cameras_lights::{self, CameraChoice, ImportedCamera};
 use crate::mesh::spawn::{MESH_KEYS, MESH_SHAPE};
-use crate::mesh::{ImportOptions, MeshSource, MeshStore};
+use crate::mesh::{CameraProjection, ImportOptions, Imported, MeshSource, MeshStore, Model};
 use crate::registry::ShapeRegistry;
 
 /// Top-level keys of a scene file.
@@ -64,6 +66,38 @@ impl SceneSource for Embedded {
     }
 }
 
+/// Spawns the lights of every `import_lights` object, placed by their node's world transform
+/// (parents are linked by now; a parent cycle is reported later by `resolve_transforms`).
+fn spawn_imported_lights(world: &mut hecs::World, imports: Vec<LightImport>) {
+    for import in imports {
+        let Some(object) = world_from_local(world, import.root) else { continue };
+        let scale = cameras_lights::uniform_scale(&object);
+        for light in &import.model.lights {
+            let Some(world_from_light) = world_from_local(world, import.nodes[light.node]) else { continue };
+            if let Some(range) = light.range {
+                eprintln!(
+                    "warning: {}: {}: `range` {range} is ignored (imported lights fall off with the inverse square of the distance)",
+                    import.file,
+                    cameras_lights::describe_light(light)
+                );
+            }
+            let prism_light = cameras_lights::light_from_node(light, world_from_light, scale);
+            world.spawn((prism_light, Origin(import.location.clone()), Imported));
+        }
+    }
+}
+
+/// Spawns the scene's camera from an `import_camera` object: the file's camera at its node's
+/// world transform, with the lens (`aperture`, `focal_distance`) of `[camera]`.
+fn spawn_imported_camera(world: &mut hecs::World, import: CameraImport, lens: &Camera) -> hecs::Entity {
+    let camera = match world_from_local(world, import.node) {
+        Some(world_from_camera) => cameras_lights::camera_from_node(world_from_camera, import.yfov, lens),
+        None => lens.clone(),
+    };
+    let marker = ImportedCamera { aspect_ratio: import.aspect_ratio, description: import.description };
+    world.spawn((camera, Name("camera".into()), Origin(import.location), marker))
+}
+
 /// `a/b/../c` -> `a/c` without touching the file system.
 fn normalize(path: &Path) -> PathBuf {
     let mut out = PathBuf::new();
@@ -101,6 +135,8 @@ pub fn load_from(source: &dyn SceneSource, path: &Path, registry: &ShapeRegistry
         objects: Vec::new(),
         lights: Vec::new(),
         meshes: MeshStore::new(),
+        light_imports: Vec::new(),
+        camera_import: None,
     };
     loader.load_file(path, None);
     loader.finish()
@@ -121,6 +157,40 @@ struct ObjectDef {
     table: toml::Table,
 }
 
+/// A mesh object's `import_lights = true`: its file's lights, placed once parents are known.
+struct LightImport {
+    model: std::sync::Arc<Model>,
+    /// The object's entity and its node entities (one per `model.nodes`).
+    root: hecs::Entity,
+    nodes: Vec<hecs::Entity>,
+    /// The mesh file as the scene wrote it, for warnings.
+    file: String,
+    /// The `import_lights` key.
+    location: Location,
+}
+
+/// A mesh object's `import_camera`: the chosen camera, placed once parents are known.
+struct CameraImport {
+    /// The entity of the node holding the camera.
+    node: hecs::Entity,
+    /// Vertical field of view in radians.
+    yfov: f64,
+    aspect_ratio: Option<f64>,
+    /// `file.gltf: camera 0 ...`, for messages.
+    description: String,
+    /// The object's key (`object[2]`) and the file it names, for conflict messages.
+    object_key: String,
+    file: String,
+    /// The `import_camera` key.
+    location: Location,
+}
+
+/// `[camera]` keys that may accompany an imported camera (the lens).
+const LENS_KEYS: [&str; 2] = ["aperture", "focal_distance"];
+
+/// `[camera]` keys an imported camera takes from the file (a second source is an error).
+const POSE_KEYS: [&str; 5] = ["position", "look_at", "up", "vfov", "aspect"];
+
 struct Loader<'a> {
     source: &'a dyn SceneSource,
     registry: &'a ShapeRegistry,
@@ -135,6 +205,10 @@ struct Loader<'a> {
     lights: Vec<(Light, Location)>,
     /// Imported mesh files and decoded textures, shared by every object that uses them.
     meshes: MeshStore,
+    /// Mesh objects whose file's lights are imported.
+    light_imports: Vec<LightImport>,
+    /// The mesh object whose file's camera is the scene's camera.
+    camera_import: Option<CameraImport>,
 }
 
 impl Loader<'_> {
@@ -399,6 +473,7 @@ impl Loader<'_> {
         for (i, (light, location)) in lights.into_iter().enumerate() {
             world.spawn((light, Origin(location), Name(format!("light{i}"))));
         }
+        self.check_camera_keys();
 
         if !self.diagnostics.is_empty() {
             let files = &self.files;
@@ -407,22 +482,24 @@ impl Loader<'_> {
             });
             return Err(SceneError { diagnostics: self.diagnostics });
         }
-        let camera_origin = match self.camera.origin.values().next() {
-            Some(&file) => self.files[file].locate("camera"),
-            None => Location::file_only(self.files[0].name.clone(), "camera"),
+        let render = render.expect("no diagnostics");
+        spawn_imported_lights(&mut world, std::mem::take(&mut self.light_imports));
+        let camera = camera.expect("no diagnostics");
+        let camera = match self.camera_import.take() {
+            Some(import) => spawn_imported_camera(&mut world, import, &camera),
+            None => {
+                let camera_origin = match self.camera.origin.values().next() {
+                    Some(&file) => self.files[file].locate("camera"),
+                    None => Location::file_only(self.files[0].name.clone(), "camera"),
+                };
+                world.spawn((camera, Name("camera".into()), Origin(camera_origin)))
+            }
         };
-        let camera = world.spawn((camera.expect("no diagnostics"), Name("camera".into()), Origin(camera_origin)));
         let render_origin = match self.render.origin.get("width").or_else(|| self.render.origin.values().next()) {
             Some(&file) => self.files[file].locate("render"),
             None => Location::file_only(self.files[0].name.clone(), "render"),
         };
-        Ok(Scene {
-            world,
-            render: render.expect("no diagnostics"),
-            render_origin,
-            environment: environment.expect("no diagnostics"),
-            camera,
-        })
+        Ok(Scene { world, render, render_origin, environment: environment.expect("no diagnostics"), camera })
     }
 
     fn object(
@@ -660,6 +737,28 @@ impl Loader<'_> {
                 }
             },
         };
+        let import_lights = match table.get("import_lights") {
+            None | Some(toml::Value::Boolean(false)) => false,
+            Some(toml::Value::Boolean(true)) => true,
+            Some(_) => {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.import_lights")),
+                    "`import_lights` must be true or false",
+                );
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        let camera_choice = match table.get("import_camera").map(CameraChoice::parse) {
+            None => None,
+            Some(Ok(choice)) => choice,
+            Some(Err(message)) => {
+                let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.import_camera")), message)
+                    .with_help("true takes the file's first camera; a number or a name picks one");
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
         let relative = match table.remove("file") {
             Some(toml::Value::String(s)) => s,
             Some(_) => {
@@ -676,6 +775,22 @@ impl Loader<'_> {
             }
         };
         let path = self.directory(file).join(&relative);
+        let is_gltf = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"));
+        for (wanted, what, k) in
+            [(import_lights, "lights", "import_lights"), (camera_choice.is_some(), "cameras", "import_camera")]
+        {
+            if wanted && !is_gltf {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.{k}")),
+                    format!("`{k}` needs a glTF file (.gltf or .glb): `{relative}` has no {what}"),
+                );
+                self.diagnostics.push(d);
+                return None;
+            }
+        }
         let model = match self.meshes.get(&path, &ImportOptions { smooth_angle }) {
             Ok(model) => model,
             Err(e) => {
@@ -747,13 +862,137 @@ impl Loader<'_> {
                 material_map.insert(name, component);
             }
         }
+        let lights_location = self.files[file].locate_value(&format!("{key}.import_lights"));
+        if import_lights && !self.check_lights(&model, &relative, &lights_location) {
+            ok = false;
+        }
+        let camera_location = self.files[file].locate_value(&format!("{key}.import_camera"));
+        let camera = match &camera_choice {
+            Some(choice) => match self.choose_camera(&model, choice, &relative, &camera_location) {
+                Some(chosen) => Some(chosen),
+                None => return None,
+            },
+            None => None,
+        };
         if !ok || material_failed {
             return None;
         }
-        // Saved scenes may be written elsewhere: they keep the absolute path.
+        // Absolute, so the path does not depend on where the scene is loaded from; `save`
+        // writes it relative to the saved file when it can.
         let absolute = std::fs::canonicalize(&path).unwrap_or(path).display().to_string();
-        let source = MeshSource { file: absolute, material, material_map, params: table, model };
-        Some(crate::mesh::spawn::spawn_model(world, source, transform, flags, location))
+        let source = MeshSource { file: absolute, material, material_map, params: table, model: model.clone() };
+        let spawned = crate::mesh::spawn::spawn_model(world, source, transform, flags, location);
+        if import_lights {
+            self.light_imports.push(LightImport {
+                model: model.clone(),
+                root: spawned.root,
+                nodes: spawned.nodes.clone(),
+                file: relative.clone(),
+                location: lights_location,
+            });
+        }
+        if let Some((camera_index, yfov)) = camera {
+            let camera = &model.cameras[camera_index];
+            let aspect_ratio = match camera.projection {
+                Ok(CameraProjection::Perspective { aspect_ratio, .. }) => aspect_ratio,
+                _ => None,
+            };
+            self.camera_import = Some(CameraImport {
+                node: spawned.nodes[camera.node],
+                yfov,
+                aspect_ratio,
+                description: format!("{relative}: {}", cameras_lights::describe_camera(&model, camera)),
+                object_key: key.to_string(),
+                file: relative,
+                location: camera_location,
+            });
+        }
+        Some(spawned.root)
+    }
+
+    /// `import_lights = true`: the file must have lights, and each must be usable; problems
+    /// are reported at `location`. True when all is well.
+    fn check_lights(&mut self, model: &Model, relative: &str, location: &Location) -> bool {
+        if model.lights.is_empty() {
+            let d = Diagnostic::new(
+                location.clone(),
+                format!("`{relative}` has no KHR_lights_punctual light on a node of its default scene"),
+            )
+            .with_help("remove `import_lights`, or add lights to the file");
+            self.diagnostics.push(d);
+            return false;
+        }
+        let mut ok = true;
+        for light in &model.lights {
+            if let Err(message) = cameras_lights::check_light(light) {
+                self.diagnostics.push(Diagnostic::new(location.clone(), format!("`{relative}`: {message}")));
+                ok = false;
+            }
+        }
+        ok
+    }
+
+    /// `import_camera`: the chosen camera (its index in `model.cameras` and its vertical
+    /// field of view in radians), or `None` after reporting why there is none, or that
+    /// another object already imports the camera.
+    fn choose_camera(
+        &mut self,
+        model: &Model,
+        choice: &CameraChoice,
+        relative: &str,
+        location: &Location,
+    ) -> Option<(usize, f64)> {
+        if let Some(first) = &self.camera_import {
+            let d = Diagnostic::new(
+                location.clone(),
+                format!(
+                    "two objects import the camera: `{}.import_camera` already takes it from `{}`",
+                    first.object_key, first.file
+                ),
+            )
+            .with_help(format!("first imported at {}; a scene has one camera", first.location));
+            self.diagnostics.push(d);
+            return None;
+        }
+        match cameras_lights::select_camera(model, choice) {
+            Ok(chosen) => Some(chosen),
+            Err(message) => {
+                let mut d = Diagnostic::new(location.clone(), format!("`{relative}`: {message}"));
+                if let CameraChoice::Name(name) = choice {
+                    d = d.suggest(name, cameras_lights::camera_names(model));
+                }
+                self.diagnostics.push(d);
+                None
+            }
+        }
+    }
+
+    /// With an imported camera, `[camera]` may set only the lens: a key the file's camera
+    /// sets (in any included file) is a second source for the camera and an error. (Unknown
+    /// keys are reported by the section's own check.)
+    fn check_camera_keys(&mut self) {
+        let Some(import) = &self.camera_import else { return };
+        let mut keys: Vec<(&String, &usize)> = self.camera.origin.iter().collect();
+        keys.sort();
+        let mut found = Vec::new();
+        for (k, &file) in keys {
+            if !POSE_KEYS.contains(&k.as_str()) {
+                continue;
+            }
+            let d = Diagnostic::new(
+                self.files[file].locate(&format!("camera.{k}")),
+                format!(
+                    "`camera.{k}` cannot be set: `{}.import_camera` takes the camera from `{}`",
+                    import.object_key, import.file
+                ),
+            )
+            .with_help(format!(
+                "with an imported camera, [camera] may set only {}; remove `import_camera` to place the camera here",
+                LENS_KEYS.join(" and ")
+            ));
+            found.push(d);
+        }
+        self.diagnostics.extend(found);
     }
 
     /// Resolves the texture paths of a scene material (relative to scene file `index`) to

@@ -1,19 +1,101 @@
 //! `save`: the inverse of `load`. Writes a world back as one self-contained TOML scene
 //! (includes are flattened) that loads to the identical image.
+//!
+//! Mesh and texture files are written as absolute paths ([`save`]), or relative to the
+//! directory of the file being written ([`save_for`]) when such a path exists. What a mesh file
+//! brings (nodes, parts, imported lights and camera) is not written: the mesh object's keys
+//! (`import_lights`, `import_camera`) recreate it on load.
 
 use std::collections::BTreeMap;
+use std::path::{Component, Path, PathBuf};
 
 use super::Scene;
 use super::components::{Light, MaterialComponent, Name, ObjectFlags, Parent, ShapeComponent, Transform};
 use crate::material::Material;
+use crate::mesh::cameras_lights::ImportedCamera;
 use crate::mesh::spawn::MESH_SHAPE;
 use crate::mesh::{Imported, MeshSource};
 
-/// The scene as TOML text.
+/// The scene as TOML text, with absolute file paths (the text loads wherever it is written).
 pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
+    write_scene(scene, &FilePaths::Absolute)
+}
+
+/// The scene as TOML text to be written to `output`: mesh and texture paths are relative to
+/// `output`'s directory when a relative path exists (absolute otherwise, e.g. on another
+/// drive), so the written file loads to the identical image.
+pub fn save_for(scene: &Scene, output: &Path) -> Result<String, toml::ser::Error> {
+    let directory = output.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let base = std::fs::canonicalize(directory).or_else(|_| std::path::absolute(directory)).ok();
+    match base {
+        Some(base) => write_scene(scene, &FilePaths::RelativeTo(base)),
+        None => write_scene(scene, &FilePaths::Absolute),
+    }
+}
+
+/// How file paths (held absolute in the world) are written.
+enum FilePaths {
+    /// As they are.
+    Absolute,
+    /// Relative to this absolute directory when possible.
+    RelativeTo(PathBuf),
+}
+
+impl FilePaths {
+    fn write(&self, absolute: &str) -> String {
+        match self {
+            FilePaths::Absolute => absolute.to_string(),
+            FilePaths::RelativeTo(base) => match relative_path(Path::new(absolute), base) {
+                Some(relative) => relative.display().to_string(),
+                None => absolute.to_string(),
+            },
+        }
+    }
+
+    /// `material` as a TOML value with its texture paths written this way.
+    fn material(&self, material: &Material) -> Result<toml::Value, toml::ser::Error> {
+        let mut material = material.clone();
+        for (texture, _) in material.textures_mut() {
+            texture.file = self.write(&texture.file);
+        }
+        toml::Value::try_from(&material)
+    }
+}
+
+/// The path leading from directory `base` to `target` (both absolute), with `..` where it
+/// climbs; `None` when there is none (a relative argument, another drive or root).
+pub fn relative_path(target: &Path, base: &Path) -> Option<PathBuf> {
+    if !target.is_absolute() || !base.is_absolute() {
+        return None;
+    }
+    let target: Vec<Component> = target.components().collect();
+    let base: Vec<Component> = base.components().collect();
+    // The root (and on Windows the drive) must agree.
+    let roots = |c: &&Component| matches!(c, Component::Prefix(_) | Component::RootDir);
+    if target.iter().take_while(roots).ne(base.iter().take_while(roots)) {
+        return None;
+    }
+    if base.iter().any(|c| matches!(c, Component::ParentDir)) {
+        return None;
+    }
+    let common = target.iter().zip(&base).take_while(|(a, b)| a == b).count();
+    let mut out = PathBuf::new();
+    for _ in common..base.len() {
+        out.push("..");
+    }
+    for c in &target[common..] {
+        out.push(c.as_os_str());
+    }
+    if out.as_os_str().is_empty() {
+        out.push(".");
+    }
+    Some(out)
+}
+
+fn write_scene(scene: &Scene, paths: &FilePaths) -> Result<String, toml::ser::Error> {
     let mut doc = toml::Table::new();
     doc.insert("render".into(), toml::Value::try_from(&scene.render)?);
-    doc.insert("camera".into(), toml::Value::try_from(scene.camera())?);
+    doc.insert("camera".into(), camera_table(scene)?);
     doc.insert("world".into(), toml::Value::try_from(&scene.environment)?);
 
     let mut objects: Vec<(hecs::Entity, toml::Table)> = Vec::new();
@@ -32,7 +114,7 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
         let mut t = toml::Table::new();
         t.insert("shape".into(), shape.kind.clone().into());
         let common = CommonKeys { name, material: Some(material), transform, parent, flags };
-        common.write(scene, &mut t, &mut materials)?;
+        common.write(scene, paths, &mut t, &mut materials)?;
         for (k, v) in &shape.params {
             t.insert(k.clone(), v.clone());
         }
@@ -43,9 +125,9 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
     for (entity, source, transform, flags, name, parent) in meshes.iter() {
         let mut t = toml::Table::new();
         t.insert("shape".into(), MESH_SHAPE.into());
-        t.insert("file".into(), source.file.clone().into());
+        t.insert("file".into(), paths.write(&source.file).into());
         let common = CommonKeys { name, material: source.material.as_ref(), transform, parent, flags };
-        common.write(scene, &mut t, &mut materials)?;
+        common.write(scene, paths, &mut t, &mut materials)?;
         if !source.material_map.is_empty() {
             let mut map = toml::Table::new();
             for (file_name, component) in &source.material_map {
@@ -54,7 +136,7 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
                         materials.insert(n.clone(), component.material.clone());
                         n.clone().into()
                     }
-                    None => toml::Value::try_from(&component.material)?,
+                    None => paths.material(&component.material)?,
                 };
                 map.insert(file_name.clone(), value);
             }
@@ -68,7 +150,8 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
     objects.sort_by_key(|(e, _)| e.id());
 
     let mut lights: Vec<(hecs::Entity, toml::Table)> = Vec::new();
-    for (entity, light) in scene.world.query::<(hecs::Entity, &Light)>().iter() {
+    // Lights imported from mesh files come back with their object's `import_lights`.
+    for (entity, light) in scene.world.query::<(hecs::Entity, &Light)>().without::<&Imported>().iter() {
         let toml::Value::Table(all) = toml::Value::try_from(light)? else {
             unreachable!("a struct serialises to a table")
         };
@@ -81,7 +164,7 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
     if !materials.is_empty() {
         let mut table = toml::Table::new();
         for (name, m) in materials {
-            table.insert(name, toml::Value::try_from(&m)?);
+            table.insert(name, paths.material(&m)?);
         }
         doc.insert("materials".into(), table.into());
     }
@@ -95,6 +178,21 @@ pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {
     }
     let body = toml::to_string_pretty(&doc)?;
     Ok(format!("# Written by `prism save`: a self-contained copy of the scene (includes flattened).\n\n{body}"))
+}
+
+/// `[camera]`: every setting, or for a camera imported from a mesh file (which its object's
+/// `import_camera` recreates) only the lens.
+fn camera_table(scene: &Scene) -> Result<toml::Value, toml::ser::Error> {
+    let camera = scene.camera();
+    if scene.world.get::<&ImportedCamera>(scene.camera).is_err() {
+        return toml::Value::try_from(camera);
+    }
+    let mut lens = toml::Table::new();
+    lens.insert("aperture".into(), camera.aperture.into());
+    if let Some(f) = camera.focal_distance {
+        lens.insert("focal_distance".into(), f.into());
+    }
+    Ok(lens.into())
 }
 
 /// The keys every `[[object]]` shares: name, material, transform, parent, no_shadow.
@@ -111,6 +209,7 @@ impl CommonKeys<'_> {
     fn write(
         &self,
         scene: &Scene,
+        paths: &FilePaths,
         table: &mut toml::Table,
         materials: &mut BTreeMap<String, Material>,
     ) -> Result<(), toml::ser::Error> {
@@ -123,7 +222,7 @@ impl CommonKeys<'_> {
                 table.insert("material".into(), n.clone().into());
             }
             Some(MaterialComponent { name: None, material }) => {
-                table.insert("material".into(), toml::Value::try_from(material)?);
+                table.insert("material".into(), paths.material(material)?);
             }
             None => {}
         }
@@ -139,5 +238,21 @@ impl CommonKeys<'_> {
             table.insert("no_shadow".into(), true.into());
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn relative_paths_climb_and_descend() {
+        let rel = |t: &str, b: &str| relative_path(Path::new(t), Path::new(b)).map(|p| p.display().to_string());
+        assert_eq!(rel("/a/b/mesh.glb", "/a/b").as_deref(), Some("mesh.glb"));
+        assert_eq!(rel("/a/b/c/mesh.glb", "/a/b").as_deref(), Some("c/mesh.glb"));
+        assert_eq!(rel("/a/x/mesh.glb", "/a/b/c").as_deref(), Some("../../x/mesh.glb"));
+        assert_eq!(rel("/mesh.glb", "/a").as_deref(), Some("../mesh.glb"));
+        assert_eq!(rel("mesh.glb", "/a"), None);
+        assert_eq!(rel("/a/mesh.glb", "a"), None);
     }
 }

@@ -8,6 +8,29 @@ use super::Scene;
 use super::components::{Origin, Parent, Transform, WorldTransform};
 use crate::diagnostics::{Diagnostic, Location, SceneError};
 
+/// The world transform of `entity` computed directly from its `Transform` and `Parent` chain
+/// (for use before [`resolve_transforms`], e.g. while loading); `None` when the chain has a
+/// cycle, which `resolve_transforms` reports. Entities without a `Transform` count as the
+/// identity.
+pub fn world_from_local(world: &hecs::World, entity: hecs::Entity) -> Option<DAffine3> {
+    let mut chain = vec![entity];
+    let mut cursor = world.get::<&Parent>(entity).ok().map(|p| p.0);
+    while let Some(parent) = cursor {
+        if chain.contains(&parent) {
+            return None;
+        }
+        chain.push(parent);
+        cursor = world.get::<&Parent>(parent).ok().map(|p| p.0);
+    }
+    let mut world_from_object = DAffine3::IDENTITY;
+    for e in chain.iter().rev() {
+        if let Ok(t) = world.get::<&Transform>(*e) {
+            world_from_object *= t.parent_from_local();
+        }
+    }
+    Some(world_from_object)
+}
+
 /// Gives every entity with a `Transform` a `WorldTransform` (its own transform after all of
 /// its ancestors'). A parent cycle is an error naming the objects in it.
 pub fn resolve_transforms(scene: &mut Scene) -> Result<(), SceneError> {

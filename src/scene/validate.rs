@@ -6,6 +6,7 @@ use glam::DVec3;
 use super::Scene;
 use super::components::{Antialias, Light, LightKind, Origin, WorldTransform};
 use crate::diagnostics::{Diagnostic, Location, SceneError};
+use crate::mesh::cameras_lights::{ImportedCamera, aspect_warning};
 
 /// Largest accepted image side, and pixel count (a 64k x 64k float image is 48 GiB).
 pub const MAX_IMAGE_SIDE: u32 = 65_536;
@@ -13,6 +14,19 @@ pub const MAX_IMAGE_SIDE: u32 = 65_536;
 pub const MAX_PIXELS: u64 = 268_435_456;
 /// Largest accepted samples per pixel.
 pub const MAX_SAMPLES: u32 = 1 << 20;
+
+/// Things worth a `warning:` line that do not stop the render, as messages: a camera imported
+/// from a file made for another aspect ratio than the image's (call it once the image size is
+/// final, after command-line overrides).
+pub fn warnings(scene: &Scene) -> Vec<String> {
+    let mut out = Vec::new();
+    if let Ok(imported) = scene.world.get::<&ImportedCamera>(scene.camera)
+        && let Some(w) = aspect_warning(imported.aspect_ratio, scene.render.width, scene.render.height)
+    {
+        out.push(format!("{}: {w}", imported.description));
+    }
+    out
+}
 
 /// Checks the scene; `Ok` means it can be extracted and rendered.
 pub fn validate(scene: &Scene) -> Result<(), SceneError> {

@@ -1,0 +1,385 @@
+//! Cameras and `KHR_lights_punctual` lights of an imported glTF file, used when a mesh object
+//! asks for them (`import_camera`, `import_lights`): choosing the camera, and mapping the
+//! file's cameras and lights to Prism's [`Camera`] and [`Light`], placed by their node's world
+//! transform (the node tree of the file under the object's own transform). The mapping, with
+//! its units, is documented in `docs/meshes.md`.
+//!
+//! glTF cameras and spot and directional lights look down their node's local -z with +y up,
+//! as Prism's default camera does. Light intensities are photometric: candela for point and
+//! spot lights (inverse-square falloff), lux for directional lights. Prism's lights follow
+//! POV-Ray (no falloff unless `fade_distance` and `fade_power` are set), so imported point and
+//! spot lights get `fade_power = 2` with a tiny `fade_distance`, which makes POV-Ray's fade
+//! `2 / (1 + (d / fade_distance)^2)` an inverse square law.
+
+use std::f64::consts::PI;
+
+use glam::{DAffine3, DVec3};
+
+use super::{CameraProjection, Model, ModelCamera, ModelLight, PunctualKind};
+use crate::color::Rgb;
+use crate::scene::components::{Camera, Light, LightKind};
+
+/// Imported point and spot lights follow `I / (d^2 + LIGHT_CORE^2)` with d in file units
+/// (metres): an inverse square law softened within a millimetre of the light.
+pub const LIGHT_CORE: f64 = 1e-3;
+
+/// Imported directional lights become parallel lights whose `position` lies this many file
+/// units (metres) back along the light's direction from their node: POV-Ray's parallel lights
+/// cast shadows only from objects in front of `position`.
+pub const SUN_DISTANCE: f64 = 1e6;
+
+/// Prism light value per photometric unit: a light of `E` lux (or `I / d^2` from a point or
+/// spot light) gets a Prism intensity of `E / pi`, so a surface with Prism's `diffuse` d and
+/// colour c shows `c d E / pi`, the radiance of a Lambertian surface of albedo `c d` (the
+/// convention of physically based real-time renderers such as three.js).
+pub const PHOTOMETRIC_SCALE: f64 = 1.0 / PI;
+
+/// Which camera of the file `import_camera` asks for.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum CameraChoice {
+    /// `true`: the first camera on a node of the imported scene (depth-first node order).
+    First,
+    /// An index into the file's `cameras` array.
+    Index(usize),
+    /// The camera with this name, or else the camera on the node with this name.
+    Name(String),
+}
+
+impl CameraChoice {
+    /// The choice written as the value of `import_camera`; `Ok(None)` for `false`.
+    pub fn parse(value: &toml::Value) -> Result<Option<Self>, String> {
+        match value {
+            toml::Value::Boolean(true) => Ok(Some(Self::First)),
+            toml::Value::Boolean(false) => Ok(None),
+            toml::Value::Integer(i) => match usize::try_from(*i) {
+                Ok(i) => Ok(Some(Self::Index(i))),
+                Err(_) => Err(format!("camera index {i} is negative")),
+            },
+            toml::Value::String(s) => Ok(Some(Self::Name(s.clone()))),
+            _ => Err("`import_camera` must be true, false, a camera index or a camera name".into()),
+        }
+    }
+}
+
+/// Marks the camera entity when the camera comes from a file (`import_camera`): loading
+/// recreates it, so `save` writes only the lens keys of `[camera]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImportedCamera {
+    /// The file's aspect ratio for the camera, if it gives one (the image's is used).
+    pub aspect_ratio: Option<f64>,
+    /// `file.gltf: camera 0 ...`, for messages.
+    pub description: String,
+}
+
+/// `camera 0 `name` on node `node``: how messages name a camera of `model`.
+pub fn describe_camera(model: &Model, camera: &ModelCamera) -> String {
+    let mut s = format!("camera {}", camera.index);
+    if let Some(name) = &camera.name {
+        s.push_str(&format!(" `{name}`"));
+    }
+    if let Some(name) = model.nodes.get(camera.node).and_then(|n| n.name.as_deref()) {
+        s.push_str(&format!(" on node `{name}`"));
+    }
+    s
+}
+
+/// Every camera of `model` with its projection, for messages.
+fn list_cameras(model: &Model) -> String {
+    let all: Vec<String> = model
+        .cameras
+        .iter()
+        .map(|c| {
+            let projection = match c.projection {
+                Ok(CameraProjection::Perspective { .. }) => "perspective",
+                Ok(CameraProjection::Orthographic { .. }) => "orthographic",
+                Err(_) => "invalid",
+            };
+            format!("{} ({projection})", describe_camera(model, c))
+        })
+        .collect();
+    all.join(", ")
+}
+
+/// The names a string `import_camera` can match: camera names, then node names of cameras.
+pub fn camera_names(model: &Model) -> Vec<&str> {
+    let cameras = model.cameras.iter().filter_map(|c| c.name.as_deref());
+    let nodes = model.cameras.iter().filter_map(|c| model.nodes.get(c.node).and_then(|n| n.name.as_deref()));
+    let mut names: Vec<&str> = cameras.chain(nodes).collect();
+    names.dedup();
+    names
+}
+
+/// The camera `choice` picks, as its position in [`Model::cameras`], with its vertical field
+/// of view in radians; an error for a missing, orthographic or broken camera (Prism has only
+/// perspective cameras).
+pub fn select_camera(model: &Model, choice: &CameraChoice) -> Result<(usize, f64), String> {
+    if model.cameras.is_empty() {
+        return Err("the file has no camera on a node of its default scene".into());
+    }
+    let node_name = |c: &ModelCamera| model.nodes.get(c.node).and_then(|n| n.name.as_deref());
+    let found = match choice {
+        CameraChoice::First => Some(0),
+        CameraChoice::Index(i) => model.cameras.iter().position(|c| c.index == *i),
+        CameraChoice::Name(name) => model
+            .cameras
+            .iter()
+            .position(|c| c.name.as_deref() == Some(name))
+            .or_else(|| model.cameras.iter().position(|c| node_name(c) == Some(name))),
+    };
+    let Some(position) = found else {
+        let what = match choice {
+            CameraChoice::First => unreachable!("the list is not empty"),
+            CameraChoice::Index(i) => format!("camera {i}"),
+            CameraChoice::Name(name) => format!("camera named `{name}` (by camera or node name)"),
+        };
+        return Err(format!(
+            "the file has no {what} on a node of its default scene; its cameras: {}",
+            list_cameras(model)
+        ));
+    };
+    let camera = &model.cameras[position];
+    match camera.projection {
+        Ok(CameraProjection::Perspective { yfov, .. }) => {
+            if yfov.is_finite() && yfov > 0.0 && yfov < PI {
+                Ok((position, yfov))
+            } else {
+                Err(format!("{}: yfov {yfov} is not between 0 and pi radians", describe_camera(model, camera)))
+            }
+        }
+        Ok(CameraProjection::Orthographic { .. }) => Err(format!(
+            "{} is orthographic, and Prism has only perspective cameras; the file's cameras: {}",
+            describe_camera(model, camera),
+            list_cameras(model)
+        )),
+        Err(ref e) => Err(format!("{}: {e}", describe_camera(model, camera))),
+    }
+}
+
+/// Prism's camera for a glTF perspective camera whose node has the world transform
+/// `world_from_camera`: at the node's origin, looking down its -z with its +y up, vertical
+/// field of view `yfov` (radians). `look_at` is one world unit ahead; the lens (`aperture`,
+/// `focal_distance`) comes from `lens`.
+pub fn camera_from_node(world_from_camera: DAffine3, yfov: f64, lens: &Camera) -> Camera {
+    let position = world_from_camera.translation;
+    let direction = world_from_camera.transform_vector3(DVec3::NEG_Z).normalize_or_zero();
+    let up = world_from_camera.transform_vector3(DVec3::Y).normalize_or_zero();
+    Camera {
+        position: position.to_array(),
+        look_at: (position + direction).to_array(),
+        up: up.to_array(),
+        vfov: yfov.to_degrees(),
+        aspect: None,
+        aperture: lens.aperture,
+        focal_distance: lens.focal_distance,
+    }
+}
+
+/// The warning for a file camera made for another aspect ratio than the image's, if any.
+pub fn aspect_warning(aspect_ratio: Option<f64>, width: u32, height: u32) -> Option<String> {
+    let file = aspect_ratio?;
+    let image = f64::from(width) / f64::from(height.max(1));
+    ((file - image).abs() > 1e-3 * image).then(|| {
+        format!(
+            "the camera's aspectRatio {file} differs from the image's {width}x{height} ({image:.4}); the vertical field of view is kept"
+        )
+    })
+}
+
+/// `light 2 `name``: how messages name a light of a file.
+pub fn describe_light(light: &ModelLight) -> String {
+    match &light.name {
+        Some(name) => format!("light {} `{name}`", light.index),
+        None => format!("light {}", light.index),
+    }
+}
+
+/// Checks what Prism needs of a file's light: finite, non-negative colour and intensity, and
+/// spot cone angles with 0 <= inner <= outer <= pi/2.
+pub fn check_light(light: &ModelLight) -> Result<(), String> {
+    let what = describe_light(light);
+    if !light.color.iter().all(|c| c.is_finite() && *c >= 0.0) {
+        return Err(format!("{what}: colour {:?} must be finite and not negative", light.color));
+    }
+    if !(light.intensity.is_finite() && light.intensity >= 0.0) {
+        return Err(format!("{what}: intensity {} must be finite and not negative", light.intensity));
+    }
+    if let PunctualKind::Spot { inner_cone_angle: inner, outer_cone_angle: outer } = light.kind
+        && !(outer > 0.0 && outer <= PI / 2.0 && inner >= 0.0 && inner <= outer)
+    {
+        return Err(format!(
+            "{what}: spot cone angles inner {inner} and outer {outer} need 0 <= inner <= outer <= pi/2 (radians), outer > 0"
+        ));
+    }
+    Ok(())
+}
+
+/// Prism's light for a file's light (checked by [`check_light`]) whose node has the world
+/// transform `world_from_light`. `object_scale` is the mesh object's world scale (the cube
+/// root of its transform's determinant): file units (metres) times it are world units, so the
+/// inverse-square falloff and the sun's distance are measured in file units.
+pub fn light_from_node(light: &ModelLight, world_from_light: DAffine3, object_scale: f64) -> Light {
+    let position = world_from_light.translation;
+    let direction = world_from_light.transform_vector3(DVec3::NEG_Z).normalize_or(DVec3::NEG_Z);
+    let [r, g, b] = light.color;
+    let base = Light { color: Rgb::new(r, g, b), position: position.to_array(), ..Light::default() };
+    // POV-Ray's fade 2 / (1 + (d / f)^2) with f = core * scale, times I / (2 core^2), is
+    // I / (core^2 + (d / scale)^2): the inverse square law in file units.
+    let inverse_square = Light {
+        intensity: light.intensity * PHOTOMETRIC_SCALE / (2.0 * LIGHT_CORE * LIGHT_CORE),
+        fade_distance: LIGHT_CORE * object_scale,
+        fade_power: 2.0,
+        ..base.clone()
+    };
+    match light.kind {
+        PunctualKind::Point => Light { kind: LightKind::Point, ..inverse_square },
+        PunctualKind::Spot { inner_cone_angle, outer_cone_angle } => Light {
+            kind: LightKind::Spot,
+            point_at: (position + direction).to_array(),
+            radius: inner_cone_angle.to_degrees(),
+            falloff: outer_cone_angle.to_degrees(),
+            tightness: 0.0,
+            ..inverse_square
+        },
+        PunctualKind::Directional => Light {
+            kind: LightKind::Parallel,
+            position: (position - direction * SUN_DISTANCE * object_scale).to_array(),
+            point_at: position.to_array(),
+            intensity: light.intensity * PHOTOMETRIC_SCALE,
+            ..base
+        },
+    }
+}
+
+/// The uniform scale of an affine map: the cube root of its determinant's magnitude.
+pub fn uniform_scale(m: &DAffine3) -> f64 {
+    m.matrix3.determinant().abs().cbrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::ModelNode;
+    use glam::DQuat;
+
+    fn light(kind: PunctualKind) -> ModelLight {
+        ModelLight { node: 0, index: 0, name: None, kind, color: [1.0, 0.5, 0.25], intensity: 10.0, range: None }
+    }
+
+    /// Prism's light value at distance `d` (the classic integrator's fade).
+    fn value_at(light: &Light, d: f64) -> f64 {
+        let fade = if light.fade_power > 0.0 && light.fade_distance != 0.0 {
+            2.0 / (1.0 + (d / light.fade_distance).powf(light.fade_power))
+        } else {
+            1.0
+        };
+        light.intensity * fade
+    }
+
+    #[test]
+    fn point_lights_fall_off_with_the_inverse_square_in_file_units() {
+        let l =
+            light_from_node(&light(PunctualKind::Point), DAffine3::from_translation(DVec3::new(1.0, 2.0, 3.0)), 1.0);
+        assert_eq!(l.kind, LightKind::Point);
+        assert_eq!(l.position, [1.0, 2.0, 3.0]);
+        assert_eq!(l.color, Rgb::new(1.0, 0.5, 0.25));
+        for d in [0.5, 2.0, 10.0] {
+            let expected = 10.0 / PI / (d * d);
+            assert!((value_at(&l, d) / expected - 1.0).abs() < 1e-5, "at {d}: {} vs {expected}", value_at(&l, d));
+        }
+        // A model scaled by 100 (centimetres): the same light 100 world units away lights as
+        // it did 1 metre away.
+        let scaled = light_from_node(&light(PunctualKind::Point), DAffine3::from_scale(DVec3::splat(100.0)), 100.0);
+        assert!((value_at(&scaled, 100.0) / value_at(&l, 1.0) - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn spot_lights_point_down_their_nodes_minus_z() {
+        let kind = PunctualKind::Spot { inner_cone_angle: 0.2, outer_cone_angle: 0.4 };
+        // Turned 90 degrees about +y: -z becomes -x.
+        let m = DAffine3::from_rotation_translation(DQuat::from_rotation_y(PI / 2.0), DVec3::new(0.0, 5.0, 0.0));
+        let l = light_from_node(&light(kind), m, 1.0);
+        assert_eq!(l.kind, LightKind::Spot);
+        let axis = DVec3::from_array(l.point_at) - DVec3::from_array(l.position);
+        assert!((axis - DVec3::NEG_X).length() < 1e-12, "{axis}");
+        assert!((l.radius - 0.2f64.to_degrees()).abs() < 1e-12 && (l.falloff - 0.4f64.to_degrees()).abs() < 1e-12);
+        assert_eq!((l.fade_power, l.tightness), (2.0, 0.0));
+    }
+
+    #[test]
+    fn directional_lights_are_distant_parallel_lights_without_fade() {
+        let m = DAffine3::from_rotation_x(-PI / 2.0); // -z turns to -y: straight down
+        let l = light_from_node(&light(PunctualKind::Directional), m, 2.0);
+        assert_eq!(l.kind, LightKind::Parallel);
+        assert_eq!((l.fade_power, l.fade_distance), (0.0, 0.0));
+        assert!((l.intensity - 10.0 / PI).abs() < 1e-12);
+        let from = DVec3::from_array(l.position);
+        assert!((from - DVec3::new(0.0, 2.0 * SUN_DISTANCE, 0.0)).length() < 1e-6, "{from}");
+        assert!(DVec3::from_array(l.point_at).length() < 1e-9);
+    }
+
+    #[test]
+    fn bad_lights_are_refused() {
+        let mut l = light(PunctualKind::Spot { inner_cone_angle: 0.5, outer_cone_angle: 0.4 });
+        assert!(check_light(&l).unwrap_err().contains("cone"));
+        l.kind = PunctualKind::Spot { inner_cone_angle: 0.0, outer_cone_angle: 2.0 };
+        assert!(check_light(&l).is_err());
+        l.kind = PunctualKind::Point;
+        assert!(check_light(&l).is_ok());
+        l.intensity = -1.0;
+        assert!(check_light(&l).unwrap_err().contains("intensity"));
+        l.intensity = 1.0;
+        l.color[1] = f64::INFINITY;
+        assert!(check_light(&l).unwrap_err().contains("colour"));
+    }
+
+    fn model_with_cameras() -> Model {
+        let node = |name: &str| ModelNode { name: Some(name.into()), parent: None, local: DAffine3::IDENTITY };
+        let perspective = Ok(CameraProjection::Perspective { yfov: 0.7, aspect_ratio: Some(1.0) });
+        Model {
+            nodes: vec![node("ortho node"), node("eye")],
+            cameras: vec![
+                ModelCamera {
+                    node: 0,
+                    index: 1,
+                    name: Some("top".into()),
+                    projection: Ok(CameraProjection::Orthographic { xmag: 1.0, ymag: 1.0 }),
+                },
+                ModelCamera { node: 1, index: 0, name: None, projection: perspective },
+            ],
+            ..Model::default()
+        }
+    }
+
+    #[test]
+    fn cameras_are_chosen_by_order_index_or_name() {
+        let model = model_with_cameras();
+        let first = select_camera(&model, &CameraChoice::First).unwrap_err();
+        assert!(first.contains("orthographic") && first.contains("camera 0 on node `eye` (perspective)"), "{first}");
+        assert_eq!(select_camera(&model, &CameraChoice::Index(0)).unwrap().1, 0.7);
+        assert_eq!(select_camera(&model, &CameraChoice::Name("eye".into())).unwrap().0, 1);
+        assert!(select_camera(&model, &CameraChoice::Name("top".into())).unwrap_err().contains("orthographic"));
+        assert!(select_camera(&model, &CameraChoice::Index(7)).unwrap_err().contains("no camera 7"));
+        assert!(select_camera(&Model::default(), &CameraChoice::First).unwrap_err().contains("no camera"));
+        assert_eq!(camera_names(&model), vec!["top", "ortho node", "eye"]);
+        assert_eq!(CameraChoice::parse(&toml::Value::Integer(2)), Ok(Some(CameraChoice::Index(2))));
+        assert_eq!(CameraChoice::parse(&toml::Value::Boolean(false)), Ok(None));
+        assert!(CameraChoice::parse(&toml::Value::Integer(-1)).is_err());
+        assert!(CameraChoice::parse(&toml::Value::Float(1.5)).is_err());
+    }
+
+    #[test]
+    fn cameras_look_down_minus_z_with_y_up() {
+        let m = DAffine3::from_rotation_translation(DQuat::from_rotation_y(PI / 2.0), DVec3::new(1.0, 2.0, 3.0));
+        let lens = Camera { aperture: 0.5, focal_distance: Some(4.0), ..Camera::default() };
+        let c = camera_from_node(m, 0.5, &lens);
+        assert_eq!(c.position, [1.0, 2.0, 3.0]);
+        let view = DVec3::from_array(c.look_at) - DVec3::from_array(c.position);
+        assert!((view - DVec3::NEG_X).length() < 1e-12, "{view}");
+        assert!((DVec3::from_array(c.up) - DVec3::Y).length() < 1e-12);
+        assert!((c.vfov - 0.5f64.to_degrees()).abs() < 1e-12);
+        assert_eq!((c.aperture, c.focal_distance, c.aspect), (0.5, Some(4.0), None));
+        assert!(aspect_warning(Some(1.0), 64, 36).unwrap().contains("aspectRatio 1"));
+        assert!(aspect_warning(Some(16.0 / 9.0), 1920, 1080).is_none());
+        assert!(aspect_warning(None, 64, 36).is_none());
+    }
+}

@@ -1,0 +1,437 @@
+//! glTF cameras and KHR_lights_punctual lights imported when a scene asks for them
+//! (`import_camera`, `import_lights` on a mesh object): small glTF files built here (a quad in
+//! a `data:` buffer, nested nodes with TRS), their camera and lights checked after loading,
+//! a render lit by an imported spot light, `prism save` round trips (with paths relative to
+//! the saved file), errors through the CLI, and Khronos' Cameras sample when the shared
+//! assets are present.
+
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use glam::{DAffine3, DQuat, DVec3};
+use prism::mesh::Imported;
+use prism::plugins::registry;
+use prism::render::{RenderOptions, render};
+use prism::scene::Scene;
+use prism::scene::components::{Light, LightKind};
+use prism::scene::load::load_file;
+use serde_json::{Value, json};
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The shared asset folder, or `None` (with a message) when it is not there.
+fn shared_assets() -> Option<PathBuf> {
+    let candidates: Vec<PathBuf> = std::env::var_os("PRISM_ASSETS")
+        .map(PathBuf::from)
+        .into_iter()
+        .chain([repo().join("../shared/assets")])
+        .collect();
+    let found = candidates.iter().find(|p| p.join("gltf").is_dir()).cloned();
+    if found.is_none() {
+        eprintln!(
+            "SKIPPED: shared glTF assets not found (looked in {}); set PRISM_ASSETS to run the asset tests",
+            candidates.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+        );
+    }
+    found
+}
+
+fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::new();
+    for chunk in bytes.chunks(3) {
+        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for i in 0..4 {
+            if i <= chunk.len() {
+                out.push(ALPHABET[(n >> (18 - 6 * i) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+/// A glTF file: a 4 x 4 quad in the y = 0 plane facing +y (mesh 0, a matte white material),
+/// with the given nodes (node 0 should hold the quad), scene roots, cameras and lights.
+fn gltf(nodes: Value, roots: Value, cameras: Value, lights: Value) -> String {
+    let mut buffer = Vec::new();
+    for i in [0u16, 1, 2, 0, 2, 3] {
+        buffer.extend_from_slice(&i.to_le_bytes());
+    }
+    for p in [[-2.0f32, 0.0, -2.0], [-2.0, 0.0, 2.0], [2.0, 0.0, 2.0], [2.0, 0.0, -2.0]] {
+        for c in p {
+            buffer.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    let mut doc = json!({
+        "asset": { "version": "2.0" },
+        "scene": 0,
+        "scenes": [{ "nodes": roots }],
+        "nodes": nodes,
+        "meshes": [{ "primitives": [{ "attributes": { "POSITION": 1 }, "indices": 0, "material": 0 }] }],
+        "materials": [{ "pbrMetallicRoughness": { "metallicFactor": 0.0, "roughnessFactor": 1.0 } }],
+        "buffers": [{
+            "byteLength": buffer.len(),
+            "uri": format!("data:application/octet-stream;base64,{}", base64(&buffer))
+        }],
+        "bufferViews": [
+            { "buffer": 0, "byteOffset": 0, "byteLength": 12 },
+            { "buffer": 0, "byteOffset": 12, "byteLength": 48 }
+        ],
+        "accessors": [
+            { "bufferView": 0, "componentType": 5123, "count": 6, "type": "SCALAR" },
+            { "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3",
+              "min": [-2.0, 0.0, -2.0], "max": [2.0, 0.0, 2.0] }
+        ]
+    });
+    if cameras.as_array().is_some_and(|c| !c.is_empty()) {
+        doc["cameras"] = cameras;
+    }
+    if lights.as_array().is_some_and(|l| !l.is_empty()) {
+        doc["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+        doc["extensions"] = json!({ "KHR_lights_punctual": { "lights": lights } });
+    }
+    serde_json::to_string_pretty(&doc).unwrap()
+}
+
+/// A rotation of `degrees` about x as a glTF quaternion (x, y, z, w).
+fn about_x(degrees: f64) -> [f64; 4] {
+    let half = degrees.to_radians() / 2.0;
+    [half.sin(), 0.0, 0.0, half.cos()]
+}
+
+/// The rig: the quad; a node `rig` (translate x 1, scale 2) holding a spot light `lamp` (2 up,
+/// turned to point down) and a point light `bulb`; a directional `sun` pointing down and
+/// toward -z; a perspective camera `eye` and an orthographic camera `top`.
+fn rig() -> String {
+    let nodes = json!([
+        { "name": "floor", "mesh": 0 },
+        { "name": "rig", "translation": [1.0, 0.0, 0.0], "scale": [2.0, 2.0, 2.0], "children": [2, 3] },
+        { "name": "lamp", "translation": [0.0, 2.0, 0.0], "rotation": about_x(-90.0),
+          "extensions": { "KHR_lights_punctual": { "light": 0 } } },
+        { "name": "bulb", "translation": [0.0, 1.0, 1.0], "extensions": { "KHR_lights_punctual": { "light": 1 } } },
+        { "name": "sun", "rotation": about_x(-45.0), "extensions": { "KHR_lights_punctual": { "light": 2 } } },
+        { "name": "eye", "translation": [0.0, 3.0, 6.0], "rotation": about_x(-20.0), "camera": 0 },
+        { "name": "top", "translation": [0.0, 10.0, 0.0], "rotation": about_x(-90.0), "camera": 1 }
+    ]);
+    let cameras = json!([
+        { "name": "main", "type": "perspective", "perspective": { "yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1 } },
+        { "type": "orthographic", "orthographic": { "xmag": 3.0, "ymag": 3.0, "znear": 0.1, "zfar": 100.0 } }
+    ]);
+    let lights = json!([
+        { "name": "lamp", "type": "spot", "color": [1.0, 0.5, 0.25], "intensity": 20.0,
+          "spot": { "innerConeAngle": 0.3, "outerConeAngle": 0.5 } },
+        { "type": "point", "intensity": 5.0, "range": 10.0 },
+        { "type": "directional", "color": [0.5, 0.5, 1.0], "intensity": 3.0 }
+    ]);
+    gltf(nodes, json!([0, 1, 4, 5, 6]), cameras, lights)
+}
+
+/// The rig's object transform in the scenes below, as a glam map.
+fn object_transform() -> DAffine3 {
+    DAffine3::from_translation(DVec3::new(0.0, 0.0, -2.0)) * DAffine3::from_rotation_y(PI / 2.0)
+}
+
+const RIG_SCENE: &str = "[render]\nwidth = 48\nheight = 32\n\n[[object]]\nshape = \"mesh\"\nname = \"rig\"\n\
+                         file = \"rig.gltf\"\ntransform = { rotate = [0, 90, 0], translate = [0, 0, -2] }\n\
+                         import_lights = true\nimport_camera = \"main\"\n";
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn load(path: &Path) -> Scene {
+    load_file(path, &registry()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The lights imported from files, in load order.
+fn imported_lights(scene: &Scene) -> Vec<Light> {
+    let mut lights: Vec<(hecs::Entity, Light)> =
+        scene.world.query::<(hecs::Entity, &Light)>().with::<&Imported>().iter().map(|(e, l)| (e, l.clone())).collect();
+    lights.sort_by_key(|(e, _)| e.id());
+    lights.into_iter().map(|(_, l)| l).collect()
+}
+
+/// Equal up to the f32 precision of the file's transforms.
+fn close(a: [f64; 3], b: DVec3) -> bool {
+    (DVec3::from_array(a) - b).length() < 1e-6
+}
+
+#[test]
+fn camera_and_lights_follow_nested_nodes_under_the_object_transform() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "rig.gltf", &rig());
+    let scene = load(&write(dir.path(), "scene.toml", RIG_SCENE));
+    let object = object_transform();
+
+    // The camera: node `eye` at (0, 3, 6), tilted 20 degrees down, under the object transform.
+    let camera = scene.camera();
+    let eye = object
+        * DAffine3::from_rotation_translation(DQuat::from_rotation_x(-20f64.to_radians()), DVec3::new(0.0, 3.0, 6.0));
+    assert!(close(camera.position, eye.translation), "camera at {:?}", camera.position);
+    let view = (DVec3::from_array(camera.look_at) - DVec3::from_array(camera.position)).normalize();
+    assert!(close(view.to_array(), eye.transform_vector3(DVec3::NEG_Z)), "looks along {view}");
+    // Turned 90 degrees about y, the view that went down and toward -z goes down and toward -x.
+    assert!(view.x < -0.9 && view.y < -0.3 && view.z.abs() < 1e-6, "{view}");
+    assert!(close(camera.up, eye.transform_vector3(DVec3::Y)));
+    assert!((camera.vfov - 0.8f64.to_degrees()).abs() < 1e-5, "{}", camera.vfov);
+    assert_eq!(camera.aspect, None, "the image's aspect is used");
+
+    let lights = imported_lights(&scene);
+    assert_eq!(lights.len(), 3);
+    // The spot: rig (translate x 1, scale 2) then lamp (2 up): file position (1, 4, 0).
+    let spot = &lights[0];
+    assert_eq!(spot.kind, LightKind::Spot);
+    assert!(close(spot.position, object.transform_point3(DVec3::new(1.0, 4.0, 0.0))), "{:?}", spot.position);
+    let axis = DVec3::from_array(spot.point_at) - DVec3::from_array(spot.position);
+    assert!(close(axis.normalize().to_array(), DVec3::NEG_Y), "spot points along {axis}");
+    assert!((spot.radius - 0.3f64.to_degrees()).abs() < 1e-5 && (spot.falloff - 0.5f64.to_degrees()).abs() < 1e-5);
+    assert_eq!(spot.color.0, DVec3::new(1.0, 0.5, 0.25));
+    // Inverse square in file units: 20 cd at 2 m gives 20 / pi / 4.
+    let at = |l: &Light, d: f64| l.intensity * 2.0 / (1.0 + (d / l.fade_distance).powf(l.fade_power));
+    assert!((at(spot, 2.0) / (20.0 / PI / 4.0) - 1.0).abs() < 1e-5, "{}", at(spot, 2.0));
+    // The point light: rig then bulb (0, 1, 1) scaled by 2: file position (1, 2, 2).
+    let point = &lights[1];
+    assert_eq!(point.kind, LightKind::Point);
+    assert!(close(point.position, object.transform_point3(DVec3::new(1.0, 2.0, 2.0))), "{:?}", point.position);
+    assert_eq!(point.color.0, DVec3::ONE);
+    // The sun: a parallel light shining down its node's -z, turned with the object.
+    let sun = &lights[2];
+    assert_eq!(sun.kind, LightKind::Parallel);
+    let direction = (DVec3::from_array(sun.point_at) - DVec3::from_array(sun.position)).normalize();
+    let expected = object.transform_vector3(DQuat::from_rotation_x(-PI / 4.0) * DVec3::NEG_Z);
+    assert!(close(direction.to_array(), expected), "sun shines along {direction}, expected {expected}");
+    assert!((sun.intensity - 3.0 / PI).abs() < 1e-12 && sun.fade_power == 0.0);
+    assert_eq!(sun.color.0, DVec3::new(0.5, 0.5, 1.0));
+
+    // The scene's own render: lights, camera and quad all make it into the render scene.
+    let mut scene = scene;
+    let render_scene = prism::prepare(&mut scene).unwrap();
+    assert_eq!(render_scene.lights.len(), 3);
+}
+
+#[test]
+fn an_imported_spot_light_lights_its_cone() {
+    let dir = tempfile::tempdir().unwrap();
+    let nodes = json!([
+        { "name": "floor", "mesh": 0 },
+        { "name": "lamp", "translation": [0.0, 2.0, 0.0], "rotation": about_x(-90.0),
+          "extensions": { "KHR_lights_punctual": { "light": 0 } } }
+    ]);
+    let lights =
+        json!([{ "type": "spot", "intensity": 10.0, "spot": { "innerConeAngle": 0.2, "outerConeAngle": 0.3 } }]);
+    write(dir.path(), "spot.gltf", &gltf(nodes, json!([0, 1]), json!([]), lights));
+    let text = "[render]\nwidth = 41\nheight = 41\n[camera]\nposition = [0, 6, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, -1]\n\
+                vfov = 50\n[[object]]\nshape = \"mesh\"\nfile = \"spot.gltf\"\nimport_lights = true\n";
+    let mut scene = load(&write(dir.path(), "scene.toml", text));
+    let (film, _) = render(&prism::prepare(&mut scene).unwrap(), &RenderOptions::default()).unwrap();
+    // The cone reaches 2 tan(0.3) = 0.62 from the centre of the quad; pixel 8 is 1.6 away.
+    let inside = film.get(20, 20);
+    let outside = film.get(8, 20);
+    assert!(outside[0] > 0.05, "the quad is there (ambient): {outside:?}");
+    assert!(inside[0] > outside[0] + 0.3, "inside the cone {inside:?}, outside {outside:?}");
+    // 10 cd at 2 m: E / pi = 10 / pi / 4, times diffuse 0.6, plus ambient 0.1.
+    let expected = 0.1 + 0.6 * 10.0 / PI / 4.0;
+    assert!((f64::from(inside[0]) - expected).abs() < 0.01, "{inside:?} vs {expected}");
+}
+
+#[test]
+fn saved_scenes_recreate_imported_lights_and_camera_with_relative_paths() {
+    let dir = tempfile::tempdir().unwrap();
+    let assets = dir.path().join("assets");
+    std::fs::create_dir(&assets).unwrap();
+    write(&assets, "rig.gltf", &rig());
+    let texture = repo().join("assets/BoxTextured/CesiumLogoFlat.png");
+    std::fs::copy(&texture, assets.join("logo.png")).unwrap();
+    let text =
+        RIG_SCENE.replace("rig.gltf", "assets/rig.gltf").replace("import_camera = \"main\"", "import_camera = 0")
+            + "[camera]\naperture = 0.0\n[materials.logo]\ntexture = \"assets/logo.png\"\n\
+           [[object]]\nshape = \"sphere\"\nmaterial = \"logo\"\n[[light]]\nposition = [0, 5, 0]\n";
+    let scene_path = write(dir.path(), "scene.toml", &text);
+    let first = load(&scene_path);
+
+    // Written into a sibling folder, the copy refers to its files relatively.
+    let out_dir = dir.path().join("out");
+    std::fs::create_dir(&out_dir).unwrap();
+    let copy = out_dir.join("copy.toml");
+    let saved = prism::scene::save::save_for(&first, &copy).unwrap();
+    std::fs::write(&copy, &saved).unwrap();
+    assert!(saved.contains("file = \"../assets/rig.gltf\""), "{saved}");
+    assert!(saved.contains("\"../assets/logo.png\""), "{saved}");
+    assert!(saved.contains("import_lights = true") && saved.contains("import_camera = 0"), "{saved}");
+    assert_eq!(saved.matches("[[light]]").count(), 1, "imported lights are not written:\n{saved}");
+    let camera_table = saved.split("[camera]").nth(1).unwrap().split("\n\n").next().unwrap();
+    assert!(!camera_table.contains("position") && camera_table.contains("aperture"), "{camera_table}");
+
+    let second = load(&copy);
+    assert_eq!(first.camera(), second.camera());
+    assert_eq!(imported_lights(&first), imported_lights(&second));
+    let image = |mut s: Scene| render(&prism::prepare(&mut s).unwrap(), &RenderOptions::default()).unwrap().0;
+    let a = image(first);
+    let b = image(second);
+    assert_eq!(a.pixels, b.pixels, "the saved scene renders differently");
+    assert!(a.pixels.iter().any(|p| p[0] > 0.1));
+    // Saving the copy where it is gives the same text: save is stable.
+    assert_eq!(prism::scene::save::save_for(&load(&copy), &copy).unwrap(), saved);
+    // On standard output (no destination) the paths stay absolute.
+    let absolute = prism::scene::save::save(&load(&scene_path)).unwrap();
+    let canonical = std::fs::canonicalize(assets.join("rig.gltf")).unwrap();
+    assert!(absolute.contains(&format!("file = {:?}", canonical.display().to_string())), "{absolute}");
+}
+
+#[test]
+fn the_cli_save_writes_paths_relative_to_the_output() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "rig.gltf", &rig());
+    write(dir.path(), "scene.toml", RIG_SCENE);
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    let run = prism().current_dir(dir.path()).args(["save", "scene.toml", "-o", "sub/copy.toml"]).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let saved = std::fs::read_to_string(dir.path().join("sub/copy.toml")).unwrap();
+    assert!(saved.contains("file = \"../rig.gltf\""), "{saved}");
+    let run = prism()
+        .current_dir(dir.path())
+        .args(["render", "sub/copy.toml", "-o", "copy.png", "--width", "16", "--height", "12"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("warning:") && stderr.contains("aspectRatio 1.5"), "{stderr}");
+    assert!(stderr.contains("range") && stderr.contains("ignored"), "{stderr}");
+}
+
+fn prism() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_prism"))
+}
+
+#[test]
+fn import_errors_name_the_key_and_write_nothing() {
+    let no_lights = gltf(json!([{ "mesh": 0 }]), json!([0]), json!([]), json!([]));
+    let bad_cone = gltf(
+        json!([{ "mesh": 0 }, { "extensions": { "KHR_lights_punctual": { "light": 0 } } }]),
+        json!([0, 1]),
+        json!([]),
+        json!([{ "type": "spot", "spot": { "innerConeAngle": 0.6, "outerConeAngle": 0.5 } }]),
+    );
+    let object = |extra: &str| format!("[[object]]\nshape = \"mesh\"\nfile = \"rig.gltf\"\n{extra}\n");
+    let cases: Vec<(String, Vec<&str>)> = vec![
+        (object("import_camera = 5"), vec!["scene.toml:4:17", "object[0].import_camera", "no camera 5", "main"]),
+        (object("import_camera = 1"), vec!["scene.toml:4:17", "object[0].import_camera", "orthographic"]),
+        (object("import_camera = \"mian\""), vec!["scene.toml:4:17", "did you mean `main`"]),
+        (
+            object("import_camera = 1.5"),
+            vec!["scene.toml:4:17", "must be true, false, a camera index or a camera name"],
+        ),
+        (
+            format!("[camera]\nvfov = 30\nposition = [0, 1, 5]\n{}", object("import_camera = true")),
+            vec![
+                "scene.toml:2:1",
+                "camera.vfov",
+                "scene.toml:3:1",
+                "camera.position",
+                "cannot be set",
+                "object[0].import_camera",
+            ],
+        ),
+        (
+            format!("{}{}", object("import_camera = true"), object("import_camera = \"main\"")),
+            vec!["scene.toml:8:17", "object[1].import_camera", "two objects import the camera", "scene.toml:4:17"],
+        ),
+        (
+            object("import_lights = \"yes\""),
+            vec!["scene.toml:4:17", "object[0].import_lights", "must be true or false"],
+        ),
+        (
+            "[[object]]\nshape = \"mesh\"\nfile = \"none.gltf\"\nimport_lights = true\n".into(),
+            vec!["scene.toml:4:17", "object[0].import_lights", "no KHR_lights_punctual light"],
+        ),
+        (
+            "[[object]]\nshape = \"mesh\"\nfile = \"none.gltf\"\nimport_camera = true\n".into(),
+            vec!["scene.toml:4:17", "object[0].import_camera", "no camera"],
+        ),
+        (
+            "[[object]]\nshape = \"mesh\"\nfile = \"cone.gltf\"\nimport_lights = true\n".into(),
+            vec!["scene.toml:4:17", "object[0].import_lights", "light 0", "cone angles"],
+        ),
+        (
+            "[[object]]\nshape = \"mesh\"\nfile = \"quad.obj\"\nimport_camera = true\n".into(),
+            vec!["scene.toml:4:17", "needs a glTF file"],
+        ),
+    ];
+    let root = tempfile::tempdir().unwrap();
+    let mut failures = Vec::new();
+    for (i, (scene, expect)) in cases.iter().enumerate() {
+        let dir = root.path().join(format!("case{i}"));
+        std::fs::create_dir(&dir).unwrap();
+        write(&dir, "rig.gltf", &rig());
+        write(&dir, "none.gltf", &no_lights);
+        write(&dir, "cone.gltf", &bad_cone);
+        write(&dir, "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+        write(&dir, "scene.toml", scene);
+        let run = prism()
+            .current_dir(&dir)
+            .args(["render", "scene.toml", "-o", "out.png", "--width", "8", "--height", "6"])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        let mut problems = Vec::new();
+        if run.status.success() {
+            problems.push("exited 0".to_string());
+        }
+        if run.status.code().is_none() || stderr.contains("panicked") {
+            problems.push("panicked or was killed".to_string());
+        }
+        for e in expect {
+            if !stderr.contains(e) {
+                problems.push(format!("message lacks `{e}`"));
+            }
+        }
+        if dir.join("out.png").exists() {
+            problems.push("wrote out.png".into());
+        }
+        if !problems.is_empty() {
+            failures.push(format!("case {i}:\n{scene}\n{}\n--- stderr:\n{stderr}", problems.join("; ")));
+        }
+    }
+    assert!(failures.is_empty(), "{} of {} cases failed:\n{}", failures.len(), cases.len(), failures.join("\n"));
+}
+
+#[test]
+fn khronos_cameras_sample_gives_its_perspective_camera() {
+    let Some(assets) = shared_assets() else { return };
+    let file = assets.join("gltf/khronos-samples/Cameras/Cameras.gltf");
+    if !file.exists() {
+        eprintln!("SKIPPED: {} is missing", file.display());
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let scene_text = |choice: &str| {
+        format!(
+            "[render]\nwidth = 32\nheight = 32\n[[object]]\nshape = \"mesh\"\nfile = {:?}\nimport_camera = {choice}\n[[light]]\nposition = [0, 0, 5]\n",
+            file.display().to_string()
+        )
+    };
+    let mut scene = load(&write(dir.path(), "cameras.toml", &scene_text("0")));
+    let camera = scene.camera();
+    assert!(close(camera.position, DVec3::new(0.5, 0.5, 3.0)), "{:?}", camera.position);
+    let view = (DVec3::from_array(camera.look_at) - DVec3::from_array(camera.position)).normalize();
+    assert!((view - DVec3::NEG_Z).length() < 1e-9, "{view}");
+    assert!((camera.vfov - 0.7f64.to_degrees()).abs() < 1e-5, "{}", camera.vfov);
+    // The square (a unit quad tilted back) fills the middle of the image.
+    let (film, _) = render(&prism::prepare(&mut scene).unwrap(), &RenderOptions::default()).unwrap();
+    assert!(film.get(16, 16)[0] > 0.0 && film.get(0, 0) == [0.0; 3], "{:?} {:?}", film.get(16, 16), film.get(0, 0));
+    // `true` takes the first camera (the perspective one); camera 1 is orthographic.
+    assert_eq!(load(&write(dir.path(), "first.toml", &scene_text("true"))).camera(), camera);
+    let error = match load_file(&write(dir.path(), "ortho.toml", &scene_text("1")), &registry()) {
+        Ok(_) => panic!("an orthographic camera loaded"),
+        Err(e) => e.to_string(),
+    };
+    assert!(error.contains("ortho.toml:7:17") && error.contains("orthographic"), "{error}");
+}
