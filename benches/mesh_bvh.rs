@@ -256,6 +256,34 @@ fn trace_packets(bvh: &TriangleBvh, rays: &Rays) -> (u64, f64) {
     (hits, tsum)
 }
 
+/// Closest hits of 4x4 tiles of rays through [`TriangleBvh::closest16`].
+fn trace_packets16(bvh: &TriangleBvh, rays: &Rays) -> (u64, f64) {
+    let (w, h) = (rays.width as usize, rays.height as usize);
+    let mut hits = 0;
+    let mut tsum = 0.0;
+    let ray = |i: usize| {
+        let r = &rays.rays[i];
+        WatertightRay::new(Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5])).expect("valid ray")
+    };
+    for ty in (0..h).step_by(4) {
+        for tx in (0..w).step_by(4) {
+            let tile: [WatertightRay; 16] = std::array::from_fn(|k| ray((ty + k / 4) * w + tx + k % 4));
+            let mut best = [f32::INFINITY; 16];
+            bvh.closest16(&tile, [f32::INFINITY; 16], |lane, _, hit| {
+                best[lane] = best[lane].min(hit.t);
+                Some(hit.t)
+            });
+            for t in best {
+                if t.is_finite() {
+                    hits += 1;
+                    tsum += f64::from(t);
+                }
+            }
+        }
+    }
+    (hits, tsum)
+}
+
 fn trace_shape(shape: &MeshShape, rays: &Rays) -> (u64, f64) {
     let mut hits = 0;
     let mut tsum = 0.0;
@@ -355,6 +383,7 @@ fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays
         report("BVH8 closest (f32 API)", rays, &time_passes(passes, || trace_bvh(&bvh, rays)));
         if *label == "primary" {
             report("BVH8 4x2 packets closest8", rays, &time_passes(passes, || trace_packets(&bvh, rays)));
+            report("BVH8 4x4 packets closest16", rays, &time_passes(passes, || trace_packets16(&bvh, rays)));
             println!(
                 "  prism: {} hits land where a Moeller-Trumbore test of the same triangle misses (edge/crack rays)",
                 crack_candidates(&bvh, rays)

@@ -19,8 +19,10 @@ use super::intersect::{TriangleHit, WatertightRay};
 
 /// Children per node.
 const WIDTH: usize = 8;
-/// Triangles per leaf packet (and at most per leaf).
-const PACKET: usize = 8;
+/// Triangles per leaf packet (and at most per leaf). Four, tested in SSE lanes: leaves of
+/// real meshes hold three to four triangles, and wider packets mostly carry padding through
+/// the cache.
+const PACKET: usize = 4;
 /// Child slot marker: the child is a leaf (the low bits index a packet).
 const LEAF: u32 = 1 << 31;
 /// An unused child slot.
@@ -55,7 +57,7 @@ impl Node {
 /// Four triangles, vertices as structure-of-arrays (`a[axis][lane]`). Unused lanes repeat
 /// the last triangle, so they can only report hits that are already reported.
 #[derive(Clone, Copy, Debug)]
-#[repr(C, align(64))]
+#[repr(C, align(16))]
 struct Packet {
     a: [[f32; PACKET]; 3],
     b: [[f32; PACKET]; 3],
@@ -180,15 +182,6 @@ impl TriangleBvh {
                 .filter(|&(_, &c)| counts[c] as usize > PACKET)
                 .max_by(|a, b| half_area(&bvh2.nodes[*a.1]).total_cmp(&half_area(&bvh2.nodes[*b.1])))
                 .map(|(i, _)| i);
-            // With slots to spare, split leaf-sized subtrees too: fuller nodes, smaller leaves.
-            let open = open.or_else(|| {
-                children
-                    .iter()
-                    .enumerate()
-                    .filter(|&(_, &c)| counts[c] as usize > PACKET / 2)
-                    .max_by(|a, b| half_area(&bvh2.nodes[*a.1]).total_cmp(&half_area(&bvh2.nodes[*b.1])))
-                    .map(|(i, _)| i)
-            });
             let Some(i) = open else { break };
             let c = children.swap_remove(i);
             let f = bvh2.nodes[c].first_index as usize;
@@ -321,22 +314,57 @@ impl TriangleBvh {
         mut accept: impl FnMut(usize, usize, TriangleHit) -> Option<f32>,
     ) {
         #[cfg(target_arch = "x86_64")]
-        if simd::available() {
-            let first = rays[0].shear().0;
-            let same_frame = rays.iter().all(|r| {
-                let (perm, _) = r.shear();
-                perm == first && (r.direction[perm[2]] < 0.0) == (rays[0].direction[first[2]] < 0.0)
-            });
-            if same_frame && self.stack_size <= 160 {
-                // SAFETY: the CPU has AVX2 and FMA (checked at run time).
-                unsafe { simd::closest8(self, rays, t_max, &mut accept) };
-                return;
-            }
+        if simd::available() && shared_frame(rays) && self.stack_size <= 160 {
+            // SAFETY: the CPU has AVX2 and FMA (checked at run time).
+            unsafe { simd::closest8(self, rays, t_max, &mut accept) };
+            return;
         }
         for (lane, ray) in rays.iter().enumerate() {
             self.closest(ray, t_max[lane], |prim, hit| accept(lane, prim, hit));
         }
     }
+}
+
+impl TriangleBvh {
+    /// Closest hits of sixteen rays traced together (a 4x4 tile of camera rays): as
+    /// [`TriangleBvh::closest8`], with the same exact results. Rays from one origin in one
+    /// watertight frame, on a CPU with AVX-512, go down the tree as one packet: each node is
+    /// tested once for all sixteen (interval arithmetic over their directions) and each
+    /// triangle against all sixteen in one 512-bit register. Other tiles are traced as two
+    /// packets of eight.
+    pub fn closest16(
+        &self,
+        rays: &[WatertightRay; 16],
+        t_max: [f32; 16],
+        mut accept: impl FnMut(usize, usize, TriangleHit) -> Option<f32>,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if packet16::available() && shared_frame(rays) && self.stack_size <= 160 {
+            // SAFETY: the CPU has AVX-512F, AVX2 and FMA (checked at run time); the rays
+            // share their frame.
+            if unsafe { packet16::closest16(self, rays, t_max, &mut accept) } {
+                return;
+            }
+        }
+        let (low, high) = rays.split_at(8);
+        let (low, high): (&[WatertightRay; 8], &[WatertightRay; 8]) =
+            (low.try_into().expect("8 rays"), high.try_into().expect("8 rays"));
+        let t_low: [f32; 8] = std::array::from_fn(|i| t_max[i]);
+        let t_high: [f32; 8] = std::array::from_fn(|i| t_max[i + 8]);
+        self.closest8(low, t_low, &mut accept);
+        self.closest8(high, t_high, |lane, prim, hit| accept(lane + 8, prim, hit));
+    }
+}
+
+/// True when the rays share the watertight test's frame: the same dominant axis and sign of
+/// the direction (the axis permutation of [`WatertightRay::shear`]).
+fn shared_frame(rays: &[WatertightRay]) -> bool {
+    let first = rays[0].shear().0;
+    let negative = rays[0].direction[first[2]] < 0.0;
+    rays.iter().all(|r| {
+        let (perm, _) = r.shear();
+        perm == first && (r.direction[perm[2]] < 0.0) == negative
+    })
 }
 
 /// Triangles under each BVH2 node.
@@ -471,6 +499,54 @@ impl Kernels for Scalar {
     }
 }
 
+/// Orders the children of `node` in `mask` (entry distances in `near`) for a depth-first,
+/// nearest-first traversal: returns the nearest, and pushes the others onto the stack so the
+/// next nearest is on top. `None` when the mask is empty.
+#[inline(always)]
+fn order_children(
+    node: &Node,
+    mut mask: u32,
+    near: &[f32; WIDTH],
+    stack: &mut [MaybeUninit<(u32, f32)>],
+    sp: &mut usize,
+) -> Option<u32> {
+    match mask.count_ones() {
+        0 => None,
+        1 => Some(node.child[mask.trailing_zeros() as usize]),
+        2 => {
+            // The common case: go to the nearer child, keep the farther one.
+            let i = mask.trailing_zeros() as usize;
+            let j = (mask & (mask - 1)).trailing_zeros() as usize;
+            let (near_i, far_i) = if near[i] <= near[j] { (i, j) } else { (j, i) };
+            stack[*sp] = MaybeUninit::new((node.child[far_i], near[far_i]));
+            *sp += 1;
+            Some(node.child[near_i])
+        }
+        _ => {
+            // Push every hit child, farthest first, then continue with the nearest.
+            let base = *sp;
+            while mask != 0 {
+                let i = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let entry = (node.child[i], near[i]);
+                // Insertion sort by distance, descending (nearest on top). Slots below `sp`
+                // are initialised.
+                let mut j = *sp;
+                // SAFETY: j - 1 < sp, a slot written earlier.
+                while j > base && unsafe { stack[j - 1].assume_init() }.1 < entry.1 {
+                    stack[j] = stack[j - 1];
+                    j -= 1;
+                }
+                stack[j] = MaybeUninit::new(entry);
+                *sp += 1;
+            }
+            *sp -= 1;
+            // SAFETY: sp < the number of slots written.
+            Some(unsafe { stack[*sp].assume_init() }.0)
+        }
+    }
+}
+
 /// The traversal, generic over the kernels and the query.
 #[inline(always)]
 fn traverse<K: Kernels, const ANY: bool>(
@@ -488,46 +564,10 @@ fn traverse<K: Kernels, const ANY: bool>(
     loop {
         if current & LEAF == 0 {
             let node = &bvh.nodes[current as usize];
-            let mut mask = K::boxes(node, r, t_max, &mut near);
-            match mask.count_ones() {
-                0 => {}
-                1 => {
-                    current = node.child[mask.trailing_zeros() as usize];
-                    continue;
-                }
-                2 => {
-                    // The common case: go to the nearer child, keep the farther one.
-                    let i = mask.trailing_zeros() as usize;
-                    let j = (mask & (mask - 1)).trailing_zeros() as usize;
-                    let (near_i, far_i) = if near[i] <= near[j] { (i, j) } else { (j, i) };
-                    stack[sp] = MaybeUninit::new((node.child[far_i], near[far_i]));
-                    sp += 1;
-                    current = node.child[near_i];
-                    continue;
-                }
-                _ => {
-                    // Push every hit child, farthest first, then continue with the nearest.
-                    let base = sp;
-                    while mask != 0 {
-                        let i = mask.trailing_zeros() as usize;
-                        mask &= mask - 1;
-                        let entry = (node.child[i], near[i]);
-                        // Insertion sort by distance, descending (nearest on top). Slots below
-                        // `sp` are initialised.
-                        let mut j = sp;
-                        // SAFETY: j - 1 < sp, a slot written earlier.
-                        while j > base && unsafe { stack[j - 1].assume_init() }.1 < entry.1 {
-                            stack[j] = stack[j - 1];
-                            j -= 1;
-                        }
-                        stack[j] = MaybeUninit::new(entry);
-                        sp += 1;
-                    }
-                    sp -= 1;
-                    // SAFETY: sp < the number of slots written.
-                    current = unsafe { stack[sp].assume_init() }.0;
-                    continue;
-                }
+            let mask = K::boxes(node, r, t_max, &mut near);
+            if let Some(next) = order_children(node, mask, &near, stack, &mut sp) {
+                current = next;
+                continue;
             }
         } else {
             let packet = &bvh.packets[(current & !LEAF) as usize];
@@ -628,63 +668,61 @@ mod simd {
 
         #[inline(always)]
         fn triangles(p: &Packet, r: &Prepared, t_max: f32, out: &mut [[f32; PACKET]; 3], edge: &mut u32) -> u32 {
-            // SAFETY: as for `boxes`; packet arrays are 32-byte aligned.
+            // SAFETY: as for `boxes`; packet arrays are 16-byte aligned.
             unsafe {
                 let [kx, ky, kz] = r.perm;
-                let (ox, oy, oz) = (_mm256_set1_ps(r.org[0]), _mm256_set1_ps(r.org[1]), _mm256_set1_ps(r.org[2]));
-                let (sx, sy, sz) = (_mm256_set1_ps(r.shear[0]), _mm256_set1_ps(r.shear[1]), _mm256_set1_ps(r.shear[2]));
+                let (ox, oy, oz) = (_mm_set1_ps(r.org[0]), _mm_set1_ps(r.org[1]), _mm_set1_ps(r.org[2]));
+                let (sx, sy, sz) = (_mm_set1_ps(r.shear[0]), _mm_set1_ps(r.shear[1]), _mm_set1_ps(r.shear[2]));
                 // The same operations, in the same order, as the scalar test (no fused
                 // multiply-adds): shared edges then give exactly opposite edge functions.
                 macro_rules! sheared {
                     ($v:expr) => {{
-                        let x = _mm256_sub_ps(_mm256_load_ps($v[kx].as_ptr()), ox);
-                        let y = _mm256_sub_ps(_mm256_load_ps($v[ky].as_ptr()), oy);
-                        let z = _mm256_sub_ps(_mm256_load_ps($v[kz].as_ptr()), oz);
-                        (_mm256_sub_ps(x, _mm256_mul_ps(sx, z)), _mm256_sub_ps(y, _mm256_mul_ps(sy, z)), z)
+                        let x = _mm_sub_ps(_mm_load_ps($v[kx].as_ptr()), ox);
+                        let y = _mm_sub_ps(_mm_load_ps($v[ky].as_ptr()), oy);
+                        let z = _mm_sub_ps(_mm_load_ps($v[kz].as_ptr()), oz);
+                        (_mm_sub_ps(x, _mm_mul_ps(sx, z)), _mm_sub_ps(y, _mm_mul_ps(sy, z)), z)
                     }};
                 }
                 let (ax, ay, az) = sheared!(p.a);
                 let (bx, by, bz) = sheared!(p.b);
                 let (cx, cy, cz) = sheared!(p.c);
-                let u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
-                let v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
-                let w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
-                let zero = _mm256_setzero_ps();
+                let u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
+                let v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
+                let w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
+                let zero = _mm_setzero_ps();
                 macro_rules! any3 {
                     ($op:ident) => {
-                        _mm256_or_ps(
-                            _mm256_or_ps(_mm256_cmp_ps::<$op>(u, zero), _mm256_cmp_ps::<$op>(v, zero)),
-                            _mm256_cmp_ps::<$op>(w, zero),
+                        _mm_or_ps(
+                            _mm_or_ps(_mm_cmp_ps::<$op>(u, zero), _mm_cmp_ps::<$op>(v, zero)),
+                            _mm_cmp_ps::<$op>(w, zero),
                         )
                     };
                 }
                 let negative = any3!(_CMP_LT_OQ);
                 let positive = any3!(_CMP_GT_OQ);
                 let on_edge = any3!(_CMP_EQ_OQ);
-                let outside = _mm256_and_ps(negative, positive);
+                let outside = _mm_and_ps(negative, positive);
                 // Lanes with a zero edge function go to the scalar test (which redoes them
                 // in f64) unless they are already certainly outside.
-                *edge = _mm256_movemask_ps(_mm256_andnot_ps(outside, on_edge)) as u32;
-                let det = _mm256_add_ps(_mm256_add_ps(u, v), w);
-                let t_scaled = _mm256_add_ps(
-                    _mm256_add_ps(_mm256_mul_ps(u, _mm256_mul_ps(sz, az)), _mm256_mul_ps(v, _mm256_mul_ps(sz, bz))),
-                    _mm256_mul_ps(w, _mm256_mul_ps(sz, cz)),
+                *edge = _mm_movemask_ps(_mm_andnot_ps(outside, on_edge)) as u32;
+                let det = _mm_add_ps(_mm_add_ps(u, v), w);
+                let t_scaled = _mm_add_ps(
+                    _mm_add_ps(_mm_mul_ps(u, _mm_mul_ps(sz, az)), _mm_mul_ps(v, _mm_mul_ps(sz, bz))),
+                    _mm_mul_ps(w, _mm_mul_ps(sz, cz)),
                 );
-                let inv = _mm256_div_ps(_mm256_set1_ps(1.0), det);
-                let t = _mm256_mul_ps(t_scaled, inv);
-                let in_range = _mm256_and_ps(
-                    _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
-                    _mm256_cmp_ps::<_CMP_LT_OQ>(t, _mm256_set1_ps(t_max)),
+                let inv = _mm_div_ps(_mm_set1_ps(1.0), det);
+                let t = _mm_mul_ps(t_scaled, inv);
+                let in_range =
+                    _mm_and_ps(_mm_cmp_ps::<_CMP_GT_OQ>(t, zero), _mm_cmp_ps::<_CMP_LT_OQ>(t, _mm_set1_ps(t_max)));
+                let valid = _mm_andnot_ps(
+                    _mm_or_ps(outside, on_edge),
+                    _mm_and_ps(_mm_cmp_ps::<_CMP_NEQ_OQ>(det, zero), in_range),
                 );
-                let valid = _mm256_andnot_ps(
-                    _mm256_or_ps(outside, on_edge),
-                    _mm256_and_ps(_mm256_cmp_ps::<_CMP_NEQ_OQ>(det, zero), in_range),
-                );
-                let mask = _mm256_movemask_ps(valid) as u32;
+                let mask = _mm_movemask_ps(valid) as u32;
                 if mask != 0 {
-                    _mm256_storeu_ps(out[0].as_mut_ptr(), t);
-                    _mm256_storeu_ps(out[1].as_mut_ptr(), _mm256_mul_ps(v, inv));
-                    _mm256_storeu_ps(out[2].as_mut_ptr(), _mm256_mul_ps(w, inv));
+                    _mm_storeu_ps(out[0].as_mut_ptr(), t);
+                    _mm_storeu_ps(out[1].as_mut_ptr(), _mm_mul_ps(v, inv));
+                    _mm_storeu_ps(out[2].as_mut_ptr(), _mm_mul_ps(w, inv));
                 }
                 mask
             }
@@ -742,6 +780,130 @@ mod packet {
         perm: [usize; 3],
     }
 
+    /// The largest of eight lanes.
+    #[inline(always)]
+    unsafe fn horizontal_max(v: __m256) -> f32 {
+        // SAFETY: register operations only; the caller has AVX.
+        unsafe {
+            let m = _mm256_max_ps(v, _mm256_permute2f128_ps::<1>(v, v));
+            let m = _mm_max_ps(
+                _mm256_castps256_ps128(m),
+                _mm_movehl_ps(_mm256_castps256_ps128(m), _mm256_castps256_ps128(m)),
+            );
+            _mm_cvtss_f32(_mm_max_ss(m, _mm_shuffle_ps::<1>(m, m)))
+        }
+    }
+
+    /// The smallest of eight lanes.
+    #[inline(always)]
+    unsafe fn horizontal_min(v: __m256) -> f32 {
+        // SAFETY: register operations only; the caller has AVX.
+        unsafe {
+            let m = _mm256_min_ps(v, _mm256_permute2f128_ps::<1>(v, v));
+            let m = _mm_min_ps(
+                _mm256_castps256_ps128(m),
+                _mm_movehl_ps(_mm256_castps256_ps128(m), _mm256_castps256_ps128(m)),
+            );
+            _mm_cvtss_f32(_mm_min_ss(m, _mm_shuffle_ps::<1>(m, m)))
+        }
+    }
+
+    /// Each child box against each ray; a child is entered when any ray enters it, at the
+    /// nearest entry distance among those rays.
+    #[inline(always)]
+    unsafe fn boxes_per_ray(node: &Node, r: &Rays8, t_max: __m256, near: &mut [f32; WIDTH]) -> u32 {
+        // SAFETY: register operations and reads of the node's arrays; the caller has AVX2+FMA.
+        unsafe {
+            let mut mask = 0;
+            for slot in 0..WIDTH {
+                // Children fill the slots from the first one.
+                if node.child[slot] == EMPTY {
+                    break;
+                }
+                let b = &node.bounds;
+                let mut t0 = _mm256_setzero_ps();
+                let mut t1 = t_max;
+                for axis in 0..3 {
+                    let lo = _mm256_set1_ps(b[axis][slot]);
+                    let hi = _mm256_set1_ps(b[axis + 3][slot]);
+                    let ta = _mm256_fmsub_ps(lo, r.rdir[axis], r.org_rdir[axis]);
+                    let tb = _mm256_fmsub_ps(hi, r.rdir[axis], r.org_rdir[axis]);
+                    t0 = _mm256_max_ps(t0, _mm256_min_ps(ta, tb));
+                    t1 = _mm256_min_ps(t1, _mm256_mul_ps(_mm256_max_ps(ta, tb), _mm256_set1_ps(FAR_SCALE)));
+                }
+                let hit = _mm256_cmp_ps::<_CMP_LE_OQ>(t0, t1);
+                if _mm256_movemask_ps(hit) != 0 {
+                    near[slot] = horizontal_min(_mm256_blendv_ps(_mm256_set1_ps(f32::INFINITY), t0, hit));
+                    mask |= 1 << slot;
+                }
+            }
+            mask
+        }
+    }
+
+    /// The rays of a packet with one origin and the same direction signs, bounded by
+    /// intervals of their reciprocal directions: one test of eight boxes then serves all
+    /// eight rays (interval arithmetic on the slab test).
+    pub(super) struct Frustum {
+        /// The shared origin, broadcast.
+        org: [__m256; 3],
+        /// Smallest and largest reciprocal direction per axis, broadcast.
+        rdir_lo: [__m256; 3],
+        rdir_hi: [__m256; 3],
+        near: [usize; 3],
+        far: [usize; 3],
+    }
+
+    impl Frustum {
+        /// `None` when the rays do not share their origin and direction signs.
+        #[inline(always)]
+        pub(super) unsafe fn new(prepared: &[Prepared], rays: &[WatertightRay]) -> Option<Self> {
+            let origin = rays[0].origin;
+            let shared = prepared.iter().zip(rays).all(|(p, ray)| ray.origin == origin && p.near == prepared[0].near);
+            if !shared {
+                return None;
+            }
+            let lo = [0, 1, 2].map(|k| prepared.iter().map(|p| p.rdir[k]).fold(f32::INFINITY, f32::min));
+            let hi = [0, 1, 2].map(|k| prepared.iter().map(|p| p.rdir[k]).fold(f32::NEG_INFINITY, f32::max));
+            // SAFETY: broadcasts only; the caller has AVX.
+            unsafe {
+                Some(Self {
+                    org: [0, 1, 2].map(|k| _mm256_set1_ps(origin[k])),
+                    rdir_lo: lo.map(|v| _mm256_set1_ps(v)),
+                    rdir_hi: hi.map(|v| _mm256_set1_ps(v)),
+                    near: prepared[0].near,
+                    far: prepared[0].far,
+                })
+            }
+        }
+
+        /// Children some ray of the packet may enter before `t_max`, and a lower bound of
+        /// their entry distances. Each ray's slab distances are `(plane - origin) * rdir`,
+        /// rounded; rounding is monotonic, so the products with the interval's ends bound
+        /// every ray's, and the test keeps every box a ray's own conservative test would.
+        #[inline(always)]
+        pub(super) unsafe fn boxes(&self, node: &Node, t_max: f32, near: &mut [f32; WIDTH]) -> u32 {
+            // SAFETY: aligned loads of the node's 32-byte aligned arrays; the caller has AVX.
+            unsafe {
+                let b = &node.bounds;
+                let mut t0 = _mm256_setzero_ps();
+                let mut t1 = _mm256_set1_ps(t_max);
+                for axis in 0..3 {
+                    let dn = _mm256_sub_ps(_mm256_load_ps(b[self.near[axis]].as_ptr()), self.org[axis]);
+                    let df = _mm256_sub_ps(_mm256_load_ps(b[self.far[axis]].as_ptr()), self.org[axis]);
+                    let entry =
+                        _mm256_min_ps(_mm256_mul_ps(dn, self.rdir_lo[axis]), _mm256_mul_ps(dn, self.rdir_hi[axis]));
+                    let exit =
+                        _mm256_max_ps(_mm256_mul_ps(df, self.rdir_lo[axis]), _mm256_mul_ps(df, self.rdir_hi[axis]));
+                    t0 = _mm256_max_ps(t0, entry);
+                    t1 = _mm256_min_ps(t1, _mm256_mul_ps(exit, _mm256_set1_ps(FAR_SCALE)));
+                }
+                _mm256_storeu_ps(near.as_mut_ptr(), t0);
+                _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(t0, t1)) as u32
+            }
+        }
+    }
+
     /// See [`TriangleBvh::closest8`].
     ///
     /// # Safety
@@ -776,55 +938,23 @@ mod packet {
                 shear: [lanes!(shear, 0), lanes!(shear, 1), lanes!(shear, 2)],
                 perm: prepared[0].perm,
             };
+            let frustum = Frustum::new(&prepared, rays);
             let mut t_max_v = _mm256_loadu_ps(t_max.as_ptr());
-            let mut stack = [(0u32, 0f32); 160];
+            let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; 160];
             let mut sp = 0usize;
             let mut current = 0u32;
             let zero = _mm256_setzero_ps();
             loop {
                 if current & LEAF == 0 {
                     let node = &bvh.nodes[current as usize];
-                    let mut hits = [(0u32, 0f32); WIDTH];
-                    let mut count = 0;
-                    for slot in 0..WIDTH {
-                        let child = node.child[slot];
-                        // Children fill the slots from the first one.
-                        if child == EMPTY {
-                            break;
-                        }
-                        let b = &node.bounds;
-                        let mut t0 = zero;
-                        let mut t1 = t_max_v;
-                        for axis in 0..3 {
-                            let lo = _mm256_set1_ps(b[axis][slot]);
-                            let hi = _mm256_set1_ps(b[axis + 3][slot]);
-                            let ta = _mm256_fmsub_ps(lo, r.rdir[axis], r.org_rdir[axis]);
-                            let tb = _mm256_fmsub_ps(hi, r.rdir[axis], r.org_rdir[axis]);
-                            t0 = _mm256_max_ps(t0, _mm256_min_ps(ta, tb));
-                            t1 = _mm256_min_ps(t1, _mm256_mul_ps(_mm256_max_ps(ta, tb), _mm256_set1_ps(FAR_SCALE)));
-                        }
-                        let hit = _mm256_cmp_ps::<_CMP_LE_OQ>(t0, t1);
-                        if _mm256_movemask_ps(hit) != 0 {
-                            // Order by the nearest entry among the rays that enter.
-                            let entry = _mm256_blendv_ps(_mm256_set1_ps(f32::INFINITY), t0, hit);
-                            let m = _mm256_min_ps(entry, _mm256_permute2f128_ps::<1>(entry, entry));
-                            let m = _mm_min_ps(
-                                _mm256_castps256_ps128(m),
-                                _mm_movehl_ps(_mm256_castps256_ps128(m), _mm256_castps256_ps128(m)),
-                            );
-                            let m = _mm_min_ss(m, _mm_shuffle_ps::<1>(m, m));
-                            hits[count] = (child, _mm_cvtss_f32(m));
-                            count += 1;
-                        }
-                    }
-                    if count > 0 {
-                        // Farthest first onto the stack; continue with the nearest.
-                        hits[..count].sort_unstable_by(|a, b| b.1.total_cmp(&a.1));
-                        for h in &hits[..count - 1] {
-                            stack[sp] = *h;
-                            sp += 1;
-                        }
-                        current = hits[count - 1].0;
+                    let farthest = horizontal_max(t_max_v);
+                    let mut near = [0f32; WIDTH];
+                    let mask = match &frustum {
+                        Some(f) => f.boxes(node, farthest, &mut near),
+                        None => boxes_per_ray(node, &r, t_max_v, &mut near),
+                    };
+                    if let Some(next) = order_children(node, mask, &near, &mut stack, &mut sp) {
+                        current = next;
                         continue;
                     }
                 } else {
@@ -862,6 +992,10 @@ mod packet {
                             };
                         }
                         let outside = _mm256_and_ps(any3!(_CMP_LT_OQ), any3!(_CMP_GT_OQ));
+                        // Most triangles of a leaf miss every ray: skip the division then.
+                        if _mm256_movemask_ps(outside) == 0xff {
+                            continue;
+                        }
                         let on_edge = any3!(_CMP_EQ_OQ);
                         let det = _mm256_add_ps(_mm256_add_ps(u, v), w);
                         let sz = r.shear[2];
@@ -927,20 +1061,175 @@ mod packet {
                     }
                 }
                 // Pop the next node some ray may still reach before its best hit.
-                let farthest = {
-                    let m = _mm256_max_ps(t_max_v, _mm256_permute2f128_ps::<1>(t_max_v, t_max_v));
-                    let m = _mm_max_ps(
-                        _mm256_castps256_ps128(m),
-                        _mm_movehl_ps(_mm256_castps256_ps128(m), _mm256_castps256_ps128(m)),
-                    );
-                    _mm_cvtss_f32(_mm_max_ss(m, _mm_shuffle_ps::<1>(m, m)))
-                };
+                let farthest = horizontal_max(t_max_v);
                 loop {
                     if sp == 0 {
                         return;
                     }
                     sp -= 1;
-                    let (node, distance) = stack[sp];
+                    let (node, distance) = stack[sp].assume_init();
+                    if distance <= farthest {
+                        current = node;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+mod packet16 {
+    use std::arch::x86_64::*;
+    use std::sync::OnceLock;
+
+    use super::packet::Frustum;
+    use super::*;
+
+    /// True when the CPU runs the AVX-512 packet kernel.
+    pub fn available() -> bool {
+        static AVAILABLE: OnceLock<bool> = OnceLock::new();
+        *AVAILABLE.get_or_init(|| super::simd::available() && is_x86_feature_detected!("avx512f"))
+    }
+
+    /// See [`TriangleBvh::closest16`]. Returns false, having traced nothing, when the rays
+    /// do not share their origin and direction signs.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must support AVX-512F, AVX2 and FMA ([`available`]); the rays must share the
+    /// watertight frame, and the tree's stack size must be at most 160.
+    #[target_feature(enable = "avx512f,avx2,fma,popcnt,bmi1")]
+    pub unsafe fn closest16(
+        bvh: &TriangleBvh,
+        rays: &[WatertightRay; 16],
+        t_max: [f32; 16],
+        accept: &mut impl FnMut(usize, usize, TriangleHit) -> Option<f32>,
+    ) -> bool {
+        let prepared: [Prepared; 16] = std::array::from_fn(|i| Prepared::new(&rays[i]));
+        // SAFETY: the caller guarantees the CPU features; loads and stores are of local or
+        // node arrays of the accessed length.
+        unsafe {
+            let Some(frustum) = Frustum::new(&prepared, rays) else { return false };
+            let origin = rays[0].origin;
+            let [kx, ky, kz] = prepared[0].perm;
+            let shear: [__m512; 3] = [0, 1, 2].map(|k| {
+                let v: [f32; 16] = std::array::from_fn(|i| prepared[i].shear[k]);
+                _mm512_loadu_ps(v.as_ptr())
+            });
+            let mut bounds = t_max;
+            let mut t_max_v = _mm512_loadu_ps(bounds.as_ptr());
+            let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; 160];
+            let mut sp = 0usize;
+            let mut current = 0u32;
+            let zero = _mm512_setzero_ps();
+            loop {
+                if current & LEAF == 0 {
+                    let node = &bvh.nodes[current as usize];
+                    let mut near = [0f32; WIDTH];
+                    let mask = frustum.boxes(node, _mm512_reduce_max_ps(t_max_v), &mut near);
+                    if let Some(next) = order_children(node, mask, &near, &mut stack, &mut sp) {
+                        current = next;
+                        continue;
+                    }
+                } else {
+                    let packet = &bvh.packets[(current & !LEAF) as usize];
+                    for lane in 0..PACKET {
+                        if lane > 0 && packet.prim[lane] == packet.prim[lane - 1] {
+                            break;
+                        }
+                        // One triangle against sixteen rays, with the scalar test's operations
+                        // (the origin is shared, so the vertices' offsets are too).
+                        let vertex = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
+                        let (a, b, c) = (vertex(&packet.a), vertex(&packet.b), vertex(&packet.c));
+                        macro_rules! sheared {
+                            ($v:expr) => {{
+                                let d = $v - origin;
+                                let z = _mm512_set1_ps(d[kz]);
+                                (
+                                    _mm512_sub_ps(_mm512_set1_ps(d[kx]), _mm512_mul_ps(shear[0], z)),
+                                    _mm512_sub_ps(_mm512_set1_ps(d[ky]), _mm512_mul_ps(shear[1], z)),
+                                    z,
+                                )
+                            }};
+                        }
+                        let (ax, ay, az) = sheared!(a);
+                        let (bx, by, bz) = sheared!(b);
+                        let (cx, cy, cz) = sheared!(c);
+                        let u = _mm512_sub_ps(_mm512_mul_ps(cx, by), _mm512_mul_ps(cy, bx));
+                        let v = _mm512_sub_ps(_mm512_mul_ps(ax, cy), _mm512_mul_ps(ay, cx));
+                        let w = _mm512_sub_ps(_mm512_mul_ps(bx, ay), _mm512_mul_ps(by, ax));
+                        macro_rules! any3 {
+                            ($op:ident) => {
+                                _mm512_cmp_ps_mask::<$op>(u, zero)
+                                    | _mm512_cmp_ps_mask::<$op>(v, zero)
+                                    | _mm512_cmp_ps_mask::<$op>(w, zero)
+                            };
+                        }
+                        let outside = any3!(_CMP_LT_OQ) & any3!(_CMP_GT_OQ);
+                        let on_edge = any3!(_CMP_EQ_OQ);
+                        // Most triangles of a leaf miss every ray: skip the division then.
+                        if outside == u16::MAX {
+                            continue;
+                        }
+                        let det = _mm512_add_ps(_mm512_add_ps(u, v), w);
+                        let sz = shear[2];
+                        let t_scaled = _mm512_add_ps(
+                            _mm512_add_ps(
+                                _mm512_mul_ps(u, _mm512_mul_ps(sz, az)),
+                                _mm512_mul_ps(v, _mm512_mul_ps(sz, bz)),
+                            ),
+                            _mm512_mul_ps(w, _mm512_mul_ps(sz, cz)),
+                        );
+                        let inv = _mm512_div_ps(_mm512_set1_ps(1.0), det);
+                        let t = _mm512_mul_ps(t_scaled, inv);
+                        let valid = !(outside | on_edge)
+                            & _mm512_cmp_ps_mask::<_CMP_NEQ_OQ>(det, zero)
+                            & _mm512_cmp_ps_mask::<_CMP_GT_OQ>(t, zero)
+                            & _mm512_cmp_ps_mask::<_CMP_LT_OQ>(t, t_max_v);
+                        let mut mask = u32::from(valid);
+                        // Lanes with a zero edge function go to the scalar test (f64 there).
+                        let mut edge = u32::from(!outside & on_edge);
+                        if mask == 0 && edge == 0 {
+                            continue;
+                        }
+                        let mut ts = [0f32; 16];
+                        let mut b1 = [0f32; 16];
+                        let mut b2 = [0f32; 16];
+                        _mm512_storeu_ps(ts.as_mut_ptr(), t);
+                        _mm512_storeu_ps(b1.as_mut_ptr(), _mm512_mul_ps(v, inv));
+                        _mm512_storeu_ps(b2.as_mut_ptr(), _mm512_mul_ps(w, inv));
+                        while edge != 0 {
+                            let ray = edge.trailing_zeros() as usize;
+                            edge &= edge - 1;
+                            if let Some(h) = rays[ray].intersect(a, b, c, bounds[ray]) {
+                                ts[ray] = h.t;
+                                b1[ray] = h.b1;
+                                b2[ray] = h.b2;
+                                mask |= 1 << ray;
+                            }
+                        }
+                        while mask != 0 {
+                            let ray = mask.trailing_zeros() as usize;
+                            mask &= mask - 1;
+                            let hit = TriangleHit { t: ts[ray], b1: b1[ray], b2: b2[ray] };
+                            if hit.t < bounds[ray]
+                                && let Some(bound) = accept(ray, packet.prim[lane] as usize, hit)
+                            {
+                                bounds[ray] = bounds[ray].min(bound);
+                            }
+                        }
+                        t_max_v = _mm512_loadu_ps(bounds.as_ptr());
+                    }
+                }
+                // Pop the next node some ray may still reach before its best hit.
+                let farthest = _mm512_reduce_max_ps(t_max_v);
+                loop {
+                    if sp == 0 {
+                        return true;
+                    }
+                    sp -= 1;
+                    let (node, distance) = stack[sp].assume_init();
                     if distance <= farthest {
                         current = node;
                         break;
@@ -1071,6 +1360,46 @@ mod tests {
                     Some(h.t)
                 });
                 assert_eq!(packet[lane].map(|p| p.1), single.map(|s| s.1), "lane {lane}");
+            }
+        }
+    }
+
+    #[test]
+    fn sixteen_ray_packets_match_single_rays() {
+        let tris = grid(30);
+        let (bvh, _) = TriangleBvh::build(&tris);
+        let mut rng = TestRng::new(11);
+        for case in 0..500 {
+            let eye = Vec3::new(rng.range(-0.5, 1.5) as f32, rng.range(0.2, 1.5) as f32, rng.range(-0.5, 1.5) as f32);
+            let centre = Vec3::new(rng.uniform() as f32, 0.0, rng.uniform() as f32);
+            // A 4x4 tile from one eye (the frustum path), sometimes spread so wide that the
+            // rays change frames or direction signs, sometimes from jittered eyes (as with a
+            // lens), which takes the per-ray path.
+            let spread = if rng.uniform() < 0.2 { 2.0 } else { 0.01 };
+            let jitter = if case % 5 == 0 { 1e-3 } else { 0.0 };
+            let rays: [WatertightRay; 16] = std::array::from_fn(|i| {
+                let offset = Vec3::new((i % 4) as f32, 0.0, (i / 4) as f32) * spread;
+                let origin = eye + Vec3::splat(jitter * i as f32);
+                WatertightRay::new(origin, centre + offset - origin).unwrap()
+            });
+            // Some rays start with a bound already (as shadow-less reuse would).
+            let t_max: [f32; 16] = std::array::from_fn(|i| if i % 7 == 3 { 0.5 } else { f32::INFINITY });
+            let mut packet = [None; 16];
+            bvh.closest16(&rays, t_max, |lane, prim, h| {
+                if packet[lane].is_none_or(|(_, t): (usize, f32)| h.t < t) {
+                    packet[lane] = Some((prim, h.t));
+                }
+                Some(h.t)
+            });
+            for (lane, ray) in rays.iter().enumerate() {
+                let mut single = None;
+                bvh.closest(ray, t_max[lane], |prim, h| {
+                    if single.is_none_or(|(_, t): (usize, f32)| h.t < t) {
+                        single = Some((prim, h.t));
+                    }
+                    Some(h.t)
+                });
+                assert_eq!(packet[lane].map(|p| p.1), single.map(|s| s.1), "case {case} lane {lane}");
             }
         }
     }
