@@ -229,23 +229,27 @@ fn crack_candidates(bvh: &TriangleBvh, rays: &Rays) -> usize {
     count
 }
 
-/// Closest hits of 4x2 tiles of rays through [`TriangleBvh::closest8`].
-fn trace_packets(bvh: &TriangleBvh, rays: &Rays) -> (u64, f64) {
+/// Closest hits of tiles of `N` rays, `tile_width` wide, traced together by `trace` (which
+/// lowers each lane's best distance).
+fn trace_tiles<const N: usize>(
+    rays: &Rays,
+    tile_width: usize,
+    trace: impl Fn(&[WatertightRay; N], &mut [f32; N]),
+) -> (u64, f64) {
     let (w, h) = (rays.width as usize, rays.height as usize);
+    let tile_height = N / tile_width;
     let mut hits = 0;
     let mut tsum = 0.0;
     let ray = |i: usize| {
         let r = &rays.rays[i];
         WatertightRay::new(Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5])).expect("valid ray")
     };
-    for ty in (0..h).step_by(2) {
-        for tx in (0..w).step_by(4) {
-            let tile: [WatertightRay; 8] = std::array::from_fn(|k| ray((ty + k / 4) * w + tx + k % 4));
-            let mut best = [f32::INFINITY; 8];
-            bvh.closest8(&tile, [f32::INFINITY; 8], |lane, _, hit| {
-                best[lane] = best[lane].min(hit.t);
-                Some(hit.t)
-            });
+    for ty in (0..h).step_by(tile_height) {
+        for tx in (0..w).step_by(tile_width) {
+            let tile: [WatertightRay; N] =
+                std::array::from_fn(|k| ray((ty + k / tile_width) * w + tx + k % tile_width));
+            let mut best = [f32::INFINITY; N];
+            trace(&tile, &mut best);
             for t in best {
                 if t.is_finite() {
                     hits += 1;
@@ -257,32 +261,24 @@ fn trace_packets(bvh: &TriangleBvh, rays: &Rays) -> (u64, f64) {
     (hits, tsum)
 }
 
+/// Closest hits of 4x2 tiles of rays through [`TriangleBvh::closest8`].
+fn trace_packets(bvh: &TriangleBvh, rays: &Rays) -> (u64, f64) {
+    trace_tiles::<8>(rays, 4, |tile, best| {
+        bvh.closest8(tile, [f32::INFINITY; 8], |lane, _, hit| {
+            best[lane] = best[lane].min(hit.t);
+            Some(hit.t)
+        })
+    })
+}
+
 /// Closest hits of 4x4 tiles of rays through [`TriangleBvh::closest16`].
 fn trace_packets16(bvh: &TriangleBvh, rays: &Rays) -> (u64, f64) {
-    let (w, h) = (rays.width as usize, rays.height as usize);
-    let mut hits = 0;
-    let mut tsum = 0.0;
-    let ray = |i: usize| {
-        let r = &rays.rays[i];
-        WatertightRay::new(Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5])).expect("valid ray")
-    };
-    for ty in (0..h).step_by(4) {
-        for tx in (0..w).step_by(4) {
-            let tile: [WatertightRay; 16] = std::array::from_fn(|k| ray((ty + k / 4) * w + tx + k % 4));
-            let mut best = [f32::INFINITY; 16];
-            bvh.closest16(&tile, [f32::INFINITY; 16], |lane, _, hit| {
-                best[lane] = best[lane].min(hit.t);
-                Some(hit.t)
-            });
-            for t in best {
-                if t.is_finite() {
-                    hits += 1;
-                    tsum += f64::from(t);
-                }
-            }
-        }
-    }
-    (hits, tsum)
+    trace_tiles::<16>(rays, 4, |tile, best| {
+        bvh.closest16(tile, [f32::INFINITY; 16], |lane, _, hit| {
+            best[lane] = best[lane].min(hit.t);
+            Some(hit.t)
+        })
+    })
 }
 
 fn trace_shape(shape: &MeshShape, rays: &Rays) -> (u64, f64) {

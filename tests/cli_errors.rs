@@ -1,6 +1,9 @@
 //! Bad input through the CLI: every broken scene gives a clear message naming the file, line
 //! and key, a non-zero exit, no panic, and no output file.
 
+mod common;
+
+use common::failed_run_problems;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -182,18 +185,7 @@ fn broken_scenes_fail_clearly_without_output() {
             .output()
             .unwrap();
         let stderr = String::from_utf8_lossy(&run.stderr);
-        let mut problems = Vec::new();
-        if run.status.success() {
-            problems.push("exited 0".to_string());
-        }
-        if run.status.code().is_none() || stderr.contains("panicked") {
-            problems.push("panicked or was killed".to_string());
-        }
-        for e in &c.expect {
-            if !stderr.contains(e) {
-                problems.push(format!("message lacks `{e}`"));
-            }
-        }
+        let mut problems = failed_run_problems(&run, &c.expect);
         if files_in(&dir) != before {
             problems.push(format!("files changed: {:?}", files_in(&dir)));
         }

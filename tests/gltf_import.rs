@@ -5,6 +5,9 @@
 //! the saved file), errors through the CLI, and Khronos' Cameras sample when the shared
 //! assets are present.
 
+mod common;
+
+use common::{failed_run_problems, repo, shared_assets};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -17,27 +20,6 @@ use prism::scene::Scene;
 use prism::scene::components::{Light, LightKind};
 use prism::scene::load::load_file;
 use serde_json::{Value, json};
-
-fn repo() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// The shared asset folder, or `None` (with a message) when it is not there.
-fn shared_assets() -> Option<PathBuf> {
-    let candidates: Vec<PathBuf> = std::env::var_os("PRISM_ASSETS")
-        .map(PathBuf::from)
-        .into_iter()
-        .chain([repo().join("../shared/assets")])
-        .collect();
-    let found = candidates.iter().find(|p| p.join("gltf").is_dir()).cloned();
-    if found.is_none() {
-        eprintln!(
-            "SKIPPED: shared glTF assets not found (looked in {}); set PRISM_ASSETS to run the asset tests",
-            candidates.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
-        );
-    }
-    found
-}
 
 fn base64(bytes: &[u8]) -> String {
     const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -381,18 +363,7 @@ fn import_errors_name_the_key_and_write_nothing() {
             .output()
             .unwrap();
         let stderr = String::from_utf8_lossy(&run.stderr);
-        let mut problems = Vec::new();
-        if run.status.success() {
-            problems.push("exited 0".to_string());
-        }
-        if run.status.code().is_none() || stderr.contains("panicked") {
-            problems.push("panicked or was killed".to_string());
-        }
-        for e in expect {
-            if !stderr.contains(e) {
-                problems.push(format!("message lacks `{e}`"));
-            }
-        }
+        let mut problems = failed_run_problems(&run, expect);
         if dir.join("out.png").exists() {
             problems.push("wrote out.png".into());
         }

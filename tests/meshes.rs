@@ -6,6 +6,9 @@
 //! repository. When they are absent the asset tests say so on stderr and check only the
 //! files committed under `assets/`.
 
+mod common;
+
+use common::{repo, shared_assets};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -15,27 +18,6 @@ use prism::render::camera::RenderCamera;
 use prism::render::{RenderOptions, render};
 use prism::scene::components::{Camera, ShapeComponent};
 use prism::scene::load::load_file;
-
-fn repo() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// The shared asset folder, or `None` (with a message) when it is not there.
-fn shared_assets() -> Option<PathBuf> {
-    let candidates: Vec<PathBuf> = std::env::var_os("PRISM_ASSETS")
-        .map(PathBuf::from)
-        .into_iter()
-        .chain([repo().join("../shared/assets")])
-        .collect();
-    let found = candidates.iter().find(|p| p.join("obj").is_dir() || p.join("gltf").is_dir()).cloned();
-    if found.is_none() {
-        eprintln!(
-            "SKIPPED: shared mesh assets not found (looked in {}); set PRISM_ASSETS to run the asset tests",
-            candidates.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
-        );
-    }
-    found
-}
 
 /// A scene holding one mesh object for `file`, written to a temporary directory.
 fn scene_for(dir: &Path, file: &Path, extra: &str) -> PathBuf {

@@ -547,6 +547,66 @@ fn order_children(
     }
 }
 
+/// Pops the stack down to the first node entered no farther than `t_max`; `None` when the
+/// stack runs out.
+#[inline(always)]
+fn pop_within(stack: &[MaybeUninit<(u32, f32)>], sp: &mut usize, t_max: f32) -> Option<u32> {
+    while *sp > 0 {
+        *sp -= 1;
+        // SAFETY: slots below the stack pointer have been written.
+        let (node, distance) = unsafe { stack[*sp].assume_init() };
+        if distance <= t_max {
+            return Some(node);
+        }
+    }
+    None
+}
+
+/// One triangle's candidate hits for the rays of a packet, by lane, and the rays' bounds.
+struct PacketHits<'a> {
+    t: &'a mut [f32],
+    b1: &'a mut [f32],
+    b2: &'a mut [f32],
+    bounds: &'a mut [f32],
+}
+
+impl PacketHits<'_> {
+    /// Offers the hits in `mask` to `accept`: lanes in `edge` (an edge function rounded to
+    /// zero) are first redone with the scalar test, and a hit nearer than its ray's bound
+    /// that `accept` takes tightens that bound.
+    #[inline(always)]
+    fn offer(
+        self,
+        rays: &[WatertightRay],
+        [a, b, c]: [Vec3; 3],
+        prim: usize,
+        mut mask: u32,
+        mut edge: u32,
+        accept: &mut impl FnMut(usize, usize, TriangleHit) -> Option<f32>,
+    ) {
+        while edge != 0 {
+            let ray = edge.trailing_zeros() as usize;
+            edge &= edge - 1;
+            if let Some(h) = rays[ray].intersect(a, b, c, self.bounds[ray]) {
+                self.t[ray] = h.t;
+                self.b1[ray] = h.b1;
+                self.b2[ray] = h.b2;
+                mask |= 1 << ray;
+            }
+        }
+        while mask != 0 {
+            let ray = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let hit = TriangleHit { t: self.t[ray], b1: self.b1[ray], b2: self.b2[ray] };
+            if hit.t < self.bounds[ray]
+                && let Some(bound) = accept(ray, prim, hit)
+            {
+                self.bounds[ray] = self.bounds[ray].min(bound);
+            }
+        }
+    }
+}
+
 /// The traversal, generic over the kernels and the query.
 #[inline(always)]
 fn traverse<K: Kernels, const ANY: bool>(
@@ -599,17 +659,9 @@ fn traverse<K: Kernels, const ANY: bool>(
             }
         }
         // Pop the next node that is still nearer than the best hit.
-        loop {
-            if sp == 0 {
-                return acceptor.done();
-            }
-            sp -= 1;
-            // SAFETY: sp < the number of slots written.
-            let (node, distance) = unsafe { stack[sp].assume_init() };
-            if distance <= t_max {
-                current = node;
-                break;
-            }
+        match pop_within(stack, &mut sp, t_max) {
+            Some(node) => current = node,
+            None => return acceptor.done(),
         }
     }
 }
@@ -1018,8 +1070,8 @@ mod packet {
                                 ),
                             ),
                         );
-                        let mut mask = _mm256_movemask_ps(valid) as u32;
-                        let mut edge = _mm256_movemask_ps(_mm256_andnot_ps(outside, on_edge)) as u32;
+                        let mask = _mm256_movemask_ps(valid) as u32;
+                        let edge = _mm256_movemask_ps(_mm256_andnot_ps(outside, on_edge)) as u32;
                         if mask == 0 && edge == 0 {
                             continue;
                         }
@@ -1032,46 +1084,16 @@ mod packet {
                         let mut bounds = [0f32; 8];
                         _mm256_storeu_ps(bounds.as_mut_ptr(), t_max_v);
                         let vertex = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
-                        while edge != 0 {
-                            let ray = edge.trailing_zeros() as usize;
-                            edge &= edge - 1;
-                            if let Some(h) = rays[ray].intersect(
-                                vertex(&packet.a),
-                                vertex(&packet.b),
-                                vertex(&packet.c),
-                                bounds[ray],
-                            ) {
-                                ts[ray] = h.t;
-                                b1[ray] = h.b1;
-                                b2[ray] = h.b2;
-                                mask |= 1 << ray;
-                            }
-                        }
-                        while mask != 0 {
-                            let ray = mask.trailing_zeros() as usize;
-                            mask &= mask - 1;
-                            let hit = TriangleHit { t: ts[ray], b1: b1[ray], b2: b2[ray] };
-                            if hit.t < bounds[ray]
-                                && let Some(bound) = accept(ray, packet.prim[lane] as usize, hit)
-                            {
-                                bounds[ray] = bounds[ray].min(bound);
-                            }
-                        }
+                        let triangle = [vertex(&packet.a), vertex(&packet.b), vertex(&packet.c)];
+                        let hits = PacketHits { t: &mut ts, b1: &mut b1, b2: &mut b2, bounds: &mut bounds };
+                        hits.offer(rays, triangle, packet.prim[lane] as usize, mask, edge, accept);
                         t_max_v = _mm256_loadu_ps(bounds.as_ptr());
                     }
                 }
                 // Pop the next node some ray may still reach before its best hit.
-                let farthest = horizontal_max(t_max_v);
-                loop {
-                    if sp == 0 {
-                        return;
-                    }
-                    sp -= 1;
-                    let (node, distance) = stack[sp].assume_init();
-                    if distance <= farthest {
-                        current = node;
-                        break;
-                    }
+                match pop_within(&stack, &mut sp, horizontal_max(t_max_v)) {
+                    Some(node) => current = node,
+                    None => return,
                 }
             }
         }
@@ -1187,9 +1209,9 @@ mod packet16 {
                             & _mm512_cmp_ps_mask::<_CMP_NEQ_OQ>(det, zero)
                             & _mm512_cmp_ps_mask::<_CMP_GT_OQ>(t, zero)
                             & _mm512_cmp_ps_mask::<_CMP_LT_OQ>(t, t_max_v);
-                        let mut mask = u32::from(valid);
+                        let mask = u32::from(valid);
                         // Lanes with a zero edge function go to the scalar test (f64 there).
-                        let mut edge = u32::from(!outside & on_edge);
+                        let edge = u32::from(!outside & on_edge);
                         if mask == 0 && edge == 0 {
                             continue;
                         }
@@ -1199,41 +1221,15 @@ mod packet16 {
                         _mm512_storeu_ps(ts.as_mut_ptr(), t);
                         _mm512_storeu_ps(b1.as_mut_ptr(), _mm512_mul_ps(v, inv));
                         _mm512_storeu_ps(b2.as_mut_ptr(), _mm512_mul_ps(w, inv));
-                        while edge != 0 {
-                            let ray = edge.trailing_zeros() as usize;
-                            edge &= edge - 1;
-                            if let Some(h) = rays[ray].intersect(a, b, c, bounds[ray]) {
-                                ts[ray] = h.t;
-                                b1[ray] = h.b1;
-                                b2[ray] = h.b2;
-                                mask |= 1 << ray;
-                            }
-                        }
-                        while mask != 0 {
-                            let ray = mask.trailing_zeros() as usize;
-                            mask &= mask - 1;
-                            let hit = TriangleHit { t: ts[ray], b1: b1[ray], b2: b2[ray] };
-                            if hit.t < bounds[ray]
-                                && let Some(bound) = accept(ray, packet.prim[lane] as usize, hit)
-                            {
-                                bounds[ray] = bounds[ray].min(bound);
-                            }
-                        }
+                        let hits = PacketHits { t: &mut ts, b1: &mut b1, b2: &mut b2, bounds: &mut bounds };
+                        hits.offer(rays, [a, b, c], packet.prim[lane] as usize, mask, edge, accept);
                         t_max_v = _mm512_loadu_ps(bounds.as_ptr());
                     }
                 }
                 // Pop the next node some ray may still reach before its best hit.
-                let farthest = _mm512_reduce_max_ps(t_max_v);
-                loop {
-                    if sp == 0 {
-                        return true;
-                    }
-                    sp -= 1;
-                    let (node, distance) = stack[sp].assume_init();
-                    if distance <= farthest {
-                        current = node;
-                        break;
-                    }
+                match pop_within(&stack, &mut sp, _mm512_reduce_max_ps(t_max_v)) {
+                    Some(node) => current = node,
+                    None => return true,
                 }
             }
         }
