@@ -81,7 +81,17 @@ impl Shape for Plane {
         if along * along <= PARALLEL_EPSILON * PARALLEL_EPSILON * ray.direction.length_squared() {
             return None;
         }
-        let t = (self.offset - self.normal.dot(ray.origin)) / along;
+        let distance = self.offset - self.normal.dot(ray.origin);
+        // Most rays meet most infinite planes behind them or beyond a nearer hit: reject those
+        // without the division. A quotient has the sign of its operands, and the margin on
+        // the far test (with a normal product) leaves every close call to the exact t below.
+        let behind = distance == 0.0 || (distance > 0.0) != (along > 0.0);
+        let limit = t_max * along.abs();
+        let beyond = !behind && limit.is_normal() && distance.abs() >= limit * (1.0 + 4.0 * f64::EPSILON);
+        if (behind && t_min >= 0.0) || beyond {
+            return None;
+        }
+        let t = distance / along;
         (t > t_min && t < t_max).then(|| Hit::at(t))
     }
 
@@ -109,6 +119,38 @@ mod tests {
 
     fn build(normal: [f64; 3], offset: f64) -> Result<Arc<dyn Shape>, ParamError> {
         PlaneParams { normal, offset }.build()
+    }
+
+    #[test]
+    fn quick_rejections_agree_with_the_exact_test() {
+        let plane = Plane::new(DVec3::new(0.3, 1.0, -0.2).normalize(), 0.7);
+        let exact = |ray: &Ray, t_min: f64, t_max: f64| {
+            let t = (plane.offset - plane.normal.dot(ray.origin)) / plane.normal.dot(ray.direction);
+            (t > t_min && t < t_max).then_some(t)
+        };
+        let mut hits = 0;
+        for i in 0..2000 {
+            let f = f64::from(i);
+            let origin = DVec3::new((f * 0.37).sin() * 3.0, (f * 0.11).cos() * 3.0, (f * 0.53).sin());
+            let direction = DVec3::new((f * 1.7).cos(), (f * 0.9).sin(), (f * 2.3).cos());
+            let ray = Ray::new(origin, direction);
+            let t = exact(&ray, f64::NEG_INFINITY, f64::INFINITY).unwrap_or(1.0);
+            // Bounds at, just around and far from the hit, and below zero.
+            for (t_min, t_max) in [
+                (0.0, f64::INFINITY),
+                (0.0, t),
+                (0.0, t.next_up()),
+                (0.0, t.next_down()),
+                (-10.0, 10.0),
+                (t.next_down(), 100.0),
+                (1e-6, t * (1.0 + 1e-15)),
+            ] {
+                let got = plane.intersect(&ray, t_min, t_max).map(|h| h.t);
+                assert_eq!(got, exact(&ray, t_min, t_max), "ray {i}, ({t_min}, {t_max})");
+                hits += usize::from(got.is_some());
+            }
+        }
+        assert!(hits > 2000, "{hits}");
     }
 
     #[test]
