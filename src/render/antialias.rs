@@ -77,7 +77,7 @@ impl Sampler<'_> {
         let key = mix64(x.to_bits() ^ mix64(y.to_bits()));
         if self.scene.camera.aperture <= 0.0 {
             let (x0, y0) = pov_screen(x, y, self.width, self.height);
-            let stream = SampleStream { pixel: key, sample: 0, seed: settings.seed };
+            let stream = SampleStream::new(key, 0, settings.seed);
             return self.radiance(x0, y0, DVec2::ZERO, stream);
         }
         let samples = settings.samples;
@@ -89,7 +89,7 @@ impl Sampler<'_> {
             let offset = offsets.sample(s) - DVec2::splat(0.5);
             let lens = concentric_disc(lenses.sample(s));
             let (x0, y0) = pov_screen(x + offset.x, y + offset.y, self.width, self.height);
-            let stream = SampleStream { pixel: key, sample: u64::from(s), seed: settings.seed };
+            let stream = SampleStream::new(key, u64::from(s), settings.seed);
             sum += self.radiance(x0, y0, lens, stream);
         }
         sum / f64::from(samples)

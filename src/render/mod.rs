@@ -169,7 +169,7 @@ pub fn render_pixel(scene: &RenderScene, integrator: &Classic, x: u32, y: u32) -
     let mut sum = DVec3::ZERO;
     let mut rays = 0;
     for s in 0..samples {
-        let stream = SampleStream { pixel, sample: u64::from(s), seed: settings.seed };
+        let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
         let offset = patterns.as_ref().map_or(DVec2::splat(0.5), |(p, _)| p.sample(s));
         let lens = if scene.camera.aperture > 0.0 {
             let u = patterns.as_ref().map_or_else(|| stream.uniform2(2), |(_, p)| p.sample(s));

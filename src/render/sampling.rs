@@ -15,9 +15,19 @@ pub fn mix64(mut z: u64) -> u64 {
 /// Hash of a pixel, sample index, dimension and seed.
 #[inline]
 pub fn hash4(pixel: u64, sample: u64, dimension: u64, seed: u64) -> u64 {
+    hash_dimension(stream_key(pixel, sample, seed), dimension)
+}
+
+/// The part of [`hash4`] that does not depend on the dimension.
+#[inline]
+fn stream_key(pixel: u64, sample: u64, seed: u64) -> u64 {
     let a = mix64(pixel ^ mix64(seed.wrapping_add(0x9E37_79B9_7F4A_7C15)));
-    let b = mix64(a ^ sample.wrapping_mul(0xD1B5_4A32_D192_ED03));
-    mix64(b ^ dimension.wrapping_mul(0xA24B_AED4_963E_E407))
+    mix64(a ^ sample.wrapping_mul(0xD1B5_4A32_D192_ED03))
+}
+
+#[inline]
+fn hash_dimension(key: u64, dimension: u64) -> u64 {
+    mix64(key ^ dimension.wrapping_mul(0xA24B_AED4_963E_E407))
 }
 
 /// Uniform in [0, 1) from a hash.
@@ -26,22 +36,25 @@ pub fn to_unit(h: u64) -> f64 {
     (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-/// The random stream of one sample of one pixel: dimension `d` is `uniform(d)`.
+/// The random stream of one sample of one pixel: dimension `d` is `uniform(d)`, equal to
+/// `to_unit(hash4(pixel, sample, d, seed))`. The dimension-free part of the hash is mixed
+/// once, when the stream is made, so each number costs one mix.
 #[derive(Clone, Copy, Debug)]
 pub struct SampleStream {
-    /// Linear pixel index (y * width + x).
-    pub pixel: u64,
-    /// Sample index within the pixel.
-    pub sample: u64,
-    /// Scene seed.
-    pub seed: u64,
+    key: u64,
 }
 
 impl SampleStream {
+    /// The stream of sample `sample` of pixel `pixel` (any 64-bit pixel key) under `seed`.
+    #[inline]
+    pub fn new(pixel: u64, sample: u64, seed: u64) -> Self {
+        Self { key: stream_key(pixel, sample, seed) }
+    }
+
     /// Uniform in [0, 1) for dimension `d`.
     #[inline]
     pub fn uniform(&self, d: u64) -> f64 {
-        to_unit(hash4(self.pixel, self.sample, d, self.seed))
+        to_unit(hash_dimension(self.key, d))
     }
 
     /// Two uniforms.
@@ -109,11 +122,18 @@ pub fn cmj(s: u32, n: u32, p: u32) -> DVec2 {
     let s = permute(s, n, p.wrapping_mul(0x51633e2d));
     let sx = permute(s % m, m, p.wrapping_mul(0x68bc21eb));
     let sy = permute(s / m, k, p.wrapping_mul(0x02e5be93));
+    place(s, p, (s % m, s / m), (sx, sy), (1.0 / f64::from(m), 1.0 / f64::from(k)))
+}
+
+/// The point of permuted sample `s` in cell (col, row) of the m x k grid, at stratum
+/// (sx, sy) within it, jittered by hashes of `s` and `p`.
+#[inline]
+fn place(s: u32, p: u32, (col, row): (u32, u32), (sx, sy): (u32, u32), (inv_m, inv_k): (f64, f64)) -> DVec2 {
     let jx = randfloat(s, p.wrapping_mul(0x967a889b));
     let jy = randfloat(s, p.wrapping_mul(0x368cc8b7));
     DVec2::new(
-        ((f64::from(s % m) + (f64::from(sy) + jx) / f64::from(k)) / f64::from(m)).min(1.0 - f64::EPSILON),
-        ((f64::from(s / m) + (f64::from(sx) + jy) / f64::from(m)) / f64::from(k)).min(1.0 - f64::EPSILON),
+        ((f64::from(col) + (f64::from(sy) + jx) * inv_k) * inv_m).min(1.0 - f64::EPSILON),
+        ((f64::from(row) + (f64::from(sx) + jy) * inv_m) * inv_k).min(1.0 - f64::EPSILON),
     )
 }
 
@@ -123,12 +143,40 @@ pub fn cmj(s: u32, n: u32, p: u32) -> DVec2 {
 pub struct CmjPattern {
     n: u32,
     m: u32,
-    k: u32,
     p: u32,
-    /// `permute(c, m, ..)` for every column c.
-    columns: Vec<u32>,
-    /// `permute(r, k, ..)` for every row r.
-    rows: Vec<u32>,
+    /// 1 / m and 1 / k.
+    inverse_sizes: (f64, f64),
+    /// `permute(c, m, ..)` for every column c, then `permute(r, k, ..)` for every row r.
+    table: PermutationTable,
+}
+
+/// The tabulated permutations: inline for up to [`INLINE_TABLE`] entries (over 4,000
+/// samples per pixel), so that the common per-pixel patterns never allocate; on the heap
+/// beyond (an empty `Vec` does not allocate).
+struct PermutationTable {
+    inline: [u32; INLINE_TABLE],
+    heap: Vec<u32>,
+}
+
+const INLINE_TABLE: usize = 128;
+
+impl PermutationTable {
+    fn new(len: u32, entry: impl Fn(u32) -> u32) -> Self {
+        let mut table = Self { inline: [0; INLINE_TABLE], heap: Vec::new() };
+        if len as usize <= INLINE_TABLE {
+            for (i, slot) in table.inline[..len as usize].iter_mut().enumerate() {
+                *slot = entry(i as u32);
+            }
+        } else {
+            table.heap = (0..len).map(entry).collect();
+        }
+        table
+    }
+
+    #[inline]
+    fn get(&self, i: u32) -> u32 {
+        if self.heap.is_empty() { self.inline[i as usize] } else { self.heap[i as usize] }
+    }
 }
 
 impl CmjPattern {
@@ -136,24 +184,23 @@ impl CmjPattern {
     pub fn new(n: u32, p: u32) -> Self {
         let m = (f64::from(n).sqrt() as u32).max(1);
         let k = n.div_ceil(m);
-        let columns = (0..m).map(|c| permute(c, m, p.wrapping_mul(0x68bc21eb))).collect();
-        let rows = (0..k).map(|r| permute(r, k, p.wrapping_mul(0x02e5be93))).collect();
-        Self { n, m, k, p, columns, rows }
+        let entry = |i: u32| {
+            if i < m {
+                permute(i, m, p.wrapping_mul(0x68bc21eb))
+            } else {
+                permute(i - m, k, p.wrapping_mul(0x02e5be93))
+            }
+        };
+        let table = PermutationTable::new(m + k, entry);
+        Self { n, m, p, inverse_sizes: (1.0 / f64::from(m), 1.0 / f64::from(k)), table }
     }
 
     /// Sample `s` (0 <= s < n) in [0, 1)^2.
     pub fn sample(&self, s: u32) -> DVec2 {
-        let (m, k, p) = (self.m, self.k, self.p);
+        let (m, p) = (self.m, self.p);
         let s = permute(s, self.n, p.wrapping_mul(0x51633e2d));
         let (col, row) = (s % m, s / m);
-        let sx = self.columns[col as usize];
-        let sy = self.rows[row as usize];
-        let jx = randfloat(s, p.wrapping_mul(0x967a889b));
-        let jy = randfloat(s, p.wrapping_mul(0x368cc8b7));
-        DVec2::new(
-            ((f64::from(col) + (f64::from(sy) + jx) / f64::from(k)) / f64::from(m)).min(1.0 - f64::EPSILON),
-            ((f64::from(row) + (f64::from(sx) + jy) / f64::from(m)) / f64::from(k)).min(1.0 - f64::EPSILON),
-        )
+        place(s, p, (col, row), (self.table.get(col), self.table.get(m + row)), self.inverse_sizes)
     }
 }
 
@@ -163,12 +210,47 @@ pub fn concentric_disc(u: DVec2) -> DVec2 {
     if a.x == 0.0 && a.y == 0.0 {
         return DVec2::ZERO;
     }
-    let (r, theta) = if a.x.abs() > a.y.abs() {
-        (a.x, std::f64::consts::FRAC_PI_4 * (a.y / a.x))
+    if a.x.abs() > a.y.abs() {
+        let (sin, cos) = sin_cos_eighth_turn(std::f64::consts::FRAC_PI_4 * (a.y / a.x));
+        DVec2::new(a.x * cos, a.x * sin)
     } else {
-        (a.y, std::f64::consts::FRAC_PI_2 - std::f64::consts::FRAC_PI_4 * (a.x / a.y))
-    };
-    DVec2::new(r * theta.cos(), r * theta.sin())
+        // The angle is pi/2 - phi: cosine and sine swap.
+        let (sin, cos) = sin_cos_eighth_turn(std::f64::consts::FRAC_PI_4 * (a.x / a.y));
+        DVec2::new(a.y * sin, a.y * cos)
+    }
+}
+
+/// `(sin x, cos x)` for |x| <= pi/4 from their Taylor series to x^17 and x^18, whose first
+/// omitted terms are below 1e-19 there: as accurate as libm's, without its range reduction.
+fn sin_cos_eighth_turn(x: f64) -> (f64, f64) {
+    let x2 = x * x;
+    // Nested (Horner) form, innermost factor first: sin x = x (1 - x^2/(2*3) (1 - x^2/(4*5)
+    // (...))) and cos x = 1 - x^2/(1*2) (1 - x^2/(3*4) (...)).
+    let mut sin = 1.0;
+    for inverse in SINE_FACTORS.iter().rev() {
+        sin = 1.0 - x2 * inverse * sin;
+    }
+    let mut cos = 1.0;
+    for inverse in COSINE_FACTORS.iter().rev() {
+        cos = 1.0 - x2 * inverse * cos;
+    }
+    (x * sin, cos)
+}
+
+/// 1 / ((2k) (2k + 1)) for k = 1..=8.
+const SINE_FACTORS: [f64; 8] = taylor_factors(0);
+/// 1 / ((2k - 1) (2k)) for k = 1..=9.
+const COSINE_FACTORS: [f64; 9] = taylor_factors(1);
+
+const fn taylor_factors<const N: usize>(shift: u32) -> [f64; N] {
+    let mut factors = [0.0; N];
+    let mut k = 1;
+    while k <= N as u32 {
+        let low = 2 * k - shift;
+        factors[k as usize - 1] = 1.0 / (low as f64 * (low + 1) as f64);
+        k += 1;
+    }
+    factors
 }
 
 #[cfg(test)]
@@ -191,7 +273,7 @@ mod tests {
 
     #[test]
     fn tabulated_pattern_equals_cmj() {
-        for (n, p) in [(1u32, 7u32), (4, 99), (7, 1234), (16, 0xdead_beef), (30, 5)] {
+        for (n, p) in [(1u32, 7u32), (4, 99), (7, 1234), (16, 0xdead_beef), (30, 5), (5000, 3)] {
             let pattern = CmjPattern::new(n, p);
             for s in 0..n {
                 assert_eq!(pattern.sample(s), cmj(s, n, p), "n = {n}, s = {s}");
@@ -207,10 +289,30 @@ mod tests {
     }
 
     #[test]
+    fn streams_equal_the_full_hash() {
+        for (pixel, sample, seed) in [(0, 0, 0), (12345, 7, 99), (u64::MAX, 3, 1 << 40)] {
+            let stream = SampleStream::new(pixel, sample, seed);
+            for d in [0, 1, 5, 1000, u64::MAX] {
+                assert_eq!(stream.uniform(d), to_unit(hash4(pixel, sample, d, seed)));
+            }
+        }
+    }
+
+    #[test]
     fn hashes_are_uniform_enough() {
         let n = 100_000;
         let mean: f64 = (0..n).map(|i| to_unit(hash4(i, 0, 0, 7))).sum::<f64>() / n as f64;
         assert!((mean - 0.5).abs() < 0.005, "{mean}");
+    }
+
+    #[test]
+    fn eighth_turn_sine_and_cosine_match_libm() {
+        for i in -1000..=1000 {
+            let x = f64::from(i) / 1000.0 * std::f64::consts::FRAC_PI_4;
+            let (sin, cos) = sin_cos_eighth_turn(x);
+            assert!((sin - x.sin()).abs() <= 2.0 * f64::EPSILON, "sin {x}");
+            assert!((cos - x.cos()).abs() <= 2.0 * f64::EPSILON, "cos {x}");
+        }
     }
 
     #[test]
