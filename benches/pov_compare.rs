@@ -8,6 +8,15 @@
 //! cargo bench --bench pov_compare -- [--runs N] [--threads 1,2] [--size 1000x563] [NAME...]
 //! ```
 //!
+//! Both write the same file: a half-float, ZIP-compressed OpenEXR (POV-Ray's `+FE`, Prism's
+//! `--half --exr`).
+//!
+//! Focal blur is random sampling, where the fair comparison is at equal image error: the
+//! benchmark first finds, at the scene's own size, how many lens samples Prism needs for an
+//! RMSE against a converged POV-Ray render (25 times the scene's samples) no larger than
+//! POV-Ray's at the scene's count, then adds an "equal error" row that times Prism at that
+//! count against POV-Ray at the scene's.
+//!
 //! "aa" is the scene's own POV-Ray antialiasing method, else method 1 with threshold 0.3 and
 //! depth 3 (`+A0.3 +AM1 +R3 -J`), which both renderers sample identically. Each figure is the
 //! best of `--runs` runs (default 3): the machine is shared, and the best run is the one
@@ -114,6 +123,67 @@ fn image_error(a: &Path, b: &Path) -> (f64, f64) {
     ((sum / (3.0 * n)).sqrt(), 100.0 * over as f64 / n)
 }
 
+/// RMSE in linear light between two EXR files.
+fn rmse(a: &Path, b: &Path) -> f64 {
+    image_error(a, b).0
+}
+
+/// The lens samples POV-Ray takes per pixel in an exported scene (`blur_samples N`).
+fn blur_samples(pov: &str) -> Option<u32> {
+    let line = pov.lines().find(|l| l.trim_start().starts_with("blur_samples"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// Equal-error calibration of a focal-blur scene at its own size: POV-Ray's sample count,
+/// its RMSE against a converged POV-Ray render, the fewest Prism samples with no larger
+/// RMSE, and that RMSE. `None` for scenes without focal blur.
+fn equal_error_samples(prism: &str, scene: &Path, work: &Path) -> Option<(u32, f64, u32, f64)> {
+    let pov = work.join("calibration.pov");
+    let status = Command::new(prism).args(["export", "pov"]).arg(scene).arg("-o").arg(&pov).status().unwrap();
+    assert!(status.success(), "export of {} failed", scene.display());
+    let text = std::fs::read_to_string(&pov).unwrap();
+    let samples = blur_samples(&text)?;
+    let options: Vec<String> =
+        prism::export::pov::options_of(&text).expect("options line").split_whitespace().map(String::from).collect();
+    let povray = |pov: &Path, out: &Path| {
+        let status = Command::new("povray")
+            .arg(pov)
+            .args(&options)
+            .args(["-D", "+WT2", "+FE"])
+            .arg(format!("+O{}", out.display()))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()
+            .unwrap();
+        assert!(status.success(), "povray failed on {}", pov.display());
+    };
+    let converged = work.join("calibration-converged.pov");
+    let many = format!("blur_samples {}", 25 * samples);
+    std::fs::write(&converged, text.replace(&format!("blur_samples {samples}"), &many)).unwrap();
+    let reference = work.join("calibration-reference.exr");
+    povray(&converged, &reference);
+    let theirs = work.join("calibration-povray.exr");
+    povray(&pov, &theirs);
+    let target = rmse(&theirs, &reference);
+    let ours = work.join("calibration-prism.exr");
+    for n in 1..=samples {
+        let status = Command::new(prism)
+            .arg("render")
+            .arg(scene)
+            .args(["--samples", &n.to_string(), "--exr"])
+            .arg(&ours)
+            .stderr(Stdio::null())
+            .status()
+            .unwrap();
+        assert!(status.success(), "prism failed on {}", scene.display());
+        let error = rmse(&ours, &reference);
+        if error <= target || n == samples {
+            return Some((samples, target, n, error));
+        }
+    }
+    None
+}
+
 fn main() {
     let o = options();
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
@@ -151,14 +221,25 @@ fn main() {
     for (name, path) in &scenes {
         let text = std::fs::read_to_string(path).unwrap();
         let own_method = text.lines().find(|l| l.trim_start().starts_with("antialias"));
-        for aa in [false, true] {
-            let antialias = match (aa, own_method) {
-                (false, _) => "antialias = { method = \"stratified\" }".to_string(),
-                (true, Some(line)) => line.trim().to_string(),
-                (true, None) => "antialias = { method = \"pov1\", threshold = 0.3, depth = 3 }".to_string(),
-            };
+        // (label, antialias line, Prism's samples when they differ from POV-Ray's)
+        let mut variants: Vec<(String, String, Option<u32>)> = Vec::new();
+        variants.push(("noaa".into(), "antialias = { method = \"stratified\" }".into(), None));
+        let aa_line = match own_method {
+            Some(line) => line.trim().to_string(),
+            None => "antialias = { method = \"pov1\", threshold = 0.3, depth = 3 }".to_string(),
+        };
+        variants.push(("aa".into(), aa_line, None));
+        if text.contains("parity-tolerance")
+            && let Some((pov_samples, pov_error, prism_samples, prism_error)) = equal_error_samples(prism, path, &work)
+        {
+            println!(
+                "<!-- {name}: at its own size, POV-Ray's {pov_samples} lens samples give RMSE {pov_error:.2e} against 25x as many; Prism's {prism_samples} give {prism_error:.2e} -->"
+            );
+            variants.push(("equal-error".into(), variants[0].1.clone(), Some(prism_samples)));
+        }
+        for (variant, antialias, prism_samples) in &variants {
             // The scene at the benchmark size and sampling, by including it.
-            let tag = format!("{name}-{}", if aa { "aa" } else { "noaa" });
+            let tag = format!("{name}-{variant}");
             let toml = work.join(format!("{tag}.toml"));
             let include = path.display().to_string().replace('\\', "/");
             std::fs::write(
@@ -183,12 +264,11 @@ fn main() {
                     (0..o.runs)
                         .map(|_| {
                             let mut c = Command::new(prism);
-                            c.arg("render")
-                                .arg(&toml)
-                                .arg("--threads")
-                                .arg(threads.to_string())
-                                .arg("--exr")
-                                .arg(&ours);
+                            c.arg("render").arg(&toml);
+                            if let Some(n) = prism_samples {
+                                c.args(["--samples", &n.to_string()]);
+                            }
+                            c.arg("--threads").arg(threads.to_string()).arg("--half").arg("--exr").arg(&ours);
                             measure(c, &work.join(format!("{tag}.prism.log")))
                         })
                         .collect(),
@@ -207,7 +287,11 @@ fn main() {
                 let show = |t: Option<f64>| t.map_or("?".into(), |t| format!("{t:.3}"));
                 println!(
                     "| {name} | {} | {threads} | {:.3} | {:.3} | {:.2}x | {:.3} | {:.3} | {:.2}x | {} | {} | {rmse:.1e} | {over:.2} |",
-                    if aa { aa_label.as_str() } else { "no" },
+                    match (variant.as_str(), prism_samples) {
+                        ("aa", _) => aa_label.clone(),
+                        (_, Some(n)) => format!("no; equal error: Prism {n} spp"),
+                        _ => "no".to_string(),
+                    },
                     prism_run.wall,
                     pov_run.wall,
                     pov_run.wall / prism_run.wall,

@@ -70,6 +70,9 @@ struct RenderArgs {
     /// Linear, unclipped OpenEXR image.
     #[arg(long)]
     exr: Option<PathBuf>,
+    /// Write EXR channels as 16-bit half floats (as POV-Ray does) instead of 32-bit floats.
+    #[arg(long)]
+    half: bool,
     /// Image width in pixels (overrides the scene).
     #[arg(long)]
     width: Option<u32>,
@@ -171,8 +174,10 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
     }
     let options = RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal() };
     let (film, stats) = render(&render_scene, &options).map_err(|e| e.to_string())?;
+    let image =
+        output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };
     for path in &outputs {
-        output::write_image(&film, path, scene.render.exposure, scene.render.tone_map).map_err(|e| e.to_string())?;
+        output::write_image(&film, path, &image).map_err(|e| e.to_string())?;
     }
     let names: Vec<String> = outputs.iter().map(|p| p.display().to_string()).collect();
     eprintln!(

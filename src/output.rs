@@ -128,8 +128,20 @@ pub fn to_ldr(film: &Film, exposure: f64, op: ToneMap) -> RgbImage {
     img
 }
 
+/// How the film becomes an image file.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ImageSettings {
+    /// Exposure in stops for 8-bit formats.
+    pub exposure: f64,
+    /// Tone-mapping operator for 8-bit formats.
+    pub tone_map: ToneMap,
+    /// Write EXR channels as 16-bit half floats (as POV-Ray does) instead of 32-bit floats:
+    /// half the size and about three times faster to compress, with 11 significant bits.
+    pub exr_half: bool,
+}
+
 /// Encodes the film for `path`'s format.
-pub fn encode(film: &Film, path: &Path, exposure: f64, op: ToneMap) -> Result<Vec<u8>, OutputError> {
+pub fn encode(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Vec<u8>, OutputError> {
     let encode_err =
         |e: &dyn std::fmt::Display| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() };
     let mut bytes = Cursor::new(Vec::new());
@@ -137,12 +149,18 @@ pub fn encode(film: &Film, path: &Path, exposure: f64, op: ToneMap) -> Result<Ve
         OutputFormat::Exr => {
             use exr::prelude::*;
             let (w, h) = (film.width as usize, film.height as usize);
-            let channels = SpecificChannels::rgb(|p: Vec2<usize>| {
-                let [r, g, b] = film.pixels[p.y() * w + p.x()];
-                (r, g, b)
-            });
-            let layer = Layer::new((w, h), LayerAttributes::named("beauty"), Encoding::SMALL_LOSSLESS, channels);
-            Image::from_layer(layer).write().to_buffered(&mut bytes).map_err(|e| encode_err(&e))?;
+            let pixel = |p: Vec2<usize>| film.pixels[p.y() * w + p.x()];
+            let attributes = LayerAttributes::named("beauty");
+            let written = if settings.exr_half {
+                let channels = SpecificChannels::rgb(|p| pixel(p).map(f16::from_f32).into());
+                let layer = Layer::new((w, h), attributes, Encoding::SMALL_LOSSLESS, channels);
+                Image::from_layer(layer).write().to_buffered(&mut bytes)
+            } else {
+                let channels = SpecificChannels::rgb(|p| pixel(p).into());
+                let layer = Layer::new((w, h), attributes, Encoding::SMALL_LOSSLESS, channels);
+                Image::from_layer(layer).write().to_buffered(&mut bytes)
+            };
+            written.map_err(|e| encode_err(&e))?;
         }
         OutputFormat::Hdr => {
             let data: Vec<f32> = film.pixels.iter().flatten().copied().collect();
@@ -153,14 +171,14 @@ pub fn encode(film: &Film, path: &Path, exposure: f64, op: ToneMap) -> Result<Ve
         OutputFormat::Ldr(ImageFormat::Pnm) => {
             use image::ImageEncoder;
             use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
-            let img = to_ldr(film, exposure, op);
+            let img = to_ldr(film, settings.exposure, settings.tone_map);
             PnmEncoder::new(&mut bytes)
                 .with_subtype(PnmSubtype::Pixmap(SampleEncoding::Binary))
                 .write_image(img.as_raw(), film.width, film.height, image::ExtendedColorType::Rgb8)
                 .map_err(|e| encode_err(&e))?;
         }
         OutputFormat::Ldr(format) => {
-            let img = to_ldr(film, exposure, op);
+            let img = to_ldr(film, settings.exposure, settings.tone_map);
             image::DynamicImage::ImageRgb8(img).write_to(&mut bytes, format).map_err(|e| encode_err(&e))?;
         }
     }
@@ -168,8 +186,8 @@ pub fn encode(film: &Film, path: &Path, exposure: f64, op: ToneMap) -> Result<Ve
 }
 
 /// Writes the film to `path` (format from the extension), atomically.
-pub fn write_image(film: &Film, path: &Path, exposure: f64, op: ToneMap) -> Result<(), OutputError> {
-    let bytes = encode(film, path, exposure, op)?;
+pub fn write_image(film: &Film, path: &Path, settings: &ImageSettings) -> Result<(), OutputError> {
+    let bytes = encode(film, path, settings)?;
     write_atomically(path, &bytes)
 }
 
@@ -223,5 +241,33 @@ mod tests {
         assert_eq!(format_for(Path::new("a.ppm")).unwrap(), OutputFormat::Ldr(ImageFormat::Pnm));
         assert!(format_for(Path::new("a.xyz")).is_err());
         assert!(format_for(Path::new("noext")).is_err());
+    }
+
+    #[test]
+    fn exr_round_trips_in_float_and_in_half() {
+        let mut film = Film::new(5, 3);
+        for (i, p) in film.pixels.iter_mut().enumerate() {
+            let v = 0.1 + i as f32 * 0.377;
+            *p = [v, v * 1e-3, v * 1e3];
+        }
+        let dir = std::env::temp_dir().join(format!("prism-exr-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("film.exr");
+        let mut sizes = Vec::new();
+        for exr_half in [false, true] {
+            let settings = ImageSettings { exr_half, ..ImageSettings::default() };
+            let bytes = encode(&film, &path, &settings).unwrap();
+            sizes.push(bytes.len());
+            std::fs::write(&path, bytes).unwrap();
+            let back = read_exr(&path).unwrap();
+            for (a, b) in film.pixels.iter().zip(&back.pixels) {
+                for c in 0..3 {
+                    let expected = if exr_half { exr::prelude::f16::from_f32(a[c]).to_f32() } else { a[c] };
+                    assert_eq!(b[c], expected, "half = {exr_half}");
+                }
+            }
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+        assert!(sizes[1] < sizes[0], "half-float file is smaller: {sizes:?}");
     }
 }

@@ -29,7 +29,7 @@ fn thread_count_does_not_change_a_single_bit() {
     for name in ["room.toml", "snowman.toml"] {
         let one = render_scene(load(&scene_path(name)), 120, 68, 4, 1);
         let two = render_scene(load(&scene_path(name)), 120, 68, 4, 2);
-        let exr = |f: &Film| prism::output::encode(f, Path::new("x.exr"), 0.0, Default::default()).unwrap();
+        let exr = |f: &Film| prism::output::encode(f, Path::new("x.exr"), &Default::default()).unwrap();
         assert!(one == two, "{name}: films differ between 1 and 2 threads");
         assert_eq!(exr(&one), exr(&two), "{name}: EXR bytes differ between 1 and 2 threads");
         assert!(one.pixels.iter().any(|p| p[0] > 0.1), "{name}: image is black");

@@ -150,11 +150,11 @@ fn false_colour(d: f64) -> [u8; 3] {
 
 fn write_artifacts(dir: &Path, name: &str, ours: &Film, reference: &Film, d: &Difference) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
-    let tone = prism::scene::components::ToneMap::Clamp;
+    let image = prism::output::ImageSettings::default();
     let io = |e: prism::output::OutputError| std::io::Error::other(e.to_string());
-    prism::output::write_image(ours, &dir.join(format!("{name}.prism.png")), 0.0, tone).map_err(io)?;
-    prism::output::write_image(ours, &dir.join(format!("{name}.prism.exr")), 0.0, tone).map_err(io)?;
-    prism::output::write_image(reference, &dir.join(format!("{name}.povray.png")), 0.0, tone).map_err(io)?;
+    prism::output::write_image(ours, &dir.join(format!("{name}.prism.png")), &image).map_err(io)?;
+    prism::output::write_image(ours, &dir.join(format!("{name}.prism.exr")), &image).map_err(io)?;
+    prism::output::write_image(reference, &dir.join(format!("{name}.povray.png")), &image).map_err(io)?;
     let mut diff = image::RgbImage::new(ours.width, ours.height);
     for (p, &v) in diff.pixels_mut().zip(&d.per_pixel) {
         p.0 = false_colour(v);
