@@ -433,6 +433,9 @@ impl<'a> Classic<'a> {
         state: &mut PathState,
     ) -> DVec3 {
         let (n1, n2) = (grid.size1 as usize, grid.size2 as usize);
+        // Grid steps as fractions of the light's size, multiplied rather than divided per sample.
+        let step = |n: usize| if n > 1 { 1.0 / (n - 1) as f64 } else { 0.0 };
+        let (step1, step2) = (step(n1), step(n2));
         let mut sample = |u: usize, v: usize, state: &mut PathState| -> DVec3 {
             let (seen, c) = cache[v * n1 + u];
             if seen == stamp {
@@ -444,8 +447,8 @@ impl<'a> Classic<'a> {
                 ju += state.stream.uniform(k) - 0.5;
                 jv += state.stream.uniform(k + 1) - 0.5;
             }
-            let mut fu = if n1 > 1 { ju / (n1 - 1) as f64 - 0.5 } else { 0.0 };
-            let mut fv = if n2 > 1 { jv / (n2 - 1) as f64 - 0.5 } else { 0.0 };
+            let mut fu = if n1 > 1 { ju * step1 - 0.5 } else { 0.0 };
+            let mut fv = if n2 > 1 { jv * step2 - 0.5 } else { 0.0 };
             if grid.circular {
                 fu += 0.001;
                 fv += 0.001;
@@ -456,7 +459,7 @@ impl<'a> Classic<'a> {
             let target = light.position + axis1 * fu + axis2 * fv;
             let to = target - point;
             let distance = to.length();
-            let c = self.transmittance(point, to / distance, distance, interiors, state);
+            let c = self.transmittance(point, to * distance.recip(), distance, interiors, state);
             cache[v * n1 + u] = (stamp, c);
             c
         };
