@@ -211,6 +211,20 @@ enum Newton {
     Miss,
 }
 
+/// Normals of the planes through the centre on which |x|, |y|, |z| change sign or order:
+/// the non-convex case splits rays there (as POV-Ray does).
+const SPLIT_PLANES: [DVec3; 9] = [
+    DVec3::X,
+    DVec3::Y,
+    DVec3::Z,
+    DVec3::new(1.0, 1.0, 0.0),
+    DVec3::new(1.0, -1.0, 0.0),
+    DVec3::new(1.0, 0.0, 1.0),
+    DVec3::new(1.0, 0.0, -1.0),
+    DVec3::new(0.0, 1.0, 1.0),
+    DVec3::new(0.0, 1.0, -1.0),
+];
+
 /// Spacing of the samples along the ray in the non-convex case, in object-space units.
 const SAMPLE_SPACING: f64 = 0.05;
 
@@ -439,18 +453,7 @@ impl Superellipsoid {
         let mut count = 0;
         splits[count] = lo;
         count += 1;
-        let planes = [
-            DVec3::X,
-            DVec3::Y,
-            DVec3::Z,
-            DVec3::new(1.0, 1.0, 0.0),
-            DVec3::new(1.0, -1.0, 0.0),
-            DVec3::new(1.0, 0.0, 1.0),
-            DVec3::new(1.0, 0.0, -1.0),
-            DVec3::new(0.0, 1.0, 1.0),
-            DVec3::new(0.0, 1.0, -1.0),
-        ];
-        for normal in planes {
+        for normal in SPLIT_PLANES {
             let u = -normal.dot(o) / normal.dot(dir);
             if u > lo && u < hi {
                 splits[count] = u;
@@ -1024,19 +1027,8 @@ mod tests {
         hi: f64,
         accept: impl Fn(f64) -> bool,
     ) -> Option<f64> {
-        let planes = [
-            DVec3::X,
-            DVec3::Y,
-            DVec3::Z,
-            DVec3::new(1.0, 1.0, 0.0),
-            DVec3::new(1.0, -1.0, 0.0),
-            DVec3::new(1.0, 0.0, 1.0),
-            DVec3::new(1.0, 0.0, -1.0),
-            DVec3::new(0.0, 1.0, 1.0),
-            DVec3::new(0.0, 1.0, -1.0),
-        ];
         let mut splits = vec![lo, hi];
-        splits.extend(planes.iter().map(|n| -n.dot(o) / n.dot(dir)).filter(|&u| u > lo && u < hi));
+        splits.extend(SPLIT_PLANES.iter().map(|n| -n.dot(o) / n.dot(dir)).filter(|&u| u > lo && u < hi));
         splits.sort_by(f64::total_cmp);
         let mut window = [(lo, s.level(o, dir, lo)); 3];
         let mut filled = 1;
