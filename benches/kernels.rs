@@ -32,20 +32,24 @@ fn shapes(c: &mut Criterion) {
     let rays = rays(4096);
     let mut group = c.benchmark_group("intersect");
     group.throughput(Throughput::Elements(rays.len() as u64));
-    for (kind, params) in [
-        ("sphere", "radius = 1"),
-        ("box", ""),
-        ("cone", "open = false"),
-        ("cylinder", ""),
-        ("torus", "major_radius = 0.8\nminor_radius = 0.2"),
-        ("superellipsoid", "e = 0.5\nn = 0.5"),
+    for (name, kind, params) in [
+        ("sphere", "sphere", "radius = 1"),
+        ("box", "box", ""),
+        ("cone", "cone", "open = false"),
+        ("cylinder", "cylinder", ""),
+        ("torus", "torus", "major_radius = 0.8\nminor_radius = 0.2"),
+        ("superellipsoid", "superellipsoid", "e = 0.5\nn = 0.5"),
+        // Exponents in eighths (no powf), and a concave shape (the sampled scan).
+        ("superellipsoid_rounded_cube", "superellipsoid", "e = 0.25\nn = 0.25"),
+        ("superellipsoid_concave", "superellipsoid", "e = 2.5\nn = 1.5"),
         (
+            "blob",
             "blob",
             "components = [{ center = [-0.3, 0, 0], radius = 0.8, strength = 1 }, { center = [0.3, 0, 0], radius = 0.8, strength = 1 }]",
         ),
     ] {
         let shape = shape_from(kind, params);
-        group.bench_function(kind, |b| {
+        group.bench_function(name, |b| {
             b.iter(|| rays.iter().filter(|r| shape.intersect(black_box(r), 1e-6, f64::INFINITY).is_some()).count())
         });
     }

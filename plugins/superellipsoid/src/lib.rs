@@ -1121,26 +1121,4 @@ mod tests {
             assert!(hits > 300 && rejected > 100, "<{e}, {n}>: {hits} hits, {rejected} past a point");
         }
     }
-
-    /// Throughput on rays from a sphere of radius 3 towards random points of the cube:
-    /// `cargo test --release -p prism-superellipsoid -- --ignored --nocapture throughput`.
-    #[test]
-    #[ignore]
-    fn throughput() {
-        let mut rng = TestRng::new(42);
-        let cube = Aabb::from_corners(DVec3::splat(-1.0), DVec3::splat(1.0));
-        let rays: Vec<Ray> = (0..200_000)
-            .map(|_| {
-                let origin = rng.unit_vector() * 3.0;
-                Ray::new(origin, rng.point_in(&cube) - origin)
-            })
-            .collect();
-        for (e, n) in [(0.25, 0.25), (2.5, 1.5)] {
-            let s = Superellipsoid::new(e, n);
-            let start = std::time::Instant::now();
-            let hits = rays.iter().filter(|ray| s.intersect(ray, 1e-9, f64::INFINITY).is_some()).count();
-            let rate = rays.len() as f64 / start.elapsed().as_secs_f64();
-            println!("<{e}, {n}>: {rate:.0} rays/s ({hits} hits)");
-        }
-    }
 }
