@@ -6,7 +6,8 @@
 //! `occluded` agrees with `intersect`; shrinking `t_max` below a hit never yields a farther
 //! hit; and the hit is invariant (within tolerance) when the ray is expressed through a
 //! random rotation, non-uniform scale and translation and mapped back, as Prism does for
-//! every transformed primitive. A ray whose hit-or-miss answer changes when it is nudged
+//! every transformed primitive; and `misses_hull` never claims to miss a hull holding a
+//! segment that hits. A ray whose hit-or-miss answer changes when it is nudged
 //! sideways by a billionth of the shape's size grazes a silhouette or an edge (a triangle's
 //! edge, a disc's rim): there rounding legitimately decides, so such a ray is not counted
 //! against the transform-invariance budget. Rays that hit either way must agree.
@@ -133,6 +134,28 @@ fn grazes_an_edge(shape: &dyn Shape, ray: &Ray, t_min: f64, t_max: f64, delta: f
     })
 }
 
+/// Random hulls of four points in `region`: when the shape says it misses one, segments
+/// between random points of the hull must not hit it.
+fn check_missed_hulls(shape: &dyn Shape, rng: &mut TestRng, region: &Aabb, count: usize, t_min: f64) {
+    for _ in 0..count {
+        let points: [DVec3; 4] = std::array::from_fn(|_| rng.point_in(region));
+        if !shape.misses_hull(&points) {
+            continue;
+        }
+        let mut inside = || {
+            let w: [f64; 4] = std::array::from_fn(|_| rng.uniform() + 1e-3);
+            let total: f64 = w.iter().sum();
+            points.iter().zip(w).map(|(p, w)| *p * (w / total)).sum::<DVec3>()
+        };
+        for _ in 0..16 {
+            let (from, to) = (inside(), inside());
+            let ray = Ray::new(from, to - from);
+            let hit = shape.intersect(&ray, t_min, 1.0);
+            assert!(hit.is_none(), "misses_hull({points:?}) is true, but the segment {from} -> {to} hits: {hit:?}");
+        }
+    }
+}
+
 /// Runs the contract with `config`; panics with a description of the first violation.
 pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
     let mut rng = TestRng::new(config.seed);
@@ -178,6 +201,15 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
         );
         assert!(surface.uv.is_finite(), "uv {} not finite", surface.uv);
 
+        // A hull holding the segment up to the hit must not be missed.
+        let reached = ray.at(hit.t + tol);
+        assert!(
+            !shape.misses_hull(&[ray.origin, reached]),
+            "misses_hull() claims the segment from {} to {reached} misses, but {ray:?} hits at t = {}",
+            ray.origin,
+            hit.t
+        );
+
         // A shorter segment that ends before the hit must not report anything farther.
         let shorter = hit.t * 0.999;
         if let Some(h) = shape.intersect(&ray, t_min, shorter) {
@@ -202,6 +234,7 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
             None => flips += 1,
         }
     }
+    check_missed_hulls(shape, &mut rng, &region, config.rays / 8, t_min);
     let allowed = (config.max_flip_fraction * config.rays as f64).ceil() as usize;
     assert!(
         flips <= allowed,

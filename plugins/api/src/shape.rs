@@ -83,6 +83,16 @@ pub trait Shape: Send + Sync + Debug + 'static {
         self.intersect(ray, t_min, t_max).is_some()
     }
 
+    /// True when the shape certainly does not meet the convex hull of `points` (object
+    /// space). Prism asks unbounded shapes this to skip them for a whole bundle of rays (the
+    /// shadow rays from a point to an area light); bounded shapes are culled by their
+    /// bounds instead. The default, false, is always correct; a `true` must be certain,
+    /// with a margin for rounding.
+    fn misses_hull(&self, points: &[DVec3]) -> bool {
+        let _ = points;
+        false
+    }
+
     /// Surface area, for shapes that can be area lights.
     fn area(&self) -> Option<f64> {
         None

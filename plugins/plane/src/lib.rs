@@ -95,6 +95,14 @@ impl Shape for Plane {
         (t > t_min && t < t_max).then(|| Hit::at(t))
     }
 
+    fn misses_hull(&self, points: &[DVec3]) -> bool {
+        // Every point strictly on one side, by more than rounding in their signed distances.
+        let scale = points.iter().fold(self.offset.abs(), |m, p| m.max(p.abs().max_element()));
+        let margin = 1e-9 * scale.max(1.0);
+        let side = |p: &DVec3| self.normal.dot(*p) - self.offset;
+        points.iter().all(|p| side(p) > margin) || points.iter().all(|p| side(p) < -margin)
+    }
+
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
         let p = ray.at(hit.t);
         // Project onto the plane: removes the rounding error of ray.at(t) along the normal.
@@ -119,6 +127,16 @@ mod tests {
 
     fn build(normal: [f64; 3], offset: f64) -> Result<Arc<dyn Shape>, ParamError> {
         PlaneParams { normal, offset }.build()
+    }
+
+    #[test]
+    fn misses_a_hull_only_on_one_side() {
+        let plane = ground();
+        let above = [DVec3::new(0.0, 0.5, 0.0), DVec3::new(3.0, 2.0, -1.0), DVec3::new(-1.0, 1e-3, 4.0)];
+        assert!(plane.misses_hull(&above));
+        assert!(plane.misses_hull(&above.map(|p| -p)), "wholly below");
+        assert!(!plane.misses_hull(&[above[0], above[1], DVec3::new(0.0, -0.1, 0.0)]), "straddles");
+        assert!(!plane.misses_hull(&[above[0], DVec3::new(2.0, 0.0, 1.0)]), "touches");
     }
 
     #[test]
