@@ -18,6 +18,7 @@ pub mod registry;
 pub mod render;
 pub mod scene;
 pub mod schema;
+pub(crate) mod wide_bvh;
 
 use diagnostics::SceneError;
 use render::scene::RenderScene;

@@ -16,44 +16,15 @@ use obvhs::BvhBuildParams;
 use obvhs::bvh2::builder::build_bvh2;
 
 use super::intersect::{TriangleHit, WatertightRay};
+use crate::wide_bvh::{
+    BoxKernel, BoxRay, EMPTY, FAR_SCALE, LEAF, Node, ScalarBoxes, StackEntry, WIDTH, WideTree, order_children,
+    pop_within, with_traversal_stack,
+};
 
-/// Children per node.
-const WIDTH: usize = 8;
 /// Triangles per leaf packet (and at most per leaf). Four, tested in SSE lanes: leaves of
 /// real meshes hold three to four triangles, and wider packets mostly carry padding through
 /// the cache.
 const PACKET: usize = 4;
-/// Child slot marker: the child is a leaf (the low bits index a packet).
-const LEAF: u32 = 1 << 31;
-/// An unused child slot.
-const EMPTY: u32 = u32::MAX;
-/// Ize's conservative slab test: far distances grow by 2 gamma(3) so rounding never loses a box.
-const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
-
-/// An 8-wide node: child boxes as structure-of-arrays and child references.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(64))]
-struct Node {
-    /// min x, min y, min z, max x, max y, max z of each child.
-    bounds: [[f32; WIDTH]; 6],
-    /// Inner node index, `LEAF | packet`, or `EMPTY`.
-    child: [u32; WIDTH],
-}
-
-impl Node {
-    const EMPTY: Node = Node {
-        bounds: [
-            [f32::INFINITY; WIDTH],
-            [f32::INFINITY; WIDTH],
-            [f32::INFINITY; WIDTH],
-            [f32::NEG_INFINITY; WIDTH],
-            [f32::NEG_INFINITY; WIDTH],
-            [f32::NEG_INFINITY; WIDTH],
-        ],
-        child: [EMPTY; WIDTH],
-    };
-}
-
 /// Four triangles, vertices as structure-of-arrays (`a[axis][lane]`). Unused lanes repeat
 /// the last triangle, so they can only report hits that are already reported.
 #[derive(Clone, Copy, Debug)]
@@ -64,6 +35,25 @@ struct Packet {
     c: [[f32; PACKET]; 3],
     /// Triangle index (into the mesh's triangle list) of each lane.
     prim: [u32; PACKET],
+}
+
+impl Packet {
+    /// The packet of `prims` (at most `PACKET` indices into `triangles`).
+    fn new(triangles: &[[Vec3; 3]], prims: &[u32]) -> Self {
+        let count = prims.len().clamp(1, PACKET);
+        let mut p = Packet { a: [[0.0; PACKET]; 3], b: [[0.0; PACKET]; 3], c: [[0.0; PACKET]; 3], prim: [0; PACKET] };
+        for lane in 0..PACKET {
+            let prim = prims[lane.min(count - 1)];
+            let [a, b, c] = triangles[prim as usize];
+            for axis in 0..3 {
+                p.a[axis][lane] = a[axis];
+                p.b[axis][lane] = b[axis];
+                p.c[axis][lane] = c[axis];
+            }
+            p.prim[lane] = prim;
+        }
+        p
+    }
 }
 
 /// A BVH over triangles.
@@ -93,11 +83,7 @@ impl std::fmt::Debug for TriangleBvh {
 /// per axis, and the watertight test's shear.
 struct Prepared {
     wt: WatertightRay,
-    rdir: [f32; 3],
-    org_rdir: [f32; 3],
-    /// Index into `Node::bounds` of the near plane on each axis (the far one is +3 mod 6).
-    near: [usize; 3],
-    far: [usize; 3],
+    boxes: BoxRay,
     /// Origin, permuted to the watertight test's (kx, ky, kz).
     org: [f32; 3],
     perm: [usize; 3],
@@ -106,16 +92,9 @@ struct Prepared {
 
 impl Prepared {
     fn new(wt: &WatertightRay) -> Self {
-        let d = wt.direction;
         let o = wt.origin;
-        // Zero components become tiny ones (as Embree does): infinite reciprocals would turn
-        // the slab test's products into NaN.
-        let rdir = [0, 1, 2].map(|k| 1.0 / if d[k].abs() < 1e-18 { 1e-18f32.copysign(d[k]) } else { d[k] });
-        let org_rdir = [o.x * rdir[0], o.y * rdir[1], o.z * rdir[2]];
-        let near = [0, 1, 2].map(|k| if rdir[k] >= 0.0 { k } else { k + 3 });
-        let far = near.map(|n| (n + 3) % 6);
         let (perm, shear) = wt.shear();
-        Self { wt: *wt, rdir, org_rdir, near, far, org: perm.map(|k| o[k]), perm, shear }
+        Self { wt: *wt, boxes: BoxRay::new(o, wt.direction), org: perm.map(|k| o[k]), perm, shear }
     }
 }
 
@@ -140,87 +119,14 @@ impl TriangleBvh {
         // One triangle per BVH2 leaf: the collapse below forms the leaves.
         let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
         let bvh2 = build_bvh2(&boxes, params, &mut build_time);
-        let mut counts = vec![0u32; bvh2.nodes.len()];
-        count_prims(&bvh2, 0, &mut counts);
-        let mut out =
-            TriangleBvh { nodes: Vec::new(), packets: Vec::new(), triangles: triangles.to_vec(), stack_size: 0 };
-        let mut depth = 0;
-        if counts[0] as usize <= PACKET {
-            // A small mesh: a root node with one leaf.
-            let mut node = Node::EMPTY;
-            let packet = out.packet(&bvh2, 0);
-            set_child(&mut node, 0, &bvh2.nodes[0], LEAF | packet);
-            out.nodes.push(node);
-            depth = 1;
-        } else {
-            out.nodes.push(Node::EMPTY);
-            out.collapse(&bvh2, &counts, 0, 0, 1, &mut depth);
-        }
-        out.stack_size = depth * (WIDTH - 1) + 2;
+        let mut packets = Vec::new();
+        let tree = WideTree::collapse(&bvh2, PACKET, |prims| {
+            packets.push(Packet::new(triangles, prims));
+            (packets.len() - 1) as u32
+        });
+        let out =
+            TriangleBvh { nodes: tree.nodes, packets, triangles: triangles.to_vec(), stack_size: tree.stack_size };
         (out, (0..triangles.len() as u32).collect())
-    }
-
-    /// Fills node `index` from the BVH2 inner node `bvh2_index`: its eight most promising
-    /// descendants (repeatedly opening the one with the largest surface area).
-    fn collapse(
-        &mut self,
-        bvh2: &obvhs::bvh2::Bvh2,
-        counts: &[u32],
-        bvh2_index: usize,
-        index: usize,
-        level: usize,
-        depth: &mut usize,
-    ) {
-        *depth = (*depth).max(level);
-        let first = bvh2.nodes[bvh2_index].first_index as usize;
-        let mut children = vec![first, first + 1];
-        while children.len() < WIDTH {
-            // Subtrees small enough for one packet stay whole: they become leaves.
-            let open = children
-                .iter()
-                .enumerate()
-                .filter(|&(_, &c)| counts[c] as usize > PACKET)
-                .max_by(|a, b| half_area(&bvh2.nodes[*a.1]).total_cmp(&half_area(&bvh2.nodes[*b.1])))
-                .map(|(i, _)| i);
-            let Some(i) = open else { break };
-            let c = children.swap_remove(i);
-            let f = bvh2.nodes[c].first_index as usize;
-            children.push(f);
-            children.push(f + 1);
-        }
-        for (slot, &c) in children.iter().enumerate() {
-            let child = &bvh2.nodes[c];
-            if counts[c] as usize <= PACKET {
-                let packet = self.packet(bvh2, c);
-                set_child(&mut self.nodes[index], slot, child, LEAF | packet);
-            } else {
-                let inner = self.nodes.len();
-                self.nodes.push(Node::EMPTY);
-                set_child(&mut self.nodes[index], slot, child, inner as u32);
-                self.collapse(bvh2, counts, c, inner, level + 1, depth);
-            }
-        }
-    }
-
-    /// The packet of the triangles under BVH2 node `subtree` (at most `PACKET`); returns
-    /// its index.
-    fn packet(&mut self, bvh2: &obvhs::bvh2::Bvh2, subtree: usize) -> u32 {
-        let mut prims = Vec::with_capacity(PACKET);
-        leaf_prims(bvh2, subtree, &mut prims);
-        let count = prims.len().clamp(1, PACKET);
-        let mut p = Packet { a: [[0.0; PACKET]; 3], b: [[0.0; PACKET]; 3], c: [[0.0; PACKET]; 3], prim: [0; PACKET] };
-        for lane in 0..PACKET {
-            let prim = prims[lane.min(count - 1)];
-            let [a, b, c] = self.triangles[prim as usize];
-            for axis in 0..3 {
-                p.a[axis][lane] = a[axis];
-                p.b[axis][lane] = b[axis];
-                p.c[axis][lane] = c[axis];
-            }
-            p.prim[lane] = prim;
-        }
-        self.packets.push(p);
-        (self.packets.len() - 1) as u32
     }
 
     /// Number of triangles.
@@ -291,15 +197,6 @@ impl TriangleBvh {
     }
 }
 
-/// Runs `f` with a traversal stack of `size` slots: on the call stack when it fits (the
-/// usual case), on the heap for degenerate, very deep trees.
-#[inline(always)]
-fn with_traversal_stack<R>(size: usize, f: impl FnOnce(&mut [MaybeUninit<(u32, f32)>]) -> R) -> R {
-    // Left uninitialised: the traversal writes every slot before reading it.
-    let mut local = [const { MaybeUninit::<(u32, f32)>::uninit() }; 160];
-    if size <= local.len() { f(&mut local) } else { f(&mut vec![MaybeUninit::uninit(); size]) }
-}
-
 impl TriangleBvh {
     /// Closest hits of eight rays traced together (a 4x2 tile of camera rays, say): each
     /// node and leaf is fetched once for all eight, and its boxes and triangles are tested
@@ -367,45 +264,6 @@ fn shared_frame(rays: &[WatertightRay]) -> bool {
     })
 }
 
-/// Triangles under each BVH2 node.
-fn count_prims(bvh2: &obvhs::bvh2::Bvh2, index: usize, counts: &mut [u32]) -> u32 {
-    let node = &bvh2.nodes[index];
-    let n = if node.prim_count > 0 {
-        node.prim_count
-    } else {
-        let first = node.first_index as usize;
-        count_prims(bvh2, first, counts) + count_prims(bvh2, first + 1, counts)
-    };
-    counts[index] = n;
-    n
-}
-
-/// The triangles under BVH2 node `index`.
-fn leaf_prims(bvh2: &obvhs::bvh2::Bvh2, index: usize, out: &mut Vec<u32>) {
-    let node = &bvh2.nodes[index];
-    let first = node.first_index as usize;
-    if node.prim_count > 0 {
-        out.extend_from_slice(&bvh2.primitive_indices[first..first + node.prim_count as usize]);
-    } else {
-        leaf_prims(bvh2, first, out);
-        leaf_prims(bvh2, first + 1, out);
-    }
-}
-
-fn half_area(n: &obvhs::bvh2::node::Bvh2Node) -> f32 {
-    let d = n.aabb().max - n.aabb().min;
-    d.x * d.y + d.y * d.z + d.z * d.x
-}
-
-fn set_child(node: &mut Node, slot: usize, child: &obvhs::bvh2::node::Bvh2Node, reference: u32) {
-    let (min, max) = (child.aabb().min, child.aabb().max);
-    for axis in 0..3 {
-        node.bounds[axis][slot] = min[axis];
-        node.bounds[axis + 3][slot] = max[axis];
-    }
-    node.child[slot] = reference;
-}
-
 /// What the traversal does with a candidate hit.
 trait Acceptor {
     /// Offers a hit; returns the new bound on t if it was taken.
@@ -449,9 +307,8 @@ impl<F: FnMut(usize, TriangleHit) -> bool> Acceptor for AcceptAny<F> {
 
 /// The two SIMD kernels: eight boxes, four triangles.
 trait Kernels {
-    /// Bit mask of the children whose boxes the ray enters before `t_max`, and their
-    /// entry distances.
-    fn boxes(node: &Node, r: &Prepared, t_max: f32, near: &mut [f32; WIDTH]) -> u32;
+    /// The eight-box test.
+    type Boxes: BoxKernel;
     /// Bit mask of the lanes hit with 0 < t < t_max, and per lane t, b1, b2; lanes whose
     /// edge functions rounded to zero are left to the scalar test (their bits are in
     /// `edge`).
@@ -462,25 +319,7 @@ trait Kernels {
 struct Scalar;
 
 impl Kernels for Scalar {
-    #[inline(always)]
-    fn boxes(node: &Node, r: &Prepared, t_max: f32, near: &mut [f32; WIDTH]) -> u32 {
-        let mut mask = 0;
-        for (i, entry) in near.iter_mut().enumerate() {
-            let mut t0 = 0.0f32;
-            let mut t1 = t_max;
-            for axis in 0..3 {
-                let n = node.bounds[r.near[axis]][i] * r.rdir[axis] - r.org_rdir[axis];
-                let f = (node.bounds[r.far[axis]][i] * r.rdir[axis] - r.org_rdir[axis]) * FAR_SCALE;
-                t0 = if n > t0 { n } else { t0 };
-                t1 = if f < t1 { f } else { t1 };
-            }
-            *entry = t0;
-            if t0 <= t1 {
-                mask |= 1 << i;
-            }
-        }
-        mask
-    }
+    type Boxes = ScalarBoxes;
 
     #[inline(always)]
     fn triangles(p: &Packet, r: &Prepared, t_max: f32, out: &mut [[f32; PACKET]; 3], edge: &mut u32) -> u32 {
@@ -497,69 +336,6 @@ impl Kernels for Scalar {
         *edge = 0;
         mask
     }
-}
-
-/// Orders the children of `node` in `mask` (entry distances in `near`) for a depth-first,
-/// nearest-first traversal: returns the nearest, and pushes the others onto the stack so the
-/// next nearest is on top. `None` when the mask is empty.
-#[inline(always)]
-fn order_children(
-    node: &Node,
-    mut mask: u32,
-    near: &[f32; WIDTH],
-    stack: &mut [MaybeUninit<(u32, f32)>],
-    sp: &mut usize,
-) -> Option<u32> {
-    match mask.count_ones() {
-        0 => None,
-        1 => Some(node.child[mask.trailing_zeros() as usize]),
-        2 => {
-            // The common case: go to the nearer child, keep the farther one.
-            let i = mask.trailing_zeros() as usize;
-            let j = (mask & (mask - 1)).trailing_zeros() as usize;
-            let (near_i, far_i) = if near[i] <= near[j] { (i, j) } else { (j, i) };
-            stack[*sp] = MaybeUninit::new((node.child[far_i], near[far_i]));
-            *sp += 1;
-            Some(node.child[near_i])
-        }
-        _ => {
-            // Push every hit child, farthest first, then continue with the nearest.
-            let base = *sp;
-            while mask != 0 {
-                let i = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let entry = (node.child[i], near[i]);
-                // Insertion sort by distance, descending (nearest on top). Slots below `sp`
-                // are initialised.
-                let mut j = *sp;
-                // SAFETY: j - 1 < sp, a slot written earlier.
-                while j > base && unsafe { stack[j - 1].assume_init() }.1 < entry.1 {
-                    stack[j] = stack[j - 1];
-                    j -= 1;
-                }
-                stack[j] = MaybeUninit::new(entry);
-                *sp += 1;
-            }
-            *sp -= 1;
-            // SAFETY: sp < the number of slots written.
-            Some(unsafe { stack[*sp].assume_init() }.0)
-        }
-    }
-}
-
-/// Pops the stack down to the first node entered no farther than `t_max`; `None` when the
-/// stack runs out.
-#[inline(always)]
-fn pop_within(stack: &[MaybeUninit<(u32, f32)>], sp: &mut usize, t_max: f32) -> Option<u32> {
-    while *sp > 0 {
-        *sp -= 1;
-        // SAFETY: slots below the stack pointer have been written.
-        let (node, distance) = unsafe { stack[*sp].assume_init() };
-        if distance <= t_max {
-            return Some(node);
-        }
-    }
-    None
 }
 
 /// One triangle's candidate hits for the rays of a packet, by lane, and the rays' bounds.
@@ -613,110 +389,55 @@ fn traverse<K: Kernels, const ANY: bool>(
     bvh: &TriangleBvh,
     r: &Prepared,
     t_max: f32,
-    stack: &mut [MaybeUninit<(u32, f32)>],
+    stack: &mut [StackEntry],
     acceptor: &mut impl Acceptor,
 ) -> bool {
-    let mut t_max = t_max;
-    let mut sp = 0usize;
-    let mut current = 0u32;
-    let mut near = [0f32; WIDTH];
     let mut hits = [[0f32; PACKET]; 3];
-    loop {
-        if current & LEAF == 0 {
-            let node = &bvh.nodes[current as usize];
-            let mask = K::boxes(node, r, t_max, &mut near);
-            if let Some(next) = order_children(node, mask, &near, stack, &mut sp) {
-                current = next;
-                continue;
-            }
-        } else {
-            let packet = &bvh.packets[(current & !LEAF) as usize];
-            let mut edge = 0;
-            let mut mask = K::triangles(packet, r, t_max, &mut hits, &mut edge);
-            while edge != 0 {
-                let lane = edge.trailing_zeros() as usize;
-                edge &= edge - 1;
-                let v = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
-                if let Some(h) = r.wt.intersect(v(&packet.a), v(&packet.b), v(&packet.c), t_max) {
-                    hits[0][lane] = h.t;
-                    hits[1][lane] = h.b1;
-                    hits[2][lane] = h.b2;
-                    mask |= 1 << lane;
-                }
-            }
-            while mask != 0 {
-                let lane = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let hit = TriangleHit { t: hits[0][lane], b1: hits[1][lane], b2: hits[2][lane] };
-                if hit.t < t_max
-                    && let Some(bound) = acceptor.offer(packet.prim[lane] as usize, hit)
-                {
-                    if ANY && acceptor.done() {
-                        return true;
-                    }
-                    t_max = t_max.min(bound);
-                }
+    crate::wide_bvh::traverse::<K::Boxes, true>(&bvh.nodes, &r.boxes, t_max, stack, |leaf, t_max| {
+        let packet = &bvh.packets[leaf as usize];
+        let mut edge = 0;
+        let mut mask = K::triangles(packet, r, *t_max, &mut hits, &mut edge);
+        while edge != 0 {
+            let lane = edge.trailing_zeros() as usize;
+            edge &= edge - 1;
+            let v = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
+            if let Some(h) = r.wt.intersect(v(&packet.a), v(&packet.b), v(&packet.c), *t_max) {
+                hits[0][lane] = h.t;
+                hits[1][lane] = h.b1;
+                hits[2][lane] = h.b2;
+                mask |= 1 << lane;
             }
         }
-        // Pop the next node that is still nearer than the best hit.
-        match pop_within(stack, &mut sp, t_max) {
-            Some(node) => current = node,
-            None => return acceptor.done(),
+        while mask != 0 {
+            let lane = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            let hit = TriangleHit { t: hits[0][lane], b1: hits[1][lane], b2: hits[2][lane] };
+            if hit.t < *t_max
+                && let Some(bound) = acceptor.offer(packet.prim[lane] as usize, hit)
+            {
+                if ANY && acceptor.done() {
+                    return true;
+                }
+                *t_max = t_max.min(bound);
+            }
         }
-    }
+        false
+    })
 }
 
 #[cfg(target_arch = "x86_64")]
 mod simd {
     use std::arch::x86_64::*;
-    use std::sync::OnceLock;
+
+    pub use crate::wide_bvh::avx2_available as available;
 
     use super::*;
-
-    /// True when the CPU runs the AVX2 + FMA kernels.
-    pub fn available() -> bool {
-        static AVAILABLE: OnceLock<bool> = OnceLock::new();
-        *AVAILABLE.get_or_init(|| {
-            is_x86_feature_detected!("avx2")
-                && is_x86_feature_detected!("fma")
-                && is_x86_feature_detected!("popcnt")
-                && is_x86_feature_detected!("bmi1")
-        })
-    }
+    use crate::wide_bvh::Avx2Boxes;
 
     struct Avx2;
 
     impl Kernels for Avx2 {
-        #[inline(always)]
-        fn boxes(node: &Node, r: &Prepared, t_max: f32, near: &mut [f32; WIDTH]) -> u32 {
-            // SAFETY: only instantiated inside functions compiled with AVX2 and FMA enabled,
-            // which run only after `available()`; loads are of 32-byte aligned arrays.
-            unsafe {
-                let b = &node.bounds;
-                // Macros, not closures: a closure is a function of its own without AVX, and
-                // the intrinsics in it would not be inlined.
-                macro_rules! plane {
-                    ($k:expr, $axis:expr) => {
-                        _mm256_fmsub_ps(
-                            _mm256_load_ps(b[$k].as_ptr()),
-                            _mm256_set1_ps(r.rdir[$axis]),
-                            _mm256_set1_ps(r.org_rdir[$axis]),
-                        )
-                    };
-                }
-                let nx = plane!(r.near[0], 0);
-                let ny = plane!(r.near[1], 1);
-                let nz = plane!(r.near[2], 2);
-                let fx = plane!(r.far[0], 0);
-                let fy = plane!(r.far[1], 1);
-                let fz = plane!(r.far[2], 2);
-                let t0 = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, _mm256_setzero_ps()));
-                let t1 = _mm256_min_ps(_mm256_min_ps(fx, fy), fz);
-                let t1 = _mm256_min_ps(_mm256_mul_ps(t1, _mm256_set1_ps(FAR_SCALE)), _mm256_set1_ps(t_max));
-                _mm256_storeu_ps(near.as_mut_ptr(), t0);
-                _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(t0, t1)) as u32
-            }
-        }
+        type Boxes = Avx2Boxes;
 
         #[inline(always)]
         fn triangles(p: &Packet, r: &Prepared, t_max: f32, out: &mut [[f32; PACKET]; 3], edge: &mut u32) -> u32 {
@@ -791,7 +512,7 @@ mod simd {
         bvh: &TriangleBvh,
         r: &Prepared,
         t_max: f32,
-        stack: &mut [MaybeUninit<(u32, f32)>],
+        stack: &mut [StackEntry],
         accept: impl FnMut(usize, TriangleHit) -> Option<f32>,
     ) {
         traverse::<Avx2, false>(bvh, r, t_max, stack, &mut AcceptClosest(accept));
@@ -809,7 +530,7 @@ mod simd {
         bvh: &TriangleBvh,
         r: &Prepared,
         t_max: f32,
-        stack: &mut [MaybeUninit<(u32, f32)>],
+        stack: &mut [StackEntry],
         accept: impl FnMut(usize, TriangleHit) -> bool,
     ) -> bool {
         traverse::<Avx2, true>(bvh, r, t_max, stack, &mut AcceptAny(accept, false))
@@ -911,20 +632,23 @@ mod packet {
         #[inline(always)]
         pub(super) unsafe fn new(prepared: &[Prepared], rays: &[WatertightRay]) -> Option<Self> {
             let origin = rays[0].origin;
-            let shared = prepared.iter().zip(rays).all(|(p, ray)| ray.origin == origin && p.near == prepared[0].near);
+            let shared = prepared
+                .iter()
+                .zip(rays)
+                .all(|(p, ray)| ray.origin == origin && p.boxes.near == prepared[0].boxes.near);
             if !shared {
                 return None;
             }
-            let lo = [0, 1, 2].map(|k| prepared.iter().map(|p| p.rdir[k]).fold(f32::INFINITY, f32::min));
-            let hi = [0, 1, 2].map(|k| prepared.iter().map(|p| p.rdir[k]).fold(f32::NEG_INFINITY, f32::max));
+            let lo = [0, 1, 2].map(|k| prepared.iter().map(|p| p.boxes.rdir[k]).fold(f32::INFINITY, f32::min));
+            let hi = [0, 1, 2].map(|k| prepared.iter().map(|p| p.boxes.rdir[k]).fold(f32::NEG_INFINITY, f32::max));
             // SAFETY: broadcasts only; the caller has AVX.
             unsafe {
                 Some(Self {
                     org: [0, 1, 2].map(|k| _mm256_set1_ps(origin[k])),
                     rdir_lo: lo.map(|v| _mm256_set1_ps(v)),
                     rdir_hi: hi.map(|v| _mm256_set1_ps(v)),
-                    near: prepared[0].near,
-                    far: prepared[0].far,
+                    near: prepared[0].boxes.near,
+                    far: prepared[0].boxes.far,
                 })
             }
         }
@@ -976,16 +700,16 @@ mod packet {
             let prepared: [Prepared; 8] = std::array::from_fn(|i| Prepared::new(&rays[i]));
             // A macro, not a closure: intrinsics inside a closure would not be inlined.
             macro_rules! lanes {
-                ($field:ident, $k:expr) => {{
-                    let v: [f32; 8] = std::array::from_fn(|i| prepared[i].$field[$k]);
+                ($($field:ident).+, $k:expr) => {{
+                    let v: [f32; 8] = std::array::from_fn(|i| prepared[i].$($field).+[$k]);
                     _mm256_loadu_ps(v.as_ptr())
                 }};
             }
             // The slab test orders each lane's planes with min/max, so the rays may differ in
             // the signs of their other two direction components.
             let r = Rays8 {
-                rdir: [lanes!(rdir, 0), lanes!(rdir, 1), lanes!(rdir, 2)],
-                org_rdir: [lanes!(org_rdir, 0), lanes!(org_rdir, 1), lanes!(org_rdir, 2)],
+                rdir: [lanes!(boxes.rdir, 0), lanes!(boxes.rdir, 1), lanes!(boxes.rdir, 2)],
+                org_rdir: [lanes!(boxes.org_rdir, 0), lanes!(boxes.org_rdir, 1), lanes!(boxes.org_rdir, 2)],
                 org: [lanes!(org, 0), lanes!(org, 1), lanes!(org, 2)],
                 shear: [lanes!(shear, 0), lanes!(shear, 1), lanes!(shear, 2)],
                 perm: prepared[0].perm,

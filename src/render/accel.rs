@@ -1,23 +1,23 @@
-//! Ray queries over all primitives: an obvhs BVH over the world bounds of bounded
-//! primitives, plus a short list of unbounded ones (infinite planes) tested beside it, as
-//! POV-Ray does. Shapes are intersected in f64 in their own object space; the BVH works in
-//! f32 with conservatively enlarged boxes, and the closest hit is decided in f64.
+//! Ray queries over all primitives: an 8-wide BVH ([`crate::wide_bvh`]) over the world
+//! bounds of bounded primitives, one primitive per leaf, plus a short list of unbounded ones
+//! (infinite planes) tested beside it, as POV-Ray does. Shapes are intersected in f64 in
+//! their own object space; the BVH works in f32 with conservatively enlarged boxes, and the
+//! closest hit is decided in f64.
 
 use std::time::Duration;
 
-use glam::Vec3A;
+use glam::{DVec3, Vec3A};
 use obvhs::BvhBuildParams;
-use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::builder::build_bvh2;
 use prism_api::{Hit, Ray};
 
 use super::scene::Primitive;
+use crate::wide_bvh::{BoxRay, EMPTY, LEAF, WIDTH, WideTree, traverse_fastest, with_traversal_stack};
 
 /// The acceleration structure.
 pub struct Accel {
-    bvh: Option<Bvh2>,
-    /// Primitive index of each BVH leaf slot (leaf order).
-    leaf_primitive: Vec<u32>,
+    /// The tree over bounded primitives; a leaf's reference is the primitive's index.
+    tree: Option<WideTree>,
     /// Primitives that are not bounded.
     unbounded: Vec<u32>,
 }
@@ -41,11 +41,16 @@ fn to_obvhs_aabb(b: &prism_api::Aabb) -> obvhs::aabb::Aabb {
     obvhs::aabb::Aabb { min: Vec3A::from(min), max: Vec3A::from(max) }
 }
 
-/// The f32 ray the BVH traverses, reaching up to `t_max` rounded up so that f32 pruning
-/// never drops a box holding a hit at exactly `t_max`.
-fn bvh_ray(ray: &Ray, t_max: f64) -> obvhs::ray::Ray {
-    let tmax = if t_max.is_finite() { (t_max as f32).next_up() } else { f32::INFINITY };
-    obvhs::ray::Ray::new(Vec3A::from(ray.origin.as_vec3()), Vec3A::from(ray.direction.as_vec3()), 0.0, tmax)
+/// The f32 ray the BVH traverses.
+#[inline]
+fn box_ray(ray: &Ray) -> BoxRay {
+    BoxRay::new(ray.origin.as_vec3(), ray.direction.as_vec3())
+}
+
+/// `t` rounded up to f32, so that f32 pruning never drops a box holding a hit at exactly `t`.
+#[inline]
+fn f32_bound(t: f64) -> f32 {
+    if t.is_finite() { (t as f32).next_up() } else { f32::INFINITY }
 }
 
 impl Accel {
@@ -62,15 +67,17 @@ impl Accel {
                 unbounded.push(i as u32);
             }
         }
-        let bvh = (!boxes.is_empty()).then(|| {
+        let tree = (!boxes.is_empty()).then(|| {
             let mut build_time = Duration::default();
-            build_bvh2(&boxes, BvhBuildParams::medium_build(), &mut build_time)
+            // One primitive per leaf: the wide tree's leaves are single primitives.
+            let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
+            let bvh2 = build_bvh2(&boxes, params, &mut build_time);
+            WideTree::collapse(&bvh2, 1, |prims| {
+                debug_assert_eq!(prims.len(), 1, "leaves hold one primitive");
+                bounded[prims[0] as usize]
+            })
         });
-        let leaf_primitive = match &bvh {
-            Some(bvh) => bvh.primitive_indices.iter().map(|&i| bounded[i as usize]).collect(),
-            None => Vec::new(),
-        };
-        Self { bvh, leaf_primitive, unbounded }
+        Self { tree, unbounded }
     }
 
     /// The closest hit with `t_min < t < t_max` among primitives for which `accept` is true.
@@ -84,9 +91,9 @@ impl Accel {
     ) -> Option<ClosestHit> {
         let mut best: Option<ClosestHit> = None;
         let mut best_t = t_max;
-        let test = |index: u32, best_t: &mut f64, best: &mut Option<ClosestHit>| -> f32 {
+        let test = |index: u32, best_t: &mut f64, best: &mut Option<ClosestHit>| -> bool {
             if !accept(index) {
-                return f32::INFINITY;
+                return false;
             }
             let p = &primitives[index as usize];
             let object_ray = p.object_ray(ray);
@@ -94,19 +101,24 @@ impl Accel {
                 Some(hit) => {
                     *best_t = hit.t;
                     *best = Some(ClosestHit { primitive: index, hit, object_ray });
-                    // Round up so the f32 traversal never prunes a box holding an equal hit.
-                    (hit.t as f32).next_up()
+                    true
                 }
-                None => f32::INFINITY,
+                None => false,
             }
         };
         for &index in &self.unbounded {
             test(index, &mut best_t, &mut best);
         }
-        if let Some(bvh) = &self.bvh {
-            let mut hit = obvhs::ray::RayHit::none();
-            bvh.ray_traverse(bvh_ray(ray, best_t), &mut hit, |_, slot| {
-                test(self.leaf_primitive[slot], &mut best_t, &mut best)
+        if let Some(tree) = &self.tree {
+            let r = box_ray(ray);
+            with_traversal_stack(tree.stack_size, |stack| {
+                traverse_fastest::<true>(&tree.nodes, &r, f32_bound(best_t), stack, |primitive, bound| {
+                    if test(primitive, &mut best_t, &mut best) {
+                        // Round up so the f32 traversal never prunes a box holding an equal hit.
+                        *bound = f32_bound(best_t);
+                    }
+                    false
+                })
             });
         }
         best
@@ -116,6 +128,21 @@ impl Accel {
     pub fn occluded(
         &self,
         primitives: &[Primitive],
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        accept: impl Fn(u32) -> bool,
+    ) -> bool {
+        self.occluded_among(primitives, None, ray, t_min, t_max, accept)
+    }
+
+    /// [`Accel::occluded`] among the unbounded primitives and `bounded` when given (which
+    /// must hold every bounded primitive the ray may meet, see [`Accel::gather`]), else
+    /// among all.
+    pub fn occluded_among(
+        &self,
+        primitives: &[Primitive],
+        bounded: Option<&[u32]>,
         ray: &Ray,
         t_min: f64,
         t_max: f64,
@@ -131,10 +158,217 @@ impl Accel {
         if self.unbounded.iter().any(|&i| test(i)) {
             return true;
         }
-        let Some(bvh) = &self.bvh else { return false };
-        !bvh.ray_traverse_miss(
-            bvh_ray(ray, t_max),
-            |_, slot| if test(self.leaf_primitive[slot]) { 0.0 } else { f32::INFINITY },
-        )
+        if let Some(bounded) = bounded {
+            return bounded.iter().any(|&i| test(i));
+        }
+        let Some(tree) = &self.tree else { return false };
+        let r = box_ray(ray);
+        with_traversal_stack(tree.stack_size, |stack| {
+            traverse_fastest::<false>(&tree.nodes, &r, f32_bound(t_max), stack, |primitive, _| test(primitive))
+        })
+    }
+
+    /// Collects into `out` the primitives that may meet `hull`: unbounded ones that do not
+    /// rule it out ([`prism_api::Shape::misses_hull`]) and bounded ones whose BVH boxes
+    /// reach into it. False (with `out` incomplete) when there are more than it holds.
+    pub fn gather(&self, primitives: &[Primitive], hull: &ConvexHull, out: &mut Gathered) -> bool {
+        out.len = 0;
+        let push = |index: u32, out: &mut Gathered| {
+            if out.len == out.items.len() {
+                return false;
+            }
+            out.items[out.len] = index;
+            out.len += 1;
+            true
+        };
+        for &index in &self.unbounded {
+            let p = &primitives[index as usize];
+            let corners = hull.vertices().map(|v| if p.identity { v } else { p.object_from_world.transform_point3(v) });
+            if !p.shape.misses_hull(&corners[..hull.vertex_count]) && !push(index, out) {
+                return false;
+            }
+        }
+        let Some(tree) = &self.tree else { return true };
+        let mut stack = [0u32; 64];
+        let mut sp = 1;
+        while sp > 0 {
+            sp -= 1;
+            let node = &tree.nodes[stack[sp] as usize];
+            for slot in 0..WIDTH {
+                let child = node.child[slot];
+                if child == EMPTY {
+                    continue;
+                }
+                let b = &node.bounds;
+                let min = DVec3::new(b[0][slot].into(), b[1][slot].into(), b[2][slot].into());
+                let max = DVec3::new(b[3][slot].into(), b[4][slot].into(), b[5][slot].into());
+                if hull.excludes(min, max) {
+                    continue;
+                }
+                if child & LEAF != 0 {
+                    if !push(child & !LEAF, out) {
+                        return false;
+                    }
+                } else {
+                    if sp == stack.len() {
+                        return false;
+                    }
+                    stack[sp] = child;
+                    sp += 1;
+                }
+            }
+        }
+        true
+    }
+}
+
+/// A few primitives gathered by [`Accel::gather`], kept on the stack.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Gathered {
+    items: [u32; 8],
+    len: usize,
+}
+
+impl Gathered {
+    /// The gathered primitive indices.
+    pub fn as_slice(&self) -> &[u32] {
+        &self.items[..self.len]
+    }
+}
+
+/// A convex polyhedron by its face planes and its vertices, used to cull what a bundle of
+/// rays inside it can meet. Culling is conservative: a box counts as outside only when it
+/// lies beyond one face plane by more than a small margin.
+#[derive(Clone, Copy, Debug)]
+pub struct ConvexHull {
+    /// Unit outward normal and offset of each face (inside: `n . x <= d`).
+    faces: [(DVec3, f64); 6],
+    face_count: usize,
+    vertices: [DVec3; 8],
+    vertex_count: usize,
+    /// Distance beyond a face that still counts as touching it.
+    margin: f64,
+}
+
+impl ConvexHull {
+    /// The hull of the shadow rays from `apex` to the parallelogram `centre +- edge1 +-
+    /// edge2`, from `skip` along each ray on (shadow rays ignore hits nearer than that). It
+    /// is the pyramid over the parallelogram, cut by a plane across the central direction
+    /// that every ray crosses no sooner than at `skip`; when the parallelogram spans a half
+    /// space around the apex there is no such plane, and the hull is the whole pyramid.
+    pub fn shadow_frustum(apex: DVec3, centre: DVec3, edge1: DVec3, edge2: DVec3, skip: f64) -> Self {
+        let corners = [centre - edge1 - edge2, centre + edge1 - edge2, centre + edge1 + edge2, centre - edge1 + edge2];
+        let inner = (apex + centre * 4.0) / 5.0;
+        let scale = apex.abs().max(centre.abs()).max_element() + edge1.length() + edge2.length();
+        let mut hull = Self {
+            faces: [(DVec3::ZERO, 0.0); 6],
+            face_count: 0,
+            vertices: [DVec3::ZERO; 8],
+            vertex_count: 0,
+            margin: 1e-7 * scale.max(1.0),
+        };
+        // A face too thin to have a direction, or one the inner point does not lie clearly
+        // inside of (a flat pyramid), is left out: fewer faces only cull less.
+        let face = |hull: &mut Self, n: DVec3, a: DVec3| {
+            let Some(mut n) = n.try_normalize() else { return };
+            let depth = n.dot(inner - a);
+            if depth.abs() <= hull.margin {
+                return;
+            }
+            if depth > 0.0 {
+                n = -n;
+            }
+            hull.faces[hull.face_count] = (n, n.dot(a));
+            hull.face_count += 1;
+        };
+        for i in 0..4 {
+            face(&mut hull, (corners[i] - apex).cross(corners[(i + 1) % 4] - apex), apex);
+        }
+        face(&mut hull, (corners[1] - corners[0]).cross(corners[3] - corners[0]), corners[0]);
+        hull.vertices[..4].copy_from_slice(&corners);
+        // Along the central direction every ray has gone at least `skip` times the smallest
+        // cosine between it and a corner direction (the cone's widest rays are its corners).
+        let axis = (centre - apex).normalize_or_zero();
+        let units = corners.map(|c| (c - apex).normalize_or_zero());
+        let cos_min = units.iter().map(|u| u.dot(axis)).fold(f64::INFINITY, f64::min);
+        if cos_min > 1e-3 && skip > 0.0 {
+            let near = skip * cos_min;
+            // The cut sits a margin nearer the apex than the rays' first points.
+            let cut = near - hull.margin;
+            if cut > 0.0 {
+                hull.faces[hull.face_count] = (-axis, -(axis.dot(apex) + cut));
+                hull.face_count += 1;
+                for (i, u) in units.iter().enumerate() {
+                    hull.vertices[4 + i] = apex + *u * (cut / u.dot(axis));
+                }
+                hull.vertex_count = 8;
+                return hull;
+            }
+        }
+        hull.vertices[4] = apex;
+        hull.vertex_count = 5;
+        hull
+    }
+
+    /// The hull's vertices (the first [`ConvexHull::vertex_count`] are used).
+    fn vertices(&self) -> [DVec3; 8] {
+        self.vertices
+    }
+
+    /// True when the box `min..max` lies wholly outside the hull's face planes' margin.
+    #[inline]
+    pub fn excludes(&self, min: DVec3, max: DVec3) -> bool {
+        let centre = (min + max) * 0.5;
+        let half = (max - min) * 0.5;
+        self.faces[..self.face_count].iter().any(|&(n, d)| n.dot(centre) - n.abs().dot(half) > d + self.margin)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use prism_api::contract::TestRng;
+
+    /// Random shadow frusta: every shadow segment (from `skip` along the ray to the light
+    /// sample) lies inside every face, and a plane with all vertices on one side never
+    /// separates two of its points.
+    #[test]
+    fn shadow_frusta_hold_every_shadow_segment() {
+        let mut rng = TestRng::new(7);
+        let mut cut = 0;
+        for case in 0..400 {
+            let apex = DVec3::new(rng.range(-5.0, 5.0), rng.range(-5.0, 5.0), rng.range(-5.0, 5.0));
+            let centre = apex + rng.unit_vector() * rng.range(0.05, 8.0);
+            let (edge1, edge2) = (rng.unit_vector() * rng.range(0.0, 2.0), rng.unit_vector() * rng.range(0.0, 2.0));
+            let skip = if case % 4 == 0 { 0.0 } else { rng.range(1e-4, 0.3) };
+            let hull = ConvexHull::shadow_frustum(apex, centre, edge1, edge2, skip);
+            cut += usize::from(hull.vertex_count == 8);
+            let vertices = &hull.vertices()[..hull.vertex_count];
+            let planes: Vec<(DVec3, f64)> = (0..8).map(|_| (rng.unit_vector(), rng.range(-6.0, 6.0))).collect();
+            for _ in 0..64 {
+                let target = centre + edge1 * rng.range(-1.0, 1.0) + edge2 * rng.range(-1.0, 1.0);
+                let length = apex.distance(target);
+                if length <= 2.0 * skip {
+                    continue;
+                }
+                let l = (target - apex) / length;
+                let point = apex + l * rng.range(skip, length);
+                assert!(!hull.excludes(point, point), "case {case}: {point} on a shadow ray lies outside {hull:?}");
+                for (n, d) in &planes {
+                    let above = vertices.iter().all(|v| n.dot(*v) > *d);
+                    let below = vertices.iter().all(|v| n.dot(*v) < *d);
+                    let side = n.dot(point) - d;
+                    let crossed = (above && side < -1e-9) || (below && side > 1e-9);
+                    assert!(!crossed, "case {case}: the vertices are on one side of a plane, a point is not");
+                }
+            }
+        }
+        assert!(cut > 100, "the near cut is made in most cases ({cut})");
+        // A box behind the apex, or beside the light, is culled; one on the way is not.
+        let hull = ConvexHull::shadow_frustum(DVec3::ZERO, DVec3::new(0.0, 4.0, 0.0), DVec3::X, DVec3::Z, 1e-3);
+        assert!(hull.excludes(DVec3::new(-1.0, -2.0, -1.0), DVec3::new(1.0, -1.0, 1.0)));
+        assert!(hull.excludes(DVec3::new(3.0, 3.0, -1.0), DVec3::new(4.0, 4.0, 1.0)));
+        assert!(hull.excludes(DVec3::new(-1.0, -1.0, -1.0), DVec3::new(1.0, 1e-5, 1.0)), "within the skip");
+        assert!(!hull.excludes(DVec3::new(-0.2, 2.0, -0.2), DVec3::new(0.2, 2.5, 0.2)));
     }
 }

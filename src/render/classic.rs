@@ -8,6 +8,7 @@
 use glam::DVec3;
 use prism_api::Ray;
 
+use super::accel::{ConvexHull, Gathered};
 use super::sampling::SampleStream;
 use super::scene::{AreaGrid, RenderLight, RenderScene};
 use crate::material::Material;
@@ -293,7 +294,7 @@ impl<'a> Classic<'a> {
             if !light.shadowless {
                 e *= match &light.area {
                     Some(grid) => self.area_visibility(point, l, light, grid, interiors, state),
-                    None => self.transmittance(point, l, distance, interiors, state),
+                    None => self.transmittance(point, l, distance, interiors, None, state),
                 };
                 if e == DVec3::ZERO {
                     continue;
@@ -332,13 +333,16 @@ impl<'a> Classic<'a> {
     /// opaque object, and filtered by every transparent surface crossed (straight through),
     /// faded over each stretch inside an object with interior fade. The shadow ray starts in
     /// the `interiors` of the ray that found `point` and, like POV-Ray's, restarts at each
-    /// surface it crosses, ignoring hits within `SHADOW_TOLERANCE` of either end.
+    /// surface it crosses, ignoring hits within `SHADOW_TOLERANCE` of either end. In a
+    /// scene without transparency, `blockers` (when given) holds every bounded primitive
+    /// that can lie on this shadow ray.
     fn transmittance(
         &self,
         point: DVec3,
         l: DVec3,
         distance: f64,
         interiors: &Interiors,
+        blockers: Option<&[u32]>,
         state: &mut PathState,
     ) -> DVec3 {
         let scene = self.scene;
@@ -350,7 +354,7 @@ impl<'a> Classic<'a> {
         state.rays += 1;
         if !scene.has_transparency {
             let ray = Ray::new(point, l);
-            let blocked = scene.accel.occluded(&scene.primitives, &ray, SHADOW_TOLERANCE, t_max, casts);
+            let blocked = scene.accel.occluded_among(&scene.primitives, blockers, &ray, SHADOW_TOLERANCE, t_max, casts);
             return if blocked { DVec3::ZERO } else { DVec3::ONE };
         }
         let mut filter = DVec3::ONE;
@@ -418,52 +422,121 @@ impl<'a> Classic<'a> {
         })
     }
 
-    /// The hierarchical average of one area light's shadow at `point`, memoising grid samples
-    /// in `cache` under `stamp`.
+    /// The hierarchical average of one area light's shadow at `point`: a fixed weighted sum
+    /// when the grid always subdivides fully, else POV-Ray's recursion, memoising grid
+    /// samples in `cache` under `stamp`.
     #[allow(clippy::too_many_arguments)]
     fn area_grid_average(
         &self,
         point: DVec3,
         light: &RenderLight,
         grid: &AreaGrid,
-        (axis1, axis2): (DVec3, DVec3),
+        axes: (DVec3, DVec3),
         interiors: &Interiors,
         jitter_base: u64,
         (stamp, cache): (u32, &mut [(u32, DVec3)]),
         state: &mut PathState,
     ) -> DVec3 {
-        let (n1, n2) = (grid.size1 as usize, grid.size2 as usize);
-        // Grid steps as fractions of the light's size, multiplied rather than divided per sample.
-        let step = |n: usize| if n > 1 { 1.0 / (n - 1) as f64 } else { 0.0 };
-        let (step1, step2) = (step(n1), step(n2));
+        let n1 = grid.size1 as usize;
+        let lattice = GridLattice::new(grid, axes, jitter_base);
+        // Shadow rays only meet what lies in the frustum from the point to the light: find
+        // that once, not per sample (opaque scenes; transparent ones follow every ray). With
+        // nothing there, every sample sees the light.
+        let mut gathered = Gathered::default();
+        let scene = self.scene;
+        let blockers = (!scene.has_transparency
+            && scene.accel.gather(&scene.primitives, &lattice.frustum(point, light.position), &mut gathered))
+        .then(|| gathered.as_slice());
+        if blockers.is_some_and(|b| b.is_empty()) {
+            return DVec3::ONE;
+        }
+        if let Some(weights) = &grid.fixed_weights {
+            let mut sum = DVec3::ZERO;
+            for (index, &weight) in weights.iter().enumerate() {
+                let target = lattice.point(light.position, index % n1, index / n1, state);
+                sum += weight * self.area_sample_visibility(point, target, interiors, blockers, state);
+            }
+            return sum;
+        }
         let mut sample = |u: usize, v: usize, state: &mut PathState| -> DVec3 {
             let (seen, c) = cache[v * n1 + u];
             if seen == stamp {
                 return c;
             }
-            let (mut ju, mut jv) = (u as f64, v as f64);
-            if grid.jitter {
-                let k = jitter_base + 2 * (v * n1 + u) as u64;
-                ju += state.stream.uniform(k) - 0.5;
-                jv += state.stream.uniform(k + 1) - 0.5;
-            }
-            let mut fu = if n1 > 1 { ju * step1 - 0.5 } else { 0.0 };
-            let mut fv = if n2 > 1 { jv * step2 - 0.5 } else { 0.0 };
-            if grid.circular {
-                fu += 0.001;
-                fv += 0.001;
-                let s = fu.abs().max(fv.abs()) / (fu * fu + fv * fv).sqrt();
-                fu *= s;
-                fv *= s;
-            }
-            let target = light.position + axis1 * fu + axis2 * fv;
-            let to = target - point;
-            let distance = to.length();
-            let c = self.transmittance(point, to * distance.recip(), distance, interiors, state);
+            let target = lattice.point(light.position, u, v, state);
+            let c = self.area_sample_visibility(point, target, interiors, blockers, state);
             cache[v * n1 + u] = (stamp, c);
             c
         };
-        block(&mut sample, 0, 0, n1 - 1, n2 - 1, 0, grid.adaptive, state)
+        block(&mut sample, 0, 0, n1 - 1, grid.size2 as usize - 1, 0, grid.adaptive, state)
+    }
+
+    /// The light reaching `point` from one area-light sample at `target`.
+    #[inline]
+    fn area_sample_visibility(
+        &self,
+        point: DVec3,
+        target: DVec3,
+        interiors: &Interiors,
+        blockers: Option<&[u32]>,
+        state: &mut PathState,
+    ) -> DVec3 {
+        let to = target - point;
+        let distance = to.length();
+        self.transmittance(point, to * distance.recip(), distance, interiors, blockers, state)
+    }
+}
+
+/// Where the samples of one area light lie for one shading point: the grid's (possibly
+/// oriented) axes and steps, and where its jitter numbers start.
+struct GridLattice<'a> {
+    grid: &'a AreaGrid,
+    axis1: DVec3,
+    axis2: DVec3,
+    /// Grid steps as fractions of the light's size, multiplied rather than divided per sample.
+    step1: f64,
+    step2: f64,
+    jitter_base: u64,
+}
+
+impl<'a> GridLattice<'a> {
+    fn new(grid: &'a AreaGrid, (axis1, axis2): (DVec3, DVec3), jitter_base: u64) -> Self {
+        let step = |n: u32| if n > 1 { 1.0 / (n - 1) as f64 } else { 0.0 };
+        Self { grid, axis1, axis2, step1: step(grid.size1), step2: step(grid.size2), jitter_base }
+    }
+
+    /// The world position of sample (u, v) of a light centred at `centre`, jittered and
+    /// mapped to a disc as the grid asks (POV-Ray's positions).
+    #[inline]
+    fn point(&self, centre: DVec3, u: usize, v: usize, state: &mut PathState) -> DVec3 {
+        let grid = self.grid;
+        let (mut ju, mut jv) = (u as f64, v as f64);
+        if grid.jitter {
+            let k = self.jitter_base + 2 * (v * grid.size1 as usize + u) as u64;
+            ju += state.stream.uniform(k) - 0.5;
+            jv += state.stream.uniform(k + 1) - 0.5;
+        }
+        let mut fu = if grid.size1 > 1 { ju * self.step1 - 0.5 } else { 0.0 };
+        let mut fv = if grid.size2 > 1 { jv * self.step2 - 0.5 } else { 0.0 };
+        if grid.circular {
+            fu += 0.001;
+            fv += 0.001;
+            let s = fu.abs().max(fv.abs()) / (fu * fu + fv * fv).sqrt();
+            fu *= s;
+            fv *= s;
+        }
+        centre + self.axis1 * fu + self.axis2 * fv
+    }
+
+    /// A frustum holding every shadow ray from `apex` to a sample of the light centred at
+    /// `centre` (past the shadow tolerance): the light's parallelogram is widened by the
+    /// jitter's half step and the circular mapping's offset.
+    fn frustum(&self, apex: DVec3, centre: DVec3) -> ConvexHull {
+        let grid = self.grid;
+        let jitter = if grid.jitter { 0.5 } else { 0.0 };
+        let reach = |step: f64| 0.5 + jitter * step + 0.002;
+        let (edge1, edge2) = (self.axis1 * reach(self.step1), self.axis2 * reach(self.step2));
+        ConvexHull::shadow_frustum(apex, centre, edge1, edge2, SHADOW_TOLERANCE)
     }
 }
 
@@ -574,6 +647,39 @@ mod tests {
         // REPORT.md 7: ior 1.5 at 60 degrees -> 0.08919.
         assert!((fresnel(1.5, 60f64.to_radians().cos()) - 0.08919).abs() < 1e-5);
         assert_eq!(fresnel(1.0 / 1.5, 0.1), 1.0, "total internal reflection");
+    }
+
+    /// POV-Ray's recursive average over samples `value(u, v)` of an `n1` x `n2` grid.
+    fn recursive_average(n1: usize, n2: usize, adaptive: u32, value: impl Fn(usize, usize) -> DVec3) -> DVec3 {
+        let mut state = PathState { stream: SampleStream::new(0, 0, 0), dimension: 0, rays: 0 };
+        block(&mut |u, v, _: &mut PathState| value(u, v), 0, 0, n1 - 1, n2 - 1, 0, adaptive, &mut state)
+    }
+
+    #[test]
+    fn fixed_area_weights_equal_the_recursion_whenever_they_exist() {
+        // Samples far apart, so that the recursion would split wherever it may.
+        let value = |u: usize, v: usize| DVec3::new((u * 7 + v * 3) as f64 % 5.0, (u ^ v) as f64, (u * v) as f64 * 0.3);
+        for n1 in 1..=9 {
+            for n2 in 1..=9 {
+                for adaptive in 0..5 {
+                    let Some(weights) = AreaGrid::fixed_weights(n1 as u32, n2 as u32, adaptive) else {
+                        assert!(n1 > 2 || n2 > 2, "{n1}x{n2} never splits, so it is always fixed");
+                        continue;
+                    };
+                    assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+                    let sum: DVec3 = weights.iter().enumerate().map(|(i, w)| *w * value(i % n1, i / n1)).sum();
+                    let expected = recursive_average(n1, n2, adaptive, value);
+                    assert!((sum - expected).abs().max_element() < 1e-12, "{n1}x{n2} adaptive {adaptive}");
+                }
+            }
+        }
+        // Full subdivision of 5 samples weighs them 1, 2, 2, 2, 1 (POV-Ray's pattern).
+        let weights = AreaGrid::fixed_weights(5, 1, 100).unwrap();
+        let expected = [1.0, 2.0, 2.0, 2.0, 1.0].map(|w| w / 8.0);
+        assert!(weights.iter().zip(expected).all(|(w, e)| (w - e).abs() < 1e-15), "{weights:?}");
+        // A shallow adaptive level leaves the rest to the samples.
+        assert!(AreaGrid::fixed_weights(5, 5, 1).is_none());
+        assert!(AreaGrid::fixed_weights(5, 5, 2).is_some());
     }
 
     #[test]

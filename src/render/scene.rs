@@ -92,6 +92,49 @@ pub struct AreaGrid {
     pub circular: bool,
     /// Grid turned toward each shaded point.
     pub orient: bool,
+    /// The weight of each grid sample (row-major, `size1` per row) when `adaptive` is deep
+    /// enough that POV-Ray's recursive average always subdivides down to neighbouring
+    /// samples: the average is then this fixed weighted sum. `None` when the recursion
+    /// depends on the samples.
+    pub fixed_weights: Option<Vec<f64>>,
+}
+
+impl AreaGrid {
+    /// The sample weights of POV-Ray's hierarchical average when it never depends on the
+    /// samples, or `None`. The recursion mirrors `classic::block`: a block whose corners
+    /// are further apart than neighbours splits into four at its midpoints (sharing the
+    /// middle row and column when the span is even), and a block that no longer splits
+    /// gives each of its four corners a quarter of its weight.
+    pub fn fixed_weights(size1: u32, size2: u32, adaptive: u32) -> Option<Vec<f64>> {
+        fn split(
+            weights: &mut [f64],
+            n1: usize,
+            (u1, v1, u2, v2): (usize, usize, usize, usize),
+            level: u32,
+            adaptive: u32,
+            weight: f64,
+        ) -> bool {
+            let large = u2 - u1 > 1 || v2 - v1 > 1;
+            if !large {
+                for (u, v) in [(u1, v1), (u2, v1), (u1, v2), (u2, v2)] {
+                    weights[v * n1 + u] += 0.25 * weight;
+                }
+                return true;
+            }
+            if level >= adaptive {
+                return false;
+            }
+            let (lo_u, lo_v) = ((u1 + u2) / 2, (v1 + v2) / 2);
+            let (hi_u, hi_v) = ((u1 + u2).div_ceil(2), (v1 + v2).div_ceil(2));
+            let quarter = 0.25 * weight;
+            [(u1, v1, lo_u, lo_v), (hi_u, v1, u2, lo_v), (u1, hi_v, lo_u, v2), (hi_u, hi_v, u2, v2)]
+                .into_iter()
+                .all(|block| split(weights, n1, block, level + 1, adaptive, quarter))
+        }
+        let (n1, n2) = (size1.max(1) as usize, size2.max(1) as usize);
+        let mut weights = vec![0.0; n1 * n2];
+        split(&mut weights, n1, (0, 0, n1 - 1, n2 - 1), 0, adaptive, 1.0).then_some(weights)
+    }
 }
 
 /// Everything a render needs, immutable and shareable across threads.
@@ -195,6 +238,7 @@ fn render_light(light: &Light) -> RenderLight {
             // POV-Ray makes an oriented area light circular.
             circular: light.circular || light.orient,
             orient: light.orient,
+            fixed_weights: AreaGrid::fixed_weights(light.size1, light.size2, light.adaptive),
         }),
     }
 }

@@ -1,0 +1,452 @@
+//! The 8-wide BVH both levels of Prism's acceleration share: nodes holding their eight
+//! children's boxes as structure-of-arrays (one AVX2 instruction tests a ray against all
+//! eight), built by collapsing an obvhs binary tree, and traversed depth first, nearest
+//! child first. What a leaf is belongs to the user: a packet of triangles in a mesh
+//! ([`crate::mesh`]), one primitive at the top level ([`crate::render::accel`]).
+
+use std::mem::MaybeUninit;
+
+use glam::{Vec3, Vec3A};
+
+/// Children per node.
+pub const WIDTH: usize = 8;
+/// Child slot marker: the child is a leaf (the low bits are the user's leaf reference).
+pub const LEAF: u32 = 1 << 31;
+/// An unused child slot.
+pub const EMPTY: u32 = u32::MAX;
+/// Ize's conservative slab test: far distances grow by 2 gamma(3) so rounding never loses a box.
+pub const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+
+/// A traversal stack entry: a node reference and the distance at which the ray enters it.
+pub type StackEntry = MaybeUninit<(u32, f32)>;
+
+/// An 8-wide node: child boxes as structure-of-arrays and child references.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+pub struct Node {
+    /// min x, min y, min z, max x, max y, max z of each child.
+    pub bounds: [[f32; WIDTH]; 6],
+    /// Inner node index, `LEAF | leaf reference`, or `EMPTY`.
+    pub child: [u32; WIDTH],
+}
+
+impl Node {
+    /// A node with no children (empty boxes that no ray enters).
+    pub const EMPTY: Node = Node {
+        bounds: [
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+            [f32::NEG_INFINITY; WIDTH],
+        ],
+        child: [EMPTY; WIDTH],
+    };
+
+    fn set_child(&mut self, slot: usize, child: &obvhs::bvh2::node::Bvh2Node, reference: u32) {
+        let (min, max) = (child.aabb().min, child.aabb().max);
+        for axis in 0..3 {
+            self.bounds[axis][slot] = min[axis];
+            self.bounds[axis + 3][slot] = max[axis];
+        }
+        self.child[slot] = reference;
+    }
+}
+
+/// A ray prepared for the slab test: reciprocal direction, origin times it, and which
+/// bound is the near plane on each axis.
+#[derive(Clone, Copy, Debug)]
+pub struct BoxRay {
+    /// Reciprocal direction.
+    pub rdir: [f32; 3],
+    /// Origin times the reciprocal direction.
+    pub org_rdir: [f32; 3],
+    /// Index into `Node::bounds` of the near plane on each axis.
+    pub near: [usize; 3],
+    /// Index of the far plane on each axis (`near` + 3 mod 6).
+    pub far: [usize; 3],
+}
+
+impl BoxRay {
+    /// Prepares the ray `origin + t direction`.
+    #[inline]
+    pub fn new(origin: Vec3, direction: Vec3) -> Self {
+        let d = Vec3A::from(direction);
+        // Zero components become tiny ones (as Embree does): infinite reciprocals would turn
+        // the slab test's products into NaN.
+        let tiny = Vec3A::splat(1e-18);
+        let rdir = Vec3A::select(d.abs().cmplt(tiny), tiny.copysign(d), d).recip();
+        let org_rdir = Vec3A::from(origin) * rdir;
+        let negative = rdir.is_negative_bitmask();
+        let near_of = |axis: usize| if negative & (1 << axis) == 0 { axis } else { axis + 3 };
+        let far_of = |axis: usize| if negative & (1 << axis) == 0 { axis + 3 } else { axis };
+        Self {
+            rdir: rdir.to_array(),
+            org_rdir: org_rdir.to_array(),
+            near: [near_of(0), near_of(1), near_of(2)],
+            far: [far_of(0), far_of(1), far_of(2)],
+        }
+    }
+}
+
+/// Tests a ray against the eight boxes of a node.
+pub trait BoxKernel {
+    /// Bit mask of the children whose boxes the ray enters at `0 <= t <= t_max`, and their
+    /// entry distances in `near`.
+    fn boxes(node: &Node, r: &BoxRay, t_max: f32, near: &mut [f32; WIDTH]) -> u32;
+}
+
+/// The box test as a plain loop (without AVX2).
+pub struct ScalarBoxes;
+
+impl BoxKernel for ScalarBoxes {
+    #[inline(always)]
+    fn boxes(node: &Node, r: &BoxRay, t_max: f32, near: &mut [f32; WIDTH]) -> u32 {
+        let mut mask = 0;
+        for (i, entry) in near.iter_mut().enumerate() {
+            let mut t0 = 0.0f32;
+            let mut t1 = t_max;
+            for axis in 0..3 {
+                let n = node.bounds[r.near[axis]][i] * r.rdir[axis] - r.org_rdir[axis];
+                let f = (node.bounds[r.far[axis]][i] * r.rdir[axis] - r.org_rdir[axis]) * FAR_SCALE;
+                t0 = if n > t0 { n } else { t0 };
+                t1 = if f < t1 { f } else { t1 };
+            }
+            *entry = t0;
+            if t0 <= t1 {
+                mask |= 1 << i;
+            }
+        }
+        mask
+    }
+}
+
+/// True when the CPU runs the AVX2 + FMA kernels.
+#[cfg(target_arch = "x86_64")]
+pub fn avx2_available() -> bool {
+    static AVAILABLE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *AVAILABLE.get_or_init(|| {
+        is_x86_feature_detected!("avx2")
+            && is_x86_feature_detected!("fma")
+            && is_x86_feature_detected!("popcnt")
+            && is_x86_feature_detected!("bmi1")
+    })
+}
+
+/// The box test in AVX2 lanes. Only use it inside functions compiled with AVX2 and FMA
+/// enabled that run after [`avx2_available`].
+#[cfg(target_arch = "x86_64")]
+pub struct Avx2Boxes;
+
+#[cfg(target_arch = "x86_64")]
+impl BoxKernel for Avx2Boxes {
+    #[inline(always)]
+    fn boxes(node: &Node, r: &BoxRay, t_max: f32, near: &mut [f32; WIDTH]) -> u32 {
+        use std::arch::x86_64::*;
+        // SAFETY: only instantiated inside functions compiled with AVX2 and FMA enabled,
+        // which run only after `avx2_available()`; loads are of 32-byte aligned arrays.
+        unsafe {
+            let b = &node.bounds;
+            // Macros, not closures: a closure is a function of its own without AVX, and the
+            // intrinsics in it would not be inlined.
+            macro_rules! plane {
+                ($k:expr, $axis:expr) => {
+                    _mm256_fmsub_ps(
+                        _mm256_load_ps(b[$k].as_ptr()),
+                        _mm256_set1_ps(r.rdir[$axis]),
+                        _mm256_set1_ps(r.org_rdir[$axis]),
+                    )
+                };
+            }
+            let nx = plane!(r.near[0], 0);
+            let ny = plane!(r.near[1], 1);
+            let nz = plane!(r.near[2], 2);
+            let fx = plane!(r.far[0], 0);
+            let fy = plane!(r.far[1], 1);
+            let fz = plane!(r.far[2], 2);
+            let t0 = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, _mm256_setzero_ps()));
+            let t1 = _mm256_min_ps(_mm256_min_ps(fx, fy), fz);
+            let t1 = _mm256_min_ps(_mm256_mul_ps(t1, _mm256_set1_ps(FAR_SCALE)), _mm256_set1_ps(t_max));
+            _mm256_storeu_ps(near.as_mut_ptr(), t0);
+            _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(t0, t1)) as u32
+        }
+    }
+}
+
+/// Orders the children of `node` in `mask` (entry distances in `near`) for a depth-first,
+/// nearest-first traversal: returns the nearest, and pushes the others onto the stack so the
+/// next nearest is on top. `None` when the mask is empty.
+#[inline(always)]
+pub fn order_children(
+    node: &Node,
+    mut mask: u32,
+    near: &[f32; WIDTH],
+    stack: &mut [StackEntry],
+    sp: &mut usize,
+) -> Option<u32> {
+    match mask.count_ones() {
+        0 => None,
+        1 => Some(node.child[mask.trailing_zeros() as usize]),
+        2 => {
+            // The common case: go to the nearer child, keep the farther one.
+            let i = mask.trailing_zeros() as usize;
+            let j = (mask & (mask - 1)).trailing_zeros() as usize;
+            let (near_i, far_i) = if near[i] <= near[j] { (i, j) } else { (j, i) };
+            stack[*sp] = MaybeUninit::new((node.child[far_i], near[far_i]));
+            *sp += 1;
+            Some(node.child[near_i])
+        }
+        _ => {
+            // Push every hit child, farthest first, then continue with the nearest.
+            let base = *sp;
+            while mask != 0 {
+                let i = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let entry = (node.child[i], near[i]);
+                // Insertion sort by distance, descending (nearest on top). Slots below `sp`
+                // are initialised.
+                let mut j = *sp;
+                // SAFETY: j - 1 < sp, a slot written earlier.
+                while j > base && unsafe { stack[j - 1].assume_init() }.1 < entry.1 {
+                    stack[j] = stack[j - 1];
+                    j -= 1;
+                }
+                stack[j] = MaybeUninit::new(entry);
+                *sp += 1;
+            }
+            *sp -= 1;
+            // SAFETY: sp < the number of slots written.
+            Some(unsafe { stack[*sp].assume_init() }.0)
+        }
+    }
+}
+
+/// Pushes the children of `node` in `mask` but one, which it returns (`None` when the mask
+/// is empty): the order of an any-hit traversal, which need not visit the nearest first.
+#[inline(always)]
+pub fn push_children(node: &Node, mut mask: u32, stack: &mut [StackEntry], sp: &mut usize) -> Option<u32> {
+    if mask == 0 {
+        return None;
+    }
+    let first = mask.trailing_zeros() as usize;
+    mask &= mask - 1;
+    while mask != 0 {
+        let i = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        // Entered at 0: any-hit traversals never prune.
+        stack[*sp] = MaybeUninit::new((node.child[i], 0.0));
+        *sp += 1;
+    }
+    Some(node.child[first])
+}
+
+/// Pops the stack down to the first node entered no farther than `t_max`; `None` when the
+/// stack runs out.
+#[inline(always)]
+pub fn pop_within(stack: &[StackEntry], sp: &mut usize, t_max: f32) -> Option<u32> {
+    while *sp > 0 {
+        *sp -= 1;
+        // SAFETY: slots below the stack pointer have been written.
+        let (node, distance) = unsafe { stack[*sp].assume_init() };
+        if distance <= t_max {
+            return Some(node);
+        }
+    }
+    None
+}
+
+/// Visits the leaves whose boxes the ray enters, nearest boxes first when `NEAREST_FIRST`,
+/// pruning boxes beyond the current `t_max`. `leaf(reference, &mut t_max)` tests one leaf,
+/// may lower `t_max`, and returns true to stop the traversal (an any-hit query that found
+/// one); `traverse` then returns true.
+#[inline(always)]
+pub fn traverse<K: BoxKernel, const NEAREST_FIRST: bool>(
+    nodes: &[Node],
+    r: &BoxRay,
+    t_max: f32,
+    stack: &mut [StackEntry],
+    mut leaf: impl FnMut(u32, &mut f32) -> bool,
+) -> bool {
+    let mut t_max = t_max;
+    let mut sp = 0usize;
+    let mut current = 0u32;
+    let mut near = [0f32; WIDTH];
+    loop {
+        if current & LEAF == 0 {
+            let node = &nodes[current as usize];
+            let mask = K::boxes(node, r, t_max, &mut near);
+            let next = if NEAREST_FIRST {
+                order_children(node, mask, &near, stack, &mut sp)
+            } else {
+                push_children(node, mask, stack, &mut sp)
+            };
+            if let Some(next) = next {
+                current = next;
+                continue;
+            }
+        } else if leaf(current & !LEAF, &mut t_max) {
+            return true;
+        }
+        // Pop the next node that is still nearer than the best hit.
+        match pop_within(stack, &mut sp, t_max) {
+            Some(node) => current = node,
+            None => return false,
+        }
+    }
+}
+
+/// [`traverse`] with the fastest box kernel the CPU runs.
+#[inline(always)]
+pub fn traverse_fastest<const NEAREST_FIRST: bool>(
+    nodes: &[Node],
+    r: &BoxRay,
+    t_max: f32,
+    stack: &mut [StackEntry],
+    leaf: impl FnMut(u32, &mut f32) -> bool,
+) -> bool {
+    #[cfg(target_arch = "x86_64")]
+    if avx2_available() {
+        // SAFETY: the CPU has AVX2 and FMA (checked at run time).
+        return unsafe { traverse_avx2::<NEAREST_FIRST>(nodes, r, t_max, stack, leaf) };
+    }
+    traverse::<ScalarBoxes, NEAREST_FIRST>(nodes, r, t_max, stack, leaf)
+}
+
+/// [`traverse`] with the AVX2 box kernel.
+///
+/// # Safety
+///
+/// The CPU must support AVX2 and FMA ([`avx2_available`]).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,popcnt,bmi1")]
+unsafe fn traverse_avx2<const NEAREST_FIRST: bool>(
+    nodes: &[Node],
+    r: &BoxRay,
+    t_max: f32,
+    stack: &mut [StackEntry],
+    leaf: impl FnMut(u32, &mut f32) -> bool,
+) -> bool {
+    traverse::<Avx2Boxes, NEAREST_FIRST>(nodes, r, t_max, stack, leaf)
+}
+
+/// Runs `f` with a traversal stack of `size` slots: on the call stack when it fits (the
+/// usual case), on the heap for degenerate, very deep trees.
+#[inline(always)]
+pub fn with_traversal_stack<R>(size: usize, f: impl FnOnce(&mut [StackEntry]) -> R) -> R {
+    // Left uninitialised: the traversal writes every slot before reading it.
+    let mut local = [const { MaybeUninit::<(u32, f32)>::uninit() }; 160];
+    if size <= local.len() { f(&mut local) } else { f(&mut vec![MaybeUninit::uninit(); size]) }
+}
+
+/// An 8-wide tree collapsed from a binary one.
+#[derive(Clone, Debug)]
+pub struct WideTree {
+    /// The nodes; the root is node 0.
+    pub nodes: Vec<Node>,
+    /// Deepest stack a traversal can need.
+    pub stack_size: usize,
+}
+
+impl WideTree {
+    /// Collapses `bvh2`: each node takes the eight most promising descendants of a binary
+    /// node (repeatedly opening the one with the largest surface area). A subtree with at
+    /// most `leaf_size` primitives becomes a leaf, whose reference is
+    /// `make_leaf(primitives)` (the primitive indices under it, in `bvh2`'s numbering). A
+    /// binary leaf holding more than `leaf_size` primitives stays one leaf: build `bvh2`
+    /// with at most `leaf_size` per leaf to rule that out.
+    pub fn collapse(bvh2: &obvhs::bvh2::Bvh2, leaf_size: usize, mut make_leaf: impl FnMut(&[u32]) -> u32) -> Self {
+        let mut counts = vec![0u32; bvh2.nodes.len()];
+        count_prims(bvh2, 0, &mut counts);
+        let mut tree = WideTree { nodes: vec![Node::EMPTY], stack_size: 0 };
+        let mut depth = 1;
+        if counts[0] as usize <= leaf_size || bvh2.nodes[0].prim_count > 0 {
+            // Small enough for one leaf: a root node holding it.
+            let reference = make_leaf(&leaf_prims(bvh2, 0));
+            tree.nodes[0].set_child(0, &bvh2.nodes[0], LEAF | reference);
+        } else {
+            tree.fill(bvh2, &counts, leaf_size, &mut make_leaf, (0, 0), 1, &mut depth);
+        }
+        tree.stack_size = depth * (WIDTH - 1) + 2;
+        tree
+    }
+
+    /// Fills node `index` from the binary inner node `bvh2_index`.
+    #[allow(clippy::too_many_arguments)]
+    fn fill(
+        &mut self,
+        bvh2: &obvhs::bvh2::Bvh2,
+        counts: &[u32],
+        leaf_size: usize,
+        make_leaf: &mut impl FnMut(&[u32]) -> u32,
+        (bvh2_index, index): (usize, usize),
+        level: usize,
+        depth: &mut usize,
+    ) {
+        *depth = (*depth).max(level);
+        let first = bvh2.nodes[bvh2_index].first_index as usize;
+        let mut children = vec![first, first + 1];
+        while children.len() < WIDTH {
+            // Subtrees small enough for one leaf stay whole.
+            let open = children
+                .iter()
+                .enumerate()
+                .filter(|&(_, &c)| counts[c] as usize > leaf_size && bvh2.nodes[c].prim_count == 0)
+                .max_by(|a, b| half_area(&bvh2.nodes[*a.1]).total_cmp(&half_area(&bvh2.nodes[*b.1])))
+                .map(|(i, _)| i);
+            let Some(i) = open else { break };
+            let c = children.swap_remove(i);
+            let f = bvh2.nodes[c].first_index as usize;
+            children.push(f);
+            children.push(f + 1);
+        }
+        for (slot, &c) in children.iter().enumerate() {
+            let child = &bvh2.nodes[c];
+            // A binary leaf is never opened (its `first_index` points at primitives).
+            if counts[c] as usize <= leaf_size || child.prim_count > 0 {
+                let reference = make_leaf(&leaf_prims(bvh2, c));
+                self.nodes[index].set_child(slot, child, LEAF | reference);
+            } else {
+                let inner = self.nodes.len();
+                self.nodes.push(Node::EMPTY);
+                self.nodes[index].set_child(slot, child, inner as u32);
+                self.fill(bvh2, counts, leaf_size, make_leaf, (c, inner), level + 1, depth);
+            }
+        }
+    }
+}
+
+/// Primitives under each BVH2 node.
+fn count_prims(bvh2: &obvhs::bvh2::Bvh2, index: usize, counts: &mut [u32]) -> u32 {
+    let node = &bvh2.nodes[index];
+    let n = if node.prim_count > 0 {
+        node.prim_count
+    } else {
+        let first = node.first_index as usize;
+        count_prims(bvh2, first, counts) + count_prims(bvh2, first + 1, counts)
+    };
+    counts[index] = n;
+    n
+}
+
+/// The primitives under BVH2 node `index`.
+fn leaf_prims(bvh2: &obvhs::bvh2::Bvh2, index: usize) -> Vec<u32> {
+    fn gather(bvh2: &obvhs::bvh2::Bvh2, index: usize, out: &mut Vec<u32>) {
+        let node = &bvh2.nodes[index];
+        let first = node.first_index as usize;
+        if node.prim_count > 0 {
+            out.extend_from_slice(&bvh2.primitive_indices[first..first + node.prim_count as usize]);
+        } else {
+            gather(bvh2, first, out);
+            gather(bvh2, first + 1, out);
+        }
+    }
+    let mut out = Vec::new();
+    gather(bvh2, index, &mut out);
+    out
+}
+
+fn half_area(n: &obvhs::bvh2::node::Bvh2Node) -> f32 {
+    let d = n.aabb().max - n.aabb().min;
+    d.x * d.y + d.y * d.z + d.z * d.x
+}
