@@ -108,8 +108,17 @@ impl Sampler<'_> {
 /// POV-Ray's colour distance after antialiasing gamma: sum over the channels of the
 /// differences of max(v, 0)^(1 / 2.5) (the transmit channel is 0 without an alpha channel).
 fn distance(a: DVec3, b: DVec3) -> f64 {
-    let g = |c: DVec3| c.max(DVec3::ZERO).powf(1.0 / AA_GAMMA);
-    (g(a) - g(b)).abs().element_sum()
+    graded_distance(aa_graded(a), aa_graded(b))
+}
+
+/// A colour as antialiasing compares it: max(v, 0)^(1 / 2.5) per channel.
+fn aa_graded(c: DVec3) -> DVec3 {
+    c.max(DVec3::ZERO).powf(1.0 / AA_GAMMA)
+}
+
+/// [`distance`] of two colours already passed through [`aa_graded`].
+fn graded_distance(a: DVec3, b: DVec3) -> f64 {
+    (a - b).abs().element_sum()
 }
 
 /// What rendering one block produced.
@@ -146,32 +155,37 @@ pub fn render_block(scene: &RenderScene, integrator: &Classic, method: PovMethod
 /// pixel of a differing pair that was not supersampled yet. The row above the block and the
 /// pixel left of each row are traced only to compare with and are never supersampled.
 fn non_adaptive(s: &mut Sampler, left: f64, top: f64, w: usize, h: usize, threshold: f64, depth: u32) -> Vec<DVec3> {
-    let above: Vec<DVec3> = (0..w).map(|x| s.trace(left + x as f64, top - 1.0)).collect();
+    // Each colour is graded for comparison once, when it is traced or supersampled.
+    let above: Vec<DVec3> = (0..w).map(|x| aa_graded(s.trace(left + x as f64, top - 1.0))).collect();
     let mut pixels = vec![DVec3::ZERO; w * h];
+    let mut graded = vec![DVec3::ZERO; w * h];
     let mut done = vec![false; w * h];
     for y in 0..h {
         let py = top + y as f64;
-        let before_row = s.trace(left - 1.0, py);
-        for (x, &above_colour) in above.iter().enumerate() {
+        let before_row = aa_graded(s.trace(left - 1.0, py));
+        for (x, &above_graded) in above.iter().enumerate() {
             let px = left + x as f64;
             let i = y * w + x;
             let current = s.trace(px, py);
             pixels[i] = current;
-            let (left_colour, left_done) = if x == 0 { (before_row, true) } else { (pixels[i - 1], done[i - 1]) };
-            let (top_colour, top_done) = if y == 0 { (above_colour, true) } else { (pixels[i - w], done[i - w]) };
-            let left_differs = distance(left_colour, current) >= threshold;
-            let top_differs = distance(top_colour, current) >= threshold;
+            graded[i] = aa_graded(current);
+            let (left_graded, left_done) = if x == 0 { (before_row, true) } else { (graded[i - 1], done[i - 1]) };
+            let (top_graded, top_done) = if y == 0 { (above_graded, true) } else { (graded[i - w], done[i - w]) };
+            let left_differs = graded_distance(left_graded, graded[i]) >= threshold;
+            let top_differs = graded_distance(top_graded, graded[i]) >= threshold;
+            let mut refine = |j: usize, px: f64, py: f64| {
+                pixels[j] = supersample(s, px, py, pixels[j], depth);
+                graded[j] = aa_graded(pixels[j]);
+                done[j] = true;
+            };
             if left_differs && !left_done {
-                pixels[i - 1] = supersample(s, px - 1.0, py, pixels[i - 1], depth);
-                done[i - 1] = true;
+                refine(i - 1, px - 1.0, py);
             }
             if top_differs && !top_done {
-                pixels[i - w] = supersample(s, px, py - 1.0, pixels[i - w], depth);
-                done[i - w] = true;
+                refine(i - w, px, py - 1.0);
             }
             if left_differs || top_differs {
-                pixels[i] = supersample(s, px, py, current, depth);
-                done[i] = true;
+                refine(i, px, py);
             }
         }
     }
