@@ -136,13 +136,12 @@ impl Accel {
         self.occluded_among(primitives, None, ray, t_min, t_max, accept)
     }
 
-    /// [`Accel::occluded`] among the unbounded primitives and `bounded` when given (which
-    /// must hold every bounded primitive the ray may meet, see [`Accel::gather`]), else
-    /// among all.
+    /// [`Accel::occluded`] among `candidates` when given (which must hold every primitive
+    /// the ray may meet, see [`Accel::gather`]), else among all.
     pub fn occluded_among(
         &self,
         primitives: &[Primitive],
-        bounded: Option<&[u32]>,
+        candidates: Option<&[u32]>,
         ray: &Ray,
         t_min: f64,
         t_max: f64,
@@ -155,11 +154,11 @@ impl Accel {
             let p = &primitives[index as usize];
             p.shape.occluded(&p.object_ray(ray), t_min, t_max)
         };
+        if let Some(candidates) = candidates {
+            return candidates.iter().any(|&i| test(i));
+        }
         if self.unbounded.iter().any(|&i| test(i)) {
             return true;
-        }
-        if let Some(bounded) = bounded {
-            return bounded.iter().any(|&i| test(i));
         }
         let Some(tree) = &self.tree else { return false };
         let r = box_ray(ray);
@@ -326,8 +325,84 @@ impl ConvexHull {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use std::sync::Arc;
+
+    use glam::{DAffine3, DMat3};
+    use prism_api::Shape;
     use prism_api::contract::TestRng;
+    use prism_plane::Plane;
+    use prism_sphere::Sphere;
+
+    use super::*;
+
+    fn primitive(shape: Arc<dyn Shape>) -> Primitive {
+        Primitive {
+            world_bounds: shape.bounds(),
+            shape,
+            world_from_object: DAffine3::IDENTITY,
+            object_from_world: DAffine3::IDENTITY,
+            normal_to_world: DMat3::IDENTITY,
+            identity: true,
+            material: 0,
+            no_shadow: false,
+        }
+    }
+
+    /// Hundreds of spheres (a tree several nodes deep) and planes: the closest hit and the
+    /// occlusion answer equal a brute-force loop, and gathering for a frustum never leaves
+    /// out a primitive that a shadow ray inside it hits.
+    #[test]
+    fn queries_equal_brute_force() {
+        let mut rng = TestRng::new(11);
+        let mut primitives: Vec<Primitive> = (0..500)
+            .map(|_| {
+                let center = DVec3::new(rng.range(-10.0, 10.0), rng.range(-10.0, 10.0), rng.range(-10.0, 10.0));
+                primitive(Arc::new(Sphere { center, radius: rng.range(0.05, 0.8) }))
+            })
+            .collect();
+        // Planes through the region, so that they block many of the rays.
+        primitives.push(primitive(Arc::new(Plane::new(DVec3::Y, -3.0))));
+        primitives.push(primitive(Arc::new(Plane::new(DVec3::new(0.6, 0.0, 0.8), 2.0))));
+        let accel = Accel::build(&primitives);
+        let brute = |ray: &Ray, t_min: f64, t_max: f64| -> Option<(u32, f64)> {
+            let hits = primitives
+                .iter()
+                .enumerate()
+                .filter_map(|(i, p)| p.shape.intersect(ray, t_min, t_max).map(|h| (i as u32, h.t)));
+            hits.min_by(|a, b| a.1.total_cmp(&b.1))
+        };
+        for case in 0..3000 {
+            let origin = DVec3::new(rng.range(-12.0, 12.0), rng.range(-12.0, 12.0), rng.range(-12.0, 12.0));
+            let ray = Ray::new(origin, rng.unit_vector());
+            let t_max = if case % 3 == 0 { rng.range(0.5, 20.0) } else { f64::INFINITY };
+            let expected = brute(&ray, 1e-6, t_max);
+            let found = accel.closest(&primitives, &ray, 1e-6, t_max, |_| true).map(|h| (h.primitive, h.hit.t));
+            assert_eq!(found, expected, "case {case}: {ray:?}");
+            let occluded = accel.occluded(&primitives, &ray, 1e-6, t_max, |_| true);
+            assert_eq!(occluded, expected.is_some(), "case {case}: occlusion of {ray:?}");
+        }
+        let mut gathers = 0;
+        for case in 0..400 {
+            let apex = DVec3::new(rng.range(-9.0, 9.0), rng.range(-9.0, 9.0), rng.range(-9.0, 9.0));
+            let centre = apex + rng.unit_vector() * rng.range(1.0, 6.0);
+            let (edge1, edge2) = (rng.unit_vector() * rng.range(0.0, 0.4), rng.unit_vector() * rng.range(0.0, 0.4));
+            let mut gathered = Gathered::default();
+            let hull = ConvexHull::shadow_frustum(apex, centre, edge1, edge2, 1e-3);
+            if !accel.gather(&primitives, &hull, &mut gathered) {
+                continue;
+            }
+            gathers += 1;
+            for _ in 0..64 {
+                let target = centre + edge1 * rng.range(-1.0, 1.0) + edge2 * rng.range(-1.0, 1.0);
+                let distance = apex.distance(target);
+                let ray = Ray::new(apex, (target - apex) / distance);
+                let among =
+                    accel.occluded_among(&primitives, Some(gathered.as_slice()), &ray, 1e-3, distance, |_| true);
+                assert_eq!(among, brute(&ray, 1e-3, distance).is_some(), "case {case}: {ray:?}");
+            }
+        }
+        assert!(gathers > 200, "most frusta gather few enough primitives ({gathers})");
+    }
 
     /// Random shadow frusta: every shadow segment (from `skip` along the ray to the light
     /// sample) lies inside every face, and a plane with all vertices on one side never

@@ -334,8 +334,8 @@ impl<'a> Classic<'a> {
     /// faded over each stretch inside an object with interior fade. The shadow ray starts in
     /// the `interiors` of the ray that found `point` and, like POV-Ray's, restarts at each
     /// surface it crosses, ignoring hits within `SHADOW_TOLERANCE` of either end. In a
-    /// scene without transparency, `blockers` (when given) holds every bounded primitive
-    /// that can lie on this shadow ray.
+    /// scene without transparency, `blockers` (when given) holds every primitive that can
+    /// lie on this shadow ray.
     fn transmittance(
         &self,
         point: DVec3,
