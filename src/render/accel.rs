@@ -182,8 +182,11 @@ impl Accel {
         };
         for &index in &self.unbounded {
             let p = &primitives[index as usize];
-            let corners = hull.vertices().map(|v| if p.identity { v } else { p.object_from_world.transform_point3(v) });
-            if !p.shape.misses_hull(&corners[..hull.vertex_count]) && !push(index, out) {
+            let mut corners = [DVec3::ZERO; 8];
+            for (corner, &v) in corners.iter_mut().zip(hull.vertices()) {
+                *corner = p.object_point(v);
+            }
+            if !p.shape.misses_hull(&corners[..hull.vertices().len()]) && !push(index, out) {
                 return false;
             }
         }
@@ -309,9 +312,9 @@ impl ConvexHull {
         hull
     }
 
-    /// The hull's vertices (the first [`ConvexHull::vertex_count`] are used).
-    fn vertices(&self) -> [DVec3; 8] {
-        self.vertices
+    /// The hull's vertices.
+    fn vertices(&self) -> &[DVec3] {
+        &self.vertices[..self.vertex_count]
     }
 
     /// True when the box `min..max` lies wholly outside the hull's face planes' margin.
@@ -418,7 +421,7 @@ mod tests {
             let skip = if case % 4 == 0 { 0.0 } else { rng.range(1e-4, 0.3) };
             let hull = ConvexHull::shadow_frustum(apex, centre, edge1, edge2, skip);
             cut += usize::from(hull.vertex_count == 8);
-            let vertices = &hull.vertices()[..hull.vertex_count];
+            let vertices = hull.vertices();
             let planes: Vec<(DVec3, f64)> = (0..8).map(|_| (rng.unit_vector(), rng.range(-6.0, 6.0))).collect();
             for _ in 0..64 {
                 let target = centre + edge1 * rng.range(-1.0, 1.0) + edge2 * rng.range(-1.0, 1.0);

@@ -42,11 +42,14 @@ impl Primitive {
         if self.identity {
             *ray
         } else {
-            Ray::new(
-                self.object_from_world.transform_point3(ray.origin),
-                self.object_from_world.transform_vector3(ray.direction),
-            )
+            Ray::new(self.object_point(ray.origin), self.object_from_world.transform_vector3(ray.direction))
         }
+    }
+
+    /// The world point `p` in this primitive's object space.
+    #[inline]
+    pub fn object_point(&self, p: DVec3) -> DVec3 {
+        if self.identity { p } else { self.object_from_world.transform_point3(p) }
     }
 }
 
