@@ -221,6 +221,12 @@ impl Material {
         out
     }
 
+    /// True when the material depends on where it is hit (a texture or glTF parameters):
+    /// only then does shading need the surface's uv.
+    pub fn varies_over_surface(&self) -> bool {
+        self.texture.is_some() || self.pbr.is_some()
+    }
+
     /// The material at a surface point with texture coordinates `uv`, for a ray footprint
     /// `footprint` wide in uv units (it selects the mip level). Without textures or glTF
     /// parameters this is the material itself.
@@ -231,7 +237,7 @@ impl Material {
     /// `a = r^2` (exponent 2 / a^2 - 2), highlights and reflection tinted by the base colour
     /// by `m`, mirror reflection `m g`.
     pub fn at_surface(&self, uv: DVec2, footprint: f64) -> ShadedMaterial<'_> {
-        if self.texture.is_none() && self.pbr.is_none() {
+        if !self.varies_over_surface() {
             return ShadedMaterial { material: Cow::Borrowed(self), emitted: DVec3::ZERO };
         }
         let mut m = self.without_maps();

@@ -330,7 +330,7 @@ impl ConvexHull {
 mod tests {
     use std::sync::Arc;
 
-    use glam::{DAffine3, DMat3};
+    use glam::DAffine3;
     use prism_api::Shape;
     use prism_api::contract::TestRng;
     use prism_plane::Plane;
@@ -339,16 +339,7 @@ mod tests {
     use super::*;
 
     fn primitive(shape: Arc<dyn Shape>) -> Primitive {
-        Primitive {
-            world_bounds: shape.bounds(),
-            shape,
-            world_from_object: DAffine3::IDENTITY,
-            object_from_world: DAffine3::IDENTITY,
-            normal_to_world: DMat3::IDENTITY,
-            identity: true,
-            material: 0,
-            no_shadow: false,
-        }
+        Primitive::new(shape, DAffine3::IDENTITY, 0, false)
     }
 
     /// Hundreds of spheres (a tree several nodes deep) and planes: the closest hit and the

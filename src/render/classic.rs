@@ -10,7 +10,7 @@ use prism_api::Ray;
 
 use super::accel::{ConvexHull, Gathered};
 use super::sampling::SampleStream;
-use super::scene::{AreaGrid, RenderLight, RenderScene};
+use super::scene::{AreaGrid, Placement, RenderLight, RenderScene};
 use crate::material::Material;
 use crate::scene::components::LightKind;
 
@@ -103,13 +103,13 @@ impl<'a> Classic<'a> {
         distance: f64,
         cosine: f64,
     ) -> crate::material::ShadedMaterial<'m> {
-        if material.texture.is_none() && material.pbr.is_none() {
+        if !material.varies_over_surface() {
             return crate::material::ShadedMaterial {
                 material: std::borrow::Cow::Borrowed(material),
                 emitted: DVec3::ZERO,
             };
         }
-        let area_scale = if primitive.identity {
+        let area_scale = if primitive.placement != Placement::Affine {
             1.0
         } else {
             primitive.world_from_object.matrix3.determinant().abs()
@@ -157,17 +157,14 @@ impl<'a> Classic<'a> {
         };
         let primitive = &scene.primitives[closest.primitive as usize];
         let material = &scene.materials[primitive.material as usize];
-        let surface = primitive.shape.surface(&closest.object_ray, &closest.hit);
-        let point = if primitive.identity {
-            surface.point
+        // The uv costs trigonometry on curved shapes; only textured materials look at it.
+        let surface = if material.varies_over_surface() {
+            primitive.shape.surface(&closest.object_ray, &closest.hit)
         } else {
-            primitive.world_from_object.transform_point3(surface.point)
+            primitive.shape.surface_geometry(&closest.object_ray, &closest.hit)
         };
-        let shading = if primitive.identity {
-            surface.shading_normal
-        } else {
-            (primitive.normal_to_world * surface.shading_normal).normalize()
-        };
+        let point = primitive.world_point(surface.point);
+        let shading = primitive.world_normal(surface.shading_normal);
         let d = ray.direction;
         // Two-sided: shade with the normal facing the viewer.
         let n = if shading.dot(d) > 0.0 { -shading } else { shading };

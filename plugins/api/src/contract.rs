@@ -200,6 +200,12 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
             surface.point
         );
         assert!(surface.uv.is_finite(), "uv {} not finite", surface.uv);
+        let geometry = shape.surface_geometry(&ray, &hit);
+        assert!(
+            (geometry.point, geometry.normal, geometry.shading_normal)
+                == (surface.point, surface.normal, surface.shading_normal),
+            "surface_geometry() {geometry:?} differs from surface() {surface:?} in point or normals for {ray:?}"
+        );
 
         // A hull holding the segment up to the hit must not be missed.
         let reached = ray.at(hit.t + tol);

@@ -78,6 +78,15 @@ pub trait Shape: Send + Sync + Debug + 'static {
     /// The surface at a hit this shape returned for this ray.
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface;
 
+    /// The surface at a hit without its texture coordinates: `point`, `normal` and
+    /// `shading_normal` exactly as [`Shape::surface`] gives them, while `uv` and
+    /// `uv_density` may be left 0. Prism calls it for untextured materials, which is most
+    /// hits; override it when the uv costs trigonometry (longitudes, latitudes), and let
+    /// `surface` add the uv to it so the two cannot drift apart. The default is `surface`.
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
+        self.surface(ray, hit)
+    }
+
     /// True when anything lies on the ray with `t_min < t < t_max` (shadow rays).
     fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.intersect(ray, t_min, t_max).is_some()

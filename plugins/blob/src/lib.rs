@@ -243,14 +243,20 @@ impl Shape for Blob {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
-        let point = ray.at(hit.t);
-        let normal = (-self.gradient(point)).try_normalize().unwrap_or_else(|| (-ray.direction).normalize_or(DVec3::Y));
+        let mut surface = self.surface_geometry(ray, hit);
         // No natural parameterisation: longitude/latitude of the direction from the centre of
         // the bounds, as on the sphere.
-        let d = (point - self.bounds.center()).normalize_or(DVec3::Y);
+        let d = (surface.point - self.bounds.center()).normalize_or(DVec3::Y);
         let u = 0.5 + d.z.atan2(-d.x) / TAU;
         let v = 0.5 + d.y.clamp(-1.0, 1.0).asin() / PI;
-        Surface::new(point, normal, DVec2::new(u.rem_euclid(1.0), v))
+        surface.uv = DVec2::new(u.rem_euclid(1.0), v);
+        surface
+    }
+
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let point = ray.at(hit.t);
+        let normal = (-self.gradient(point)).try_normalize().unwrap_or_else(|| (-ray.direction).normalize_or(DVec3::Y));
+        Surface::new(point, normal, DVec2::ZERO)
     }
 
     fn to_pov(&self) -> Option<String> {

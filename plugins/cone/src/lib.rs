@@ -217,27 +217,30 @@ impl Shape for Cone {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let mut surface = self.surface_geometry(ray, hit);
+        let local = surface.point - self.base;
+        let s = local.dot(self.axis);
+        let radial = local - s * self.axis;
+        let v = match hit.part {
+            SIDE => (s / self.height).clamp(0.0, 1.0),
+            BASE_CAP => (radial.length() / self.base_radius).min(1.0),
+            _ => (radial.length() / self.apex_radius).min(1.0),
+        };
+        surface.uv = DVec2::new(self.angle_u(radial), v);
+        surface
+    }
+
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
         let point = ray.at(hit.t);
         let local = point - self.base;
         let s = local.dot(self.axis);
         let radial = local - s * self.axis;
         match hit.part {
-            SIDE => {
-                let direction = radial.normalize_or_zero();
-                let normal = self.side_normal(direction);
-                let v = (s / self.height).clamp(0.0, 1.0);
-                Surface::new(point, normal, DVec2::new(self.angle_u(radial), v))
-            }
+            SIDE => Surface::new(point, self.side_normal(radial.normalize_or_zero()), DVec2::ZERO),
             part => {
-                let (s_cap, radius, normal) = if part == BASE_CAP {
-                    (0.0, self.base_radius, -self.axis)
-                } else {
-                    (self.height, self.apex_radius, self.axis)
-                };
+                let (s_cap, normal) = if part == BASE_CAP { (0.0, -self.axis) } else { (self.height, self.axis) };
                 // Project onto the cap's plane: removes the rounding of ray.at(t) along it.
-                let point = self.base + s_cap * self.axis + radial;
-                let v = (radial.length() / radius).min(1.0);
-                Surface::new(point, normal, DVec2::new(self.angle_u(radial), v))
+                Surface::new(self.base + s_cap * self.axis + radial, normal, DVec2::ZERO)
             }
         }
     }

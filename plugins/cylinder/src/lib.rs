@@ -159,6 +159,18 @@ impl Shape for Cylinder {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let mut surface = self.surface_geometry(ray, hit);
+        let local = surface.point - self.base;
+        let s = local.dot(self.axis);
+        let radial = local - s * self.axis;
+        surface.uv = match hit.part {
+            SIDE => DVec2::new(self.angle_u(surface.normal), (s / self.height).clamp(0.0, 1.0)),
+            _ => DVec2::new(self.angle_u(radial), (radial.length() / self.radius).min(1.0)),
+        };
+        surface
+    }
+
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
         let local = ray.at(hit.t) - self.base;
         let s = local.dot(self.axis);
         let radial = local - s * self.axis;
@@ -167,14 +179,11 @@ impl Shape for Cylinder {
                 let normal = radial.normalize_or(self.tangent);
                 // Project onto the side: removes the rounding of ray.at(t) along the normal.
                 let point = self.base + s * self.axis + normal * self.radius;
-                let v = (s / self.height).clamp(0.0, 1.0);
-                Surface::new(point, normal, DVec2::new(self.angle_u(normal), v))
+                Surface::new(point, normal, DVec2::ZERO)
             }
             part => {
                 let (s_cap, normal) = if part == BASE_CAP { (0.0, -self.axis) } else { (self.height, self.axis) };
-                let point = self.base + s_cap * self.axis + radial;
-                let v = (radial.length() / self.radius).min(1.0);
-                Surface::new(point, normal, DVec2::new(self.angle_u(radial), v))
+                Surface::new(self.base + s_cap * self.axis + radial, normal, DVec2::ZERO)
             }
         }
     }

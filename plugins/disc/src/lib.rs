@@ -114,14 +114,18 @@ impl Shape for Disc {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
-        let p = ray.at(hit.t);
-        // Project onto the plane: removes the rounding error of ray.at(t) along the normal.
-        let local = p - self.center;
-        let local = local - self.normal * self.normal.dot(local);
+        let mut surface = self.surface_geometry(ray, hit);
+        let local = surface.point - self.center;
         let angle = local.dot(self.bitangent).atan2(local.dot(self.tangent));
-        let u = (angle / TAU).rem_euclid(1.0);
-        let v = (local.length() / self.radius).min(1.0);
-        Surface::new(self.center + local, self.normal, DVec2::new(u, v))
+        surface.uv = DVec2::new((angle / TAU).rem_euclid(1.0), (local.length() / self.radius).min(1.0));
+        surface
+    }
+
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
+        // Project onto the plane: removes the rounding error of ray.at(t) along the normal.
+        let local = ray.at(hit.t) - self.center;
+        let local = local - self.normal * self.normal.dot(local);
+        Surface::new(self.center + local, self.normal, DVec2::ZERO)
     }
 
     fn area(&self) -> Option<f64> {

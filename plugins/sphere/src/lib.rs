@@ -70,13 +70,18 @@ impl Shape for Sphere {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
-        let local = ray.at(hit.t) - self.center;
-        let normal = local.normalize();
-        // Project exactly onto the sphere: removes the error of ray.at(t) along the normal.
-        let point = self.center + normal * self.radius;
+        let mut surface = self.surface_geometry(ray, hit);
+        let normal = surface.normal;
         let u = 0.5 + normal.z.atan2(-normal.x) / TAU;
         let v = 0.5 + normal.y.clamp(-1.0, 1.0).asin() / PI;
-        Surface::new(point, normal, DVec2::new(u.rem_euclid(1.0), v))
+        surface.uv = DVec2::new(u.rem_euclid(1.0), v);
+        surface
+    }
+
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let normal = (ray.at(hit.t) - self.center).normalize();
+        // Project exactly onto the sphere: removes the error of ray.at(t) along the normal.
+        Surface::new(self.center + normal * self.radius, normal, DVec2::ZERO)
     }
 
     fn area(&self) -> Option<f64> {

@@ -663,17 +663,22 @@ impl Shape for Superellipsoid {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let mut surface = self.surface_geometry(ray, hit);
+        // Longitude around y and latitude from the south pole, as on the sphere (to which
+        // the shape reduces for e = n = 1).
+        let d = surface.point.normalize_or(DVec3::Y);
+        let u = 0.5 + d.z.atan2(-d.x) / TAU;
+        let v = 0.5 + d.y.clamp(-1.0, 1.0).asin() / PI;
+        surface.uv = DVec2::new(u.rem_euclid(1.0), v);
+        surface
+    }
+
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
         let p = ray.at(hit.t);
         // G is homogeneous: p / G(p) lies exactly on the surface, along the radial direction.
         let (g, grad) = self.gauge_and_gradient(p);
         let point = if g > 0.0 && g.is_finite() { p / g } else { p };
-        let normal = Self::normal_from_gradient(grad, point);
-        // Longitude around y and latitude from the south pole, as on the sphere (to which
-        // the shape reduces for e = n = 1).
-        let d = point.normalize_or(DVec3::Y);
-        let u = 0.5 + d.z.atan2(-d.x) / TAU;
-        let v = 0.5 + d.y.clamp(-1.0, 1.0).asin() / PI;
-        Surface::new(point, normal, DVec2::new(u.rem_euclid(1.0), v))
+        Surface::new(point, Self::normal_from_gradient(grad, point), DVec2::ZERO)
     }
 
     fn to_pov(&self) -> Option<String> {

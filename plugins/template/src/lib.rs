@@ -126,8 +126,20 @@ impl Shape for Capsule {
     }
 
     // STEP 4: the full surface, computed once for the winning hit. Normals point out of the
-    // shape and have unit length.
+    // shape and have unit length. The uv (texture coordinates) is added to the geometry
+    // below, which Prism asks for alone when nothing is textured: the trigonometry of a
+    // longitude is then skipped.
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let mut surface = self.surface_geometry(ray, hit);
+        let (point, normal) = (surface.point, surface.normal);
+        // u: around the y axis, as on the sphere; v: along the whole height, bottom 0, top 1.
+        let u = 0.5 + normal.z.atan2(-normal.x) / TAU;
+        let v = (point.y + self.half_length + self.radius) / (2.0 * (self.half_length + self.radius));
+        surface.uv = DVec2::new(u.rem_euclid(1.0), v.clamp(0.0, 1.0));
+        surface
+    }
+
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
         let p = ray.at(hit.t);
         let axis = match hit.part {
             SIDE => DVec3::new(0.0, p.y, 0.0),
@@ -137,11 +149,7 @@ impl Shape for Capsule {
         };
         let normal = (p - axis).try_normalize().unwrap_or(DVec3::Y);
         // Project onto the surface to remove the rounding of ray.at(t) along the normal.
-        let point = axis + normal * self.radius;
-        // u: around the y axis, as on the sphere; v: along the whole height, bottom 0, top 1.
-        let u = 0.5 + normal.z.atan2(-normal.x) / TAU;
-        let v = (point.y + self.half_length + self.radius) / (2.0 * (self.half_length + self.radius));
-        Surface::new(point, normal, DVec2::new(u.rem_euclid(1.0), v.clamp(0.0, 1.0)))
+        Surface::new(axis + normal * self.radius, normal, DVec2::ZERO)
     }
 
     // STEP 5 (optional): area and uniform area sampling make the shape usable as an area

@@ -158,16 +158,23 @@ impl Shape for Torus {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let mut surface = self.surface_geometry(ray, hit);
+        let p = surface.point;
+        let rho = (p.x * p.x + p.z * p.z).sqrt();
+        // u runs around the y axis (as on the sphere), v around the tube from the outer equator.
+        let u = 0.5 + p.z.atan2(-p.x) / TAU;
+        let v = p.y.atan2(rho - self.major) / TAU;
+        surface.uv = DVec2::new(u.rem_euclid(1.0), v.rem_euclid(1.0));
+        surface
+    }
+
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
         let p = ray.at(hit.t);
         let normal = self.normal(p);
         let rho = (p.x * p.x + p.z * p.z).sqrt();
         let core = if rho > 0.0 { DVec3::new(p.x, 0.0, p.z) * (self.major / rho) } else { p };
         // Project exactly onto the tube: removes the error of ray.at(t) along the normal.
-        let point = core + normal * self.minor;
-        // u runs around the y axis (as on the sphere), v around the tube from the outer equator.
-        let u = 0.5 + p.z.atan2(-p.x) / TAU;
-        let v = p.y.atan2(rho - self.major) / TAU;
-        Surface::new(point, normal, DVec2::new(u.rem_euclid(1.0), v.rem_euclid(1.0)))
+        Surface::new(core + normal * self.minor, normal, DVec2::ZERO)
     }
 
     fn area(&self) -> Option<f64> {
