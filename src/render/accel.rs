@@ -89,18 +89,16 @@ impl Accel {
         t_max: f64,
         accept: impl Fn(u32) -> bool,
     ) -> Option<ClosestHit> {
-        let mut best: Option<ClosestHit> = None;
+        let mut best: Option<(u32, Hit)> = None;
         let mut best_t = t_max;
-        let test = |index: u32, best_t: &mut f64, best: &mut Option<ClosestHit>| -> bool {
+        let test = |index: u32, best_t: &mut f64, best: &mut Option<(u32, Hit)>| -> bool {
             if !accept(index) {
                 return false;
             }
-            let p = &primitives[index as usize];
-            let object_ray = p.object_ray(ray);
-            match p.shape.intersect(&object_ray, t_min, *best_t) {
+            match primitives[index as usize].intersect(ray, t_min, *best_t) {
                 Some(hit) => {
                     *best_t = hit.t;
-                    *best = Some(ClosestHit { primitive: index, hit, object_ray });
+                    *best = Some((index, hit));
                     true
                 }
                 None => false,
@@ -121,7 +119,11 @@ impl Accel {
                 })
             });
         }
-        best
+        best.map(|(primitive, hit)| ClosestHit {
+            primitive,
+            hit,
+            object_ray: primitives[primitive as usize].object_ray(ray),
+        })
     }
 
     /// True when any primitive for which `accept` is true lies on the ray in (t_min, t_max).
@@ -151,8 +153,7 @@ impl Accel {
             if !accept(index) {
                 return false;
             }
-            let p = &primitives[index as usize];
-            p.shape.occluded(&p.object_ray(ray), t_min, t_max)
+            primitives[index as usize].occluded(ray, t_min, t_max)
         };
         if let Some(candidates) = candidates {
             return candidates.iter().any(|&i| test(i));

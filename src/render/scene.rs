@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use glam::{DAffine3, DMat3, DVec3};
-use prism_api::{Aabb, Ray, Shape};
+use prism_api::{Aabb, Hit, Ray, Shape};
 
 use super::accel::Accel;
 use super::camera::RenderCamera;
@@ -88,6 +88,26 @@ impl Primitive {
                 self.object_from_world.transform_point3(ray.origin),
                 self.object_from_world.transform_vector3(ray.direction),
             ),
+        }
+    }
+
+    /// The shape's nearest hit along the world ray `ray` with `t_min < t < t_max`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        // The world ray itself when it needs no transforming: a fresh copy, read back by the
+        // shape before its stores retire, costs a store-forwarding stall on every test.
+        match self.placement {
+            Placement::Identity => self.shape.intersect(ray, t_min, t_max),
+            _ => self.shape.intersect(&self.object_ray(ray), t_min, t_max),
+        }
+    }
+
+    /// True when the shape lies on the world ray `ray` with `t_min < t < t_max`.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        match self.placement {
+            Placement::Identity => self.shape.occluded(ray, t_min, t_max),
+            _ => self.shape.occluded(&self.object_ray(ray), t_min, t_max),
         }
     }
 
