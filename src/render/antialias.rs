@@ -11,8 +11,7 @@ use glam::{DVec2, DVec3};
 
 use super::camera::pov_screen;
 use super::classic::{Classic, PathState};
-use super::sampling::concentric_disc;
-use super::sampling::{CmjPattern, SampleStream, hash4, mix64};
+use super::sampling::{SampleStream, hash4, mix64};
 use super::scene::RenderScene;
 use crate::scene::components::Antialias;
 
@@ -81,13 +80,11 @@ impl Sampler<'_> {
             return self.radiance(x0, y0, DVec2::ZERO, stream);
         }
         let samples = settings.samples;
-        let pattern = hash4(key, 0, u64::MAX, settings.seed);
-        let (offsets, lenses) =
-            (CmjPattern::new(samples, pattern as u32), CmjPattern::new(samples, (pattern >> 32) as u32));
+        let patterns = self.scene.patterns.for_key(hash4(key, 0, u64::MAX, settings.seed));
         let mut sum = DVec3::ZERO;
         for s in 0..samples {
-            let offset = offsets.sample(s) - DVec2::splat(0.5);
-            let lens = concentric_disc(lenses.sample(s));
+            let offset = patterns.offset(s) - DVec2::splat(0.5);
+            let lens = patterns.lens(s);
             let (x0, y0) = pov_screen(x + offset.x, y + offset.y, self.width, self.height);
             let stream = SampleStream::new(key, u64::from(s), settings.seed);
             sum += self.radiance(x0, y0, lens, stream);

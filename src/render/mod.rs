@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use camera::pov_screen;
 use classic::{Classic, PathState};
 use film::Film;
-use sampling::{CmjPattern, SampleStream, hash4};
+use sampling::{SampleStream, hash4};
 use scene::RenderScene;
 
 /// Side of a square render tile in pixels.
@@ -162,18 +162,14 @@ pub fn render_pixel(scene: &RenderScene, integrator: &Classic, x: u32, y: u32) -
     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
     let samples = settings.samples;
     // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels.
-    let patterns = (samples > 1).then(|| {
-        let key = hash4(pixel, 0, u64::MAX, settings.seed);
-        (CmjPattern::new(samples, key as u32), CmjPattern::new(samples, (key >> 32) as u32))
-    });
+    let patterns = (samples > 1).then(|| scene.patterns.for_key(hash4(pixel, 0, u64::MAX, settings.seed)));
     let mut sum = DVec3::ZERO;
     let mut rays = 0;
     for s in 0..samples {
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
-        let offset = patterns.as_ref().map_or(DVec2::splat(0.5), |(p, _)| p.sample(s));
+        let offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(s));
         let lens = if scene.camera.aperture > 0.0 {
-            let u = patterns.as_ref().map_or_else(|| stream.uniform2(2), |(_, p)| p.sample(s));
-            sampling::concentric_disc(u)
+            patterns.as_ref().map_or_else(|| sampling::concentric_disc(stream.uniform2(2)), |p| p.lens(s))
         } else {
             DVec2::ZERO
         };

@@ -8,6 +8,7 @@ use prism_api::{Aabb, Hit, Ray, Shape};
 
 use super::accel::Accel;
 use super::camera::RenderCamera;
+use super::sampling::PatternTable;
 use crate::material::Material;
 use crate::scene::Scene;
 use crate::scene::components::{
@@ -246,6 +247,8 @@ pub struct RenderScene {
     pub accel: Accel,
     /// True when any material lets light through (shadow rays must then look at every hit).
     pub has_transparency: bool,
+    /// Stratified pixel and lens patterns.
+    pub patterns: PatternTable,
 }
 
 /// Builds the render scene. Call after `resolve_transforms` and `validate`.
@@ -281,8 +284,15 @@ pub fn extract(scene: &Scene) -> RenderScene {
 
     let accel = Accel::build(&primitives);
     let has_transparency = materials.iter().any(Material::is_transparent);
+    let camera = RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height);
+    let (samples, seed) = (scene.render.samples, scene.render.seed);
+    let patterns = if samples > 1 || camera.aperture > 0.0 {
+        PatternTable::new(samples, seed)
+    } else {
+        PatternTable::untabulated(samples)
+    };
     RenderScene {
-        camera: RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height),
+        camera,
         primitives,
         materials,
         lights: lights.into_iter().map(|(_, l)| l).collect(),
@@ -290,6 +300,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
         environment: scene.environment.clone(),
         accel,
         has_transparency,
+        patterns,
     }
 }
 
