@@ -83,13 +83,42 @@ pub struct Classic<'a> {
     scene: &'a RenderScene,
     /// Angle between neighbouring camera rays (radians): ray footprints for texture filtering.
     pixel_spread: f64,
+    /// Primitives that may hold a camera ray's origin: unbounded ones and those whose bounds
+    /// meet the lens.
+    camera_candidates: Vec<u32>,
+    /// The interiors every camera ray starts in, when all start at one point (no aperture).
+    pinhole_interiors: Option<Interiors>,
 }
 
 impl<'a> Classic<'a> {
     /// An integrator for `scene`.
     pub fn new(scene: &'a RenderScene) -> Self {
         let pixel_spread = scene.camera.up.length() / f64::from(scene.settings.height.max(1));
-        Self { scene, pixel_spread }
+        let lens = scene.camera.lens_bounds();
+        let camera_candidates = (0..scene.primitives.len() as u32)
+            .filter(|&i| {
+                let b = &scene.primitives[i as usize].world_bounds;
+                b.min.cmple(lens.max).all() && b.max.cmpge(lens.min).all()
+            })
+            .collect();
+        let mut integrator = Self { scene, pixel_spread, camera_candidates, pinhole_interiors: None };
+        if scene.camera.aperture <= 0.0 {
+            integrator.pinhole_interiors = Some(integrator.interiors_at(scene.camera.position));
+        }
+        integrator
+    }
+
+    /// The interiors a camera ray from `origin` starts in (POV-Ray's ray containers): every
+    /// object whose solid holds it, in load order (the last counts as the innermost).
+    fn interiors_at(&self, origin: DVec3) -> Interiors {
+        let mut interiors = Interiors::default();
+        for &i in &self.camera_candidates {
+            let p = &self.scene.primitives[i as usize];
+            if p.shape.inside(p.object_point(origin)) {
+                interiors = interiors.entering(i);
+            }
+        }
+        interiors
     }
 
     /// The material at a hit with textures looked up: the footprint of a pixel's ray cone
@@ -122,7 +151,8 @@ impl<'a> Classic<'a> {
 
     /// Radiance along a camera ray.
     pub fn radiance(&self, ray: &Ray, state: &mut PathState) -> DVec3 {
-        self.trace(ray, 1, 1.0, Interiors::default(), state)
+        let interiors = self.pinhole_interiors.unwrap_or_else(|| self.interiors_at(ray.origin));
+        self.trace(ray, 1, 1.0, interiors, state)
     }
 
     fn medium_ior(&self, interiors: &Interiors) -> f64 {
@@ -718,6 +748,37 @@ mod tests {
         };
         assert!((attenuation(&light, DVec3::X, 10.0) - 0.4).abs() < 1e-12);
         assert!((attenuation(&light, DVec3::X, 5.0) - 1.0).abs() < 1e-12);
+    }
+
+    /// Camera rays start inside the objects whose solids hold the camera: with and without
+    /// an aperture, through transforms, and a plane whose normal faces away.
+    #[test]
+    fn camera_rays_start_in_the_interiors_around_the_camera() {
+        use crate::scene::load::{Embedded, load_from};
+        macro_rules! scene {
+            ($lens:literal) => {
+                concat!(
+                    "[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.0, 0.0, -1.0]\n",
+                    $lens,
+                    "[[object]]\nshape = \"sphere\"\nradius = 1.0\ntransform = { translate = [0.3, 0.0, 0.0] }\n",
+                    "[[object]]\nshape = \"sphere\"\nradius = 1.0\ntransform = { translate = [3.0, 0.0, 0.0] }\n",
+                    "[[object]]\nshape = \"plane\"\nnormal = [0.0, 0.0, 1.0]\noffset = -5.0\n",
+                    "[[object]]\nshape = \"plane\"\nnormal = [0.0, 0.0, -1.0]\noffset = 5.0\n",
+                )
+            };
+        }
+        const PINHOLE: Embedded = Embedded(&[("s.toml", scene!(""))]);
+        const LENS: Embedded = Embedded(&[("s.toml", scene!("aperture = 0.2\n"))]);
+        for (files, aperture) in [(PINHOLE, false), (LENS, true)] {
+            let mut scene = load_from(&files, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+            let scene = crate::prepare(&mut scene).unwrap();
+            let integrator = Classic::new(&scene);
+            let inside = integrator.interiors_at(DVec3::ZERO);
+            assert_eq!(&inside.items[..inside.len], &[0, 3], "aperture {aperture}");
+            assert_eq!(integrator.pinhole_interiors.is_some(), !aperture);
+            let outside = integrator.interiors_at(DVec3::new(0.0, 0.0, -7.0));
+            assert_eq!(&outside.items[..outside.len], &[2], "beyond the far plane");
+        }
     }
 
     #[test]

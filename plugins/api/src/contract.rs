@@ -165,6 +165,9 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
     let bounds = shape.bounds();
     let mut hits = 0usize;
     let mut flips = 0usize;
+    // Crossings where `inside` does not change from just before the hit to just after it,
+    // and whether it was ever true (shapes without an inside answer false everywhere).
+    let (mut unchanged_inside, mut has_inside) = (0usize, false);
     let t_min = 1e-9;
 
     for i in 0..config.rays {
@@ -216,6 +219,14 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
             hit.t
         );
 
+        // Crossing the surface goes in or out of the solid.
+        let step = 1e-7 * scale / ray.direction.length();
+        let (before, after) = (shape.inside(ray.at(hit.t - step)), shape.inside(ray.at(hit.t + step)));
+        has_inside |= before || after;
+        if before == after {
+            unchanged_inside += 1;
+        }
+
         // A shorter segment that ends before the hit must not report anything farther.
         let shorter = hit.t * 0.999;
         if let Some(h) = shape.intersect(&ray, t_min, shorter) {
@@ -242,6 +253,10 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
     }
     check_missed_hulls(shape, &mut rng, &region, config.rays / 8, t_min);
     let allowed = (config.max_flip_fraction * config.rays as f64).ceil() as usize;
+    assert!(
+        !has_inside || unchanged_inside <= allowed,
+        "inside() did not change across {unchanged_inside} of {hits} surface crossings (allowed {allowed})"
+    );
     assert!(
         flips <= allowed,
         "{flips} of {} rays changed their hit under a round trip through a random transform (allowed {allowed})",

@@ -87,6 +87,16 @@ pub trait Shape: Send + Sync + Debug + 'static {
         self.surface(ray, hit)
     }
 
+    /// True when `point` (object space) lies inside the solid. Prism asks it once per render
+    /// for the camera position, as POV-Ray does: a camera inside a glass or water object sees
+    /// through that interior first (its rays leave the object rather than enter it). The
+    /// default, false, suits surfaces without an inside (discs, triangles, meshes); closed
+    /// shapes should answer it.
+    fn inside(&self, point: DVec3) -> bool {
+        let _ = point;
+        false
+    }
+
     /// True when anything lies on the ray with `t_min < t < t_max` (shadow rays).
     fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         self.intersect(ray, t_min, t_max).is_some()

@@ -242,6 +242,10 @@ impl Shape for Blob {
         None
     }
 
+    fn inside(&self, point: DVec3) -> bool {
+        self.field(point) > self.threshold
+    }
+
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
         let mut surface = self.surface_geometry(ray, hit);
         // No natural parameterisation: longitude/latitude of the direction from the centre of

@@ -111,6 +111,10 @@ impl Shape for BoxShape {
         [enter, exit].into_iter().find(|&(t, _)| t > t_min && t < t_max).map(|(t, face)| Hit::on_part(t, face))
     }
 
+    fn inside(&self, point: DVec3) -> bool {
+        point.cmpgt(self.min).all() && point.cmplt(self.max).all()
+    }
+
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
         let axis = (hit.part / 2) as usize;
         let at_max = hit.part % 2 == 1;

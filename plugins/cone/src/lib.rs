@@ -216,6 +216,14 @@ impl Shape for Cone {
         best
     }
 
+    fn inside(&self, point: DVec3) -> bool {
+        // The solid frustum, also when `open`, as in POV-Ray.
+        let local = point - self.base;
+        let s = local.dot(self.axis);
+        let radius = self.base_radius + self.slope * s;
+        s > 0.0 && s < self.height && (local - s * self.axis).length_squared() < radius * radius
+    }
+
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
         let mut surface = self.surface_geometry(ray, hit);
         let local = surface.point - self.base;

@@ -158,6 +158,13 @@ impl Shape for Cylinder {
         best
     }
 
+    fn inside(&self, point: DVec3) -> bool {
+        // The solid, also when `open` (POV-Ray's open cylinders keep their inside).
+        let local = point - self.base;
+        let s = local.dot(self.axis);
+        s > 0.0 && s < self.height && (local - s * self.axis).length_squared() < self.radius * self.radius
+    }
+
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
         let mut surface = self.surface_geometry(ray, hit);
         let local = surface.point - self.base;

@@ -95,6 +95,11 @@ impl Shape for Plane {
         (t > t_min && t < t_max).then(|| Hit::at(t))
     }
 
+    fn inside(&self, point: DVec3) -> bool {
+        // The solid half-space, as in POV-Ray: behind the normal.
+        self.normal.dot(point) < self.offset
+    }
+
     fn misses_hull(&self, points: &[DVec3]) -> bool {
         // Every point strictly on one side, by more than rounding in their signed distances.
         let scale = points.iter().fold(self.offset.abs(), |m, p| m.max(p.abs().max_element()));

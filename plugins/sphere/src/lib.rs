@@ -84,6 +84,10 @@ impl Shape for Sphere {
         Surface::new(self.center + normal * self.radius, normal, DVec2::ZERO)
     }
 
+    fn inside(&self, point: DVec3) -> bool {
+        point.distance_squared(self.center) < self.radius * self.radius
+    }
+
     fn area(&self) -> Option<f64> {
         Some(4.0 * PI * self.radius * self.radius)
     }

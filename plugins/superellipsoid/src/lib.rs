@@ -662,6 +662,10 @@ impl Shape for Superellipsoid {
         root.map(|u| Hit::at(to_t(u)))
     }
 
+    fn inside(&self, point: DVec3) -> bool {
+        self.gauge(point) < 1.0
+    }
+
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
         let mut surface = self.surface_geometry(ray, hit);
         // Longitude around y and latitude from the south pole, as on the sphere (to which

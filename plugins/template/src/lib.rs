@@ -152,6 +152,12 @@ impl Shape for Capsule {
         Surface::new(axis + normal * self.radius, normal, DVec2::ZERO)
     }
 
+    // Closed shapes say which points are inside: Prism starts camera rays inside the
+    // objects that hold the camera (looking out of a glass or water volume).
+    fn inside(&self, point: DVec3) -> bool {
+        point.distance_squared(self.closest_on_axis(point)) < self.radius * self.radius
+    }
+
     // STEP 5 (optional): area and uniform area sampling make the shape usable as an area
     // light. Return None from `area` (the default) if you do not need that.
     fn area(&self) -> Option<f64> {

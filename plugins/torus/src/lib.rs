@@ -157,6 +157,11 @@ impl Shape for Torus {
             .map(Hit::at)
     }
 
+    fn inside(&self, p: DVec3) -> bool {
+        let rho = (p.x * p.x + p.z * p.z).sqrt();
+        (rho - self.major).powi(2) + p.y * p.y < self.minor * self.minor
+    }
+
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
         let mut surface = self.surface_geometry(ray, hit);
         let p = surface.point;
