@@ -216,6 +216,19 @@ fn errors_are_all_reported_at_once() {
 }
 
 #[test]
+fn each_problem_is_reported_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[[light]]\nposition = [0.0, 3.0, 0.0]\nbrightness = 2.0\nintensity = \"high\"\n";
+    std::fs::write(dir.path().join("s.toml"), scene).unwrap();
+    let run = prism().current_dir(dir.path()).args(["render", "s.toml"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(stderr.matches("unknown key `brightness`").count(), 1, "{stderr}");
+    assert!(stderr.contains("did you mean `tightness`?"), "{stderr}");
+    assert!(stderr.contains("s.toml:4:") && stderr.contains("intensity"), "the rest is still checked: {stderr}");
+    assert!(!run.status.success());
+}
+
+#[test]
 fn default_command_renders_the_room() {
     let dir = tempfile::tempdir().unwrap();
     let run = prism().current_dir(dir.path()).output().unwrap();
