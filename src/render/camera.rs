@@ -79,8 +79,6 @@ impl RenderCamera {
         }
     }
 
-    /// The ray through image-plane coordinates (x0, y0) in [-0.5, 0.5], through lens point
-    /// `lens` on the unit disc.
     /// A box holding every camera ray's origin: the lens disc, or the position.
     pub fn lens_bounds(&self) -> prism_api::Aabb {
         let (x_axis, y_axis) = self.lens_axes;
@@ -88,6 +86,8 @@ impl RenderCamera {
         prism_api::Aabb::from_corners(self.position - reach, self.position + reach)
     }
 
+    /// The ray through image-plane coordinates (x0, y0) in [-0.5, 0.5], through lens point
+    /// `lens` on the unit disc.
     pub fn ray(&self, x0: f64, y0: f64, lens: DVec2) -> Ray {
         let through = self.direction + x0 * self.right + y0 * self.up;
         if self.aperture <= 0.0 {

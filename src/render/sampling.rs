@@ -225,6 +225,8 @@ pub struct PatternTable {
 }
 
 /// The two patterns of one pixel: sample offsets in the pixel and lens positions.
+// `Own` is large on purpose: a pixel's patterns live on its stack, not the heap.
+#[allow(clippy::large_enum_variant)]
 pub enum PixelPatterns<'a> {
     /// Slices of a [`PatternTable`].
     Tabulated {
@@ -233,12 +235,13 @@ pub enum PixelPatterns<'a> {
         /// Lens positions on the unit disc.
         disc: &'a [DVec2],
     },
-    /// Patterns made for this pixel alone (very many samples).
+    /// Patterns made for this pixel alone (very many samples), on the stack: nothing is
+    /// allocated per pixel.
     Own {
         /// Offsets.
-        square: Box<CmjPattern>,
+        square: CmjPattern,
         /// Lens positions (mapped onto the disc per sample).
-        lens: Box<CmjPattern>,
+        lens: CmjPattern,
     },
 }
 
@@ -302,8 +305,8 @@ impl PatternTable {
     pub fn for_key(&self, key: u64) -> PixelPatterns<'_> {
         if self.count == 0 {
             return PixelPatterns::Own {
-                square: Box::new(CmjPattern::new(self.samples, key as u32)),
-                lens: Box::new(CmjPattern::new(self.samples, (key >> 32) as u32)),
+                square: CmjPattern::new(self.samples, key as u32),
+                lens: CmjPattern::new(self.samples, (key >> 32) as u32),
             };
         }
         let n = self.samples as usize;
