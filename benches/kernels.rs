@@ -56,7 +56,7 @@ fn shapes(c: &mut Criterion) {
     group.finish();
 }
 
-fn room() -> prism::render::scene::RenderScene {
+fn room() -> prism::render::extract::RenderScene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/room.toml");
     let mut scene = prism::scene::load::load_file(&path, &prism::plugins::registry()).unwrap();
     scene.render.width = 200;

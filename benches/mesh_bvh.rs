@@ -13,9 +13,10 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use glam::{DVec3, Vec3};
-use prism::mesh::bvh::TriangleBvh;
-use prism::mesh::intersect::WatertightRay;
-use prism::mesh::{ImportOptions, MeshBuilder, MeshShape};
+use prism::accel::mesh_bvh::TriangleBvh;
+use prism::accel::triangle::WatertightRay;
+use prism::geometry::mesh::{MeshBuilder, MeshShape};
+use prism::import::ImportOptions;
 use prism_api::{Ray, Shape};
 
 struct Mesh {
@@ -420,7 +421,7 @@ fn main() {
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets"));
     let dragon_obj = assets.join("derived/obj/stanford-dragon/dragon_vrip.obj");
-    let mut store = prism::mesh::MeshStore::new();
+    let mut store = prism::import::MeshStore::new();
     match store.get(&dragon_obj, &ImportOptions::default()) {
         Ok(model) => {
             let data = model.parts[0].shape.data();

@@ -6,27 +6,30 @@
 //! scene with its BVH), [`render::render`] (tiles in parallel -> [`render::film::Film`]) and
 //! [`output`] (film -> EXR / PNG / ...). [`scene::save`] is the inverse of `load`.
 
+pub mod accel;
 pub mod builtin;
 pub mod color;
 pub mod diagnostics;
 pub mod export;
+pub mod film;
+pub mod geometry;
+pub mod import;
 pub mod material;
-pub mod mesh;
 pub mod output;
 pub mod plugins;
 pub mod registry;
 pub mod render;
 pub mod scene;
-pub mod schema;
-pub(crate) mod wide_bvh;
+pub mod texture;
+pub mod world;
 
 use diagnostics::SceneError;
-use render::scene::RenderScene;
-use scene::Scene;
+use render::extract::RenderScene;
+use world::Scene;
 
 /// Resolves transforms, validates and extracts: a loaded scene to a render scene.
 pub fn prepare(scene: &mut Scene) -> Result<RenderScene, SceneError> {
-    scene::transforms::resolve_transforms(scene)?;
-    scene::validate::validate(scene)?;
-    Ok(render::scene::extract(scene))
+    world::transforms::resolve_transforms(scene)?;
+    world::validate::validate(scene)?;
+    Ok(render::extract::extract(scene))
 }

@@ -6,9 +6,9 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 use prism::render::{RenderOptions, render};
-use prism::scene::Scene;
-use prism::scene::components::ToneMap;
 use prism::scene::load::{load_file, load_from};
+use prism::world::Scene;
+use prism::world::components::ToneMap;
 use prism::{builtin, output, plugins, prepare};
 
 /// Prism renders scenes written as TOML: analytic shapes, lights and materials, to PNG and
@@ -93,7 +93,28 @@ struct RenderArgs {
     exposure: Option<f64>,
     /// Tone-mapping operator for the tone-mapped image (overrides the scene).
     #[arg(long, value_enum)]
-    tone_map: Option<ToneMap>,
+    tone_map: Option<ToneMapArg>,
+}
+
+/// `--tone-map`: the command-line names of [`ToneMap`].
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum ToneMapArg {
+    /// Clip to [0, 1].
+    Clamp,
+    /// Reinhard: x / (1 + x).
+    Reinhard,
+    /// The ACES filmic fit.
+    Aces,
+}
+
+impl From<ToneMapArg> for ToneMap {
+    fn from(arg: ToneMapArg) -> Self {
+        match arg {
+            ToneMapArg::Clamp => ToneMap::Clamp,
+            ToneMapArg::Reinhard => ToneMap::Reinhard,
+            ToneMapArg::Aces => ToneMap::Aces,
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -149,7 +170,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
         settings.exposure = e;
     }
     if let Some(t) = args.tone_map {
-        settings.tone_map = t;
+        settings.tone_map = t.into();
     }
     if args.threads == Some(0) {
         return Err("--threads must be at least 1".into());
@@ -169,7 +190,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
         output::check_writable(path).map_err(|e| e.to_string())?;
     }
     let render_scene = prepare(&mut scene).map_err(|e| e.to_string())?;
-    for warning in prism::scene::validate::warnings(&scene) {
+    for warning in prism::world::validate::warnings(&scene) {
         eprintln!("warning: {warning}");
     }
     let options = RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal() };
@@ -214,7 +235,7 @@ fn save_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
 }
 
 fn schema_command(output: Option<&Path>) -> Result<(), String> {
-    let schema = prism::schema::scene_schema(&plugins::registry());
+    let schema = prism::scene::schema::scene_schema(&plugins::registry());
     let text = serde_json::to_string_pretty(&schema).map_err(|e| e.to_string())? + "\n";
     match output {
         Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
@@ -228,8 +249,8 @@ fn schema_command(output: Option<&Path>) -> Result<(), String> {
 fn export_pov_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
     let registry = plugins::registry();
     let mut scene = load_file(path, &registry).map_err(|e| e.to_string())?;
-    prism::scene::transforms::resolve_transforms(&mut scene).map_err(|e| e.to_string())?;
-    prism::scene::validate::validate(&scene).map_err(|e| e.to_string())?;
+    prism::world::transforms::resolve_transforms(&mut scene).map_err(|e| e.to_string())?;
+    prism::world::validate::validate(&scene).map_err(|e| e.to_string())?;
     let source = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let text = prism::export::pov::export(&scene, &source).map_err(|e| e.to_string())?;
     match output {

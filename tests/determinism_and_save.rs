@@ -3,10 +3,10 @@
 
 use std::path::{Path, PathBuf};
 
-use prism::render::film::Film;
+use prism::film::Film;
 use prism::render::{RenderOptions, render};
-use prism::scene::Scene;
 use prism::scene::load::load_file;
+use prism::world::Scene;
 
 fn scene_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(name)

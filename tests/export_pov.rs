@@ -168,7 +168,7 @@ fn a_shape_without_to_pov_is_named() {
     let path = dir.path().join("scene.toml");
     std::fs::write(&path, "[[object]]\nshape = \"sphere\"\n\n[[object]]\nname = \"odd\"\nshape = \"lump\"\n").unwrap();
     let mut scene = prism::scene::load::load_file(Path::new(&path), &registry).unwrap();
-    prism::scene::transforms::resolve_transforms(&mut scene).unwrap();
+    prism::world::transforms::resolve_transforms(&mut scene).unwrap();
     let error = prism::export::pov::export(&scene, "scene.toml").unwrap_err().to_string();
     for needle in ["scene.toml:4:", "object[1].shape", "shape `lump` has no POV-Ray equivalent", "Shape::to_pov"] {
         assert!(error.contains(needle), "missing `{needle}` in: {error}");

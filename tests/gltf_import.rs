@@ -13,12 +13,12 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use glam::{DAffine3, DQuat, DVec3};
-use prism::mesh::Imported;
+use prism::import::Imported;
 use prism::plugins::registry;
 use prism::render::{RenderOptions, render};
-use prism::scene::Scene;
-use prism::scene::components::{Light, LightKind};
 use prism::scene::load::load_file;
+use prism::world::Scene;
+use prism::world::components::{Light, LightKind};
 use serde_json::{Value, json};
 
 fn base64(bytes: &[u8]) -> String {

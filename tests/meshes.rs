@@ -16,8 +16,8 @@ use glam::DVec3;
 use prism::plugins::registry;
 use prism::render::camera::RenderCamera;
 use prism::render::{RenderOptions, render};
-use prism::scene::components::{Camera, ShapeComponent};
 use prism::scene::load::load_file;
+use prism::world::components::{Camera, ShapeComponent};
 
 /// A scene holding one mesh object for `file`, written to a temporary directory.
 fn scene_for(dir: &Path, file: &Path, extra: &str) -> PathBuf {

@@ -13,8 +13,8 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use prism::film::Film;
 use prism::output::{read_exr, srgb_encode};
-use prism::render::film::Film;
 use prism::render::{RenderOptions, render};
 use prism::scene::load::load_file;
 use prism::{plugins, prepare};
@@ -249,8 +249,8 @@ fn committed_pov_files_are_current() {
     for name in scenes() {
         let path = root().join(format!("scenes/parity/{name}.toml"));
         let mut scene = load_file(&path, &plugins::registry()).unwrap_or_else(|e| panic!("{e}"));
-        prism::scene::transforms::resolve_transforms(&mut scene).unwrap();
-        prism::scene::validate::validate(&scene).unwrap();
+        prism::world::transforms::resolve_transforms(&mut scene).unwrap();
+        prism::world::validate::validate(&scene).unwrap();
         let exported = prism::export::pov::export(&scene, &format!("{name}.toml")).unwrap_or_else(|e| panic!("{e}"));
         let committed = std::fs::read_to_string(root().join(format!("scenes/parity/{name}.pov"))).unwrap_or_default();
         if exported != committed {

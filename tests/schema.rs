@@ -14,7 +14,7 @@ fn scene_files(dir: &Path, out: &mut Vec<PathBuf>) {
 }
 
 fn validator() -> jsonschema::Validator {
-    let schema = prism::schema::scene_schema(&prism::plugins::registry());
+    let schema = prism::scene::schema::scene_schema(&prism::plugins::registry());
     jsonschema::validator_for(&schema).expect("the generated schema is a valid JSON Schema")
 }
 
@@ -55,7 +55,7 @@ fn broken_scenes_are_rejected() {
 
 #[test]
 fn every_shape_is_described() {
-    let schema = prism::schema::scene_schema(&prism::plugins::registry());
+    let schema = prism::scene::schema::scene_schema(&prism::plugins::registry());
     let variants = schema["properties"]["object"]["items"]["oneOf"].as_array().unwrap();
     let names: Vec<&str> = variants.iter().map(|v| v["title"].as_str().unwrap()).collect();
     for shape in prism::plugins::registry().names().chain(["mesh"]) {

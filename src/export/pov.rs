@@ -23,8 +23,8 @@ use crate::color::Rgb;
 use crate::diagnostics::{Diagnostic, SceneError};
 use crate::material::{Material, Reflection};
 use crate::render::camera::CameraFrame;
-use crate::scene::Scene;
-use crate::scene::components::{
+use crate::world::Scene;
+use crate::world::components::{
     Antialias, Camera, Environment, IntegratorKind, Light, LightKind, MaterialComponent, Name, ObjectFlags, Origin,
     RenderSettings, ShapeComponent, WorldTransform,
 };

@@ -10,10 +10,10 @@
 use glam::{DVec2, DVec3};
 
 use super::camera::pov_screen;
-use super::classic::{Classic, PathState};
+use super::extract::RenderScene;
+use super::integrators::classic::{Classic, PathState};
 use super::sampling::{SampleStream, hash4, mix64};
-use super::scene::RenderScene;
-use crate::scene::components::Antialias;
+use crate::world::components::Antialias;
 
 /// Side of the square blocks POV-Ray antialiases independently (`Render_Block_Size`).
 pub const BLOCK_SIZE: u32 = 32;

@@ -5,7 +5,7 @@
 use glam::{DVec2, DVec3};
 use prism_api::Ray;
 
-use crate::scene::components::Camera;
+use crate::world::components::Camera;
 
 /// A camera ready to make rays.
 #[derive(Clone, Debug)]

@@ -1,13 +1,12 @@
 //! `render`: tiles in parallel (rayon); each pixel's samples depend only on
 //! (pixel, sample, dimension, seed), so the image is bit-identical for any thread count.
 
-pub mod accel;
 pub mod antialias;
 pub mod camera;
-pub mod classic;
-pub mod film;
+pub mod extract;
+pub mod integrators;
+pub mod lights;
 pub mod sampling;
-pub mod scene;
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -16,11 +15,11 @@ use glam::{DVec2, DVec3};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
+use crate::film::Film;
 use camera::pov_screen;
-use classic::{Classic, PathState};
-use film::Film;
+use extract::RenderScene;
+use integrators::classic::{Classic, PathState};
 use sampling::{SampleStream, hash4};
-use scene::RenderScene;
 
 /// Side of a square render tile in pixels.
 pub const TILE_SIZE: u32 = 16;

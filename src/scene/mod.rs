@@ -1,35 +1,8 @@
-//! The scene: a hecs `World` of entities plus scene-wide settings, and the pipeline steps
-//! that produce and check it (`load`, `resolve_transforms`, `validate`) and write it back
-//! (`save`).
+//! The scene file: TOML (with includes and named materials) to a [`crate::world::Scene`]
+//! (`load`), and back (`save`); the JSON schema of the format (`schema`). Knows nothing of
+//! rendering.
 
-pub mod components;
 pub mod load;
 pub mod save;
+pub mod schema;
 pub mod source;
-pub mod transforms;
-pub mod validate;
-
-use crate::diagnostics::Location;
-use components::{Environment, RenderSettings};
-
-/// A loaded scene.
-pub struct Scene {
-    /// Entities: objects (Shape, Transform, Material, flags, optional Name and Parent),
-    /// lights (Light) and the camera (Camera).
-    pub world: hecs::World,
-    /// `[render]` settings.
-    pub render: RenderSettings,
-    /// Where `[render]` was written (for diagnostics about it).
-    pub render_origin: Location,
-    /// `[world]` settings.
-    pub environment: Environment,
-    /// The camera entity.
-    pub camera: hecs::Entity,
-}
-
-impl Scene {
-    /// The camera.
-    pub fn camera(&self) -> components::Camera {
-        self.world.get::<&components::Camera>(self.camera).map(|c| (*c).clone()).unwrap_or_default()
-    }
-}

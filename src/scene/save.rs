@@ -9,12 +9,13 @@
 use std::collections::BTreeMap;
 use std::path::{Component, Path, PathBuf};
 
-use super::Scene;
-use super::components::{Light, MaterialComponent, Name, ObjectFlags, Parent, ShapeComponent, Transform};
+use crate::import::spawn::MESH_SHAPE;
+use crate::import::{Imported, MeshSource};
 use crate::material::Material;
-use crate::mesh::cameras_lights::ImportedCamera;
-use crate::mesh::spawn::MESH_SHAPE;
-use crate::mesh::{Imported, MeshSource};
+use crate::world::Scene;
+use crate::world::components::{
+    ImportedCamera, Light, MaterialComponent, Name, ObjectFlags, Parent, ShapeComponent, Transform,
+};
 
 /// The scene as TOML text, with absolute file paths (the text loads wherever it is written).
 pub fn save(scene: &Scene) -> Result<String, toml::ser::Error> {

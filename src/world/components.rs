@@ -281,7 +281,7 @@ impl Default for Camera {
 }
 
 /// How the PNG (or other 8-bit output) maps linear radiance to display values.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ToneMap {
     /// Clip to [0, 1] (what POV-Ray writes).
@@ -383,6 +383,16 @@ impl Default for RenderSettings {
             tone_map: ToneMap::Clamp,
         }
     }
+}
+
+/// Marks the camera entity when the camera comes from a file (`import_camera`): loading
+/// recreates it, so `save` writes only the lens keys of `[camera]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImportedCamera {
+    /// The file's aspect ratio for the camera, if it gives one (the image's is used).
+    pub aspect_ratio: Option<f64>,
+    /// `file.gltf: camera 0 ...`, for messages.
+    pub description: String,
 }
 
 /// `[world]`: what surrounds the objects.

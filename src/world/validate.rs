@@ -4,9 +4,8 @@
 use glam::DVec3;
 
 use super::Scene;
-use super::components::{Antialias, Light, LightKind, Origin, WorldTransform};
+use super::components::{Antialias, ImportedCamera, Light, LightKind, Origin, WorldTransform};
 use crate::diagnostics::{Diagnostic, Location, SceneError};
-use crate::mesh::cameras_lights::{ImportedCamera, aspect_warning};
 
 /// Largest accepted image side, and pixel count (a 64k x 64k float image is 48 GiB).
 pub const MAX_IMAGE_SIDE: u32 = 65_536;
@@ -206,5 +205,28 @@ fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
                 "a circular (or oriented) area light needs size1 and size2 of at least 2",
             ));
         }
+    }
+}
+
+/// The warning for a file camera made for another aspect ratio than the image's, if any.
+pub fn aspect_warning(aspect_ratio: Option<f64>, width: u32, height: u32) -> Option<String> {
+    let file = aspect_ratio?;
+    let image = f64::from(width) / f64::from(height.max(1));
+    ((file - image).abs() > 1e-3 * image).then(|| {
+        format!(
+            "the camera's aspectRatio {file} differs from the image's {width}x{height} ({image:.4}); the vertical field of view is kept"
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn aspect_warning_only_for_a_different_aspect() {
+        assert!(aspect_warning(Some(1.0), 64, 36).unwrap().contains("aspectRatio 1"));
+        assert!(aspect_warning(Some(16.0 / 9.0), 1920, 1080).is_none());
+        assert!(aspect_warning(None, 64, 36).is_none());
     }
 }

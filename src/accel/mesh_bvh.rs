@@ -5,7 +5,7 @@
 //! triangles); it is then collapsed into an 8-wide tree whose nodes hold their children's
 //! boxes as structure-of-arrays, so one AVX2 instruction tests a ray against eight boxes,
 //! and whose leaves are packets of four triangles tested together with the watertight test
-//! of [`super::intersect`] in SSE lanes. Children are visited nearest first. Without AVX2
+//! of [`super::triangle`] in SSE lanes. Children are visited nearest first. Without AVX2
 //! (or off x86-64) the same kernels run as plain loops.
 
 use std::mem::MaybeUninit;
@@ -15,8 +15,8 @@ use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::builder::build_bvh2;
 
-use super::intersect::{TriangleHit, WatertightRay};
-use crate::wide_bvh::{
+use super::triangle::{TriangleHit, WatertightRay};
+use crate::accel::wide::{
     BoxKernel, BoxRay, EMPTY, FAR_SCALE, LEAF, Node, ScalarBoxes, StackEntry, WIDTH, WideTree, order_children,
     pop_within, with_traversal_stack,
 };
@@ -393,7 +393,7 @@ fn traverse<K: Kernels, const ANY: bool>(
     acceptor: &mut impl Acceptor,
 ) -> bool {
     let mut hits = [[0f32; PACKET]; 3];
-    crate::wide_bvh::traverse::<K::Boxes, true>(&bvh.nodes, &r.boxes, t_max, stack, |leaf, t_max| {
+    crate::accel::wide::traverse::<K::Boxes, true>(&bvh.nodes, &r.boxes, t_max, stack, |leaf, t_max| {
         let packet = &bvh.packets[leaf as usize];
         let mut edge = 0;
         let mut mask = K::triangles(packet, r, *t_max, &mut hits, &mut edge);
@@ -429,10 +429,10 @@ fn traverse<K: Kernels, const ANY: bool>(
 mod simd {
     use std::arch::x86_64::*;
 
-    pub use crate::wide_bvh::avx2_available as available;
+    pub use crate::accel::wide::avx2_available as available;
 
     use super::*;
-    use crate::wide_bvh::Avx2Boxes;
+    use crate::accel::wide::Avx2Boxes;
 
     struct Avx2;
 

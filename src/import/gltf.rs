@@ -16,13 +16,11 @@ use std::sync::Arc;
 use glam::{DAffine3, DMat4, Vec2, Vec3, Vec4};
 use gltf::mesh::Mode;
 
-use super::texture::{ColorSpace, TextureRef, TextureStore, Wrap};
-use super::{
-    AlphaMask, CameraProjection, ImportError, MeshBuilder, MeshData, MeshShape, Model, ModelCamera, ModelLight,
-    ModelNode, ModelPart, NormalMap, PunctualKind, SurfaceMaps,
-};
+use super::{CameraProjection, ImportError, Model, ModelCamera, ModelLight, ModelNode, ModelPart, PunctualKind};
 use crate::color::Rgb;
+use crate::geometry::mesh::{AlphaMask, MeshBuilder, MeshData, MeshShape, NormalMap, SurfaceMaps};
 use crate::material::{Material, Pbr};
+use crate::texture::{ColorSpace, TextureRef, TextureStore, Wrap};
 
 /// Deepest node nesting accepted (deeper trees are almost certainly broken files).
 const MAX_DEPTH: usize = 256;

@@ -7,7 +7,7 @@ use serde_json::{Map, Value, json};
 
 use crate::material::Material;
 use crate::registry::ShapeRegistry;
-use crate::scene::components::{Camera, Environment, Light, RenderSettings, Transform};
+use crate::world::components::{Camera, Environment, Light, RenderSettings, Transform};
 
 /// The JSON Schema (draft 2020-12) of a scene file for shapes in `registry`.
 pub fn scene_schema(registry: &ShapeRegistry) -> Value {
@@ -35,7 +35,7 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
 
     let mut objects = objects;
     let mut mesh = json!({
-        "title": crate::mesh::spawn::MESH_SHAPE,
+        "title": crate::import::spawn::MESH_SHAPE,
         "description": "A triangle mesh imported from an OBJ or glTF 2.0 file (see docs/meshes.md).",
         "type": "object",
         "additionalProperties": false,
@@ -61,7 +61,7 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
             }
         }
     });
-    insert_common_keys(&mut mesh, crate::mesh::spawn::MESH_SHAPE, &material, &transform);
+    insert_common_keys(&mut mesh, crate::import::spawn::MESH_SHAPE, &material, &transform);
     objects.push(mesh);
 
     let definitions: Map<String, Value> = generator.take_definitions(true);

@@ -16,7 +16,7 @@ use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
 use crate::color::Rgb;
-use crate::mesh::texture::{ColorSpace, TextureRef};
+use crate::texture::{ColorSpace, TextureRef};
 
 /// A surface and interior description.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]

@@ -2,7 +2,7 @@
 //! children's boxes as structure-of-arrays (one AVX2 instruction tests a ray against all
 //! eight), built by collapsing an obvhs binary tree, and traversed depth first, nearest
 //! child first. What a leaf is belongs to the user: a packet of triangles in a mesh
-//! ([`crate::mesh`]), one primitive at the top level ([`crate::render::accel`]).
+//! ([`crate::geometry::mesh`]), one primitive at the top level ([`crate::accel::scene_bvh`]).
 
 use std::mem::MaybeUninit;
 

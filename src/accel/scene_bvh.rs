@@ -1,4 +1,4 @@
-//! Ray queries over all primitives: an 8-wide BVH ([`crate::wide_bvh`]) over the world
+//! Ray queries over all primitives: an 8-wide BVH ([`crate::accel::wide`]) over the world
 //! bounds of bounded primitives, one primitive per leaf, plus a short list of unbounded ones
 //! (infinite planes) tested beside it, as POV-Ray does. Shapes are intersected in f64 in
 //! their own object space; the BVH works in f32 with conservatively enlarged boxes, and the
@@ -11,8 +11,8 @@ use obvhs::BvhBuildParams;
 use obvhs::bvh2::builder::build_bvh2;
 use prism_api::{Hit, Ray};
 
-use super::scene::Primitive;
-use crate::wide_bvh::{BoxRay, EMPTY, LEAF, WIDTH, WideTree, traverse_fastest, with_traversal_stack};
+use super::primitive::Primitive;
+use crate::accel::wide::{BoxRay, EMPTY, LEAF, WIDTH, WideTree, traverse_fastest, with_traversal_stack};
 
 /// The acceleration structure.
 pub struct Accel {

@@ -1,31 +1,15 @@
-//! Triangle meshes: the [`MeshShape`] (an f32 mesh with its own BVH, the bottom level of the
-//! two-level BVH), OBJ and glTF import, and textures.
-//!
-//! A scene writes `shape = "mesh"` and `file = "..."`; [`crate::scene::load`] imports the
-//! file once into a [`Model`] (shared by every object that names the file: instancing is
-//! `Arc` sharing) and spawns one entity per (node, primitive) so each keeps one material.
-//! See `docs/meshes.md` for the import rules and the material mapping.
+//! Triangle meshes: vertex data ([`MeshBuilder`], [`MeshData`]), the surface maps a mesh
+//! material can carry (alpha mask, normal map), and the [`MeshShape`]: an f32 mesh with its
+//! own BVH (the bottom level of the two-level BVH) that implements the plugin `Shape` trait.
 
-pub mod bvh;
-pub mod cameras_lights;
-pub mod gltf;
-pub mod intersect;
-pub mod obj;
-pub mod spawn;
-pub mod texture;
-pub mod triangulate;
-
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
 
-use glam::{DAffine3, DVec2, DVec3, Vec2, Vec3, Vec4};
+use glam::{DVec2, DVec3, Vec2, Vec3, Vec4};
 use prism_api::{Aabb, AreaSample, Hit, Ray, Shape, Surface};
 
-use crate::material::Material;
-use bvh::TriangleBvh;
-use intersect::{WatertightRay, plane_t};
-use texture::{TextureRef, TextureStore};
+use crate::accel::mesh_bvh::TriangleBvh;
+use crate::accel::triangle::{WatertightRay, plane_t};
+use crate::texture::TextureRef;
 
 /// Vertex data of a mesh before its BVH is built.
 #[derive(Clone, Debug, Default)]
@@ -526,235 +510,6 @@ impl Shape for MeshShape {
     }
 }
 
-/// A node of an imported file's scene tree (glTF nodes; an OBJ file has one).
-#[derive(Clone, Debug)]
-pub struct ModelNode {
-    /// The node's name in the file, if any.
-    pub name: Option<String>,
-    /// The parent node (earlier in [`Model::nodes`]); `None` for roots.
-    pub parent: Option<usize>,
-    /// Local transform (node space to parent space).
-    pub local: DAffine3,
-}
-
-/// One mesh part: a triangle primitive with one material, hanging from a node.
-#[derive(Clone, Debug)]
-pub struct ModelPart {
-    /// Index into [`Model::nodes`].
-    pub node: usize,
-    /// The geometry (the same `Arc<MeshData>` when a file instances a mesh on several nodes).
-    pub shape: Arc<MeshShape>,
-    /// The material the file gives it, mapped to Prism's [`Material`].
-    pub material: Material,
-    /// The material's name in the file, if any.
-    pub material_name: Option<String>,
-}
-
-/// A camera on a node of an imported file (glTF `cameras`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct ModelCamera {
-    /// Index into [`Model::nodes`] of the node that holds the camera.
-    pub node: usize,
-    /// The camera's index in the file's `cameras` array.
-    pub index: usize,
-    /// The camera's name in the file, if any.
-    pub name: Option<String>,
-    /// The projection, or what is wrong with the file's description of it.
-    pub projection: Result<CameraProjection, String>,
-}
-
-/// The projection of a [`ModelCamera`] (glTF units: radians, file units).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum CameraProjection {
-    /// A pinhole camera.
-    Perspective {
-        /// Vertical field of view in radians.
-        yfov: f64,
-        /// Width / height of the viewport the file was made for, if it says.
-        aspect_ratio: Option<f64>,
-    },
-    /// A parallel projection.
-    Orthographic {
-        /// Half the viewport's width.
-        xmag: f64,
-        /// Half the viewport's height.
-        ymag: f64,
-    },
-}
-
-/// The kind of a [`ModelLight`] (`KHR_lights_punctual` types).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum PunctualKind {
-    /// Shines in all directions from the node's origin; intensity in candela.
-    Point,
-    /// Shines down the node's -z within a cone; intensity in candela.
-    Spot {
-        /// Angle in radians from the axis where the falloff begins.
-        inner_cone_angle: f64,
-        /// Angle in radians from the axis where the light reaches zero.
-        outer_cone_angle: f64,
-    },
-    /// Parallel light down the node's -z, infinitely far; intensity in lux.
-    Directional,
-}
-
-/// A `KHR_lights_punctual` light on a node of an imported file.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ModelLight {
-    /// Index into [`Model::nodes`] of the node that holds the light.
-    pub node: usize,
-    /// The light's index in the file's `KHR_lights_punctual.lights` array.
-    pub index: usize,
-    /// The light's name in the file, if any.
-    pub name: Option<String>,
-    /// Point, spot or directional.
-    pub kind: PunctualKind,
-    /// Linear RGB colour.
-    pub color: [f64; 3],
-    /// Candela (point, spot) or lux (directional).
-    pub intensity: f64,
-    /// Distance where the file says the light may be considered zero, if given.
-    pub range: Option<f64>,
-}
-
-/// An imported mesh file: node tree, parts, cameras and lights, and what was skipped.
-#[derive(Clone, Debug, Default)]
-pub struct Model {
-    /// Nodes, parents before children.
-    pub nodes: Vec<ModelNode>,
-    /// Mesh parts.
-    pub parts: Vec<ModelPart>,
-    /// Cameras on nodes of the imported scene, in depth-first node order (imported only when
-    /// the scene asks: `import_camera`).
-    pub cameras: Vec<ModelCamera>,
-    /// Lights on nodes of the imported scene, in depth-first node order (imported only when
-    /// the scene asks: `import_lights`).
-    pub lights: Vec<ModelLight>,
-    /// Things in the file that were skipped or approximated.
-    pub warnings: Vec<String>,
-}
-
-impl Model {
-    /// Triangles over all parts as instanced by the node tree.
-    pub fn triangle_count(&self) -> usize {
-        self.parts.iter().map(|p| p.shape.data().triangle_count()).sum()
-    }
-}
-
-/// Options of a `shape = "mesh"` object that change what is imported.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ImportOptions {
-    /// OBJ without normals: smooth across edges whose faces meet at less than this angle
-    /// (degrees); `None` = flat shading.
-    pub smooth_angle: Option<f64>,
-}
-
-/// An import error: the file and what is wrong with it (OBJ errors give the line).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ImportError {
-    /// The file as given.
-    pub file: String,
-    /// 1-based line, when known.
-    pub line: Option<usize>,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl std::fmt::Display for ImportError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.line {
-            Some(line) => write!(f, "{}:{line}: {}", self.file, self.message),
-            None => write!(f, "{}: {}", self.file, self.message),
-        }
-    }
-}
-
-impl std::error::Error for ImportError {}
-
-impl ImportError {
-    /// An error about `file` with no line.
-    pub fn new(file: &Path, message: impl Into<String>) -> Self {
-        Self { file: file.display().to_string(), line: None, message: message.into() }
-    }
-}
-
-/// Imports `path` by its extension (`.obj`, `.gltf`, `.glb`).
-pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore) -> Result<Model, ImportError> {
-    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
-    // A panic inside a parser crate on hostile input must still end as an error.
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| match ext.as_str() {
-        "obj" => obj::import(path, options, textures),
-        "gltf" | "glb" => gltf::import(path, textures),
-        _ => Err(ImportError::new(path, format!("unknown mesh format `.{ext}` (expected .obj, .gltf or .glb)"))),
-    }));
-    result.unwrap_or_else(|_| Err(ImportError::new(path, "the importer failed on malformed data")))
-}
-
-/// Imported files, keyed by canonical path and options: a file used by many objects is
-/// read, triangulated and given its BVH once.
-#[derive(Default)]
-pub struct MeshStore {
-    models: HashMap<(PathBuf, Option<u64>), Arc<Model>>,
-    /// Decoded textures shared by all files and scene materials.
-    pub textures: TextureStore,
-}
-
-impl MeshStore {
-    /// An empty store.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// The model for `path`, imported on first use.
-    pub fn get(&mut self, path: &Path, options: &ImportOptions) -> Result<Arc<Model>, ImportError> {
-        let canonical = std::fs::canonicalize(path).map_err(|e| ImportError::new(path, format!("cannot read: {e}")))?;
-        let key = (canonical, options.smooth_angle.map(f64::to_bits));
-        if let Some(m) = self.models.get(&key) {
-            return Ok(m.clone());
-        }
-        let model = Arc::new(import(path, options, &mut self.textures)?);
-        for warning in &model.warnings {
-            eprintln!("warning: {}: {warning}", path.display());
-        }
-        self.models.insert(key, model.clone());
-        Ok(model)
-    }
-
-    /// Number of distinct imported files.
-    pub fn len(&self) -> usize {
-        self.models.len()
-    }
-
-    /// True when nothing was imported.
-    pub fn is_empty(&self) -> bool {
-        self.models.is_empty()
-    }
-}
-
-/// Component of the entity a `shape = "mesh"` object becomes: what to write back on save.
-/// The entity carries the object's `Transform`, `ObjectFlags`, `Origin` and optional `Name`
-/// and `Parent`; the imported parts are its descendants, marked [`Imported`].
-#[derive(Clone, Debug)]
-pub struct MeshSource {
-    /// The mesh file, as an absolute path (`save` writes it relative to the saved file when it
-    /// can).
-    pub file: String,
-    /// The material override, if the object gave one.
-    pub material: Option<crate::scene::components::MaterialComponent>,
-    /// Materials replacing the file's materials by name (`material_map`).
-    pub material_map: std::collections::BTreeMap<String, crate::scene::components::MaterialComponent>,
-    /// The other mesh parameters as written (`smooth_angle`, `import_lights`,
-    /// `import_camera`; not `file` or `material_map`).
-    pub params: toml::Table,
-    /// The imported model (shared between objects naming the same file).
-    pub model: Arc<Model>,
-}
-
-/// Marks entities created from a mesh file (nodes, parts and imported lights): `save` skips
-/// them, since loading the file recreates them.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Imported;
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -867,13 +622,13 @@ mod tests {
     #[test]
     fn alpha_mask_cuts_out() {
         let data = Arc::new(square());
-        let mut mask = texture::TextureRef::new("mask");
+        let mut mask = crate::texture::TextureRef::new("mask");
         // Left half transparent, right half opaque.
-        mask.texture = Some(Arc::new(texture::Texture::from_rgba8(
+        mask.texture = Some(Arc::new(crate::texture::Texture::from_rgba8(
             2,
             1,
             vec![[255, 255, 255, 0], [255, 255, 255, 255]],
-            texture::ColorSpace::Linear,
+            crate::texture::ColorSpace::Linear,
         )));
         let maps = SurfaceMaps {
             alpha_mask: Some(AlphaMask { texture: Some(mask), factor: 1.0, cutoff: 0.5 }),

@@ -17,7 +17,7 @@ use glam::{DAffine3, DVec3};
 
 use super::{CameraProjection, Model, ModelCamera, ModelLight, PunctualKind};
 use crate::color::Rgb;
-use crate::scene::components::{Camera, Light, LightKind};
+use crate::world::components::{Camera, Light, LightKind};
 
 /// Imported point and spot lights follow `I / (d^2 + LIGHT_CORE^2)` with d in file units
 /// (metres): an inverse square law softened within a millimetre of the light.
@@ -59,16 +59,6 @@ impl CameraChoice {
             _ => Err("`import_camera` must be true, false, a camera index or a camera name".into()),
         }
     }
-}
-
-/// Marks the camera entity when the camera comes from a file (`import_camera`): loading
-/// recreates it, so `save` writes only the lens keys of `[camera]`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ImportedCamera {
-    /// The file's aspect ratio for the camera, if it gives one (the image's is used).
-    pub aspect_ratio: Option<f64>,
-    /// `file.gltf: camera 0 ...`, for messages.
-    pub description: String,
 }
 
 /// `camera 0 `name` on node `node``: how messages name a camera of `model`.
@@ -174,17 +164,6 @@ pub fn camera_from_node(world_from_camera: DAffine3, yfov: f64, lens: &Camera) -
     }
 }
 
-/// The warning for a file camera made for another aspect ratio than the image's, if any.
-pub fn aspect_warning(aspect_ratio: Option<f64>, width: u32, height: u32) -> Option<String> {
-    let file = aspect_ratio?;
-    let image = f64::from(width) / f64::from(height.max(1));
-    ((file - image).abs() > 1e-3 * image).then(|| {
-        format!(
-            "the camera's aspectRatio {file} differs from the image's {width}x{height} ({image:.4}); the vertical field of view is kept"
-        )
-    })
-}
-
 /// `light 2 `name``: how messages name a light of a file.
 pub fn describe_light(light: &ModelLight) -> String {
     match &light.name {
@@ -258,7 +237,7 @@ pub fn uniform_scale(m: &DAffine3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::ModelNode;
+    use crate::import::ModelNode;
     use glam::DQuat;
 
     fn light(kind: PunctualKind) -> ModelLight {
@@ -378,8 +357,5 @@ mod tests {
         assert!((DVec3::from_array(c.up) - DVec3::Y).length() < 1e-12);
         assert!((c.vfov - 0.5f64.to_degrees()).abs() < 1e-12);
         assert_eq!((c.aperture, c.focal_distance, c.aspect), (0.5, Some(4.0), None));
-        assert!(aspect_warning(Some(1.0), 64, 36).unwrap().contains("aspectRatio 1"));
-        assert!(aspect_warning(Some(16.0 / 9.0), 1920, 1080).is_none());
-        assert!(aspect_warning(None, 64, 36).is_none());
     }
 }

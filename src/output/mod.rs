@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 
 use image::{ImageFormat, RgbImage};
 
-use crate::render::film::Film;
-use crate::scene::components::ToneMap;
+use crate::film::Film;
+use crate::world::components::ToneMap;
 
 /// Errors from writing output files.
 #[derive(Debug, thiserror::Error)]

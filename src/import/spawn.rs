@@ -8,7 +8,7 @@ use glam::{DAffine3, DMat4};
 
 use super::{Imported, MeshSource, Model};
 use crate::diagnostics::Location;
-use crate::scene::components::{MaterialComponent, ObjectFlags, Origin, Parent, ShapeComponent, Transform};
+use crate::world::components::{MaterialComponent, ObjectFlags, Origin, Parent, ShapeComponent, Transform};
 
 /// The `shape` name of mesh objects.
 pub const MESH_SHAPE: &str = "mesh";

@@ -8,11 +8,13 @@
 use glam::DVec3;
 use prism_api::Ray;
 
-use super::accel::{ConvexHull, Gathered};
-use super::sampling::SampleStream;
-use super::scene::{AreaGrid, Placement, RenderLight, RenderScene};
+use crate::accel::primitive::{Placement, Primitive};
+use crate::accel::scene_bvh::{ConvexHull, Gathered};
 use crate::material::Material;
-use crate::scene::components::LightKind;
+use crate::render::extract::RenderScene;
+use crate::render::lights::{AreaGrid, RenderLight};
+use crate::render::sampling::SampleStream;
+use crate::world::components::LightKind;
 
 /// POV-Ray ignores shadow-ray hits closer than this to the surface or the light.
 const SHADOW_TOLERANCE: f64 = 1e-3;
@@ -127,7 +129,7 @@ impl<'a> Classic<'a> {
     fn shade<'m>(
         &self,
         material: &'m Material,
-        primitive: &super::scene::Primitive,
+        primitive: &Primitive,
         surface: &prism_api::Surface,
         distance: f64,
         cosine: f64,
@@ -145,7 +147,7 @@ impl<'a> Classic<'a> {
                 * (primitive.normal_to_world * surface.normal).length()
         };
         let footprint =
-            crate::mesh::texture::uv_footprint(self.pixel_spread * distance, surface.uv_density, area_scale, cosine);
+            crate::texture::uv_footprint(self.pixel_spread * distance, surface.uv_density, area_scale, cosine);
         material.at_surface(surface.uv, footprint)
     }
 

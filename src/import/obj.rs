@@ -10,11 +10,12 @@ use std::sync::Arc;
 
 use glam::{DAffine3, DVec3, Vec2, Vec3};
 
-use super::texture::{ColorSpace, TextureRef, TextureStore};
 use super::triangulate::triangulate;
-use super::{ImportError, ImportOptions, MeshBuilder, MeshShape, Model, ModelNode, ModelPart, NormalMap, SurfaceMaps};
+use super::{ImportError, ImportOptions, Model, ModelNode, ModelPart};
 use crate::color::Rgb;
+use crate::geometry::mesh::{MeshBuilder, MeshShape, NormalMap, SurfaceMaps};
 use crate::material::{Material, Reflection};
+use crate::texture::{ColorSpace, TextureRef, TextureStore};
 
 /// Reads an OBJ file and its MTL files.
 pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore) -> Result<Model, ImportError> {
@@ -315,7 +316,7 @@ fn load_map(
             let mut r = TextureRef::new(full.display().to_string());
             r.texture = Some(texture);
             if parsed.clamp {
-                r.wrap = [super::texture::Wrap::Clamp; 2];
+                r.wrap = [crate::texture::Wrap::Clamp; 2];
             }
             r.offset = parsed.offset;
             r.scale = parsed.scale;

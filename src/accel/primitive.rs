@@ -1,0 +1,182 @@
+//! Primitives: shapes placed in the world by an affine transform, with the cheapest exact
+//! way to move rays, points and normals between the two spaces.
+
+use std::sync::Arc;
+
+use glam::{DAffine3, DMat3, DVec3};
+use prism_api::{Aabb, Hit, Ray, Shape};
+
+/// One shape instance in world space.
+#[derive(Clone, Debug)]
+pub struct Primitive {
+    /// The geometry in object space.
+    pub shape: Arc<dyn Shape>,
+    /// Object to world.
+    pub world_from_object: DAffine3,
+    /// World to object.
+    pub object_from_world: DAffine3,
+    /// Maps object-space normals to world space (inverse transpose).
+    pub normal_to_world: DMat3,
+    /// The kind of transform, which picks the cheapest exact way to apply it.
+    pub placement: Placement,
+    /// Bounds in world space (infinite for unbounded shapes).
+    pub world_bounds: Aabb,
+    /// Index into the scene's materials.
+    pub material: u32,
+    /// Casts no shadow.
+    pub no_shadow: bool,
+}
+
+/// What kind of map a primitive's world-from-object transform is. Most scene objects are
+/// only moved, and a ray tested against each of them on every query need not pay for two
+/// matrix products: the special cases give bit-identical results to the general one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Placement {
+    /// Object space is world space.
+    Identity,
+    /// World = object + this offset: points move, directions and normals do not.
+    Translation(DVec3),
+    /// Any other affine map: the matrices apply.
+    Affine,
+}
+
+impl Placement {
+    /// The placement of `world_from_object`.
+    pub fn of(world_from_object: &DAffine3) -> Self {
+        if world_from_object.matrix3 != DMat3::IDENTITY {
+            Placement::Affine
+        } else if world_from_object.translation == DVec3::ZERO {
+            Placement::Identity
+        } else {
+            Placement::Translation(world_from_object.translation)
+        }
+    }
+}
+
+impl Primitive {
+    /// `shape` placed in the world by `world_from_object` (which must be invertible), with
+    /// material index `material`.
+    pub fn new(shape: Arc<dyn Shape>, world_from_object: DAffine3, material: u32, no_shadow: bool) -> Self {
+        let object_from_world = world_from_object.inverse();
+        Self {
+            world_bounds: shape.bounds().transformed(&world_from_object),
+            shape,
+            world_from_object,
+            object_from_world,
+            normal_to_world: object_from_world.matrix3.transpose(),
+            placement: Placement::of(&world_from_object),
+            material,
+            no_shadow,
+        }
+    }
+
+    /// `ray` in this primitive's object space (direction not renormalised, so t is shared).
+    #[inline]
+    pub fn object_ray(&self, ray: &Ray) -> Ray {
+        match self.placement {
+            Placement::Identity => *ray,
+            Placement::Translation(offset) => Ray::new(ray.origin - offset, ray.direction),
+            Placement::Affine => Ray::new(
+                self.object_from_world.transform_point3(ray.origin),
+                self.object_from_world.transform_vector3(ray.direction),
+            ),
+        }
+    }
+
+    /// The shape's nearest hit along the world ray `ray` with `t_min < t < t_max`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        // The world ray itself when it needs no transforming: a fresh copy, read back by the
+        // shape before its stores retire, costs a store-forwarding stall on every test.
+        match self.placement {
+            Placement::Identity => self.shape.intersect(ray, t_min, t_max),
+            _ => self.shape.intersect(&self.object_ray(ray), t_min, t_max),
+        }
+    }
+
+    /// True when the shape lies on the world ray `ray` with `t_min < t < t_max`.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        match self.placement {
+            Placement::Identity => self.shape.occluded(ray, t_min, t_max),
+            _ => self.shape.occluded(&self.object_ray(ray), t_min, t_max),
+        }
+    }
+
+    /// The world point `p` in this primitive's object space.
+    #[inline]
+    pub fn object_point(&self, p: DVec3) -> DVec3 {
+        match self.placement {
+            Placement::Identity => p,
+            Placement::Translation(offset) => p - offset,
+            Placement::Affine => self.object_from_world.transform_point3(p),
+        }
+    }
+
+    /// The object-space point `p` in world space.
+    #[inline]
+    pub fn world_point(&self, p: DVec3) -> DVec3 {
+        match self.placement {
+            Placement::Identity => p,
+            Placement::Translation(offset) => p + offset,
+            Placement::Affine => self.world_from_object.transform_point3(p),
+        }
+    }
+
+    /// The object-space unit normal `n` as a world-space unit normal.
+    #[inline]
+    pub fn world_normal(&self, n: DVec3) -> DVec3 {
+        match self.placement {
+            Placement::Identity | Placement::Translation(_) => n,
+            Placement::Affine => (self.normal_to_world * n).normalize(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DQuat, DVec2};
+    use prism_api::contract::TestRng;
+    use prism_sphere::Sphere;
+
+    use super::*;
+
+    fn sphere_at(world_from_object: DAffine3) -> Primitive {
+        Primitive::new(Arc::new(Sphere { center: DVec3::ZERO, radius: 1.0 }), world_from_object, 0, false)
+    }
+
+    #[test]
+    fn placement_is_recognised() {
+        assert_eq!(sphere_at(DAffine3::IDENTITY).placement, Placement::Identity);
+        let moved = DVec3::new(1.0, -2.0, 0.5);
+        assert_eq!(sphere_at(DAffine3::from_translation(moved)).placement, Placement::Translation(moved));
+        let turned = DAffine3::from_rotation_translation(DQuat::from_rotation_y(0.3), moved);
+        assert_eq!(sphere_at(turned).placement, Placement::Affine);
+        assert_eq!(sphere_at(DAffine3::from_scale(DVec3::splat(2.0))).placement, Placement::Affine);
+    }
+
+    /// The shortcuts for identity and translation give exactly what the matrices give.
+    #[test]
+    fn placement_shortcuts_equal_the_matrices() {
+        let mut rng = TestRng::new(5);
+        for _ in 0..1000 {
+            let offset = DVec3::new(rng.range(-1e3, 1e3), rng.range(-1.0, 1.0), rng.range(-1e-3, 1e-3));
+            let p = sphere_at(DAffine3::from_translation(offset));
+            let ray = Ray::new(rng.unit_vector() * rng.range(0.0, 1e4), rng.unit_vector() * rng.range(0.1, 10.0));
+            let by_matrix = Ray::new(
+                p.object_from_world.transform_point3(ray.origin),
+                p.object_from_world.transform_vector3(ray.direction),
+            );
+            let shortcut = p.object_ray(&ray);
+            assert_eq!((shortcut.origin, shortcut.direction), (by_matrix.origin, by_matrix.direction));
+            assert_eq!(p.world_point(ray.origin), p.world_from_object.transform_point3(ray.origin));
+            assert_eq!(p.object_point(ray.origin), by_matrix.origin);
+            let n = rng.unit_vector();
+            assert_eq!(p.world_normal(n), n, "a translation leaves normals alone");
+        }
+        // The general case still maps normals with the inverse transpose.
+        let squashed = sphere_at(DAffine3::from_scale(DVec3::new(1.0, 0.5, 1.0)));
+        let n = squashed.world_normal(DVec2::new(1.0, 1.0).extend(0.0).normalize());
+        assert!((n - DVec3::new(1.0, 2.0, 0.0).normalize()).length() < 1e-12);
+    }
+}

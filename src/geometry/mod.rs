@@ -1,0 +1,4 @@
+//! Geometry that Prism owns itself rather than a plugin: triangle meshes (vertex data, the
+//! mesh shape with its bottom-level BVH, area sampling).
+
+pub mod mesh;

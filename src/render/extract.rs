@@ -1,0 +1,88 @@
+//! `extract`: the hecs world to an immutable, `Send + Sync` render scene: primitives with
+//! both transforms, materials, lights, the camera and the acceleration structure.
+
+use super::camera::RenderCamera;
+use super::lights::{RenderLight, render_light};
+use super::sampling::PatternTable;
+use crate::accel::primitive::Primitive;
+use crate::accel::scene_bvh::Accel;
+use crate::material::Material;
+use crate::world::Scene;
+use crate::world::components::{
+    Environment, Light, MaterialComponent, ObjectFlags, RenderSettings, ShapeComponent, WorldTransform,
+};
+
+/// Everything a render needs, immutable and shareable across threads.
+pub struct RenderScene {
+    /// Shape instances.
+    pub primitives: Vec<Primitive>,
+    /// Materials, indexed by `Primitive::material`.
+    pub materials: Vec<Material>,
+    /// Lights.
+    pub lights: Vec<RenderLight>,
+    /// The camera.
+    pub camera: RenderCamera,
+    /// Render settings.
+    pub settings: RenderSettings,
+    /// Background and ambient light.
+    pub environment: Environment,
+    /// Ray queries.
+    pub accel: Accel,
+    /// True when any material lets light through (shadow rays must then look at every hit).
+    pub has_transparency: bool,
+    /// Stratified pixel and lens patterns.
+    pub patterns: PatternTable,
+}
+
+/// Builds the render scene. Call after `resolve_transforms` and `validate`.
+pub fn extract(scene: &Scene) -> RenderScene {
+    let mut entries: Vec<(hecs::Entity, Primitive, Material)> = Vec::new();
+    let mut query =
+        scene
+            .world
+            .query::<(hecs::Entity, &ShapeComponent, &WorldTransform, &MaterialComponent, Option<&ObjectFlags>)>();
+    for (entity, shape, transform, material, flags) in query.iter() {
+        let primitive = Primitive::new(shape.geometry.clone(), transform.0, 0, flags.is_some_and(|f| f.no_shadow));
+        entries.push((entity, primitive, material.material.clone()));
+    }
+    // Entity order is load order: the render scene does not depend on hecs's archetypes.
+    entries.sort_by_key(|(e, _, _)| e.id());
+    let mut primitives = Vec::with_capacity(entries.len());
+    let mut materials: Vec<Material> = Vec::new();
+    for (_, mut primitive, material) in entries {
+        let index = match materials.iter().position(|m| *m == material) {
+            Some(i) => i,
+            None => {
+                materials.push(material);
+                materials.len() - 1
+            }
+        };
+        primitive.material = index as u32;
+        primitives.push(primitive);
+    }
+
+    let mut lights: Vec<(hecs::Entity, RenderLight)> =
+        scene.world.query::<(hecs::Entity, &Light)>().iter().map(|(e, l)| (e, render_light(l))).collect();
+    lights.sort_by_key(|(e, _)| e.id());
+
+    let accel = Accel::build(&primitives);
+    let has_transparency = materials.iter().any(Material::is_transparent);
+    let camera = RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height);
+    let (samples, seed) = (scene.render.samples, scene.render.seed);
+    let patterns = if samples > 1 || camera.aperture > 0.0 {
+        PatternTable::new(samples, seed)
+    } else {
+        PatternTable::untabulated(samples)
+    };
+    RenderScene {
+        camera,
+        primitives,
+        materials,
+        lights: lights.into_iter().map(|(_, l)| l).collect(),
+        settings: scene.render.clone(),
+        environment: scene.environment.clone(),
+        accel,
+        has_transparency,
+        patterns,
+    }
+}

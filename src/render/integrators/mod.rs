@@ -1,0 +1,3 @@
+//! Integrators: what turns a camera ray into radiance.
+
+pub mod classic;

@@ -1,0 +1,52 @@
+//! `[materials]` and inline materials: deserialising them and loading their textures.
+
+use super::*;
+
+impl Loader<'_> {
+    pub(super) fn materials(&mut self, index: usize, value: &toml::Value) {
+        let toml::Value::Table(table) = value else {
+            self.diagnostics.push(Diagnostic::new(
+                self.files[index].locate_value("materials"),
+                "`materials` must be a table of named materials",
+            ));
+            return;
+        };
+        for (name, def) in table {
+            let key = format!("materials.{name}");
+            if let Some(material) = self.material(index, &key, def.clone()) {
+                self.materials.insert(name.clone(), (material, index));
+            }
+        }
+    }
+
+    pub(super) fn material(&mut self, index: usize, key: &str, value: toml::Value) -> Option<Material> {
+        let mut material: Material = self.deserialize(index, key, value)?;
+        if let Err((field, message)) = material.check() {
+            let k = format!("{key}.{field}");
+            self.diagnostics.push(Diagnostic::new(self.files[index].locate(&k), message));
+            return None;
+        }
+        self.material_textures(index, key, &mut material).then_some(material)
+    }
+
+    /// Resolves the texture paths of a scene material (relative to scene file `index`) to
+    /// absolute paths and decodes the images; reports unreadable images at `key`.
+    pub(super) fn material_textures(&mut self, index: usize, key: &str, material: &mut Material) -> bool {
+        let dir = self.directory(index);
+        let mut ok = true;
+        for (texture, space) in material.textures_mut() {
+            let path = dir.join(&texture.file);
+            match self.meshes.textures.load_file(&path, space) {
+                Ok(t) => {
+                    texture.file = std::fs::canonicalize(&path).unwrap_or(path).display().to_string();
+                    texture.texture = Some(t);
+                }
+                Err(e) => {
+                    self.diagnostics.push(Diagnostic::new(self.files[index].locate(key), e));
+                    ok = false;
+                }
+            }
+        }
+        ok
+    }
+}

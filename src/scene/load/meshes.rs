@@ -1,0 +1,372 @@
+//! `shape = "mesh"` objects: importing the file through the model store, spawning its
+//! nodes and parts, and the lights and camera it brings when the scene asks.
+
+use super::*;
+
+/// Spawns the lights of every `import_lights` object, placed by their node's world transform
+/// (parents are linked by now; a parent cycle is reported later by `resolve_transforms`).
+pub(super) fn spawn_imported_lights(world: &mut hecs::World, imports: Vec<LightImport>) {
+    for import in imports {
+        let Some(object) = world_from_local(world, import.root) else { continue };
+        let scale = punctual::uniform_scale(&object);
+        for light in &import.model.lights {
+            let Some(world_from_light) = world_from_local(world, import.nodes[light.node]) else { continue };
+            if let Some(range) = light.range {
+                eprintln!(
+                    "warning: {}: {}: `range` {range} is ignored (imported lights fall off with the inverse square of the distance)",
+                    import.file,
+                    punctual::describe_light(light)
+                );
+            }
+            let prism_light = punctual::light_from_node(light, world_from_light, scale);
+            world.spawn((prism_light, Origin(import.location.clone()), Imported));
+        }
+    }
+}
+
+/// Spawns the scene's camera from an `import_camera` object: the file's camera at its node's
+/// world transform, with the lens (`aperture`, `focal_distance`) of `[camera]`.
+pub(super) fn spawn_imported_camera(world: &mut hecs::World, import: CameraImport, lens: &Camera) -> hecs::Entity {
+    let camera = match world_from_local(world, import.node) {
+        Some(world_from_camera) => punctual::camera_from_node(world_from_camera, import.yfov, lens),
+        None => lens.clone(),
+    };
+    let marker = ImportedCamera { aspect_ratio: import.aspect_ratio, description: import.description };
+    world.spawn((camera, Name("camera".into()), Origin(import.location), marker))
+}
+
+/// A mesh object's `import_lights = true`: its file's lights, placed once parents are known.
+pub(super) struct LightImport {
+    model: std::sync::Arc<Model>,
+    /// The object's entity and its node entities (one per `model.nodes`).
+    root: hecs::Entity,
+    nodes: Vec<hecs::Entity>,
+    /// The mesh file as the scene wrote it, for warnings.
+    file: String,
+    /// The `import_lights` key.
+    location: Location,
+}
+
+/// A mesh object's `import_camera`: the chosen camera, placed once parents are known.
+pub(super) struct CameraImport {
+    /// The entity of the node holding the camera.
+    node: hecs::Entity,
+    /// Vertical field of view in radians.
+    yfov: f64,
+    aspect_ratio: Option<f64>,
+    /// `file.gltf: camera 0 ...`, for messages.
+    description: String,
+    /// The object's key (`object[2]`) and the file it names, for conflict messages.
+    object_key: String,
+    file: String,
+    /// The `import_camera` key.
+    location: Location,
+}
+
+/// `[camera]` keys that may accompany an imported camera (the lens).
+pub(super) const LENS_KEYS: [&str; 2] = ["aperture", "focal_distance"];
+
+/// `[camera]` keys an imported camera takes from the file (a second source is an error).
+pub(super) const POSE_KEYS: [&str; 5] = ["position", "look_at", "up", "vfov", "aspect"];
+
+impl Loader<'_> {
+    /// A `shape = "mesh"` object: imports the file (once per file) and spawns the root
+    /// entity and its parts; `None` after reporting a problem.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn mesh_object(
+        &mut self,
+        world: &mut hecs::World,
+        file: usize,
+        key: &str,
+        mut table: toml::Table,
+        transform: Transform,
+        material: Option<MaterialComponent>,
+        flags: ObjectFlags,
+        location: &Location,
+    ) -> Option<hecs::Entity> {
+        let material_failed = material.is_none()
+            && self.diagnostics.iter().any(|d| d.location.key.starts_with(&format!("{key}.material")));
+        let mut ok = true;
+        for k in table.keys() {
+            if !MESH_KEYS.contains(&k.as_str()) {
+                let d = Diagnostic::new(
+                    self.files[file].locate(&format!("{key}.{k}")),
+                    format!("unknown key `{k}` for shape `mesh`"),
+                )
+                .suggest(k, MESH_KEYS.into_iter().chain(OBJECT_KEYS));
+                self.diagnostics.push(d);
+                ok = false;
+            }
+        }
+        let smooth_angle = match table.get("smooth_angle") {
+            None => None,
+            Some(v) => match v.as_float().or_else(|| v.as_integer().map(|i| i as f64)) {
+                Some(a) if a.is_finite() && a > 0.0 && a <= 180.0 => Some(a),
+                _ => {
+                    let d = Diagnostic::new(
+                        self.files[file].locate_value(&format!("{key}.smooth_angle")),
+                        "`smooth_angle` must be an angle in degrees, greater than 0 and at most 180",
+                    );
+                    self.diagnostics.push(d);
+                    return None;
+                }
+            },
+        };
+        let import_lights = match table.get("import_lights") {
+            None | Some(toml::Value::Boolean(false)) => false,
+            Some(toml::Value::Boolean(true)) => true,
+            Some(_) => {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.import_lights")),
+                    "`import_lights` must be true or false",
+                );
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        let camera_choice = match table.get("import_camera").map(CameraChoice::parse) {
+            None => None,
+            Some(Ok(choice)) => choice,
+            Some(Err(message)) => {
+                let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.import_camera")), message)
+                    .with_help("true takes the file's first camera; a number or a name picks one");
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        let relative = match table.remove("file") {
+            Some(toml::Value::String(s)) => s,
+            Some(_) => {
+                let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.file")), "`file` must be a path");
+                self.diagnostics.push(d);
+                return None;
+            }
+            None => {
+                let d =
+                    Diagnostic::new(location.clone(), "a mesh needs `file`: the path of an .obj, .gltf or .glb file")
+                        .with_help("the path is relative to this scene file");
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        let path = self.directory(file).join(&relative);
+        let is_gltf = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"));
+        for (wanted, what, k) in
+            [(import_lights, "lights", "import_lights"), (camera_choice.is_some(), "cameras", "import_camera")]
+        {
+            if wanted && !is_gltf {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.{k}")),
+                    format!("`{k}` needs a glTF file (.gltf or .glb): `{relative}` has no {what}"),
+                );
+                self.diagnostics.push(d);
+                return None;
+            }
+        }
+        let model = match self.meshes.get(&path, &ImportOptions { smooth_angle }) {
+            Ok(model) => model,
+            Err(e) => {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.file")),
+                    format!("cannot import mesh: {e}"),
+                );
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        let mut material_map = std::collections::BTreeMap::new();
+        if let Some(value) = table.remove("material_map") {
+            let map_key = format!("{key}.material_map");
+            let toml::Value::Table(entries) = value else {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&map_key),
+                    "`material_map` must be a table from the file's material names to materials",
+                );
+                self.diagnostics.push(d);
+                return None;
+            };
+            let known: Vec<&str> = model.parts.iter().filter_map(|p| p.material_name.as_deref()).collect();
+            for (name, value) in entries {
+                let entry_key = format!("{map_key}.{name}");
+                if !known.contains(&name.as_str()) {
+                    let d = Diagnostic::new(
+                        self.files[file].locate(&entry_key),
+                        format!("`{relative}` has no material named `{name}`"),
+                    )
+                    .suggest(&name, known.iter().copied());
+                    let d =
+                        if d.help.is_none() { d.with_help(format!("its materials: {}", known.join(", "))) } else { d };
+                    self.diagnostics.push(d);
+                    ok = false;
+                    continue;
+                }
+                let component = match value {
+                    toml::Value::String(scene_name) => match self.materials.get(&scene_name) {
+                        Some((m, _)) => MaterialComponent { name: Some(scene_name), material: m.clone() },
+                        None => {
+                            let d = Diagnostic::new(
+                                self.files[file].locate_value(&entry_key),
+                                format!("no material is named `{scene_name}`"),
+                            )
+                            .suggest(&scene_name, self.materials.keys().map(String::as_str));
+                            self.diagnostics.push(d);
+                            ok = false;
+                            continue;
+                        }
+                    },
+                    v @ toml::Value::Table(_) => match self.material(file, &entry_key, v) {
+                        Some(m) => MaterialComponent { name: None, material: m },
+                        None => {
+                            ok = false;
+                            continue;
+                        }
+                    },
+                    _ => {
+                        let d = Diagnostic::new(
+                            self.files[file].locate_value(&entry_key),
+                            "each entry must name a [materials.NAME] table or be an inline material table",
+                        );
+                        self.diagnostics.push(d);
+                        ok = false;
+                        continue;
+                    }
+                };
+                material_map.insert(name, component);
+            }
+        }
+        let lights_location = self.files[file].locate_value(&format!("{key}.import_lights"));
+        if import_lights && !self.check_lights(&model, &relative, &lights_location) {
+            ok = false;
+        }
+        let camera_location = self.files[file].locate_value(&format!("{key}.import_camera"));
+        let camera = match &camera_choice {
+            Some(choice) => match self.choose_camera(&model, choice, &relative, &camera_location) {
+                Some(chosen) => Some(chosen),
+                None => return None,
+            },
+            None => None,
+        };
+        if !ok || material_failed {
+            return None;
+        }
+        // Absolute, so the path does not depend on where the scene is loaded from; `save`
+        // writes it relative to the saved file when it can.
+        let absolute = std::fs::canonicalize(&path).unwrap_or(path).display().to_string();
+        let source = MeshSource { file: absolute, material, material_map, params: table, model: model.clone() };
+        let spawned = crate::import::spawn::spawn_model(world, source, transform, flags, location);
+        if import_lights {
+            self.light_imports.push(LightImport {
+                model: model.clone(),
+                root: spawned.root,
+                nodes: spawned.nodes.clone(),
+                file: relative.clone(),
+                location: lights_location,
+            });
+        }
+        if let Some((camera_index, yfov)) = camera {
+            let camera = &model.cameras[camera_index];
+            let aspect_ratio = match camera.projection {
+                Ok(CameraProjection::Perspective { aspect_ratio, .. }) => aspect_ratio,
+                _ => None,
+            };
+            self.camera_import = Some(CameraImport {
+                node: spawned.nodes[camera.node],
+                yfov,
+                aspect_ratio,
+                description: format!("{relative}: {}", punctual::describe_camera(&model, camera)),
+                object_key: key.to_string(),
+                file: relative,
+                location: camera_location,
+            });
+        }
+        Some(spawned.root)
+    }
+
+    /// `import_lights = true`: the file must have lights, and each must be usable; problems
+    /// are reported at `location`. True when all is well.
+    pub(super) fn check_lights(&mut self, model: &Model, relative: &str, location: &Location) -> bool {
+        if model.lights.is_empty() {
+            let d = Diagnostic::new(
+                location.clone(),
+                format!("`{relative}` has no KHR_lights_punctual light on a node of its default scene"),
+            )
+            .with_help("remove `import_lights`, or add lights to the file");
+            self.diagnostics.push(d);
+            return false;
+        }
+        let mut ok = true;
+        for light in &model.lights {
+            if let Err(message) = punctual::check_light(light) {
+                self.diagnostics.push(Diagnostic::new(location.clone(), format!("`{relative}`: {message}")));
+                ok = false;
+            }
+        }
+        ok
+    }
+
+    /// `import_camera`: the chosen camera (its index in `model.cameras` and its vertical
+    /// field of view in radians), or `None` after reporting why there is none, or that
+    /// another object already imports the camera.
+    pub(super) fn choose_camera(
+        &mut self,
+        model: &Model,
+        choice: &CameraChoice,
+        relative: &str,
+        location: &Location,
+    ) -> Option<(usize, f64)> {
+        if let Some(first) = &self.camera_import {
+            let d = Diagnostic::new(
+                location.clone(),
+                format!(
+                    "two objects import the camera: `{}.import_camera` already takes it from `{}`",
+                    first.object_key, first.file
+                ),
+            )
+            .with_help(format!("first imported at {}; a scene has one camera", first.location));
+            self.diagnostics.push(d);
+            return None;
+        }
+        match punctual::select_camera(model, choice) {
+            Ok(chosen) => Some(chosen),
+            Err(message) => {
+                let mut d = Diagnostic::new(location.clone(), format!("`{relative}`: {message}"));
+                if let CameraChoice::Name(name) = choice {
+                    d = d.suggest(name, punctual::camera_names(model));
+                }
+                self.diagnostics.push(d);
+                None
+            }
+        }
+    }
+
+    /// With an imported camera, `[camera]` may set only the lens: a key the file's camera
+    /// sets (in any included file) is a second source for the camera and an error. (Unknown
+    /// keys are reported by the section's own check.)
+    pub(super) fn check_camera_keys(&mut self) {
+        let Some(import) = &self.camera_import else { return };
+        let mut keys: Vec<(&String, &usize)> = self.camera.origin.iter().collect();
+        keys.sort();
+        let mut found = Vec::new();
+        for (k, &file) in keys {
+            if !POSE_KEYS.contains(&k.as_str()) {
+                continue;
+            }
+            let d = Diagnostic::new(
+                self.files[file].locate(&format!("camera.{k}")),
+                format!(
+                    "`camera.{k}` cannot be set: `{}.import_camera` takes the camera from `{}`",
+                    import.object_key, import.file
+                ),
+            )
+            .with_help(format!(
+                "with an imported camera, [camera] may set only {}; remove `import_camera` to place the camera here",
+                LENS_KEYS.join(" and ")
+            ));
+            found.push(d);
+        }
+        self.diagnostics.extend(found);
+    }
+}

@@ -1,0 +1,397 @@
+//! `load`: scene files (with includes and named materials) into a hecs `World` plus the
+//! scene-wide settings. Every problem becomes a [`Diagnostic`] with file, line, column and
+//! key path; loading goes on after a problem so one run reports as many as it can.
+
+mod lights;
+mod materials;
+mod meshes;
+use meshes::{CameraImport, LightImport, spawn_imported_camera, spawn_imported_lights};
+mod objects;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+
+use super::source::{ParsedFile, deserialize_at};
+use crate::diagnostics::{Diagnostic, Location, SceneError};
+use crate::import::punctual::{self, CameraChoice};
+use crate::import::spawn::{MESH_KEYS, MESH_SHAPE};
+use crate::import::{CameraProjection, ImportOptions, Imported, MeshSource, MeshStore, Model};
+use crate::material::Material;
+use crate::registry::ShapeRegistry;
+use crate::world::Scene;
+use crate::world::components::{
+    Camera, Environment, ImportedCamera, Light, LightKind, MaterialComponent, Name, ObjectFlags, Origin, Parent,
+    RenderSettings, ShapeComponent, Transform,
+};
+use crate::world::transforms::world_from_local;
+
+/// Top-level keys of a scene file.
+pub const TOP_LEVEL_KEYS: [&str; 7] = ["include", "render", "camera", "world", "materials", "object", "light"];
+
+/// Keys of an `[[object]]` table that are not shape parameters.
+pub const OBJECT_KEYS: [&str; 6] = ["shape", "name", "material", "transform", "parent", "no_shadow"];
+
+/// Where scene files come from: the file system, or text embedded in the binary.
+pub trait SceneSource {
+    /// The text of the file at `path`.
+    fn read(&self, path: &Path) -> std::io::Result<String>;
+    /// A canonical identity for include-cycle detection.
+    fn canonical(&self, path: &Path) -> PathBuf;
+}
+
+/// Reads scene files from disk.
+pub struct FileSystem;
+
+impl SceneSource for FileSystem {
+    fn read(&self, path: &Path) -> std::io::Result<String> {
+        std::fs::read_to_string(path)
+    }
+
+    fn canonical(&self, path: &Path) -> PathBuf {
+        std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
+    }
+}
+
+/// Scene files embedded in the binary, by path.
+pub struct Embedded(pub &'static [(&'static str, &'static str)]);
+
+impl SceneSource for Embedded {
+    fn read(&self, path: &Path) -> std::io::Result<String> {
+        let wanted = normalize(path);
+        self.0
+            .iter()
+            .find(|(p, _)| normalize(Path::new(p)) == wanted)
+            .map(|(_, text)| text.to_string())
+            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such built-in file"))
+    }
+
+    fn canonical(&self, path: &Path) -> PathBuf {
+        normalize(path)
+    }
+}
+
+/// `a/b/../c` -> `a/c` without touching the file system.
+fn normalize(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            std::path::Component::ParentDir => {
+                if !out.pop() {
+                    out.push("..");
+                }
+            }
+            std::path::Component::CurDir => {}
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+/// Loads the scene at `path` from disk.
+pub fn load_file(path: &Path, registry: &ShapeRegistry) -> Result<Scene, SceneError> {
+    load_from(&FileSystem, path, registry)
+}
+
+/// Loads the scene at `path` from `source`.
+pub fn load_from(source: &dyn SceneSource, path: &Path, registry: &ShapeRegistry) -> Result<Scene, SceneError> {
+    let mut loader = Loader {
+        source,
+        registry,
+        stack: Vec::new(),
+        files: Vec::new(),
+        diagnostics: Vec::new(),
+        render: Section::default(),
+        camera: Section::default(),
+        environment: Section::default(),
+        materials: HashMap::new(),
+        objects: Vec::new(),
+        lights: Vec::new(),
+        meshes: MeshStore::new(),
+        light_imports: Vec::new(),
+        camera_import: None,
+    };
+    loader.load_file(path, None);
+    loader.finish()
+}
+
+/// A `[render]`-like table merged over all files: later files override single keys.
+#[derive(Default)]
+struct Section {
+    table: toml::Table,
+    /// For each top-level key: the file it came from.
+    origin: HashMap<String, usize>,
+    present: bool,
+}
+
+struct ObjectDef {
+    file: usize,
+    key: String,
+    table: toml::Table,
+}
+
+struct Loader<'a> {
+    source: &'a dyn SceneSource,
+    registry: &'a ShapeRegistry,
+    stack: Vec<PathBuf>,
+    files: Vec<ParsedFile>,
+    diagnostics: Vec<Diagnostic>,
+    render: Section,
+    camera: Section,
+    environment: Section,
+    materials: HashMap<String, (Material, usize)>,
+    objects: Vec<ObjectDef>,
+    lights: Vec<(Light, Location)>,
+    /// Imported mesh files and decoded textures, shared by every object that uses them.
+    meshes: MeshStore,
+    /// Mesh objects whose file's lights are imported.
+    light_imports: Vec<LightImport>,
+    /// The mesh object whose file's camera is the scene's camera.
+    camera_import: Option<CameraImport>,
+}
+
+impl Loader<'_> {
+    fn load_file(&mut self, path: &Path, included_from: Option<Location>) {
+        let display = path.display().to_string();
+        let canonical = self.source.canonical(path);
+        if let Some(pos) = self.stack.iter().position(|p| *p == canonical) {
+            let chain: Vec<String> =
+                self.stack[pos..].iter().chain(std::iter::once(&canonical)).map(|p| p.display().to_string()).collect();
+            let location = included_from.unwrap_or_else(|| Location::file_only(display.as_str(), "include"));
+            self.diagnostics.push(Diagnostic::new(location, format!("include cycle: {}", chain.join(" -> "))));
+            return;
+        }
+        let text = match self.source.read(path) {
+            Ok(text) => text,
+            Err(e) => {
+                let location = included_from.unwrap_or_else(|| Location::file_only(display.as_str(), ""));
+                let what = if location.key.is_empty() { "cannot read scene file" } else { "cannot read included file" };
+                self.diagnostics.push(Diagnostic::new(location, format!("{what} `{display}`: {e}")));
+                return;
+            }
+        };
+        let parsed = match ParsedFile::parse(&display, text) {
+            Ok(p) => p,
+            Err(d) => {
+                self.diagnostics.push(d);
+                return;
+            }
+        };
+        self.stack.push(canonical);
+        let index = self.files.len();
+        let table = parsed.table.clone();
+        self.files.push(parsed);
+
+        for key in table.keys() {
+            if !TOP_LEVEL_KEYS.contains(&key.as_str()) {
+                let d = Diagnostic::new(self.files[index].locate(key), format!("unknown top-level key `{key}`"))
+                    .suggest(key, TOP_LEVEL_KEYS);
+                let d = if d.help.is_none() {
+                    d.with_help(format!("valid top-level keys: {}", TOP_LEVEL_KEYS.join(", ")))
+                } else {
+                    d
+                };
+                self.diagnostics.push(d);
+            }
+        }
+        if let Some(value) = table.get("include") {
+            self.includes(index, path, value);
+        }
+        for (name, section) in [("render", 0), ("camera", 1), ("world", 2)] {
+            if let Some(value) = table.get(name) {
+                self.merge_section(index, name, section, value);
+            }
+        }
+        if let Some(value) = table.get("materials") {
+            self.materials(index, value);
+        }
+        if let Some(value) = table.get("object") {
+            for (i, t) in self.array_of_tables(index, "object", value) {
+                self.objects.push(ObjectDef { file: index, key: format!("object[{i}]"), table: t });
+            }
+        }
+        if let Some(value) = table.get("light") {
+            for (i, t) in self.array_of_tables(index, "light", value) {
+                let key = format!("light[{i}]");
+                if let Some(light) = self.light(index, &key, t) {
+                    let location = self.files[index].locate(&key);
+                    self.lights.push((light, location));
+                }
+            }
+        }
+        self.stack.pop();
+    }
+
+    fn includes(&mut self, index: usize, path: &Path, value: &toml::Value) {
+        let entries: Vec<(String, String)> = match value {
+            toml::Value::String(s) => vec![("include".into(), s.clone())],
+            toml::Value::Array(items) => {
+                let mut out = Vec::new();
+                for (i, item) in items.iter().enumerate() {
+                    let key = format!("include[{i}]");
+                    match item {
+                        toml::Value::String(s) => out.push((key, s.clone())),
+                        _ => self.diagnostics.push(Diagnostic::new(
+                            self.files[index].locate_value(&key),
+                            "an include must be a path string",
+                        )),
+                    }
+                }
+                out
+            }
+            _ => {
+                self.diagnostics.push(Diagnostic::new(
+                    self.files[index].locate_value("include"),
+                    "`include` must be a path or an array of paths",
+                ));
+                return;
+            }
+        };
+        let dir = path.parent().unwrap_or(Path::new(""));
+        for (key, relative) in entries {
+            let location = self.files[index].locate_value(&key);
+            self.load_file(&dir.join(relative), Some(location));
+        }
+    }
+
+    fn merge_section(&mut self, index: usize, name: &str, which: usize, value: &toml::Value) {
+        let toml::Value::Table(table) = value else {
+            self.diagnostics
+                .push(Diagnostic::new(self.files[index].locate_value(name), format!("`{name}` must be a table")));
+            return;
+        };
+        let section = match which {
+            0 => &mut self.render,
+            1 => &mut self.camera,
+            _ => &mut self.environment,
+        };
+        section.present = true;
+        for (k, v) in table {
+            section.table.insert(k.clone(), v.clone());
+            section.origin.insert(k.clone(), index);
+        }
+    }
+
+    fn deserialize<T: DeserializeOwned>(&mut self, index: usize, key: &str, value: toml::Value) -> Option<T> {
+        match deserialize_at(&self.files[index], key, value) {
+            Ok(v) => Some(v),
+            Err(d) => {
+                self.diagnostics.push(d);
+                None
+            }
+        }
+    }
+
+    fn array_of_tables(&mut self, index: usize, name: &str, value: &toml::Value) -> Vec<(usize, toml::Table)> {
+        let toml::Value::Array(items) = value else {
+            self.diagnostics.push(
+                Diagnostic::new(self.files[index].locate_value(name), format!("`{name}` must be an array of tables"))
+                    .with_help(format!("write each one as a [[{name}]] table")),
+            );
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for (i, item) in items.iter().enumerate() {
+            match item {
+                toml::Value::Table(t) => out.push((i, t.clone())),
+                _ => self.diagnostics.push(Diagnostic::new(
+                    self.files[index].locate_value(&format!("{name}[{i}]")),
+                    format!("each `{name}` must be a table"),
+                )),
+            }
+        }
+        out
+    }
+
+    fn section<T: DeserializeOwned + Default>(&mut self, which: usize, name: &str) -> Option<T> {
+        let section = match which {
+            0 => &self.render,
+            1 => &self.camera,
+            _ => &self.environment,
+        };
+        if !section.present {
+            return Some(T::default());
+        }
+        match serde_path_to_error::deserialize(toml::Value::Table(section.table.clone())) {
+            Ok(v) => Some(v),
+            Err(e) => {
+                let inner_path = super::source::path_string("", e.path());
+                let message = e.inner().message().trim().to_string();
+                // The file that set the offending key (or the last one that set the section).
+                let first = inner_path.split(['.', '[']).next().unwrap_or("");
+                let unknown = crate::diagnostics::parse_unknown_field(&message).map(|(f, _)| f);
+                let top = unknown.as_deref().filter(|_| first.is_empty()).unwrap_or(first);
+                let file = section.origin.get(top).copied().unwrap_or(self.files.len().saturating_sub(1));
+                let path = if inner_path.is_empty() { name.to_string() } else { format!("{name}.{inner_path}") };
+                self.diagnostics.push(super::source::serde_diagnostic(&self.files[file], &path, &message));
+                None
+            }
+        }
+    }
+
+    fn finish(mut self) -> Result<Scene, SceneError> {
+        if !self.diagnostics.is_empty() && self.files.is_empty() {
+            return Err(SceneError { diagnostics: self.diagnostics });
+        }
+        let render: Option<RenderSettings> = self.section(0, "render");
+        let camera: Option<Camera> = self.section(1, "camera");
+        let environment: Option<Environment> = self.section(2, "world");
+
+        let mut world = hecs::World::new();
+        let mut by_name: HashMap<String, (hecs::Entity, Location)> = HashMap::new();
+        let mut parents: Vec<(hecs::Entity, String, Location)> = Vec::new();
+        let objects = std::mem::take(&mut self.objects);
+        for object in objects {
+            self.object(&mut world, object, &mut by_name, &mut parents);
+        }
+        for (entity, parent, location) in parents {
+            match by_name.get(&parent) {
+                Some((p, _)) => {
+                    world.insert_one(entity, Parent(*p)).expect("entity was just spawned");
+                }
+                None => {
+                    let d = Diagnostic::new(location, format!("no object is named `{parent}`"))
+                        .suggest(&parent, by_name.keys().map(String::as_str));
+                    self.diagnostics.push(d);
+                }
+            }
+        }
+        let lights = std::mem::take(&mut self.lights);
+        for (i, (light, location)) in lights.into_iter().enumerate() {
+            world.spawn((light, Origin(location), Name(format!("light{i}"))));
+        }
+        self.check_camera_keys();
+
+        if !self.diagnostics.is_empty() {
+            let files = &self.files;
+            self.diagnostics.sort_by_key(|d| {
+                (files.iter().position(|f| f.name == d.location.file), d.location.line, d.location.column)
+            });
+            return Err(SceneError { diagnostics: self.diagnostics });
+        }
+        let render = render.expect("no diagnostics");
+        spawn_imported_lights(&mut world, std::mem::take(&mut self.light_imports));
+        let camera = camera.expect("no diagnostics");
+        let camera = match self.camera_import.take() {
+            Some(import) => spawn_imported_camera(&mut world, import, &camera),
+            None => {
+                let camera_origin = match self.camera.origin.values().next() {
+                    Some(&file) => self.files[file].locate("camera"),
+                    None => Location::file_only(self.files[0].name.clone(), "camera"),
+                };
+                world.spawn((camera, Name("camera".into()), Origin(camera_origin)))
+            }
+        };
+        let render_origin = match self.render.origin.get("width").or_else(|| self.render.origin.values().next()) {
+            Some(&file) => self.files[file].locate("render"),
+            None => Location::file_only(self.files[0].name.clone(), "render"),
+        };
+        Ok(Scene { world, render, render_origin, environment: environment.expect("no diagnostics"), camera })
+    }
+
+    /// The directory of scene file `index` (mesh and texture paths are relative to it).
+    fn directory(&self, index: usize) -> PathBuf {
+        Path::new(&*self.files[index].name).parent().unwrap_or(Path::new("")).to_path_buf()
+    }
+}

@@ -1,0 +1,32 @@
+//! The world: a hecs `World` of entities plus scene-wide settings, and the systems that run
+//! over it before rendering (`resolve_transforms`, `validate`). It knows neither the scene
+//! file format nor rendering.
+
+pub mod components;
+pub mod transforms;
+pub mod validate;
+
+use crate::diagnostics::Location;
+use components::{Environment, RenderSettings};
+
+/// A loaded scene.
+pub struct Scene {
+    /// Entities: objects (Shape, Transform, Material, flags, optional Name and Parent),
+    /// lights (Light) and the camera (Camera).
+    pub world: hecs::World,
+    /// `[render]` settings.
+    pub render: RenderSettings,
+    /// Where `[render]` was written (for diagnostics about it).
+    pub render_origin: Location,
+    /// `[world]` settings.
+    pub environment: Environment,
+    /// The camera entity.
+    pub camera: hecs::Entity,
+}
+
+impl Scene {
+    /// The camera.
+    pub fn camera(&self) -> components::Camera {
+        self.world.get::<&components::Camera>(self.camera).map(|c| (*c).clone()).unwrap_or_default()
+    }
+}
