@@ -6,7 +6,7 @@ use std::hint::black_box;
 use std::path::Path;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use prism::render::{RenderOptions, render};
+use prism::render::{RenderOptions, render_frame};
 use prism_api::contract::TestRng;
 use prism_api::{DVec3, Ray};
 
@@ -99,7 +99,7 @@ fn whole_render(c: &mut Criterion) {
     group.sample_size(20);
     group.throughput(Throughput::Elements(u64::from(scene.settings.width * scene.settings.height)));
     group.bench_function("room_200x113_1thread", |b| {
-        b.iter(|| render(&scene, &RenderOptions { threads: Some(1), progress: false }).unwrap())
+        b.iter(|| render_frame(&scene, &RenderOptions { threads: Some(1), ..Default::default() }).unwrap())
     });
     group.finish();
 }

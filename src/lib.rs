@@ -3,7 +3,7 @@
 //! Data flows one way, each step a plain function:
 //! [`scene::load`] (TOML -> hecs `World`), [`scene::transforms::resolve_transforms`],
 //! [`scene::validate::validate`], [`render::scene::extract`] (world -> immutable render
-//! scene with its BVH), [`render::render`] (tiles in parallel -> [`render::film::Film`]) and
+//! scene with its BVH), [`render::render`] (any integrator over a region, tiles in parallel -> [`film::Film`]) and
 //! [`output`] (film -> EXR / PNG / ...). [`scene::save`] is the inverse of `load`.
 
 pub mod accel;

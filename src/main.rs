@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
-use prism::render::{RenderOptions, render};
+use prism::render::{RenderOptions, render_frame};
 use prism::scene::load::{load_file, load_from};
 use prism::world::Scene;
 use prism::world::components::ToneMap;
@@ -193,8 +193,8 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
     for warning in prism::world::validate::warnings(&scene) {
         eprintln!("warning: {warning}");
     }
-    let options = RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal() };
-    let (film, stats) = render(&render_scene, &options).map_err(|e| e.to_string())?;
+    let options = RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal(), ..Default::default() };
+    let (film, stats) = render_frame(&render_scene, &options).map_err(|e| e.to_string())?;
     let image =
         output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };
     for path in &outputs {

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use prism::render::{RenderOptions, render};
+use prism::render::{RenderOptions, render_frame};
 
 /// Renders `scene` (TOML) as a 1x1 image and returns the pixel.
 fn pixel(scene: &str) -> [f64; 3] {
@@ -19,7 +19,7 @@ fn pixel_with_render(render_keys: &str, scene: &str) -> [f64; 3] {
     std::fs::write(&path, text).unwrap();
     let mut loaded = prism::scene::load::load_file(Path::new(&path), &prism::plugins::registry()).unwrap();
     let render_scene = prism::prepare(&mut loaded).unwrap();
-    let (film, _) = render(&render_scene, &RenderOptions { threads: Some(1), progress: false }).unwrap();
+    let (film, _) = render_frame(&render_scene, &RenderOptions { threads: Some(1), ..Default::default() }).unwrap();
     film.pixels[0].map(f64::from)
 }
 

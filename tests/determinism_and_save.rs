@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use prism::film::Film;
-use prism::render::{RenderOptions, render};
+use prism::render::{RenderOptions, render_frame};
 use prism::scene::load::load_file;
 use prism::world::Scene;
 
@@ -17,7 +17,7 @@ fn render_scene(mut scene: Scene, width: u32, height: u32, samples: u32, threads
     scene.render.height = height;
     scene.render.samples = samples;
     let render_scene = prism::prepare(&mut scene).unwrap();
-    render(&render_scene, &RenderOptions { threads: Some(threads), progress: false }).unwrap().0
+    render_frame(&render_scene, &RenderOptions { threads: Some(threads), ..Default::default() }).unwrap().0
 }
 
 fn load(path: &Path) -> Scene {

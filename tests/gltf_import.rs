@@ -15,7 +15,7 @@ use std::process::Command;
 use glam::{DAffine3, DQuat, DVec3};
 use prism::import::Imported;
 use prism::plugins::registry;
-use prism::render::{RenderOptions, render};
+use prism::render::{RenderOptions, render_frame};
 use prism::scene::load::load_file;
 use prism::world::Scene;
 use prism::world::components::{Light, LightKind};
@@ -213,7 +213,7 @@ fn an_imported_spot_light_lights_its_cone() {
     let text = "[render]\nwidth = 41\nheight = 41\n[camera]\nposition = [0, 6, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, -1]\n\
                 vfov = 50\n[[object]]\nshape = \"mesh\"\nfile = \"spot.gltf\"\nimport_lights = true\n";
     let mut scene = load(&write(dir.path(), "scene.toml", text));
-    let (film, _) = render(&prism::prepare(&mut scene).unwrap(), &RenderOptions::default()).unwrap();
+    let (film, _) = render_frame(&prism::prepare(&mut scene).unwrap(), &RenderOptions::default()).unwrap();
     // The cone reaches 2 tan(0.3) = 0.62 from the centre of the quad; pixel 8 is 1.6 away.
     let inside = film.get(20, 20);
     let outside = film.get(8, 20);
@@ -255,7 +255,7 @@ fn saved_scenes_recreate_imported_lights_and_camera_with_relative_paths() {
     let second = load(&copy);
     assert_eq!(first.camera(), second.camera());
     assert_eq!(imported_lights(&first), imported_lights(&second));
-    let image = |mut s: Scene| render(&prism::prepare(&mut s).unwrap(), &RenderOptions::default()).unwrap().0;
+    let image = |mut s: Scene| render_frame(&prism::prepare(&mut s).unwrap(), &RenderOptions::default()).unwrap().0;
     let a = image(first);
     let b = image(second);
     assert_eq!(a.pixels, b.pixels, "the saved scene renders differently");
@@ -396,7 +396,7 @@ fn khronos_cameras_sample_gives_its_perspective_camera() {
     assert!((view - DVec3::NEG_Z).length() < 1e-9, "{view}");
     assert!((camera.vfov - 0.7f64.to_degrees()).abs() < 1e-5, "{}", camera.vfov);
     // The square (a unit quad tilted back) fills the middle of the image.
-    let (film, _) = render(&prism::prepare(&mut scene).unwrap(), &RenderOptions::default()).unwrap();
+    let (film, _) = render_frame(&prism::prepare(&mut scene).unwrap(), &RenderOptions::default()).unwrap();
     assert!(film.get(16, 16)[0] > 0.0 && film.get(0, 0) == [0.0; 3], "{:?} {:?}", film.get(16, 16), film.get(0, 0));
     // `true` takes the first camera (the perspective one); camera 1 is orthographic.
     assert_eq!(load(&write(dir.path(), "first.toml", &scene_text("true"))).camera(), camera);

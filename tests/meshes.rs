@@ -15,7 +15,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use prism::plugins::registry;
 use prism::render::camera::RenderCamera;
-use prism::render::{RenderOptions, render};
+use prism::render::{RenderOptions, render_frame};
 use prism::scene::load::load_file;
 use prism::world::components::{Camera, ShapeComponent};
 
@@ -49,7 +49,7 @@ fn render_mesh(file: &Path) -> Result<usize, String> {
     if let Some(light) = render_scene.lights.first_mut() {
         light.position = eye;
     }
-    let (film, _) = render(&render_scene, &RenderOptions::default()).map_err(|e| e.to_string())?;
+    let (film, _) = render_frame(&render_scene, &RenderOptions::default()).map_err(|e| e.to_string())?;
     Ok(film.pixels.iter().filter(|p| **p != [0.25, 0.5, 0.75]).count())
 }
 
@@ -217,9 +217,9 @@ fn mesh_objects_round_trip_through_save() {
     assert!(relative_text.contains("BoxTextured/CesiumLogoFlat.png\""), "{relative_text}");
     std::fs::write(&relative_copy, &relative_text).unwrap();
     let mut third = load_file(&relative_copy, &registry).unwrap();
-    let a = render(&prism::prepare(&mut first).unwrap(), &RenderOptions::default()).unwrap().0;
-    let b = render(&prism::prepare(&mut second).unwrap(), &RenderOptions::default()).unwrap().0;
-    let c = render(&prism::prepare(&mut third).unwrap(), &RenderOptions::default()).unwrap().0;
+    let a = render_frame(&prism::prepare(&mut first).unwrap(), &RenderOptions::default()).unwrap().0;
+    let b = render_frame(&prism::prepare(&mut second).unwrap(), &RenderOptions::default()).unwrap().0;
+    let c = render_frame(&prism::prepare(&mut third).unwrap(), &RenderOptions::default()).unwrap().0;
     assert_eq!(a.pixels, b.pixels, "the saved scene renders differently");
     assert_eq!(a.pixels, c.pixels, "the scene saved with relative paths renders differently");
     assert!(a.pixels.iter().any(|p| p[0] > 0.0));

@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 
 use prism::film::Film;
 use prism::output::{read_exr, srgb_encode};
-use prism::render::{RenderOptions, render};
+use prism::render::{RenderOptions, render_frame};
 use prism::scene::load::load_file;
 use prism::{plugins, prepare};
 
@@ -166,7 +166,7 @@ fn render_scene(name: &str) -> Film {
     let path = root().join(format!("scenes/parity/{name}.toml"));
     let mut scene = load_file(&path, &plugins::registry()).unwrap_or_else(|e| panic!("{e}"));
     let render_scene = prepare(&mut scene).unwrap_or_else(|e| panic!("{e}"));
-    render(&render_scene, &RenderOptions::default()).expect("render").0
+    render_frame(&render_scene, &RenderOptions::default()).expect("render").0
 }
 
 /// One comparison's line in the report, or `Err` with the reason it failed.

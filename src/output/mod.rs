@@ -146,6 +146,9 @@ pub fn encode(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Vec<
         |e: &dyn std::fmt::Display| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() };
     let mut bytes = Cursor::new(Vec::new());
     match format_for(path)? {
+        OutputFormat::Exr if !film.layers.is_empty() || !film.is_full_frame() => {
+            encode_layered_exr(film, settings.exr_half, &mut bytes).map_err(|e| encode_err(&e))?;
+        }
         OutputFormat::Exr => {
             use exr::prelude::*;
             let (w, h) = (film.width as usize, film.height as usize);
@@ -185,6 +188,37 @@ pub fn encode(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Vec<
     Ok(bytes.into_inner())
 }
 
+/// An EXR of a film with AOV layers or of a region: beauty as `R`, `G`, `B`, each layer's
+/// channels as `layer.channel` (`albedo.R`, `normal.X`, `depth.Z`...), the data window the
+/// film's region and the display window the full frame.
+fn encode_layered_exr(film: &Film, half: bool, bytes: &mut Cursor<Vec<u8>>) -> exr::error::UnitResult {
+    use exr::prelude::*;
+    let samples = |values: Vec<f32>| {
+        if half { FlatSamples::F16(values.into_iter().map(f16::from_f32).collect()) } else { FlatSamples::F32(values) }
+    };
+    let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
+    for (c, name) in ["R", "G", "B"].into_iter().enumerate() {
+        channels.push(AnyChannel::new(name, samples(film.pixels.iter().map(|p| p[c]).collect())));
+    }
+    for layer in &film.layers {
+        let n = layer.channel_count();
+        for (c, channel) in layer.aov.channels().iter().enumerate() {
+            let values = layer.data.iter().skip(c).step_by(n).copied().collect();
+            let name = format!("{}.{channel}", layer.aov.name());
+            channels.push(AnyChannel::new(name.as_str(), samples(values)));
+        }
+    }
+    let (x0, y0) = film.origin;
+    let attributes = LayerAttributes {
+        layer_position: Vec2(x0 as i32, y0 as i32),
+        ..LayerAttributes::named("beauty")
+    };
+    let size = (film.width as usize, film.height as usize);
+    let layer = Layer::new(size, attributes, Encoding::SMALL_LOSSLESS, AnyChannels::sort(channels));
+    let frame = IntegerBounds::new((0, 0), (film.frame.0 as usize, film.frame.1 as usize));
+    Image::new(ImageAttributes::new(frame), layer).write().to_buffered(bytes)
+}
+
 /// Writes the film to `path` (format from the extension), atomically.
 pub fn write_image(film: &Film, path: &Path, settings: &ImageSettings) -> Result<(), OutputError> {
     let bytes = encode(film, path, settings)?;
@@ -209,6 +243,41 @@ pub fn read_exr(path: &Path) -> Result<Film, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::film::{Aov, Region};
+
+    /// A film of a region with AOV layers reads back with every channel named as
+    /// compositors expect and its data window inside the full frame.
+    #[test]
+    fn layered_exr_has_named_channels_and_windows() {
+        use exr::prelude::*;
+        let mut film = Film::for_region(Region { x0: 2, y0: 1, x1: 5, y1: 3 }, (8, 4), &[Aov::Normal, Aov::Depth]);
+        for (i, p) in film.pixels.iter_mut().enumerate() {
+            *p = [i as f32, 0.5, -1.0];
+        }
+        film.layers[1].data[4] = 7.25;
+        let mut bytes = Cursor::new(Vec::new());
+        encode_layered_exr(&film, false, &mut bytes).unwrap();
+        let image = read()
+            .no_deep_data()
+            .largest_resolution_level()
+            .all_channels()
+            .all_layers()
+            .all_attributes()
+            .from_buffered(Cursor::new(bytes.into_inner()))
+            .unwrap();
+        assert_eq!(image.attributes.display_window.size, Vec2(8, 4));
+        let layer = &image.layer_data[0];
+        assert_eq!(layer.attributes.layer_position, Vec2(2, 1));
+        assert_eq!(layer.size, Vec2(3, 2));
+        let names: Vec<String> = layer.channel_data.list.iter().map(|c| c.name.to_string()).collect();
+        for name in ["B", "G", "R", "depth.Z", "normal.X", "normal.Y", "normal.Z"] {
+            assert!(names.contains(&name.to_string()), "{name} missing from {names:?}");
+        }
+        let depth = layer.channel_data.list.iter().find(|c| c.name.to_string() == "depth.Z").unwrap();
+        assert_eq!(depth.sample_data.value_by_flat_index(4).to_f32(), 7.25);
+        let red = layer.channel_data.list.iter().find(|c| c.name.to_string() == "R").unwrap();
+        assert_eq!(red.sample_data.value_by_flat_index(5).to_f32(), 5.0);
+    }
 
     #[test]
     fn srgb_curve_known_values() {

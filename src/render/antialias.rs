@@ -11,7 +11,7 @@ use glam::{DVec2, DVec3};
 
 use super::camera::pov_screen;
 use super::extract::RenderScene;
-use super::integrators::classic::{Classic, PathState};
+use super::integrators::Integrator;
 use super::sampling::{SampleStream, hash4, mix64};
 use crate::world::components::Antialias;
 
@@ -55,9 +55,9 @@ impl PovMethod {
 }
 
 /// Traces single positions on the image plane in POV-Ray's pixel coordinates.
-struct Sampler<'a> {
+struct Sampler<'a, I: Integrator> {
     scene: &'a RenderScene,
-    integrator: &'a Classic<'a>,
+    integrator: &'a I,
     width: f64,
     height: f64,
     /// All rays traced so far.
@@ -66,7 +66,7 @@ struct Sampler<'a> {
     primary: u64,
 }
 
-impl Sampler<'_> {
+impl<I: Integrator> Sampler<'_, I> {
     /// The colour at image position (x, y), pixel centres at integers (POV-Ray's
     /// `TracePixel::operator()`). With an aperture it averages `samples` lens samples spread
     /// over the pixel, as POV-Ray's focal blur does.
@@ -94,11 +94,10 @@ impl Sampler<'_> {
 
     fn radiance(&mut self, x0: f64, y0: f64, lens: DVec2, stream: SampleStream) -> DVec3 {
         let ray = self.scene.camera.ray(x0, y0, lens);
-        let mut state = PathState { stream, dimension: 4, rays: 0 };
-        let c = self.integrator.radiance(&ray, &mut state);
-        self.rays += state.rays;
+        let sample = self.integrator.sample(&ray, stream);
+        self.rays += sample.rays;
         self.primary += 1;
-        c
+        sample.radiance
     }
 }
 
@@ -129,7 +128,7 @@ pub struct Block {
 }
 
 /// Renders the block whose top-left pixel is (`left`, `top`) with `method`.
-pub fn render_block(scene: &RenderScene, integrator: &Classic, method: PovMethod, left: u32, top: u32) -> Block {
+pub fn render_block<I: Integrator>(scene: &RenderScene, integrator: &I, method: PovMethod, left: u32, top: u32) -> Block {
     let (width, height) = (scene.settings.width, scene.settings.height);
     let w = BLOCK_SIZE.min(width - left) as usize;
     let h = BLOCK_SIZE.min(height - top) as usize;
@@ -151,7 +150,7 @@ pub fn render_block(scene: &RenderScene, integrator: &Classic, method: PovMethod
 /// with its left and upper neighbours (as they are at that moment) and supersample every
 /// pixel of a differing pair that was not supersampled yet. The row above the block and the
 /// pixel left of each row are traced only to compare with and are never supersampled.
-fn non_adaptive(s: &mut Sampler, left: f64, top: f64, w: usize, h: usize, threshold: f64, depth: u32) -> Vec<DVec3> {
+fn non_adaptive<I: Integrator>(s: &mut Sampler<I>, left: f64, top: f64, w: usize, h: usize, threshold: f64, depth: u32) -> Vec<DVec3> {
     // Each colour is graded for comparison once, when it is traced or supersampled.
     let above: Vec<DVec3> = (0..w).map(|x| aa_graded(s.trace(left + x as f64, top - 1.0))).collect();
     let mut pixels = vec![DVec3::ZERO; w * h];
@@ -191,7 +190,7 @@ fn non_adaptive(s: &mut Sampler, left: f64, top: f64, w: usize, h: usize, thresh
 
 /// `depth` x `depth` samples at (k + 0.5) / depth across the pixel, added to the centre
 /// sample already traced: the mean of depth^2 + 1 samples (`TraceTask::SupersampleOnePixel`).
-fn supersample(s: &mut Sampler, x: f64, y: f64, centre: DVec3, depth: u32) -> DVec3 {
+fn supersample<I: Integrator>(s: &mut Sampler<I>, x: f64, y: f64, centre: DVec3, depth: u32) -> DVec3 {
     let step = 1.0 / f64::from(depth);
     let range = 0.5 - step * 0.5;
     let mut sum = centre;
@@ -210,7 +209,7 @@ fn supersample(s: &mut Sampler, x: f64, y: f64, centre: DVec3, depth: u32) -> DV
 
 /// Method 2 (`TraceTask::AdaptiveSupersamplingM2`): trace every pixel corner, then
 /// subdivide each pixel while any two of a square's corners differ, down to 1 / 2^(depth-1).
-fn adaptive(s: &mut Sampler, left: f64, top: f64, w: usize, h: usize, threshold: f64, depth: u32) -> Vec<DVec3> {
+fn adaptive<I: Integrator>(s: &mut Sampler<I>, left: f64, top: f64, w: usize, h: usize, threshold: f64, depth: u32) -> Vec<DVec3> {
     let mut corners = Vec::with_capacity((w + 1) * (h + 1));
     for y in 0..=h {
         for x in 0..=w {
@@ -251,7 +250,7 @@ impl SubdivisionGrid {
     }
 
     /// The sample at grid (x, y), traced at image position `at` if not yet known.
-    fn sample(&mut self, s: &mut Sampler, x: usize, y: usize, at: (f64, f64)) {
+    fn sample<I: Integrator>(&mut self, s: &mut Sampler<I>, x: usize, y: usize, at: (f64, f64)) {
         if self.samples[x + y * self.size].is_none() {
             let c = s.trace(at.0, at.1);
             self.set(x, y, c);
@@ -272,7 +271,7 @@ struct Square {
 }
 
 /// `TraceTask::SubdivideOnePixel`: the value of one square.
-fn subdivide(s: &mut Sampler, grid: &mut SubdivisionGrid, q: Square, level: i32, threshold: f64) -> DVec3 {
+fn subdivide<I: Integrator>(s: &mut Sampler<I>, grid: &mut SubdivisionGrid, q: Square, level: i32, threshold: f64) -> DVec3 {
     let c00 = grid.get(q.bx, q.by);
     let c02 = grid.get(q.bx, q.by + q.step);
     let c20 = grid.get(q.bx + q.step, q.by);
@@ -306,7 +305,8 @@ fn subdivide(s: &mut Sampler, grid: &mut SubdivisionGrid, q: Square, level: i32,
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::{RenderOptions, render};
+    use crate::render::integrators::classic::Classic;
+    use crate::render::{RenderOptions, render_frame};
     use crate::scene::load::{Embedded, load_from};
 
     const SCENE: &str = "[render]\nwidth = 40\nheight = 24\n\
@@ -321,14 +321,14 @@ mod tests {
         crate::prepare(&mut scene).unwrap()
     }
 
-    fn sampler<'a>(scene: &'a RenderScene, integrator: &'a Classic<'a>) -> Sampler<'a> {
+    fn sampler<'a>(scene: &'a RenderScene, integrator: &'a Classic<'a>) -> Sampler<'a, Classic<'a>> {
         Sampler { scene, integrator, width: 40.0, height: 24.0, rays: 0, primary: 0 }
     }
 
     #[test]
     fn method_1_with_threshold_0_supersamples_every_pixel() {
         let scene = scene(Antialias::Pov1 { threshold: 0.0, depth: 3 });
-        let film = render(&scene, &RenderOptions { threads: Some(2), progress: false }).unwrap().0;
+        let film = render_frame(&scene, &RenderOptions { threads: Some(2), ..Default::default() }).unwrap().0;
         let integrator = Classic::new(&scene);
         let mut s = sampler(&scene, &integrator);
         for (x, y) in [(0u32, 0u32), (17, 9), (39, 23), (31, 5)] {
@@ -350,12 +350,12 @@ mod tests {
     #[test]
     fn method_2_with_threshold_0_is_the_trapezoid_rule() {
         let scene = scene(Antialias::Pov2 { threshold: 0.0, depth: 2 });
-        let film = render(&scene, &RenderOptions { threads: Some(2), progress: false }).unwrap().0;
+        let film = render_frame(&scene, &RenderOptions { threads: Some(2), ..Default::default() }).unwrap().0;
         let integrator = Classic::new(&scene);
         let mut s = sampler(&scene, &integrator);
         for (x, y) in [(0u32, 0u32), (17, 9), (39, 23)] {
             let (px, py) = (f64::from(x), f64::from(y));
-            let at = |s: &mut Sampler, i: f64, j: f64| s.trace(px - 0.5 + i * 0.5, py - 0.5 + j * 0.5);
+            let at = |s: &mut Sampler<Classic>, i: f64, j: f64| s.trace(px - 0.5 + i * 0.5, py - 0.5 + j * 0.5);
             let weights = [1.0, 2.0, 1.0];
             let mut sum = DVec3::ZERO;
             for (j, wj) in weights.iter().enumerate() {
@@ -375,8 +375,8 @@ mod tests {
     fn blocks_make_the_image_independent_of_threads() {
         for antialias in [Antialias::Pov1 { threshold: 0.1, depth: 3 }, Antialias::Pov2 { threshold: 0.1, depth: 3 }] {
             let scene = scene(antialias);
-            let one = render(&scene, &RenderOptions { threads: Some(1), progress: false }).unwrap().0;
-            let two = render(&scene, &RenderOptions { threads: Some(2), progress: false }).unwrap().0;
+            let one = render_frame(&scene, &RenderOptions { threads: Some(1), ..Default::default() }).unwrap().0;
+            let two = render_frame(&scene, &RenderOptions { threads: Some(2), ..Default::default() }).unwrap().0;
             assert_eq!(one, two, "{antialias:?}");
         }
     }

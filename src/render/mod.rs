@@ -1,5 +1,8 @@
-//! `render`: tiles in parallel (rayon); each pixel's samples depend only on
-//! (pixel, sample, dimension, seed), so the image is bit-identical for any thread count.
+//! `render`: the scheduler. It splits a region of the frame into tiles, renders them in
+//! parallel (rayon), makes every camera ray and its random stream, and gathers the pixel
+//! samples of any [`Integrator`] into a [`Film`]. Each pixel's samples depend only on
+//! (pixel, sample, dimension, seed), so the image is bit-identical for any thread count,
+//! tiling or region.
 
 pub mod antialias;
 pub mod camera;
@@ -8,17 +11,20 @@ pub mod integrators;
 pub mod lights;
 pub mod sampling;
 
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use glam::{DVec2, DVec3};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
-use crate::film::Film;
+use crate::film::{Aov, Film, Region};
+use crate::world::components::IntegratorKind;
 use camera::pov_screen;
 use extract::RenderScene;
-use integrators::classic::{Classic, PathState};
+use integrators::classic::Classic;
+use integrators::{FirstHit, Integrator, PixelSample};
 use sampling::{SampleStream, hash4};
 
 /// Side of a square render tile in pixels.
@@ -31,6 +37,11 @@ pub struct RenderOptions {
     pub threads: Option<usize>,
     /// Draw a progress bar on stderr (only when stderr is a terminal).
     pub progress: bool,
+    /// AOV layers to gather besides the beauty image.
+    pub aovs: Vec<Aov>,
+    /// Set to stop the render: tiles not yet started are skipped (left black) and the
+    /// stats say the render was cancelled.
+    pub cancel: Option<Arc<AtomicBool>>,
 }
 
 /// What a render did.
@@ -42,6 +53,8 @@ pub struct RenderStats {
     pub primary_rays: u64,
     /// All rays: camera, reflected, refracted and shadow rays.
     pub total_rays: u64,
+    /// True when `RenderOptions::cancel` stopped the render before every tile was done.
+    pub cancelled: bool,
 }
 
 impl RenderStats {
@@ -62,22 +75,59 @@ pub enum RenderError {
         /// The cause.
         source: rayon::ThreadPoolBuildError,
     },
+    /// The region is empty or leaves the frame.
+    #[error("region {x0},{y0},{x1},{y1} is not a non-empty part of the {width}x{height} image", x0 = region.x0, y0 = region.y0, x1 = region.x1, y1 = region.y1)]
+    Region {
+        /// The region asked for.
+        region: Region,
+        /// Frame width.
+        width: u32,
+        /// Frame height.
+        height: u32,
+    },
 }
 
-/// Renders the scene into a film.
-pub fn render(scene: &RenderScene, options: &RenderOptions) -> Result<(Film, RenderStats), RenderError> {
+/// Renders the whole frame with the integrator the scene's settings name.
+pub fn render_frame(scene: &RenderScene, options: &RenderOptions) -> Result<(Film, RenderStats), RenderError> {
+    let region = Region::full(scene.settings.width, scene.settings.height);
+    match scene.settings.integrator {
+        IntegratorKind::Classic => render(scene, &Classic::new(scene), region, options),
+    }
+}
+
+/// One tile's results: where it lies (full-frame pixels) and its pixels row by row.
+struct TileResult {
+    area: Region,
+    pixels: Vec<[f32; 3]>,
+    first_hits: Vec<Option<FirstHit>>,
+}
+
+/// Renders `region` of the frame with `integrator` into a film of that region.
+pub fn render<I: Integrator>(
+    scene: &RenderScene,
+    integrator: &I,
+    region: Region,
+    options: &RenderOptions,
+) -> Result<(Film, RenderStats), RenderError> {
+    let (width, height) = (scene.settings.width, scene.settings.height);
+    if region.is_empty() || !region.fits(width, height) {
+        return Err(RenderError::Region { region, width, height });
+    }
     let threads = options.threads.unwrap_or(0);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .map_err(|source| RenderError::Threads { threads, source })?;
-    let (width, height) = (scene.settings.width, scene.settings.height);
-    // POV-Ray's antialiasing works on whole 32 x 32 blocks, each one task.
+    // POV-Ray's antialiasing works on whole 32 x 32 blocks of the frame, each one task; a
+    // region renders every block it touches whole and keeps its part, so its pixels are
+    // those of the full frame.
     let pov_method = antialias::PovMethod::from_setting(scene.settings.antialias);
     let tile_size = if pov_method.is_some() { antialias::BLOCK_SIZE } else { TILE_SIZE };
-    let tiles_x = width.div_ceil(tile_size);
-    let tiles_y = height.div_ceil(tile_size);
-    let tile_count = u64::from(tiles_x) * u64::from(tiles_y);
+    let (tx0, ty0) = (region.x0 / tile_size, region.y0 / tile_size);
+    let (tx1, ty1) = (region.x1.div_ceil(tile_size), region.y1.div_ceil(tile_size));
+    let tiles_x = tx1 - tx0;
+    let tile_count = u64::from(tiles_x) * u64::from(ty1 - ty0);
+    let want_hits = !options.aovs.is_empty();
 
     let progress = if options.progress {
         let bar = ProgressBar::with_draw_target(Some(tile_count), ProgressDrawTarget::stderr());
@@ -92,70 +142,130 @@ pub fn render(scene: &RenderScene, options: &RenderOptions) -> Result<(Film, Ren
 
     let rays = AtomicU64::new(0);
     let primary_rays = AtomicU64::new(0);
+    let cancelled = AtomicBool::new(false);
     let start = Instant::now();
-    let integrator = Classic::new(scene);
-    let tiles: Vec<(u32, u32, Vec<[f32; 3]>)> = pool.install(|| {
+    let tiles: Vec<TileResult> = pool.install(|| {
         (0..tile_count)
             .into_par_iter()
-            .map(|tile| {
-                let tx = (tile % u64::from(tiles_x)) as u32 * tile_size;
-                let ty = (tile / u64::from(tiles_x)) as u32 * tile_size;
-                let (pixels, tile_rays, tile_primary) = match pov_method {
+            .filter_map(|tile| {
+                if options.cancel.as_ref().is_some_and(|c| c.load(Ordering::Relaxed)) {
+                    cancelled.store(true, Ordering::Relaxed);
+                    return None;
+                }
+                let tx = (tx0 + (tile % u64::from(tiles_x)) as u32) * tile_size;
+                let ty = (ty0 + (tile / u64::from(tiles_x)) as u32) * tile_size;
+                let area = Region { x0: tx, y0: ty, x1: (tx + tile_size).min(width), y1: (ty + tile_size).min(height) };
+                let (result, tile_rays, tile_primary) = match pov_method {
                     Some(method) => {
-                        let block = antialias::render_block(scene, &integrator, method, tx, ty);
-                        (block.pixels, block.rays, block.primary_rays)
+                        let block = antialias::render_block(scene, integrator, method, tx, ty);
+                        let first_hits = if want_hits { centre_hits(scene, integrator, area) } else { Vec::new() };
+                        (TileResult { area, pixels: block.pixels, first_hits }, block.rays, block.primary_rays)
                     }
                     None => {
-                        let (pixels, tile_rays) = render_tile(scene, &integrator, tx, ty);
-                        let primary = pixels.len() as u64 * u64::from(scene.settings.samples);
-                        (pixels, tile_rays, primary)
+                        let area = Region {
+                            x0: area.x0.max(region.x0),
+                            y0: area.y0.max(region.y0),
+                            x1: area.x1.min(region.x1),
+                            y1: area.y1.min(region.y1),
+                        };
+                        let (result, tile_rays) = render_tile(scene, integrator, area, want_hits);
+                        let primary = area.pixel_count() as u64 * u64::from(scene.settings.samples);
+                        (result, tile_rays, primary)
                     }
                 };
                 rays.fetch_add(tile_rays, Ordering::Relaxed);
                 primary_rays.fetch_add(tile_primary, Ordering::Relaxed);
                 progress.inc(1);
-                (tx, ty, pixels)
+                Some(result)
             })
             .collect()
     });
     progress.finish_and_clear();
     let elapsed = start.elapsed();
 
-    let mut film = Film::new(width, height);
-    for (tx, ty, pixels) in tiles {
-        let tile_w = tile_size.min(width - tx);
-        for (i, p) in pixels.into_iter().enumerate() {
-            let x = tx + i as u32 % tile_w;
-            let y = ty + i as u32 / tile_w;
-            film.pixels[y as usize * width as usize + x as usize] = p;
+    let mut film = Film::for_region(region, (width, height), &options.aovs);
+    for tile in tiles {
+        let tile_w = tile.area.width();
+        for (i, p) in tile.pixels.into_iter().enumerate() {
+            let (x, y) = (tile.area.x0 + i as u32 % tile_w, tile.area.y0 + i as u32 / tile_w);
+            if region.contains(x, y) {
+                let index = (y - region.y0) as usize * region.width() as usize + (x - region.x0) as usize;
+                film.pixels[index] = p;
+                if want_hits {
+                    write_aovs(&mut film, index, &tile.first_hits[i]);
+                }
+            }
         }
     }
     let stats = RenderStats {
         elapsed,
         primary_rays: primary_rays.load(Ordering::Relaxed),
         total_rays: rays.load(Ordering::Relaxed),
+        cancelled: cancelled.load(Ordering::Relaxed),
     };
     Ok((film, stats))
 }
 
-fn render_tile(scene: &RenderScene, integrator: &Classic, tx: u32, ty: u32) -> (Vec<[f32; 3]>, u64) {
-    let (width, height) = (scene.settings.width, scene.settings.height);
-    let tile_w = TILE_SIZE.min(width - tx);
-    let tile_h = TILE_SIZE.min(height - ty);
-    let mut out = Vec::with_capacity((tile_w * tile_h) as usize);
+fn render_tile<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region, want_hits: bool) -> (TileResult, u64) {
+    let mut pixels = Vec::with_capacity(area.pixel_count());
+    let mut first_hits = Vec::with_capacity(if want_hits { area.pixel_count() } else { 0 });
     let mut rays = 0;
-    for y in ty..ty + tile_h {
-        for x in tx..tx + tile_w {
-            let (rgb, pixel_rays) = render_pixel(scene, integrator, x, y);
-            rays += pixel_rays;
-            out.push([rgb.x as f32, rgb.y as f32, rgb.z as f32]);
+    for y in area.y0..area.y1 {
+        for x in area.x0..area.x1 {
+            let pixel = render_pixel(scene, integrator, x, y);
+            rays += pixel.rays;
+            let rgb = pixel.radiance;
+            pixels.push([rgb.x as f32, rgb.y as f32, rgb.z as f32]);
+            if want_hits {
+                first_hits.push(pixel.first_hit);
+            }
         }
     }
-    (out, rays)
+    (TileResult { area, pixels, first_hits }, rays)
 }
 
-/// The mean radiance of one pixel and the rays it took.
-pub fn render_pixel(scene: &RenderScene, integrator: &Classic, x: u32, y: u32) -> (DVec3, u64) {
+/// The first surfaces seen through the pixel centres of `area` (the AOVs of POV-Ray's
+/// antialiasing modes, whose samples are placed by the image itself).
+fn centre_hits<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region) -> Vec<Option<FirstHit>> {
+    let (width, height) = (f64::from(scene.settings.width), f64::from(scene.settings.height));
+    let mut hits = Vec::with_capacity(area.pixel_count());
+    for y in area.y0..area.y1 {
+        for x in area.x0..area.x1 {
+            let pixel = u64::from(y) * u64::from(scene.settings.width) + u64::from(x);
+            let (x0, y0) = pov_screen(f64::from(x), f64::from(y), width, height);
+            let ray = scene.camera.ray(x0, y0, DVec2::ZERO);
+            hits.push(integrator.sample(&ray, SampleStream::new(pixel, 0, scene.settings.seed)).first_hit);
+        }
+    }
+    hits
+}
+
+/// Writes a pixel's first-hit data into the film's AOV layers.
+fn write_aovs(film: &mut Film, index: usize, hit: &Option<FirstHit>) {
+    for layer in &mut film.layers {
+        let n = layer.aov.channels().len();
+        let out = &mut layer.data[index * n..(index + 1) * n];
+        let values: [f64; 3] = match (layer.aov, hit) {
+            (Aov::Albedo, Some(h)) => h.albedo.to_array(),
+            (Aov::Normal, Some(h)) => h.normal.to_array(),
+            (Aov::Position, Some(h)) => h.position.to_array(),
+            (Aov::Depth, Some(h)) => [h.depth, 0.0, 0.0],
+            (Aov::Depth, None) => [f64::INFINITY, 0.0, 0.0],
+            (Aov::Uv, Some(h)) => [h.uv.x, h.uv.y, 0.0],
+            (Aov::ObjectId, Some(h)) => [f64::from(h.primitive), 0.0, 0.0],
+            (Aov::MaterialId, Some(h)) => [f64::from(h.material), 0.0, 0.0],
+            (Aov::ObjectId | Aov::MaterialId, None) => [-1.0, 0.0, 0.0],
+            (Aov::Albedo | Aov::Normal | Aov::Position | Aov::Uv, None) => [0.0; 3],
+        };
+        for (o, v) in out.iter_mut().zip(values) {
+            *o = v as f32;
+        }
+    }
+}
+
+/// The mean of one pixel's samples: radiance, the first hit of its first sample that met a
+/// surface, and the rays it took.
+pub fn render_pixel<I: Integrator>(scene: &RenderScene, integrator: &I, x: u32, y: u32) -> PixelSample {
     let settings = &scene.settings;
     let (width, height) = (f64::from(settings.width), f64::from(settings.height));
     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
@@ -164,6 +274,7 @@ pub fn render_pixel(scene: &RenderScene, integrator: &Classic, x: u32, y: u32) -
     let patterns = (samples > 1).then(|| scene.patterns.for_key(hash4(pixel, 0, u64::MAX, settings.seed)));
     let mut sum = DVec3::ZERO;
     let mut rays = 0;
+    let mut first_hit = None;
     for s in 0..samples {
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
         let offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(s));
@@ -175,9 +286,10 @@ pub fn render_pixel(scene: &RenderScene, integrator: &Classic, x: u32, y: u32) -
         // POV-Ray's pixel coordinates put pixel centres at integers.
         let (x0, y0) = pov_screen(f64::from(x) + offset.x - 0.5, f64::from(y) + offset.y - 0.5, width, height);
         let ray = scene.camera.ray(x0, y0, lens);
-        let mut state = PathState { stream, dimension: 4, rays: 0 };
-        sum += integrator.radiance(&ray, &mut state);
-        rays += state.rays;
+        let sample = integrator.sample(&ray, stream);
+        sum += sample.radiance;
+        rays += sample.rays;
+        first_hit = first_hit.or(sample.first_hit);
     }
-    (sum / f64::from(samples), rays)
+    PixelSample { radiance: sum / f64::from(samples), first_hit, rays }
 }

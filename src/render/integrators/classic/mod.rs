@@ -13,6 +13,7 @@ use crate::accel::scene_bvh::{ConvexHull, Gathered};
 use crate::material::Material;
 use crate::render::extract::RenderScene;
 use crate::render::lights::{AreaGrid, RenderLight};
+use crate::render::integrators::{FirstHit, Integrator, PixelSample};
 use crate::render::sampling::SampleStream;
 use crate::world::components::LightKind;
 
@@ -70,14 +71,25 @@ impl Interiors {
     }
 }
 
-/// Per-sample state: the random stream and the number of rays traced.
-pub struct PathState {
+/// Per-sample state: the random stream, the rays traced and the first surface seen.
+struct PathState {
     /// Random numbers of this pixel sample.
-    pub stream: SampleStream,
+    stream: SampleStream,
     /// Next free random dimension.
-    pub dimension: u64,
+    dimension: u64,
     /// Rays traced (camera, reflected, refracted, shadow).
-    pub rays: u64,
+    rays: u64,
+    /// The first surface the camera ray met.
+    first_hit: Option<FirstHit>,
+}
+
+impl Integrator for Classic<'_> {
+    fn sample(&self, ray: &Ray, stream: SampleStream) -> PixelSample {
+        let interiors = self.pinhole_interiors.unwrap_or_else(|| self.interiors_at(ray.origin));
+        let mut state = PathState { stream, dimension: 4, rays: 0, first_hit: None };
+        let radiance = self.trace(ray, 1, 1.0, interiors, &mut state);
+        PixelSample { radiance, first_hit: state.first_hit, rays: state.rays }
+    }
 }
 
 /// The classic integrator over one render scene.
@@ -151,11 +163,6 @@ impl<'a> Classic<'a> {
         material.at_surface(surface.uv, footprint)
     }
 
-    /// Radiance along a camera ray.
-    pub fn radiance(&self, ray: &Ray, state: &mut PathState) -> DVec3 {
-        let interiors = self.pinhole_interiors.unwrap_or_else(|| self.interiors_at(ray.origin));
-        self.trace(ray, 1, 1.0, interiors, state)
-    }
 
     fn medium_ior(&self, interiors: &Interiors) -> f64 {
         interiors.innermost().map_or(1.0, |p| self.material_of(p).ior)
@@ -203,6 +210,17 @@ impl<'a> Classic<'a> {
         let entering = !interiors.contains(closest.primitive);
         let shaded = self.shade(material, primitive, &surface, closest.hit.t * d.length(), n.dot(d) / d.length());
         let material: &Material = &shaded.material;
+        if level == 1 && state.first_hit.is_none() {
+            state.first_hit = Some(FirstHit {
+                albedo: material.color.0,
+                normal: n,
+                position: point,
+                depth: closest.hit.t * d.length(),
+                uv: surface.uv,
+                primitive: closest.primitive,
+                material: primitive.material,
+            });
+        }
 
         let mut colour = self.local_shading(point, n, d, material, &interiors, state) + shaded.emitted;
 
@@ -680,7 +698,7 @@ mod tests {
 
     /// POV-Ray's recursive average over samples `value(u, v)` of an `n1` x `n2` grid.
     fn recursive_average(n1: usize, n2: usize, adaptive: u32, value: impl Fn(usize, usize) -> DVec3) -> DVec3 {
-        let mut state = PathState { stream: SampleStream::new(0, 0, 0), dimension: 0, rays: 0 };
+        let mut state = PathState { stream: SampleStream::new(0, 0, 0), dimension: 0, rays: 0, first_hit: None };
         block(&mut |u, v, _: &mut PathState| value(u, v), 0, 0, n1 - 1, n2 - 1, 0, adaptive, &mut state)
     }
 
