@@ -21,7 +21,8 @@ use prism_api::pov::{number, vector};
 
 use crate::color::Rgb;
 use crate::diagnostics::{Diagnostic, SceneError};
-use crate::material::{Material, Reflection};
+use crate::material::pov_view::{PovFinish, PovView};
+use crate::material::{Material, Reflection, SurfaceModel};
 use crate::render::camera::CameraFrame;
 use crate::world::Scene;
 use crate::world::components::{
@@ -305,10 +306,27 @@ pub fn pov_matrix(m: &DAffine3) -> String {
     format!("<{}>", text.join(", "))
 }
 
-/// The material as `texture { pigment finish }` and `interior`, or the keys POV-Ray cannot
-/// express with messages.
+/// The material as `texture { pigment finish }` and `interior` (the classic integrator's
+/// view of it), or the keys POV-Ray cannot express with messages.
 fn texture(out: &mut String, m: &Material) -> Result<(), Vec<(&'static str, String)>> {
-    let Material {
+    let (texture, pbr) = match &m.surface {
+        SurfaceModel::Finish(f) => (f.texture.is_some(), false),
+        SurfaceModel::MetallicRoughness(p) => (p.finish.texture.is_some(), true),
+        SurfaceModel::Mtl(mtl) => (mtl.map_kd.is_some(), false),
+    };
+    let mut problems = Vec::new();
+    if texture {
+        problems.push(("texture", "image textures are not exported to POV-Ray".to_string()));
+    }
+    if pbr {
+        problems.push(("pbr", "glTF metallic-roughness materials have no POV-Ray finish equivalent".to_string()));
+    } else if PovView::new(m).varies_over_surface() && !texture {
+        problems.push(("emission", "emitted radiance beside the finish has no POV-Ray equivalent".to_string()));
+    }
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    let PovFinish {
         color,
         filter,
         transmit,
@@ -327,19 +345,7 @@ fn texture(out: &mut String, m: &Material) -> Result<(), Vec<(&'static str, Stri
         fade_distance,
         fade_power,
         fade_color,
-        texture,
-        pbr,
-    } = m;
-    let mut problems = Vec::new();
-    if texture.is_some() {
-        problems.push(("texture", "image textures are not exported to POV-Ray".to_string()));
-    }
-    if pbr.is_some() {
-        problems.push(("pbr", "glTF metallic-roughness materials have no POV-Ray finish equivalent".to_string()));
-    }
-    if !problems.is_empty() {
-        return Err(problems);
-    }
+    } = &PovView::new(m).base;
     let c = color.0;
     let _ = write!(
         out,

@@ -19,7 +19,7 @@ use gltf::mesh::Mode;
 use super::{CameraProjection, ImportError, Model, ModelCamera, ModelLight, ModelNode, ModelPart, PunctualKind};
 use crate::color::Rgb;
 use crate::geometry::mesh::{AlphaMask, MeshBuilder, MeshData, MeshShape, NormalMap, SurfaceMaps};
-use crate::material::{Material, Pbr};
+use crate::material::{AlphaMode, Emission, Finish, Material, MetallicRoughness, SurfaceModel};
 use crate::texture::{ColorSpace, TextureRef, TextureStore, Wrap};
 
 /// Deepest node nesting accepted (deeper trees are almost certainly broken files).
@@ -139,7 +139,7 @@ struct Importer<'a> {
     /// (mesh, primitive) -> geometry (a mesh used by several nodes is built once).
     meshes: HashMap<(usize, usize), Option<Arc<MeshData>>>,
     /// material index (None = default) -> mapped material and maps.
-    materials: HashMap<Option<usize>, (Material, SurfaceMaps, Option<String>)>,
+    materials: HashMap<Option<usize>, (Arc<Material>, SurfaceMaps, Option<String>)>,
 }
 
 impl Importer<'_> {
@@ -378,20 +378,24 @@ impl Importer<'_> {
         Ok(r)
     }
 
-    /// glTF metallic-roughness to Prism (see `docs/meshes.md`).
-    fn material(&mut self, m: &gltf::Material) -> Result<(Material, SurfaceMaps, Option<String>), ImportError> {
+    /// glTF metallic-roughness as written (see `docs/meshes.md`), factors clamped to glTF's
+    /// 0..1; the emission is `emissiveFactor` times `KHR_materials_emissive_strength`.
+    fn material(&mut self, m: &gltf::Material) -> Result<(Arc<Material>, SurfaceMaps, Option<String>), ImportError> {
         let pbr = m.pbr_metallic_roughness();
         let [r, g, b, alpha] = pbr.base_color_factor().map(f64::from);
-        let mut material = Material { color: Rgb::new(r, g, b), ..Material::default() };
+        let mut finish = Finish { color: Rgb::new(r, g, b), ..Finish::default() };
         let mut maps = SurfaceMaps::default();
         if let Some(info) = pbr.base_color_texture() {
-            material.texture =
+            finish.texture =
                 Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Srgb)?);
         }
-        let mut params = Pbr {
+        let mut params = MetallicRoughness {
+            finish,
             metallic: f64::from(pbr.metallic_factor()).clamp(0.0, 1.0),
             roughness: f64::from(pbr.roughness_factor()).clamp(0.0, 1.0),
-            ..Pbr::default()
+            metallic_roughness_texture: None,
+            alpha_mode: AlphaMode::Opaque,
+            alpha,
         };
         if let Some(info) = pbr.metallic_roughness_texture() {
             params.metallic_roughness_texture =
@@ -399,12 +403,11 @@ impl Importer<'_> {
         }
         let strength = f64::from(m.emissive_strength().unwrap_or(1.0));
         let [er, eg, eb] = m.emissive_factor().map(|c| f64::from(c) * strength);
-        params.emissive = Rgb::new(er, eg, eb);
+        let mut emission = Emission { radiance: Rgb::new(er, eg, eb), ..Emission::default() };
         if let Some(info) = m.emissive_texture() {
-            params.emissive_texture =
+            emission.texture =
                 Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Srgb)?);
         }
-        material.pbr = Some(params);
         if let Some(normal) = m.normal_texture() {
             let t = self.texture(normal.texture(), normal.tex_coord(), None, ColorSpace::Linear)?;
             maps.normal_map = Some(NormalMap { texture: t, scale: f64::from(normal.scale()), height: false });
@@ -412,6 +415,7 @@ impl Importer<'_> {
         match m.alpha_mode() {
             gltf::material::AlphaMode::Opaque => {}
             gltf::material::AlphaMode::Mask => {
+                params.alpha_mode = AlphaMode::Mask { cutoff: f64::from(m.alpha_cutoff().unwrap_or(0.5)) };
                 let texture = match pbr.base_color_texture() {
                     Some(info) => Some(self.texture(
                         info.texture(),
@@ -425,8 +429,7 @@ impl Importer<'_> {
                     Some(AlphaMask { texture, factor: alpha as f32, cutoff: m.alpha_cutoff().unwrap_or(0.5) });
             }
             gltf::material::AlphaMode::Blend => {
-                // Whitted tracing has no partial coverage: blending becomes transmission.
-                material.transmit = (1.0 - alpha).clamp(0.0, 1.0);
+                params.alpha_mode = AlphaMode::Blend;
                 if pbr.base_color_texture().is_some() {
                     self.model.warnings.push(format!(
                         "material {}: alpha BLEND uses the factor's alpha only, not the texture's",
@@ -435,13 +438,14 @@ impl Importer<'_> {
                 }
             }
         }
+        let material = Material { surface: SurfaceModel::MetallicRoughness(params), emission, ..Material::default() };
         if let Err((key, message)) = material.check() {
             return Err(self.err(format!(
                 "material {}: `{key}` {message}",
                 m.index().map_or("default".into(), |i| i.to_string())
             )));
         }
-        Ok((material, maps, m.name().map(str::to_string)))
+        Ok((Arc::new(material), maps, m.name().map(str::to_string)))
     }
 }
 

@@ -41,8 +41,8 @@ pub struct ModelPart {
     pub node: usize,
     /// The geometry (the same `Arc<MeshData>` when a file instances a mesh on several nodes).
     pub shape: Arc<MeshShape>,
-    /// The material the file gives it, mapped to Prism's [`Material`].
-    pub material: Material,
+    /// The material the file gives it, as written (shared by every object using the file).
+    pub material: Arc<Material>,
     /// The material's name in the file, if any.
     pub material_name: Option<String>,
 }

@@ -14,7 +14,7 @@ use super::triangulate::triangulate;
 use super::{ImportError, ImportOptions, Model, ModelNode, ModelPart};
 use crate::color::Rgb;
 use crate::geometry::mesh::{MeshBuilder, MeshShape, NormalMap, SurfaceMaps};
-use crate::material::{Material, Reflection};
+use crate::material::{Emission, Material, Mtl, SurfaceModel};
 use crate::texture::{ColorSpace, TextureRef, TextureStore};
 
 /// Reads an OBJ file and its MTL files.
@@ -101,7 +101,7 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
         parts.push(ModelPart {
             node: 0,
             shape: Arc::new(MeshShape::with_maps(data, maps)),
-            material,
+            material: Arc::new(material),
             material_name: name,
         });
     }
@@ -329,10 +329,9 @@ fn load_map(
     }
 }
 
-/// MTL to Prism (documented in `docs/meshes.md`): Kd -> colour (map_Kd multiplies it),
-/// Ks and Ns -> Blinn specular (strength = mean of Ks, POV-Ray roughness = 1 / Ns), illum 3
-/// or 5-7 -> mirror reflection Ks, d < 1 (or Tr) -> transmit 1 - d with ior Ni, Ke ->
-/// emission, map_Bump / bump -> height bump, norm -> tangent-space normal map.
+/// MTL as written (documented in `docs/meshes.md`): Kd, Ks, Ns, Ni, d (or 1 - Tr), illum and
+/// map_Kd into [`Mtl`], Ke into the emission; map_Bump / bump -> height bump, norm ->
+/// tangent-space normal map. A material with non-finite values falls back to the default.
 fn map_material(
     m: &tobj::Material,
     obj: &Path,
@@ -340,44 +339,27 @@ fn map_material(
     warnings: &mut Vec<String>,
 ) -> (Material, SurfaceMaps) {
     let rgb = |c: [f32; 3]| Rgb::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]));
-    let mut material = Material::default();
     let mut maps = SurfaceMaps::default();
-    if let Some(kd) = m.diffuse {
-        material.color = rgb(kd);
-    }
-    if let Some(map) = &m.diffuse_texture
-        && let Some((t, _)) = load_map(map, obj, ColorSpace::Srgb, textures, warnings)
-    {
-        material.texture = Some(t);
-    }
-    let ks = m.specular.map(rgb).unwrap_or(Rgb::BLACK);
-    let strength = (ks.0.x + ks.0.y + ks.0.z) / 3.0;
-    if strength > 0.0 {
-        material.specular = strength.clamp(0.0, 1.0);
-        let ns = f64::from(m.shininess.unwrap_or(10.0)).max(1.0);
-        material.roughness = (1.0 / ns).clamp(5e-4, 1.0);
-    }
-    let illum = m.illumination_model.unwrap_or(2);
-    if matches!(illum, 3 | 5 | 6 | 7) && strength > 0.0 {
-        material.reflection = Reflection { min: ks, max: ks, ..Reflection::default() };
-    }
-    let dissolve = m
+    let map_kd = m
+        .diffuse_texture
+        .as_ref()
+        .and_then(|map| load_map(map, obj, ColorSpace::Srgb, textures, warnings))
+        .map(|(t, _)| t);
+    let d = m
         .dissolve
         .map(f64::from)
-        .or_else(|| m.unknown_param.get("Tr").and_then(|t| t.trim().parse::<f64>().ok()).map(|tr| 1.0 - tr))
-        .unwrap_or(1.0)
-        .clamp(0.0, 1.0);
-    if dissolve < 1.0 {
-        material.transmit = 1.0 - dissolve;
-        material.ior = m.optical_density.map(f64::from).filter(|&n| n.is_finite() && n > 0.0).unwrap_or(1.0);
-    }
-    if let Some(ke) = m.emissive.filter(|k| k.iter().any(|&c| c > 0.0)) {
-        // Prism's emission is multiplied by the colour: divide it back out where possible.
-        let c = material.color.0;
-        let ke = rgb(ke).0;
-        let ratio = |e: f64, c: f64| if c > 0.0 { e / c } else { e };
-        material.emission = Rgb::new(ratio(ke.x, c.x), ratio(ke.y, c.y), ratio(ke.z, c.z));
-    }
+        .or_else(|| m.unknown_param.get("Tr").and_then(|t| t.trim().parse::<f64>().ok()).map(|tr| 1.0 - tr));
+    let mtl = Mtl {
+        kd: m.diffuse.map(rgb),
+        ks: m.specular.map(rgb),
+        ns: m.shininess.map(f64::from),
+        ni: m.optical_density.map(f64::from),
+        d,
+        illum: m.illumination_model,
+        map_kd,
+    };
+    let emission = Emission { radiance: m.emissive.map(rgb).unwrap_or(Rgb::BLACK), ..Emission::default() };
+    let material = Material { surface: SurfaceModel::Mtl(mtl), emission, ..Material::default() };
     let normal = m.unknown_param.get("norm").map(|s| (s.as_str(), false));
     let bump = m.normal_texture.as_deref().map(|s| (s, true));
     if let Some((statement, height)) = normal.or(bump)
@@ -497,10 +479,11 @@ mod tests {
         assert_eq!(model.parts.len(), 2);
         let red = model.parts.iter().find(|p| p.material_name.as_deref() == Some("red")).unwrap();
         assert_eq!(red.shape.data().triangle_count(), 2);
-        assert_eq!(red.material.color, Rgb::new(1.0, 0.0, 0.0));
-        assert!((red.material.roughness - 0.01).abs() < 1e-12 && red.material.specular == 0.5);
+        let SurfaceModel::Mtl(mtl) = &red.material.surface else { panic!("an MTL surface") };
+        assert_eq!((mtl.kd, mtl.ks, mtl.ns), (Some(Rgb::new(1.0, 0.0, 0.0)), Some(Rgb::grey(0.5)), Some(100.0)));
         let glass = model.parts.iter().find(|p| p.material_name.as_deref() == Some("glass")).unwrap();
-        assert!((glass.material.transmit - 0.8).abs() < 1e-6 && (glass.material.ior - 1.5).abs() < 1e-6);
+        let SurfaceModel::Mtl(mtl) = &glass.material.surface else { panic!("an MTL surface") };
+        assert!((mtl.d.unwrap() - 0.2).abs() < 1e-6 && (mtl.ni.unwrap() - 1.5).abs() < 1e-6);
     }
 
     #[test]

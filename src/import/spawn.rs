@@ -62,7 +62,8 @@ pub fn spawn_model(
         } else {
             part.shape.clone()
         };
-        let material = replaced.unwrap_or_else(|| MaterialComponent { name: None, material: part.material.clone() });
+        let material =
+            replaced.unwrap_or_else(|| MaterialComponent { name: None, spec: None, material: part.material.clone() });
         let shape = ShapeComponent { kind: MESH_SHAPE.to_string(), params: toml::Table::new(), geometry };
         world.spawn((
             shape,

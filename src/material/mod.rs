@@ -1,467 +1,337 @@
-//! Materials: one description that serves both integrators.
+//! Materials: what a surface is, independent of the integrator that renders it.
 //!
-//! The classic integrator reads the POV-Ray finish (ambient, diffuse, brilliance, phong,
-//! specular, metallic, reflection, filter/transmit, interior). The path integrator will
-//! read the same struct through a documented mapping (colour as base colour, reflection and
-//! metallic as conductor weight, ior and transmit as dielectric), so a scene renders with
-//! either. Every default is POV-Ray 3.7's, except the colour, which is white (POV-Ray's
-//! default pigment is black; the exporter always writes the colour).
+//! A [`Material`] is a surface model (the POV-Ray finish a scene wrote, glTF 2.0's
+//! metallic-roughness, or OBJ/MTL's parameters, each as written), an [`Interior`] and one
+//! [`Emission`] in radiance units. Each integrator reads its own view of it: the classic
+//! integrator reads the flat POV-Ray finish of [`pov_view`], the path integrator (coming)
+//! reads the model. The scene file's form is [`spec::MaterialSpec`]; importers build
+//! materials directly. `docs/meshes.md` documents the mappings.
 
-use std::borrow::Cow;
-use std::fmt;
+pub mod pov_view;
+pub mod spec;
 
-use glam::{DVec2, DVec3};
-use schemars::JsonSchema;
-use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
-use serde::{Deserialize, Serialize};
+pub use spec::{MaterialSpec, Pbr, Reflection};
 
 use crate::color::Rgb;
-use crate::texture::{ColorSpace, TextureRef};
+use crate::texture::TextureRef;
 
-/// A surface and interior description.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, default)]
+/// A surface model, an interior and an emission.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Material {
-    /// Pigment colour (linear RGB).
+    /// How the surface scatters light.
+    pub surface: SurfaceModel,
+    /// The medium behind the surface.
+    pub interior: Interior,
+    /// Light the surface emits by itself.
+    pub emission: Emission,
+}
+
+impl Default for Material {
+    /// The scene's default material: POV-Ray's default finish with a white pigment.
+    fn default() -> Self {
+        MaterialSpec::default().to_material()
+    }
+}
+
+/// How the surface scatters light, in the terms of the source it was written in.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SurfaceModel {
+    /// POV-Ray's pigment and finish, as a scene wrote them.
+    Finish(Finish),
+    /// glTF 2.0 metallic-roughness, as a file or a scene's `pbr` table wrote it.
+    MetallicRoughness(MetallicRoughness),
+    /// OBJ/MTL parameters, as the `.mtl` file wrote them.
+    Mtl(Mtl),
+}
+
+/// POV-Ray 3.7's pigment and finish. Every field has POV-Ray's meaning (and the scene
+/// file's name), not a physical one: `roughness` is the Blinn highlight's (exponent
+/// 1 / roughness), `metallic` a highlight tint, `ambient` a fraction of the world's
+/// ambient light. POV-Ray's `emission` is [`Emission::times_color`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finish {
+    /// Pigment colour (linear RGB reflectance).
     pub color: Rgb,
     /// Fraction of light that passes through, tinted by the colour (POV-Ray `filter`).
     pub filter: f64,
     /// Fraction of light that passes through untinted (POV-Ray `transmit`).
     pub transmit: f64,
-    /// Ambient coefficient, multiplied by the world's `ambient_light` and the colour.
+    /// POV-Ray's ambient coefficient, multiplied by the world's `ambient_light` and the colour.
     pub ambient: Rgb,
-    /// Light the surface emits by itself (multiplied by the colour, like ambient).
-    pub emission: Rgb,
-    /// Diffuse coefficient.
+    /// POV-Ray's diffuse coefficient.
     pub diffuse: f64,
-    /// Exponent on the diffuse cosine (1 = Lambert).
+    /// POV-Ray's exponent on the diffuse cosine (1 = Lambert).
     pub brilliance: f64,
-    /// Phong highlight strength.
+    /// POV-Ray's Phong highlight strength.
     pub phong: f64,
-    /// Phong exponent.
+    /// POV-Ray's Phong exponent.
     pub phong_size: f64,
-    /// Blinn specular highlight strength.
+    /// POV-Ray's Blinn specular highlight strength.
     pub specular: f64,
-    /// Specular roughness; the exponent is 1 / roughness.
+    /// POV-Ray's specular roughness: the Blinn exponent is 1 / roughness (not GGX's).
     pub roughness: f64,
-    /// How much highlights take the pigment's colour (0..1).
+    /// POV-Ray's `metallic`: how much highlights take the pigment's colour (0..1).
     pub metallic: f64,
-    /// Mirror reflection.
+    /// POV-Ray's mirror reflection.
     pub reflection: Reflection,
-    /// Scales transmitted light by (1 - reflection) so the surface does not create light.
+    /// POV-Ray's `conserve_energy`: transmitted light is scaled by (1 - reflection).
     pub conserve_energy: bool,
-    /// Index of refraction of the interior (1 = no refraction).
-    pub ior: f64,
-    /// Interior fade distance (0 = no fade).
-    pub fade_distance: f64,
-    /// Interior fade power (>= 1000 switches to exponential attenuation, as in POV-Ray).
-    pub fade_power: f64,
-    /// Colour the interior fades toward.
-    pub fade_color: Rgb,
-    /// An image whose (linear) colour multiplies `color`: a path relative to the scene file,
-    /// or a table `{ file, wrap, offset, scale, rotation }`. Needs a shape with texture
-    /// coordinates (meshes from glTF or OBJ files).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// An image (linear after decoding) multiplying `color`.
     pub texture: Option<TextureRef>,
-    /// glTF metallic-roughness parameters. When present, the classic finish (diffuse,
-    /// highlights, reflection) is derived from them at every hit (see `docs/meshes.md`)
-    /// instead of read from the fields above.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub pbr: Option<Pbr>,
 }
 
-/// glTF 2.0 metallic-roughness parameters (the core material model plus emission).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, default)]
-pub struct Pbr {
-    /// Metalness factor (0 = dielectric, 1 = metal).
-    pub metallic: f64,
-    /// Perceptual roughness factor (0 = mirror-smooth, 1 = fully rough).
-    pub roughness: f64,
-    /// Texture whose blue channel multiplies `metallic` and green channel `roughness`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub metallic_roughness_texture: Option<TextureRef>,
-    /// Emitted radiance (linear RGB, not multiplied by the colour).
-    pub emissive: Rgb,
-    /// Texture (sRGB) multiplying `emissive`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub emissive_texture: Option<TextureRef>,
-}
-
-impl Default for Pbr {
+impl Default for Finish {
+    /// POV-Ray's default finish with a white pigment.
     fn default() -> Self {
-        Self {
-            metallic: 1.0,
-            roughness: 1.0,
-            metallic_roughness_texture: None,
-            emissive: Rgb::BLACK,
-            emissive_texture: None,
+        match MaterialSpec::default().to_material().surface {
+            SurfaceModel::Finish(f) => f,
+            _ => unreachable!("a material without `pbr` is a finish"),
         }
     }
 }
 
-/// A material resolved at one surface point: textures looked up and the glTF parameters
-/// turned into the classic finish.
-#[derive(Debug)]
-pub struct ShadedMaterial<'a> {
-    /// The finish to shade with (borrowed when the material has no maps).
-    pub material: Cow<'a, Material>,
-    /// Radiance emitted toward the viewer, added as is.
-    pub emitted: DVec3,
+/// How glTF's base colour alpha covers the surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AlphaMode {
+    /// Alpha is ignored.
+    Opaque,
+    /// Alpha below `cutoff` cuts the surface away (the cut itself is the mesh's alpha mask).
+    Mask {
+        /// The alpha below which the surface is absent.
+        cutoff: f64,
+    },
+    /// The surface is alpha-blended over what lies behind it.
+    Blend,
 }
 
-impl Default for Material {
+/// glTF 2.0 metallic-roughness (`pbrMetallicRoughness` and the material's alpha) as written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MetallicRoughness {
+    /// `finish.color` and `finish.texture` are the base colour factor (RGB, linear) and
+    /// texture. Its other fields are the POV-Ray finish a scene wrote beside its `pbr` table
+    /// (POV-Ray's defaults for imported files): where the classic view starts.
+    pub finish: Finish,
+    /// Metalness factor (0 = dielectric, 1 = metal).
+    pub metallic: f64,
+    /// Perceptual roughness factor (GGX alpha = roughness^2; 0 = mirror-smooth).
+    pub roughness: f64,
+    /// Texture whose blue channel multiplies `metallic` and green channel `roughness`.
+    pub metallic_roughness_texture: Option<TextureRef>,
+    /// The alpha mode.
+    pub alpha_mode: AlphaMode,
+    /// The base colour factor's alpha (coverage, 0..1).
+    pub alpha: f64,
+}
+
+/// OBJ/MTL parameters as the `.mtl` file wrote them (`None` where it did not). `Ke` is the
+/// material's [`Emission::radiance`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mtl {
+    /// `Kd`: diffuse reflectance (linear RGB).
+    pub kd: Option<Rgb>,
+    /// `Ks`: specular reflectance (linear RGB).
+    pub ks: Option<Rgb>,
+    /// `Ns`: Phong specular exponent.
+    pub ns: Option<f64>,
+    /// `Ni`: index of refraction.
+    pub ni: Option<f64>,
+    /// `d` (dissolve, 1 = opaque), or `1 - Tr` when only `Tr` is given.
+    pub d: Option<f64>,
+    /// `illum`: the illumination model number.
+    pub illum: Option<u8>,
+    /// `map_Kd`: an image multiplying `Kd`.
+    pub map_kd: Option<TextureRef>,
+}
+
+/// The medium behind a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interior {
+    /// Index of refraction (1 = no refraction).
+    pub ior: f64,
+    /// POV-Ray's interior fade distance in scene units (0 = no fade).
+    pub fade_distance: f64,
+    /// POV-Ray's fade power (>= 1000 switches to exponential attenuation).
+    pub fade_power: f64,
+    /// The colour POV-Ray's fade tends toward.
+    pub fade_color: Rgb,
+}
+
+impl Default for Interior {
+    /// Vacuum-like: no refraction, no fade.
     fn default() -> Self {
-        Self {
-            color: Rgb::WHITE,
-            filter: 0.0,
-            transmit: 0.0,
-            ambient: Rgb::grey(0.1),
-            emission: Rgb::BLACK,
-            diffuse: 0.6,
-            brilliance: 1.0,
-            phong: 0.0,
-            phong_size: 40.0,
-            specular: 0.0,
-            roughness: 0.05,
-            metallic: 0.0,
-            reflection: Reflection::default(),
-            conserve_energy: false,
-            ior: 1.0,
-            fade_distance: 0.0,
-            fade_power: 0.0,
-            fade_color: Rgb::BLACK,
-            texture: None,
-            pbr: None,
-        }
+        Self { ior: 1.0, fade_distance: 0.0, fade_power: 0.0, fade_color: Rgb::BLACK }
+    }
+}
+
+/// Light a surface emits by itself, in radiance units: at a point with surface colour `c`
+/// (pigment times texture) it emits `radiance * texture + times_color * c` W/(m^2 sr),
+/// linear RGB, the same in every direction.
+///
+/// Readings: a scene's `emission` key is `times_color` (POV-Ray multiplies emission by the
+/// pigment) and its `pbr.emissive` is `radiance` with `pbr.emissive_texture`; glTF's
+/// `emissiveFactor` times `KHR_materials_emissive_strength` is `radiance` with the emissive
+/// texture; OBJ's `Ke` is `radiance`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Emission {
+    /// Emitted radiance in W/(m^2 sr) (linear RGB), before `texture`.
+    pub radiance: Rgb,
+    /// An image (linear after decoding) multiplying `radiance`.
+    pub texture: Option<TextureRef>,
+    /// Emitted radiance per unit of surface colour, W/(m^2 sr) (POV-Ray's `emission`).
+    pub times_color: Rgb,
+}
+
+impl Emission {
+    /// The emitted radiance in W/(m^2 sr) where the surface colour is `color` and the
+    /// emission texture reads `texel` (linear RGB; 1 without a texture).
+    pub fn radiance_at(&self, color: Rgb, texel: Rgb) -> Rgb {
+        Rgb(self.radiance.0 * texel.0 + self.times_color.0 * color.0)
     }
 }
 
 impl Material {
-    /// The first non-finite or out-of-range parameter, as (key, message).
+    /// The first non-finite or out-of-range parameter, as (key, message); keys are the
+    /// scene file's for finishes and glTF's or MTL's names for imported surfaces.
     pub fn check(&self) -> Result<(), (&'static str, String)> {
-        let colors = [
-            ("color", self.color),
-            ("ambient", self.ambient),
-            ("emission", self.emission),
-            ("fade_color", self.fade_color),
-            ("reflection.min", self.reflection.min),
-            ("reflection.max", self.reflection.max),
+        let mut colors = vec![
+            ("emission", self.emission.times_color),
+            ("emissive", self.emission.radiance),
+            ("fade_color", self.interior.fade_color),
         ];
+        let mut numbers = vec![
+            ("ior", self.interior.ior),
+            ("fade_distance", self.interior.fade_distance),
+            ("fade_power", self.interior.fade_power),
+        ];
+        let mut textures: Vec<&TextureRef> = self.emission.texture.iter().collect();
+        match &self.surface {
+            SurfaceModel::Finish(f) => check_finish(f)?,
+            SurfaceModel::MetallicRoughness(p) => {
+                check_finish(&p.finish)?;
+                for (key, v) in [("metallic", p.metallic), ("roughness", p.roughness)] {
+                    if !(0.0..=1.0).contains(&v) {
+                        return Err((key, format!("must be between 0 and 1, got {v}")));
+                    }
+                }
+                numbers.push(("alpha", p.alpha));
+                if let AlphaMode::Mask { cutoff } = p.alpha_mode {
+                    numbers.push(("alphaCutoff", cutoff));
+                }
+                textures.extend(&p.metallic_roughness_texture);
+            }
+            SurfaceModel::Mtl(m) => {
+                colors.extend([("Kd", m.kd), ("Ks", m.ks)].into_iter().filter_map(|(k, c)| Some((k, c?))));
+                numbers.extend([("Ns", m.ns), ("Ni", m.ni), ("d", m.d)].into_iter().filter_map(|(k, v)| Some((k, v?))));
+                textures.extend(&m.map_kd);
+            }
+        }
         for (key, c) in colors {
             if !c.is_finite() {
                 return Err((key, format!("must be finite, got {:?}", c.0.to_array())));
             }
         }
-        let numbers = [
-            ("filter", self.filter),
-            ("transmit", self.transmit),
-            ("diffuse", self.diffuse),
-            ("brilliance", self.brilliance),
-            ("phong", self.phong),
-            ("phong_size", self.phong_size),
-            ("specular", self.specular),
-            ("roughness", self.roughness),
-            ("metallic", self.metallic),
-            ("reflection.falloff", self.reflection.falloff),
-            ("reflection.exponent", self.reflection.exponent),
-            ("reflection.metallic", self.reflection.metallic),
-            ("ior", self.ior),
-            ("fade_distance", self.fade_distance),
-            ("fade_power", self.fade_power),
-        ];
         for (key, v) in numbers {
             if !v.is_finite() {
                 return Err((key, format!("must be finite, got {v}")));
             }
         }
-        if self.roughness <= 0.0 {
-            return Err(("roughness", format!("must be greater than 0, got {}", self.roughness)));
+        if self.interior.ior <= 0.0 {
+            return Err(("ior", format!("must be greater than 0, got {}", self.interior.ior)));
         }
-        if self.ior <= 0.0 {
-            return Err(("ior", format!("must be greater than 0, got {}", self.ior)));
-        }
-        if self.reflection.exponent <= 0.0 {
-            return Err(("reflection.exponent", "must be greater than 0".into()));
-        }
-        if let Some(t) = &self.texture {
+        for t in textures {
             t.check()?;
-        }
-        if let Some(p) = &self.pbr {
-            for (key, v) in [("pbr.metallic", p.metallic), ("pbr.roughness", p.roughness)] {
-                if !(0.0..=1.0).contains(&v) {
-                    return Err((key, format!("must be between 0 and 1, got {v}")));
-                }
-            }
-            if !p.emissive.is_finite() {
-                return Err(("pbr.emissive", "must be finite".into()));
-            }
-            for t in [&p.metallic_roughness_texture, &p.emissive_texture].into_iter().flatten() {
-                t.check()?;
-            }
         }
         Ok(())
     }
+}
 
-    /// Every texture reference of the material with the colour space of its image, for
-    /// loading the images.
-    pub fn textures_mut(&mut self) -> Vec<(&mut TextureRef, ColorSpace)> {
-        let mut out: Vec<(&mut TextureRef, ColorSpace)> = Vec::new();
-        if let Some(t) = self.texture.as_mut() {
-            out.push((t, ColorSpace::Srgb));
-        }
-        if let Some(p) = self.pbr.as_mut() {
-            if let Some(t) = p.metallic_roughness_texture.as_mut() {
-                out.push((t, ColorSpace::Linear));
-            }
-            if let Some(t) = p.emissive_texture.as_mut() {
-                out.push((t, ColorSpace::Srgb));
-            }
-        }
-        out
-    }
-
-    /// True when the material depends on where it is hit (a texture or glTF parameters):
-    /// only then does shading need the surface's uv.
-    pub fn varies_over_surface(&self) -> bool {
-        self.texture.is_some() || self.pbr.is_some()
-    }
-
-    /// The material at a surface point with texture coordinates `uv`, for a ray footprint
-    /// `footprint` wide in uv units (it selects the mip level). Without textures or glTF
-    /// parameters this is the material itself.
-    ///
-    /// The classic finish derived from glTF parameters (documented in `docs/meshes.md`):
-    /// with `m` = metallic, `r` = roughness and `g = (1 - r)^2`: diffuse `0.6 (1 - m)`,
-    /// Blinn specular `g (0.25 + 0.75 m)` with POV-Ray roughness `a^2 / (2 - 2 a^2)` for GGX
-    /// `a = r^2` (exponent 2 / a^2 - 2), highlights and reflection tinted by the base colour
-    /// by `m`, mirror reflection `m g`.
-    pub fn at_surface(&self, uv: DVec2, footprint: f64) -> ShadedMaterial<'_> {
-        if !self.varies_over_surface() {
-            return ShadedMaterial { material: Cow::Borrowed(self), emitted: DVec3::ZERO };
-        }
-        let mut m = self.without_maps();
-        if let Some(t) = &self.texture {
-            let texel = t.sample(uv, footprint);
-            m.color = Rgb(m.color.0 * texel.truncate().as_dvec3());
-        }
-        let mut emitted = DVec3::ZERO;
-        if let Some(p) = &self.pbr {
-            let (mut metallic, mut roughness) = (p.metallic, p.roughness);
-            if let Some(t) = &p.metallic_roughness_texture {
-                let texel = t.sample(uv, footprint);
-                roughness *= f64::from(texel.y);
-                metallic *= f64::from(texel.z);
-            }
-            emitted = p.emissive.0;
-            if let Some(t) = &p.emissive_texture {
-                emitted *= t.sample(uv, footprint).truncate().as_dvec3();
-            }
-            let gloss = (1.0 - roughness).powi(2);
-            let alpha2 = roughness.powi(4).max(1e-4);
-            m.diffuse = 0.6 * (1.0 - metallic);
-            m.specular = gloss * (0.25 + 0.75 * metallic);
-            m.roughness = (alpha2 / (2.0 - 2.0 * alpha2)).clamp(5e-4, 1.0);
-            m.metallic = metallic;
-            m.phong = 0.0;
-            let mirror = metallic * gloss;
-            m.reflection =
-                Reflection { min: Rgb::grey(mirror), max: Rgb::grey(mirror), metallic, ..Reflection::default() };
-        }
-        ShadedMaterial { material: Cow::Owned(m), emitted }
-    }
-
-    /// A copy without textures or glTF parameters (cheap: nothing to allocate).
-    fn without_maps(&self) -> Material {
-        Material {
-            color: self.color,
-            filter: self.filter,
-            transmit: self.transmit,
-            ambient: self.ambient,
-            emission: self.emission,
-            diffuse: self.diffuse,
-            brilliance: self.brilliance,
-            phong: self.phong,
-            phong_size: self.phong_size,
-            specular: self.specular,
-            roughness: self.roughness,
-            metallic: self.metallic,
-            reflection: self.reflection,
-            conserve_energy: self.conserve_energy,
-            ior: self.ior,
-            fade_distance: self.fade_distance,
-            fade_power: self.fade_power,
-            fade_color: self.fade_color,
-            texture: None,
-            pbr: None,
+/// The checks of [`MaterialSpec::check`] on a finish's own fields.
+fn check_finish(f: &Finish) -> Result<(), (&'static str, String)> {
+    let colors = [
+        ("color", f.color),
+        ("ambient", f.ambient),
+        ("reflection.min", f.reflection.min),
+        ("reflection.max", f.reflection.max),
+    ];
+    for (key, c) in colors {
+        if !c.is_finite() {
+            return Err((key, format!("must be finite, got {:?}", c.0.to_array())));
         }
     }
-
-    /// Opacity (1 - filter - transmit), as POV-Ray scales ambient and diffuse.
-    pub fn opacity(&self) -> f64 {
-        1.0 - self.filter - self.transmit
+    let numbers = [
+        ("filter", f.filter),
+        ("transmit", f.transmit),
+        ("diffuse", f.diffuse),
+        ("brilliance", f.brilliance),
+        ("phong", f.phong),
+        ("phong_size", f.phong_size),
+        ("specular", f.specular),
+        ("roughness", f.roughness),
+        ("metallic", f.metallic),
+        ("reflection.falloff", f.reflection.falloff),
+        ("reflection.exponent", f.reflection.exponent),
+        ("reflection.metallic", f.reflection.metallic),
+    ];
+    for (key, v) in numbers {
+        if !v.is_finite() {
+            return Err((key, format!("must be finite, got {v}")));
+        }
     }
-
-    /// True when light passes through the surface.
-    pub fn is_transparent(&self) -> bool {
-        self.filter > 0.0 || self.transmit > 0.0
+    if f.roughness <= 0.0 {
+        return Err(("roughness", format!("must be greater than 0, got {}", f.roughness)));
     }
-}
-
-/// Mirror reflection: written as a number, a colour, or a table
-/// `{ min, max, falloff, fresnel, metallic, exponent }` (POV-Ray's `reflection { }`).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Reflection {
-    /// Reflectivity facing the viewer head-on.
-    pub min: Rgb,
-    /// Reflectivity at grazing angles.
-    pub max: Rgb,
-    /// Exponent of the falloff from max to min.
-    pub falloff: f64,
-    /// Use Fresnel's equations (needs an `ior`) between min and max.
-    pub fresnel: bool,
-    /// Tint the reflection by the pigment (0..1).
-    pub metallic: f64,
-    /// The reflected colour enters as L^(1 / exponent).
-    pub exponent: f64,
-}
-
-impl Default for Reflection {
-    fn default() -> Self {
-        Self { min: Rgb::BLACK, max: Rgb::BLACK, falloff: 1.0, fresnel: false, metallic: 0.0, exponent: 1.0 }
+    if f.reflection.exponent <= 0.0 {
+        return Err(("reflection.exponent", "must be greater than 0".into()));
     }
-}
-
-impl Reflection {
-    /// True when the surface reflects anything.
-    pub fn is_reflective(&self) -> bool {
-        self.min.0.max_element() > 0.0 || self.max.0.max_element() > 0.0
+    if let Some(t) = &f.texture {
+        t.check()?;
     }
-}
-
-impl JsonSchema for Reflection {
-    fn schema_name() -> std::borrow::Cow<'static, str> {
-        "Reflection".into()
-    }
-
-    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
-        let table = generator.subschema_for::<ReflectionTable>();
-        let color = generator.subschema_for::<Rgb>();
-        schemars::json_schema!({
-            "description": "Mirror reflection: a number or colour (constant), or a table.",
-            "anyOf": [color, table]
-        })
-    }
-}
-
-/// The table form of `reflection`.
-#[derive(Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-struct ReflectionTable {
-    /// Reflectivity facing the viewer.
-    min: Option<Rgb>,
-    /// Reflectivity at grazing angles.
-    max: Option<Rgb>,
-    /// Exponent of the change from max to min.
-    #[serde(default = "one")]
-    falloff: f64,
-    /// Use Fresnel's equations (needs an `ior`).
-    #[serde(default)]
-    fresnel: bool,
-    /// Tint the reflection by the pigment (0..1).
-    #[serde(default)]
-    metallic: f64,
-    /// The reflected colour enters as L^(1 / exponent).
-    #[serde(default = "one")]
-    exponent: f64,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-impl<'de> Deserialize<'de> for Reflection {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        d.deserialize_any(ReflectionVisitor)
-    }
-}
-
-struct ReflectionVisitor;
-
-impl ReflectionVisitor {
-    fn constant(c: Rgb) -> Reflection {
-        Reflection { min: c, max: c, ..Reflection::default() }
-    }
-}
-
-impl<'de> Visitor<'de> for ReflectionVisitor {
-    type Value = Reflection;
-
-    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str("a reflection: a number, [r, g, b], or a table { min, max, falloff, fresnel, metallic, exponent }")
-    }
-
-    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Reflection, E> {
-        Ok(Self::constant(Rgb::grey(v)))
-    }
-
-    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Reflection, E> {
-        Ok(Self::constant(Rgb::grey(v as f64)))
-    }
-
-    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Reflection, E> {
-        Ok(Self::constant(Rgb::grey(v as f64)))
-    }
-
-    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Reflection, A::Error> {
-        let c = Rgb::deserialize(de::value::SeqAccessDeserializer::new(seq))?;
-        Ok(Self::constant(c))
-    }
-
-    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Reflection, A::Error> {
-        let t = ReflectionTable::deserialize(de::value::MapAccessDeserializer::new(map))?;
-        // POV-Ray: one colour means min = max; with fresnel and one colour, min is 0.
-        let (min, max) = match (t.min, t.max) {
-            (Some(min), Some(max)) => (min, max),
-            (None, Some(max)) if t.fresnel => (Rgb::BLACK, max),
-            (Some(c), None) | (None, Some(c)) => (c, c),
-            (None, None) => (Rgb::BLACK, Rgb::BLACK),
-        };
-        Ok(Reflection { min, max, falloff: t.falloff, fresnel: t.fresnel, metallic: t.metallic, exponent: t.exponent })
-    }
+    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    #[test]
-    fn defaults_are_pov_ray_defaults() {
-        let m: Material = toml::from_str("").unwrap();
-        assert_eq!(m.ambient, Rgb::grey(0.1));
-        assert_eq!(m.diffuse, 0.6);
-        assert_eq!(m.phong_size, 40.0);
-        assert_eq!(m.roughness, 0.05);
-        assert_eq!(m.ior, 1.0);
+    fn spec(text: &str) -> Material {
+        toml::from_str::<MaterialSpec>(text).unwrap().to_material()
     }
 
     #[test]
-    fn reflection_forms() {
-        let m: Material = toml::from_str("reflection = 0.8").unwrap();
-        assert_eq!(m.reflection.min, Rgb::grey(0.8));
-        let m: Material = toml::from_str("reflection = { min = 0.1, max = 0.9, falloff = 2 }").unwrap();
-        assert_eq!((m.reflection.min, m.reflection.max, m.reflection.falloff), (Rgb::grey(0.1), Rgb::grey(0.9), 2.0));
-        let m: Material = toml::from_str("reflection = { max = 1, fresnel = true }").unwrap();
-        assert_eq!(m.reflection.min, Rgb::BLACK);
-        assert!(toml::from_str::<Material>("reflection = { mni = 1 }").is_err());
+    fn a_scene_emission_is_radiance_times_the_colour() {
+        let m = spec("color = [0.5, 1, 0.25]\nemission = 2");
+        assert_eq!(m.emission.times_color, Rgb::grey(2.0));
+        assert_eq!(m.emission.radiance, Rgb::BLACK);
+        let SurfaceModel::Finish(f) = &m.surface else { panic!("a finish") };
+        assert_eq!(m.emission.radiance_at(f.color, Rgb::WHITE), Rgb::new(1.0, 2.0, 0.5));
     }
 
     #[test]
-    fn round_trips_through_toml() {
-        let m: Material =
-            toml::from_str("color = [0.9, 0.3, 0.1]\nphong = 0.5\nreflection = { min = 0.1, max = 0.9 }").unwrap();
-        let text = toml::to_string(&m).unwrap();
-        let back: Material = toml::from_str(&text).unwrap();
-        assert_eq!(m, back);
+    fn a_scene_pbr_emissive_is_radiance_beside_the_finish_emission() {
+        let m = spec("color = 0.5\nemission = 1\npbr = { metallic = 0.2, roughness = 0.4, emissive = [3, 0, 0] }");
+        assert_eq!(m.emission.radiance, Rgb::new(3.0, 0.0, 0.0));
+        let SurfaceModel::MetallicRoughness(p) = &m.surface else { panic!("metallic-roughness") };
+        assert_eq!((p.metallic, p.roughness, p.alpha_mode), (0.2, 0.4, AlphaMode::Opaque));
+        assert_eq!(m.emission.radiance_at(p.finish.color, Rgb::WHITE), Rgb::new(3.5, 0.5, 0.5));
+    }
+
+    #[test]
+    fn interior_and_finish_keep_the_written_values() {
+        let m = spec("ior = 1.5\nfade_distance = 2\nfade_power = 1001\nroughness = 0.01\nmetallic = 0.5");
+        assert_eq!(m.interior, Interior { ior: 1.5, fade_distance: 2.0, fade_power: 1001.0, fade_color: Rgb::BLACK });
+        let SurfaceModel::Finish(f) = &m.surface else { panic!("a finish") };
+        assert_eq!((f.roughness, f.metallic), (0.01, 0.5));
+        assert!(m.check().is_ok());
+    }
+
+    #[test]
+    fn check_rejects_non_finite_mtl_values() {
+        let mut m = Material {
+            surface: SurfaceModel::Mtl(Mtl { ns: Some(f64::NAN), ..Mtl::default() }),
+            ..Material::default()
+        };
+        assert_eq!(m.check().unwrap_err().0, "Ns");
+        m.surface = SurfaceModel::Mtl(Mtl::default());
+        assert!(m.check().is_ok());
     }
 }

@@ -6,7 +6,11 @@ use super::lights::{RenderLight, render_light};
 use super::sampling::PatternTable;
 use crate::accel::primitive::Primitive;
 use crate::accel::scene_bvh::Accel;
+use std::collections::HashMap;
+use std::sync::Arc;
+
 use crate::material::Material;
+use crate::material::pov_view::PovView;
 use crate::world::Scene;
 use crate::world::components::{
     Environment, Light, MaterialComponent, ObjectFlags, RenderSettings, ShapeComponent, WorldTransform,
@@ -16,7 +20,8 @@ use crate::world::components::{
 pub struct RenderScene {
     /// Shape instances.
     pub primitives: Vec<Primitive>,
-    /// Materials, indexed by `Primitive::material`.
+    /// Materials, indexed by `Primitive::material`: one per shared material (`Arc`), in the
+    /// order primitives first use them (load order).
     pub materials: Vec<Material>,
     /// Lights.
     pub lights: Vec<RenderLight>,
@@ -36,7 +41,7 @@ pub struct RenderScene {
 
 /// Builds the render scene. Call after `resolve_transforms` and `validate`.
 pub fn extract(scene: &Scene) -> RenderScene {
-    let mut entries: Vec<(hecs::Entity, Primitive, Material)> = Vec::new();
+    let mut entries: Vec<(hecs::Entity, Primitive, Arc<Material>)> = Vec::new();
     let mut query =
         scene
             .world
@@ -49,14 +54,13 @@ pub fn extract(scene: &Scene) -> RenderScene {
     entries.sort_by_key(|(e, _, _)| e.id());
     let mut primitives = Vec::with_capacity(entries.len());
     let mut materials: Vec<Material> = Vec::new();
+    // Keyed by the shared allocation; ids follow first use, so hash order never matters.
+    let mut ids: HashMap<*const Material, usize> = HashMap::new();
     for (_, mut primitive, material) in entries {
-        let index = match materials.iter().position(|m| *m == material) {
-            Some(i) => i,
-            None => {
-                materials.push(material);
-                materials.len() - 1
-            }
-        };
+        let index = *ids.entry(Arc::as_ptr(&material)).or_insert_with(|| {
+            materials.push(Material::clone(&material));
+            materials.len() - 1
+        });
         primitive.material = index as u32;
         primitives.push(primitive);
     }
@@ -66,7 +70,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
     lights.sort_by_key(|(e, _)| e.id());
 
     let accel = Accel::build(&primitives);
-    let has_transparency = materials.iter().any(Material::is_transparent);
+    let has_transparency = materials.iter().any(|m| PovView::new(m).base.is_transparent());
     let camera = RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height);
     let (samples, seed) = (scene.render.samples, scene.render.seed);
     let patterns = if samples > 1 || camera.aperture > 0.0 {
@@ -84,5 +88,30 @@ pub fn extract(scene: &Scene) -> RenderScene {
         accel,
         has_transparency,
         patterns,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::load::{Embedded, load_from};
+
+    #[test]
+    fn objects_naming_one_material_share_its_id() {
+        const SCENE: Embedded = Embedded(&[(
+            "s.toml",
+            "[materials.red]\ncolor = [1, 0, 0]\n\
+             [[object]]\nshape = \"sphere\"\nmaterial = \"red\"\n\
+             [[object]]\nshape = \"sphere\"\nmaterial = { color = [1, 0, 0] }\n\
+             [[object]]\nshape = \"sphere\"\nmaterial = \"red\"\n\
+             [[object]]\nshape = \"sphere\"\n\
+             [[object]]\nshape = \"sphere\"\n",
+        )]);
+        let mut scene = load_from(&SCENE, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+        let scene = crate::prepare(&mut scene).unwrap();
+        let ids: Vec<u32> = scene.primitives.iter().map(|p| p.material).collect();
+        // The named material once, the inline table on its own, one default for the rest.
+        assert_eq!(ids, [0, 1, 0, 2, 2]);
+        assert_eq!(scene.materials.len(), 3);
+        assert_eq!(scene.materials[0], scene.materials[1]);
     }
 }

@@ -8,10 +8,11 @@
 
 use std::collections::BTreeMap;
 use std::path::{Component, Path, PathBuf};
+use std::sync::Arc;
 
 use crate::import::spawn::MESH_SHAPE;
 use crate::import::{Imported, MeshSource};
-use crate::material::Material;
+use crate::material::MaterialSpec;
 use crate::world::Scene;
 use crate::world::components::{
     ImportedCamera, Light, MaterialComponent, Name, ObjectFlags, Parent, ShapeComponent, Transform,
@@ -54,7 +55,7 @@ impl FilePaths {
     }
 
     /// `material` as a TOML value with its texture paths written this way.
-    fn material(&self, material: &Material) -> Result<toml::Value, toml::ser::Error> {
+    fn material(&self, material: &MaterialSpec) -> Result<toml::Value, toml::ser::Error> {
         let mut material = material.clone();
         for (texture, _) in material.textures_mut() {
             texture.file = self.write(&texture.file);
@@ -100,7 +101,7 @@ fn write_scene(scene: &Scene, paths: &FilePaths) -> Result<String, toml::ser::Er
     doc.insert("world".into(), toml::Value::try_from(&scene.environment)?);
 
     let mut objects: Vec<(hecs::Entity, toml::Table)> = Vec::new();
-    let mut materials: BTreeMap<String, Material> = BTreeMap::new();
+    let mut materials: BTreeMap<String, Arc<MaterialSpec>> = BTreeMap::new();
     let query = scene.world.query::<(
         hecs::Entity,
         &ShapeComponent,
@@ -132,12 +133,13 @@ fn write_scene(scene: &Scene, paths: &FilePaths) -> Result<String, toml::ser::Er
         if !source.material_map.is_empty() {
             let mut map = toml::Table::new();
             for (file_name, component) in &source.material_map {
+                let Some(spec) = &component.spec else { continue };
                 let value = match &component.name {
                     Some(n) => {
-                        materials.insert(n.clone(), component.material.clone());
+                        materials.insert(n.clone(), spec.clone());
                         n.clone().into()
                     }
-                    None => paths.material(&component.material)?,
+                    None => paths.material(spec)?,
                 };
                 map.insert(file_name.clone(), value);
             }
@@ -212,20 +214,21 @@ impl CommonKeys<'_> {
         scene: &Scene,
         paths: &FilePaths,
         table: &mut toml::Table,
-        materials: &mut BTreeMap<String, Material>,
+        materials: &mut BTreeMap<String, Arc<MaterialSpec>>,
     ) -> Result<(), toml::ser::Error> {
         if let Some(name) = self.name {
             table.insert("name".into(), name.0.clone().into());
         }
+        // A material without an authored form (a mesh file's own) is recreated by loading.
         match self.material {
-            Some(MaterialComponent { name: Some(n), material }) => {
-                materials.insert(n.clone(), material.clone());
+            Some(MaterialComponent { name: Some(n), spec: Some(spec), .. }) => {
+                materials.insert(n.clone(), spec.clone());
                 table.insert("material".into(), n.clone().into());
             }
-            Some(MaterialComponent { name: None, material }) => {
-                table.insert("material".into(), paths.material(material)?);
+            Some(MaterialComponent { name: None, spec: Some(spec), .. }) => {
+                table.insert("material".into(), paths.material(spec)?);
             }
-            None => {}
+            Some(MaterialComponent { spec: None, .. }) | None => {}
         }
         if !self.transform.is_identity() {
             table.insert("transform".into(), toml::Value::try_from(self.transform)?);

@@ -5,7 +5,7 @@
 use schemars::SchemaGenerator;
 use serde_json::{Map, Value, json};
 
-use crate::material::Material;
+use crate::material::MaterialSpec;
 use crate::registry::ShapeRegistry;
 use crate::world::components::{Camera, Environment, Light, RenderSettings, Transform};
 
@@ -15,7 +15,7 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
     let render = generator.subschema_for::<RenderSettings>().to_value();
     let camera = generator.subschema_for::<Camera>().to_value();
     let world = generator.subschema_for::<Environment>().to_value();
-    let material = generator.subschema_for::<Material>().to_value();
+    let material = generator.subschema_for::<MaterialSpec>().to_value();
     let transform = generator.subschema_for::<Transform>().to_value();
     let light = generator.subschema_for::<Light>().to_value();
 

@@ -92,13 +92,25 @@ pub struct ShapeComponent {
     pub geometry: Arc<dyn prism_api::Shape>,
 }
 
-/// The material of a shape, and the name it was defined under (for saving).
+/// The material of a shape, the name it was defined under and its authored form (for
+/// saving). Objects naming one `[materials.NAME]`, and parts sharing one file material, share
+/// one `Arc`: the render scene gives each `Arc` one id.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MaterialComponent {
     /// `Some(name)` when the object referenced `[materials.name]`.
     pub name: Option<String>,
+    /// The material as the scene wrote it; `None` for a mesh file's own materials.
+    pub spec: Option<Arc<crate::material::MaterialSpec>>,
     /// The material itself.
-    pub material: crate::material::Material,
+    pub material: Arc<crate::material::Material>,
+}
+
+impl MaterialComponent {
+    /// A component for a scene material (named or inline).
+    pub fn authored(name: Option<String>, spec: Arc<crate::material::MaterialSpec>) -> Self {
+        let material = Arc::new(spec.to_material());
+        Self { name, spec: Some(spec), material }
+    }
 }
 
 /// Per-object render flags.

@@ -14,24 +14,27 @@ impl Loader<'_> {
         for (name, def) in table {
             let key = format!("materials.{name}");
             if let Some(material) = self.material(index, &key, def.clone()) {
-                self.materials.insert(name.clone(), (material, index));
+                let named = MaterialComponent { name: Some(name.clone()), ..material };
+                self.materials.insert(name.clone(), (named, index));
             }
         }
     }
 
-    pub(super) fn material(&mut self, index: usize, key: &str, value: toml::Value) -> Option<Material> {
-        let mut material: Material = self.deserialize(index, key, value)?;
+    /// A scene material (inline, or the definition of a named one) as an unnamed component.
+    pub(super) fn material(&mut self, index: usize, key: &str, value: toml::Value) -> Option<MaterialComponent> {
+        let mut material: MaterialSpec = self.deserialize(index, key, value)?;
         if let Err((field, message)) = material.check() {
             let k = format!("{key}.{field}");
             self.diagnostics.push(Diagnostic::new(self.files[index].locate(&k), message));
             return None;
         }
-        self.material_textures(index, key, &mut material).then_some(material)
+        self.material_textures(index, key, &mut material)
+            .then(|| MaterialComponent::authored(None, std::sync::Arc::new(material)))
     }
 
     /// Resolves the texture paths of a scene material (relative to scene file `index`) to
     /// absolute paths and decodes the images; reports unreadable images at `key`.
-    pub(super) fn material_textures(&mut self, index: usize, key: &str, material: &mut Material) -> bool {
+    pub(super) fn material_textures(&mut self, index: usize, key: &str, material: &mut MaterialSpec) -> bool {
         let dir = self.directory(index);
         let mut ok = true;
         for (texture, space) in material.textures_mut() {

@@ -205,7 +205,7 @@ impl Loader<'_> {
                 }
                 let component = match value {
                     toml::Value::String(scene_name) => match self.materials.get(&scene_name) {
-                        Some((m, _)) => MaterialComponent { name: Some(scene_name), material: m.clone() },
+                        Some((m, _)) => m.clone(),
                         None => {
                             let d = Diagnostic::new(
                                 self.files[file].locate_value(&entry_key),
@@ -218,7 +218,7 @@ impl Loader<'_> {
                         }
                     },
                     v @ toml::Value::Table(_) => match self.material(file, &entry_key, v) {
-                        Some(m) => MaterialComponent { name: None, material: m },
+                        Some(m) => m,
                         None => {
                             ok = false;
                             continue;

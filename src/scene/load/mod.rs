@@ -18,7 +18,7 @@ use crate::diagnostics::{Diagnostic, Location, SceneError};
 use crate::import::punctual::{self, CameraChoice};
 use crate::import::spawn::{MESH_KEYS, MESH_SHAPE};
 use crate::import::{CameraProjection, ImportOptions, Imported, MeshSource, MeshStore, Model};
-use crate::material::Material;
+use crate::material::MaterialSpec;
 use crate::registry::ShapeRegistry;
 use crate::world::Scene;
 use crate::world::components::{
@@ -106,6 +106,7 @@ pub fn load_from(source: &dyn SceneSource, path: &Path, registry: &ShapeRegistry
         camera: Section::default(),
         environment: Section::default(),
         materials: HashMap::new(),
+        default_material: MaterialComponent::authored(None, std::sync::Arc::new(MaterialSpec::default())),
         objects: Vec::new(),
         lights: Vec::new(),
         meshes: MeshStore::new(),
@@ -140,7 +141,10 @@ struct Loader<'a> {
     render: Section,
     camera: Section,
     environment: Section,
-    materials: HashMap<String, (Material, usize)>,
+    /// Named materials: the component objects naming them share, and the file defining them.
+    materials: HashMap<String, (MaterialComponent, usize)>,
+    /// The material of objects that name none (one, shared).
+    default_material: MaterialComponent,
     objects: Vec<ObjectDef>,
     lights: Vec<(Light, Location)>,
     /// Imported mesh files and decoded textures, shared by every object that uses them.

@@ -86,9 +86,9 @@ impl Loader<'_> {
             return;
         }
         let material = match table.remove("material") {
-            None => Some(MaterialComponent { name: None, material: Material::default() }),
+            None => Some(self.default_material.clone()),
             Some(toml::Value::String(name)) => match self.materials.get(&name) {
-                Some((m, _)) => Some(MaterialComponent { name: Some(name), material: m.clone() }),
+                Some((m, _)) => Some(m.clone()),
                 None => {
                     let d = Diagnostic::new(
                         self.files[file].locate_value(&format!("{key}.material")),
@@ -99,9 +99,7 @@ impl Loader<'_> {
                     None
                 }
             },
-            Some(v @ toml::Value::Table(_)) => self
-                .material(file, &format!("{key}.material"), v)
-                .map(|m| MaterialComponent { name: None, material: m }),
+            Some(v @ toml::Value::Table(_)) => self.material(file, &format!("{key}.material"), v),
             Some(_) => {
                 self.diagnostics.push(Diagnostic::new(
                     self.files[file].locate_value(&format!("{key}.material")),

@@ -10,10 +10,10 @@ use prism_api::Ray;
 
 use crate::accel::primitive::{Placement, Primitive};
 use crate::accel::scene_bvh::{ConvexHull, Gathered};
-use crate::material::Material;
+use crate::material::pov_view::{PovFinish, PovView, ShadedFinish};
 use crate::render::extract::RenderScene;
-use crate::render::lights::{AreaGrid, RenderLight};
 use crate::render::integrators::{FirstHit, Integrator, PixelSample};
+use crate::render::lights::{AreaGrid, RenderLight};
 use crate::render::sampling::SampleStream;
 use crate::world::components::LightKind;
 
@@ -95,6 +95,9 @@ impl Integrator for Classic<'_> {
 /// The classic integrator over one render scene.
 pub struct Classic<'a> {
     scene: &'a RenderScene,
+    /// The POV-Ray finish of each of the scene's materials (indexed like them): all this
+    /// integrator reads of a material.
+    views: Vec<PovView>,
     /// Angle between neighbouring camera rays (radians): ray footprints for texture filtering.
     pixel_spread: f64,
     /// Primitives that may hold a camera ray's origin: unbounded ones and those whose bounds
@@ -115,7 +118,8 @@ impl<'a> Classic<'a> {
                 b.min.cmple(lens.max).all() && b.max.cmpge(lens.min).all()
             })
             .collect();
-        let mut integrator = Self { scene, pixel_spread, camera_candidates, pinhole_interiors: None };
+        let views = scene.materials.iter().map(PovView::new).collect();
+        let mut integrator = Self { scene, views, pixel_spread, camera_candidates, pinhole_interiors: None };
         if scene.camera.aperture <= 0.0 {
             integrator.pinhole_interiors = Some(integrator.interiors_at(scene.camera.position));
         }
@@ -135,22 +139,19 @@ impl<'a> Classic<'a> {
         interiors
     }
 
-    /// The material at a hit with textures looked up: the footprint of a pixel's ray cone
+    /// The finish at a hit with textures looked up: the footprint of a pixel's ray cone
     /// (from the camera, or from the last bounce for deeper rays, which underestimates it)
     /// picks the mip level.
     fn shade<'m>(
         &self,
-        material: &'m Material,
+        view: &'m PovView,
         primitive: &Primitive,
         surface: &prism_api::Surface,
         distance: f64,
         cosine: f64,
-    ) -> crate::material::ShadedMaterial<'m> {
-        if !material.varies_over_surface() {
-            return crate::material::ShadedMaterial {
-                material: std::borrow::Cow::Borrowed(material),
-                emitted: DVec3::ZERO,
-            };
+    ) -> ShadedFinish<'m> {
+        if !view.varies_over_surface() {
+            return ShadedFinish { finish: std::borrow::Cow::Borrowed(&view.base), emitted: DVec3::ZERO };
         }
         let area_scale = if primitive.placement != Placement::Affine {
             1.0
@@ -160,16 +161,15 @@ impl<'a> Classic<'a> {
         };
         let footprint =
             crate::texture::uv_footprint(self.pixel_spread * distance, surface.uv_density, area_scale, cosine);
-        material.at_surface(surface.uv, footprint)
+        view.at_surface(surface.uv, footprint)
     }
-
 
     fn medium_ior(&self, interiors: &Interiors) -> f64 {
         interiors.innermost().map_or(1.0, |p| self.material_of(p).ior)
     }
 
-    fn material_of(&self, primitive: u32) -> &Material {
-        &self.scene.materials[self.scene.primitives[primitive as usize].material as usize]
+    fn material_of(&self, primitive: u32) -> &PovFinish {
+        &self.views[self.scene.primitives[primitive as usize].material as usize].base
     }
 
     /// The relative index (n_to / n_from) POV-Ray's Fresnel reflection uses for a ray inside
@@ -195,9 +195,9 @@ impl<'a> Classic<'a> {
             return scene.environment.background.0;
         };
         let primitive = &scene.primitives[closest.primitive as usize];
-        let material = &scene.materials[primitive.material as usize];
+        let view = &self.views[primitive.material as usize];
         // The uv costs trigonometry on curved shapes; only textured materials look at it.
-        let surface = if material.varies_over_surface() {
+        let surface = if view.varies_over_surface() {
             primitive.shape.surface(&closest.object_ray, &closest.hit)
         } else {
             primitive.shape.surface_geometry(&closest.object_ray, &closest.hit)
@@ -208,8 +208,8 @@ impl<'a> Classic<'a> {
         // Two-sided: shade with the normal facing the viewer.
         let n = if shading.dot(d) > 0.0 { -shading } else { shading };
         let entering = !interiors.contains(closest.primitive);
-        let shaded = self.shade(material, primitive, &surface, closest.hit.t * d.length(), n.dot(d) / d.length());
-        let material: &Material = &shaded.material;
+        let shaded = self.shade(view, primitive, &surface, closest.hit.t * d.length(), n.dot(d) / d.length());
+        let material: &PovFinish = &shaded.finish;
         if level == 1 && state.first_hit.is_none() {
             state.first_hit = Some(FirstHit {
                 albedo: material.color.0,
@@ -306,7 +306,7 @@ impl<'a> Classic<'a> {
         point: DVec3,
         n: DVec3,
         d: DVec3,
-        m: &Material,
+        m: &PovFinish,
         interiors: &Interiors,
         state: &mut PathState,
     ) -> DVec3 {
@@ -672,7 +672,7 @@ fn fresnel(eta: f64, c: f64) -> f64 {
 /// Interior attenuation over path length `s`. POV-Ray tests the two ray kinds differently:
 /// a camera-side ray fades whenever `fade_distance` is not 0 (with `fade_power` 0 that is a
 /// constant halfway blend), a shadow ray only when `fade_power` is positive as well.
-fn interior_fade(m: &Material, s: f64, shadow: bool) -> DVec3 {
+fn interior_fade(m: &PovFinish, s: f64, shadow: bool) -> DVec3 {
     if m.fade_distance.abs() <= IOR_EPSILON || (shadow && m.fade_power <= 0.0) {
         return DVec3::ONE;
     }
@@ -812,18 +812,19 @@ mod tests {
     #[test]
     fn interior_fade_tests_camera_and_shadow_rays_as_pov_ray_does() {
         let grey = crate::color::Rgb::grey(0.2);
-        let m = Material { fade_distance: 2.0, fade_power: 0.0, fade_color: grey, ..Material::default() };
+        let base = PovView::new(&crate::material::Material::default()).base;
+        let m = PovFinish { fade_distance: 2.0, fade_power: 0.0, fade_color: grey, ..base };
         // fade_power 0: a constant halfway blend for camera-side rays, nothing for shadows.
         assert!((interior_fade(&m, 5.0, false) - DVec3::splat(0.6)).length() < 1e-12);
         assert_eq!(interior_fade(&m, 5.0, true), DVec3::ONE);
-        let m = Material { fade_power: 2.0, ..m };
+        let m = PovFinish { fade_power: 2.0, ..m };
         let expected = 0.2 + 0.8 / (1.0 + 2.5f64 * 2.5);
         for shadow in [false, true] {
             assert!((interior_fade(&m, 5.0, shadow) - DVec3::splat(expected)).length() < 1e-12);
         }
-        let m = Material { fade_power: 1000.0, ..m };
+        let m = PovFinish { fade_power: 1000.0, ..m };
         assert!((interior_fade(&m, 5.0, true) - DVec3::splat((-0.8f64 * 2.5).exp())).length() < 1e-12);
-        let none = Material { fade_distance: 0.0, fade_power: 2.0, ..m };
+        let none = PovFinish { fade_distance: 0.0, fade_power: 2.0, ..m };
         assert_eq!(interior_fade(&none, 5.0, false), DVec3::ONE);
     }
 }

@@ -1,0 +1,354 @@
+//! The classic integrator's view of a [`Material`]: the flat POV-Ray 3.7 finish it shades
+//! with. A scene's finish is itself; glTF metallic-roughness and OBJ/MTL surfaces are mapped
+//! to a finish here (the mappings are documented in `docs/meshes.md`). Everything that does
+//! not vary over the surface is computed once per material ([`PovView::new`]); only
+//! textured or metallic-roughness materials do work per hit ([`PovView::at_surface`]).
+
+use std::borrow::Cow;
+
+use glam::{DVec2, DVec3};
+
+use super::{AlphaMode, Finish, Material, MetallicRoughness, Mtl, Reflection, SurfaceModel};
+use crate::color::Rgb;
+use crate::texture::TextureRef;
+
+/// A POV-Ray finish, pigment and interior at one point, every field with POV-Ray's meaning.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PovFinish {
+    /// Pigment colour (linear RGB).
+    pub color: Rgb,
+    /// `filter`: fraction of light passing through tinted by the colour.
+    pub filter: f64,
+    /// `transmit`: fraction of light passing through untinted.
+    pub transmit: f64,
+    /// `ambient`, multiplied by the world's `ambient_light` and the colour.
+    pub ambient: Rgb,
+    /// `emission`, multiplied by the colour (like ambient).
+    pub emission: Rgb,
+    /// `diffuse` coefficient.
+    pub diffuse: f64,
+    /// `brilliance`: exponent on the diffuse cosine.
+    pub brilliance: f64,
+    /// `phong` highlight strength.
+    pub phong: f64,
+    /// `phong_size` exponent.
+    pub phong_size: f64,
+    /// `specular` (Blinn) highlight strength.
+    pub specular: f64,
+    /// `roughness`: the Blinn exponent is 1 / roughness.
+    pub roughness: f64,
+    /// `metallic`: how much highlights take the pigment's colour.
+    pub metallic: f64,
+    /// `reflection { }`.
+    pub reflection: Reflection,
+    /// `conserve_energy`.
+    pub conserve_energy: bool,
+    /// The interior's `ior`.
+    pub ior: f64,
+    /// The interior's `fade_distance`.
+    pub fade_distance: f64,
+    /// The interior's `fade_power`.
+    pub fade_power: f64,
+    /// The interior's `fade_color`.
+    pub fade_color: Rgb,
+}
+
+impl PovFinish {
+    /// Opacity (1 - filter - transmit), as POV-Ray scales ambient and diffuse.
+    pub fn opacity(&self) -> f64 {
+        1.0 - self.filter - self.transmit
+    }
+
+    /// True when light passes through the surface.
+    pub fn is_transparent(&self) -> bool {
+        self.filter > 0.0 || self.transmit > 0.0
+    }
+}
+
+/// The finish at one surface point.
+#[derive(Debug)]
+pub struct ShadedFinish<'a> {
+    /// The finish to shade with (borrowed when the material does not vary over the surface).
+    pub finish: Cow<'a, PovFinish>,
+    /// Radiance emitted toward the viewer, W/(m^2 sr), added as is.
+    pub emitted: DVec3,
+}
+
+/// A material as the classic integrator reads it: the finish where the surface is not
+/// textured, plus what varies over it.
+#[derive(Clone, Debug)]
+pub struct PovView {
+    /// The finish before textures (the whole finish of an untextured material).
+    pub base: PovFinish,
+    varying: Option<Varying>,
+}
+
+/// What a hit looks up.
+#[derive(Clone, Debug)]
+struct Varying {
+    /// Multiplies the colour.
+    texture: Option<TextureRef>,
+    /// glTF parameters turned into the finish at each hit.
+    pbr: Option<PbrParams>,
+    /// Emitted radiance (W/(m^2 sr)) and its texture, added as is.
+    emitted: Option<(Rgb, Option<TextureRef>)>,
+}
+
+#[derive(Clone, Debug)]
+struct PbrParams {
+    metallic: f64,
+    roughness: f64,
+    metallic_roughness_texture: Option<TextureRef>,
+}
+
+impl PovView {
+    /// The view of `material`.
+    pub fn new(material: &Material) -> Self {
+        let interior = &material.interior;
+        let emission = &material.emission;
+        let finish = |f: &Finish, emission: Rgb| PovFinish {
+            color: f.color,
+            filter: f.filter,
+            transmit: f.transmit,
+            ambient: f.ambient,
+            emission,
+            diffuse: f.diffuse,
+            brilliance: f.brilliance,
+            phong: f.phong,
+            phong_size: f.phong_size,
+            specular: f.specular,
+            roughness: f.roughness,
+            metallic: f.metallic,
+            reflection: f.reflection,
+            conserve_energy: f.conserve_energy,
+            ior: interior.ior,
+            fade_distance: interior.fade_distance,
+            fade_power: interior.fade_power,
+            fade_color: interior.fade_color,
+        };
+        let emitted = || (emission.radiance, emission.texture.clone());
+        match &material.surface {
+            SurfaceModel::Finish(f) => {
+                let glows = emission.radiance != Rgb::BLACK || emission.texture.is_some();
+                let varying = (f.texture.is_some() || glows).then(|| Varying {
+                    texture: f.texture.clone(),
+                    pbr: None,
+                    emitted: glows.then(emitted),
+                });
+                Self { base: finish(f, emission.times_color), varying }
+            }
+            SurfaceModel::MetallicRoughness(p) => {
+                let mut base = finish(&p.finish, emission.times_color);
+                if p.alpha_mode == AlphaMode::Blend {
+                    // Whitted tracing has no partial coverage: blending becomes transmission.
+                    base.transmit = (1.0 - p.alpha).clamp(0.0, 1.0);
+                }
+                let varying =
+                    Varying { texture: p.finish.texture.clone(), pbr: Some(pbr_params(p)), emitted: Some(emitted()) };
+                Self { base, varying: Some(varying) }
+            }
+            SurfaceModel::Mtl(m) => {
+                let (mapped, texture) = mtl_finish(m, emission.radiance, interior.ior);
+                let base = PovFinish { ior: mapped.ior, ..finish(&mapped.finish, mapped.emission) };
+                let varying = texture.map(|t| Varying { texture: Some(t), pbr: None, emitted: None });
+                Self { base, varying }
+            }
+        }
+    }
+
+    /// True when the finish depends on where the surface is hit: only then does shading need
+    /// the surface's uv.
+    pub fn varies_over_surface(&self) -> bool {
+        self.varying.is_some()
+    }
+
+    /// The finish at a surface point with texture coordinates `uv`, for a ray footprint
+    /// `footprint` wide in uv units (it selects the mip level).
+    ///
+    /// The finish derived from glTF parameters (documented in `docs/meshes.md`): with `m` =
+    /// metallic, `r` = roughness and `g = (1 - r)^2`: diffuse `0.6 (1 - m)`, Blinn specular
+    /// `g (0.25 + 0.75 m)` with POV-Ray roughness `a^2 / (2 - 2 a^2)` for GGX `a = r^2`
+    /// (exponent 2 / a^2 - 2), highlights and reflection tinted by the base colour by `m`,
+    /// mirror reflection `m g`.
+    pub fn at_surface(&self, uv: DVec2, footprint: f64) -> ShadedFinish<'_> {
+        let Some(varying) = &self.varying else {
+            return ShadedFinish { finish: Cow::Borrowed(&self.base), emitted: DVec3::ZERO };
+        };
+        let mut m = self.base;
+        if let Some(t) = &varying.texture {
+            let texel = t.sample(uv, footprint);
+            m.color = Rgb(m.color.0 * texel.truncate().as_dvec3());
+        }
+        let mut emitted = DVec3::ZERO;
+        if let Some(p) = &varying.pbr {
+            let (mut metallic, mut roughness) = (p.metallic, p.roughness);
+            if let Some(t) = &p.metallic_roughness_texture {
+                let texel = t.sample(uv, footprint);
+                roughness *= f64::from(texel.y);
+                metallic *= f64::from(texel.z);
+            }
+            let gloss = (1.0 - roughness).powi(2);
+            let alpha2 = roughness.powi(4).max(1e-4);
+            m.diffuse = 0.6 * (1.0 - metallic);
+            m.specular = gloss * (0.25 + 0.75 * metallic);
+            m.roughness = (alpha2 / (2.0 - 2.0 * alpha2)).clamp(5e-4, 1.0);
+            m.metallic = metallic;
+            m.phong = 0.0;
+            let mirror = metallic * gloss;
+            m.reflection =
+                Reflection { min: Rgb::grey(mirror), max: Rgb::grey(mirror), metallic, ..Reflection::default() };
+        }
+        if let Some((radiance, texture)) = &varying.emitted {
+            emitted = radiance.0;
+            if let Some(t) = texture {
+                emitted *= t.sample(uv, footprint).truncate().as_dvec3();
+            }
+        }
+        ShadedFinish { finish: Cow::Owned(m), emitted }
+    }
+}
+
+fn pbr_params(p: &MetallicRoughness) -> PbrParams {
+    PbrParams {
+        metallic: p.metallic,
+        roughness: p.roughness,
+        metallic_roughness_texture: p.metallic_roughness_texture.clone(),
+    }
+}
+
+/// A finish with the emission coefficient and index of refraction MTL gives it.
+struct MtlFinish {
+    finish: Finish,
+    emission: Rgb,
+    ior: f64,
+}
+
+/// MTL to a POV-Ray finish: Kd -> colour (map_Kd multiplies it), Ks and Ns -> Blinn specular
+/// (strength = mean of Ks, POV-Ray roughness = 1 / Ns), illum 3 or 5-7 -> mirror reflection
+/// Ks, d < 1 (or Tr) -> transmit 1 - d with ior Ni, Ke -> emission Ke / Kd (POV-Ray
+/// multiplies emission by the colour). Returns the finish and the colour texture.
+fn mtl_finish(m: &Mtl, ke: Rgb, default_ior: f64) -> (MtlFinish, Option<TextureRef>) {
+    let mut finish = Finish::default();
+    let mut ior = default_ior;
+    if let Some(kd) = m.kd {
+        finish.color = kd;
+    }
+    let ks = m.ks.unwrap_or(Rgb::BLACK);
+    let strength = (ks.0.x + ks.0.y + ks.0.z) / 3.0;
+    if strength > 0.0 {
+        finish.specular = strength.clamp(0.0, 1.0);
+        let ns = m.ns.unwrap_or(10.0).max(1.0);
+        finish.roughness = (1.0 / ns).clamp(5e-4, 1.0);
+    }
+    let illum = m.illum.unwrap_or(2);
+    if matches!(illum, 3 | 5 | 6 | 7) && strength > 0.0 {
+        finish.reflection = Reflection { min: ks, max: ks, ..Reflection::default() };
+    }
+    let dissolve = m.d.unwrap_or(1.0).clamp(0.0, 1.0);
+    if dissolve < 1.0 {
+        finish.transmit = 1.0 - dissolve;
+        ior = m.ni.filter(|&n| n.is_finite() && n > 0.0).unwrap_or(1.0);
+    }
+    let mut emission = Rgb::BLACK;
+    if ke.0.to_array().iter().any(|&c| c > 0.0) {
+        let c = finish.color.0;
+        let ke = ke.0;
+        let ratio = |e: f64, c: f64| if c > 0.0 { e / c } else { e };
+        emission = Rgb::new(ratio(ke.x, c.x), ratio(ke.y, c.y), ratio(ke.z, c.z));
+    }
+    (MtlFinish { finish, emission, ior }, m.map_kd.clone())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{Emission, Interior};
+
+    fn mtl(m: Mtl, ke: Rgb) -> PovFinish {
+        let material = Material {
+            surface: SurfaceModel::Mtl(m),
+            emission: Emission { radiance: ke, ..Emission::default() },
+            ..Material::default()
+        };
+        let view = PovView::new(&material);
+        assert!(!view.varies_over_surface());
+        view.base
+    }
+
+    #[test]
+    fn mtl_maps_to_blinn_mirror_transmit_and_emission_over_kd() {
+        let f = mtl(
+            Mtl {
+                kd: Some(Rgb::new(0.5, 0.0, 1.0)),
+                ks: Some(Rgb::grey(0.5)),
+                ns: Some(100.0),
+                ni: Some(1.5),
+                d: Some(0.2),
+                illum: Some(3),
+                map_kd: None,
+            },
+            Rgb::new(0.5, 1.0, 0.0),
+        );
+        assert_eq!(f.color, Rgb::new(0.5, 0.0, 1.0));
+        assert_eq!((f.specular, f.roughness), (0.5, 0.01));
+        assert_eq!((f.reflection.min, f.reflection.max), (Rgb::grey(0.5), Rgb::grey(0.5)));
+        assert_eq!((f.transmit, f.ior), (1.0 - 0.2, 1.5));
+        // Ke / Kd where Kd > 0, Ke itself where Kd is 0.
+        assert_eq!(f.emission, Rgb::new(1.0, 1.0, 0.0));
+        assert_eq!((f.ambient, f.diffuse, f.phong), (Rgb::grey(0.1), 0.6, 0.0));
+    }
+
+    #[test]
+    fn mtl_defaults_and_illum_2_stay_pov_ray_defaults() {
+        let f = mtl(Mtl { ks: Some(Rgb::grey(0.3)), illum: Some(2), ..Mtl::default() }, Rgb::BLACK);
+        assert_eq!((f.color, f.specular, f.roughness), (Rgb::WHITE, (0.3 + 0.3 + 0.3) / 3.0, 0.1));
+        assert!(!f.reflection.is_reflective());
+        assert_eq!((f.transmit, f.ior, f.emission), (0.0, 1.0, Rgb::BLACK));
+        // Opaque: Ni is ignored; Ns below 1 is 1.
+        let f = mtl(Mtl { ks: Some(Rgb::grey(1.0)), ns: Some(0.5), ni: Some(2.0), ..Mtl::default() }, Rgb::BLACK);
+        assert_eq!((f.roughness, f.ior), (1.0, 1.0));
+    }
+
+    fn gltf(metallic: f64, roughness: f64, alpha_mode: AlphaMode, alpha: f64) -> PovView {
+        let surface = SurfaceModel::MetallicRoughness(MetallicRoughness {
+            finish: Finish { color: Rgb::new(0.8, 0.4, 0.2), ..Finish::default() },
+            metallic,
+            roughness,
+            metallic_roughness_texture: None,
+            alpha_mode,
+            alpha,
+        });
+        let emission = Emission { radiance: Rgb::new(1.0, 2.0, 3.0), ..Emission::default() };
+        PovView::new(&Material { surface, emission, interior: Interior::default() })
+    }
+
+    #[test]
+    fn metallic_roughness_maps_to_the_classic_finish() {
+        let view = gltf(1.0, 0.0, AlphaMode::Opaque, 1.0);
+        let shaded = view.at_surface(DVec2::ZERO, 0.0);
+        let f = &shaded.finish;
+        assert_eq!((f.diffuse, f.specular, f.roughness, f.metallic, f.phong), (0.0, 1.0, 5e-4, 1.0, 0.0));
+        assert_eq!((f.reflection.min, f.reflection.metallic), (Rgb::grey(1.0), 1.0));
+        assert_eq!((f.color, f.transmit), (Rgb::new(0.8, 0.4, 0.2), 0.0));
+        assert_eq!(shaded.emitted, DVec3::new(1.0, 2.0, 3.0));
+
+        let view = gltf(0.0, 0.5, AlphaMode::Blend, 0.25);
+        let f = *view.at_surface(DVec2::ZERO, 0.0).finish;
+        assert_eq!((f.diffuse, f.specular, f.metallic), (0.6, 0.25 * 0.25, 0.0));
+        assert_eq!(f.roughness, 0.0625 / (2.0 - 2.0 * 0.0625));
+        assert!(!f.reflection.is_reflective());
+        assert_eq!(f.transmit, 0.75);
+        assert!(view.base.is_transparent() && view.varies_over_surface());
+    }
+
+    #[test]
+    fn a_scene_finish_is_its_own_view() {
+        let spec: crate::material::MaterialSpec =
+            toml::from_str("color = [1, 0.5, 0]\nphong = 0.7\nemission = 0.25\nior = 1.33\nfade_distance = 3").unwrap();
+        let view = PovView::new(&spec.to_material());
+        assert!(!view.varies_over_surface());
+        let f = view.base;
+        assert_eq!((f.color, f.phong, f.emission), (spec.color, 0.7, Rgb::grey(0.25)));
+        assert_eq!((f.ior, f.fade_distance, f.roughness, f.ambient), (1.33, 3.0, 0.05, Rgb::grey(0.1)));
+    }
+}

@@ -1,0 +1,418 @@
+//! The authored form of a material: what a scene file's `[materials.NAME]` table or inline
+//! `material = { ... }` says, as serde reads and writes it (load, save, the schema and
+//! `export pov` use it). Its keys are POV-Ray's pigment, finish and interior under POV-Ray's
+//! meanings, plus an optional glTF metallic-roughness table `pbr`.
+//! [`MaterialSpec::to_material`] turns it into the [`Material`] Prism renders with.
+//!
+//! Every default is POV-Ray 3.7's, except the colour, which is white (POV-Ray's default
+//! pigment is black; the exporter always writes the colour).
+
+use std::fmt;
+
+use schemars::JsonSchema;
+use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Serialize};
+
+use super::{AlphaMode, Emission, Finish, Interior, Material, MetallicRoughness, SurfaceModel};
+use crate::color::Rgb;
+use crate::texture::{ColorSpace, TextureRef};
+
+/// A material as a scene file writes it (POV-Ray's meanings; see the module docs). The
+/// schema keeps the name `Material`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+#[schemars(rename = "Material", description = "A surface and interior description.")]
+pub struct MaterialSpec {
+    /// Pigment colour (linear RGB).
+    pub color: Rgb,
+    /// Fraction of light that passes through, tinted by the colour (POV-Ray `filter`).
+    pub filter: f64,
+    /// Fraction of light that passes through untinted (POV-Ray `transmit`).
+    pub transmit: f64,
+    /// Ambient coefficient, multiplied by the world's `ambient_light` and the colour.
+    pub ambient: Rgb,
+    /// Light the surface emits by itself (multiplied by the colour, like ambient).
+    pub emission: Rgb,
+    /// Diffuse coefficient.
+    pub diffuse: f64,
+    /// Exponent on the diffuse cosine (1 = Lambert).
+    pub brilliance: f64,
+    /// Phong highlight strength.
+    pub phong: f64,
+    /// Phong exponent.
+    pub phong_size: f64,
+    /// Blinn specular highlight strength.
+    pub specular: f64,
+    /// Specular roughness; the exponent is 1 / roughness.
+    pub roughness: f64,
+    /// How much highlights take the pigment's colour (0..1).
+    pub metallic: f64,
+    /// Mirror reflection.
+    pub reflection: Reflection,
+    /// Scales transmitted light by (1 - reflection) so the surface does not create light.
+    pub conserve_energy: bool,
+    /// Index of refraction of the interior (1 = no refraction).
+    pub ior: f64,
+    /// Interior fade distance (0 = no fade).
+    pub fade_distance: f64,
+    /// Interior fade power (>= 1000 switches to exponential attenuation, as in POV-Ray).
+    pub fade_power: f64,
+    /// Colour the interior fades toward.
+    pub fade_color: Rgb,
+    /// An image whose (linear) colour multiplies `color`: a path relative to the scene file,
+    /// or a table `{ file, wrap, offset, scale, rotation }`. Needs a shape with texture
+    /// coordinates (meshes from glTF or OBJ files).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub texture: Option<TextureRef>,
+    /// glTF metallic-roughness parameters. When present, the classic finish (diffuse,
+    /// highlights, reflection) is derived from them at every hit (see `docs/meshes.md`)
+    /// instead of read from the fields above.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pbr: Option<Pbr>,
+}
+
+/// glTF 2.0 metallic-roughness parameters (the core material model plus emission).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Pbr {
+    /// Metalness factor (0 = dielectric, 1 = metal).
+    pub metallic: f64,
+    /// Perceptual roughness factor (0 = mirror-smooth, 1 = fully rough).
+    pub roughness: f64,
+    /// Texture whose blue channel multiplies `metallic` and green channel `roughness`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metallic_roughness_texture: Option<TextureRef>,
+    /// Emitted radiance (linear RGB, not multiplied by the colour).
+    pub emissive: Rgb,
+    /// Texture (sRGB) multiplying `emissive`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub emissive_texture: Option<TextureRef>,
+}
+
+impl Default for Pbr {
+    fn default() -> Self {
+        Self {
+            metallic: 1.0,
+            roughness: 1.0,
+            metallic_roughness_texture: None,
+            emissive: Rgb::BLACK,
+            emissive_texture: None,
+        }
+    }
+}
+
+impl Default for MaterialSpec {
+    fn default() -> Self {
+        Self {
+            color: Rgb::WHITE,
+            filter: 0.0,
+            transmit: 0.0,
+            ambient: Rgb::grey(0.1),
+            emission: Rgb::BLACK,
+            diffuse: 0.6,
+            brilliance: 1.0,
+            phong: 0.0,
+            phong_size: 40.0,
+            specular: 0.0,
+            roughness: 0.05,
+            metallic: 0.0,
+            reflection: Reflection::default(),
+            conserve_energy: false,
+            ior: 1.0,
+            fade_distance: 0.0,
+            fade_power: 0.0,
+            fade_color: Rgb::BLACK,
+            texture: None,
+            pbr: None,
+        }
+    }
+}
+
+impl MaterialSpec {
+    /// The first non-finite or out-of-range parameter, as (key, message).
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        let colors = [
+            ("color", self.color),
+            ("ambient", self.ambient),
+            ("emission", self.emission),
+            ("fade_color", self.fade_color),
+            ("reflection.min", self.reflection.min),
+            ("reflection.max", self.reflection.max),
+        ];
+        for (key, c) in colors {
+            if !c.is_finite() {
+                return Err((key, format!("must be finite, got {:?}", c.0.to_array())));
+            }
+        }
+        let numbers = [
+            ("filter", self.filter),
+            ("transmit", self.transmit),
+            ("diffuse", self.diffuse),
+            ("brilliance", self.brilliance),
+            ("phong", self.phong),
+            ("phong_size", self.phong_size),
+            ("specular", self.specular),
+            ("roughness", self.roughness),
+            ("metallic", self.metallic),
+            ("reflection.falloff", self.reflection.falloff),
+            ("reflection.exponent", self.reflection.exponent),
+            ("reflection.metallic", self.reflection.metallic),
+            ("ior", self.ior),
+            ("fade_distance", self.fade_distance),
+            ("fade_power", self.fade_power),
+        ];
+        for (key, v) in numbers {
+            if !v.is_finite() {
+                return Err((key, format!("must be finite, got {v}")));
+            }
+        }
+        if self.roughness <= 0.0 {
+            return Err(("roughness", format!("must be greater than 0, got {}", self.roughness)));
+        }
+        if self.ior <= 0.0 {
+            return Err(("ior", format!("must be greater than 0, got {}", self.ior)));
+        }
+        if self.reflection.exponent <= 0.0 {
+            return Err(("reflection.exponent", "must be greater than 0".into()));
+        }
+        if let Some(t) = &self.texture {
+            t.check()?;
+        }
+        if let Some(p) = &self.pbr {
+            for (key, v) in [("pbr.metallic", p.metallic), ("pbr.roughness", p.roughness)] {
+                if !(0.0..=1.0).contains(&v) {
+                    return Err((key, format!("must be between 0 and 1, got {v}")));
+                }
+            }
+            if !p.emissive.is_finite() {
+                return Err(("pbr.emissive", "must be finite".into()));
+            }
+            for t in [&p.metallic_roughness_texture, &p.emissive_texture].into_iter().flatten() {
+                t.check()?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Every texture reference of the material with the colour space of its image, for
+    /// loading the images.
+    pub fn textures_mut(&mut self) -> Vec<(&mut TextureRef, ColorSpace)> {
+        let mut out: Vec<(&mut TextureRef, ColorSpace)> = Vec::new();
+        if let Some(t) = self.texture.as_mut() {
+            out.push((t, ColorSpace::Srgb));
+        }
+        if let Some(p) = self.pbr.as_mut() {
+            if let Some(t) = p.metallic_roughness_texture.as_mut() {
+                out.push((t, ColorSpace::Linear));
+            }
+            if let Some(t) = p.emissive_texture.as_mut() {
+                out.push((t, ColorSpace::Srgb));
+            }
+        }
+        out
+    }
+
+    /// The material Prism renders with: the POV-Ray finish as written (a metallic-roughness
+    /// surface when `pbr` is given, starting from the finish written beside it), the
+    /// interior, and the emission read in radiance units (`emission` times the colour, plus
+    /// `pbr.emissive` times its texture).
+    pub fn to_material(&self) -> Material {
+        let finish = Finish {
+            color: self.color,
+            filter: self.filter,
+            transmit: self.transmit,
+            ambient: self.ambient,
+            diffuse: self.diffuse,
+            brilliance: self.brilliance,
+            phong: self.phong,
+            phong_size: self.phong_size,
+            specular: self.specular,
+            roughness: self.roughness,
+            metallic: self.metallic,
+            reflection: self.reflection,
+            conserve_energy: self.conserve_energy,
+            texture: self.texture.clone(),
+        };
+        let mut emission = Emission { times_color: self.emission, ..Emission::default() };
+        let surface = match &self.pbr {
+            None => SurfaceModel::Finish(finish),
+            Some(p) => {
+                emission.radiance = p.emissive;
+                emission.texture = p.emissive_texture.clone();
+                SurfaceModel::MetallicRoughness(MetallicRoughness {
+                    finish,
+                    metallic: p.metallic,
+                    roughness: p.roughness,
+                    metallic_roughness_texture: p.metallic_roughness_texture.clone(),
+                    alpha_mode: AlphaMode::Opaque,
+                    alpha: 1.0,
+                })
+            }
+        };
+        let interior = Interior {
+            ior: self.ior,
+            fade_distance: self.fade_distance,
+            fade_power: self.fade_power,
+            fade_color: self.fade_color,
+        };
+        Material { surface, interior, emission }
+    }
+}
+
+/// Mirror reflection: written as a number, a colour, or a table
+/// `{ min, max, falloff, fresnel, metallic, exponent }` (POV-Ray's `reflection { }`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Reflection {
+    /// Reflectivity facing the viewer head-on.
+    pub min: Rgb,
+    /// Reflectivity at grazing angles.
+    pub max: Rgb,
+    /// Exponent of the falloff from max to min.
+    pub falloff: f64,
+    /// Use Fresnel's equations (needs an `ior`) between min and max.
+    pub fresnel: bool,
+    /// Tint the reflection by the pigment (0..1).
+    pub metallic: f64,
+    /// The reflected colour enters as L^(1 / exponent).
+    pub exponent: f64,
+}
+
+impl Default for Reflection {
+    fn default() -> Self {
+        Self { min: Rgb::BLACK, max: Rgb::BLACK, falloff: 1.0, fresnel: false, metallic: 0.0, exponent: 1.0 }
+    }
+}
+
+impl Reflection {
+    /// True when the surface reflects anything.
+    pub fn is_reflective(&self) -> bool {
+        self.min.0.max_element() > 0.0 || self.max.0.max_element() > 0.0
+    }
+}
+
+impl JsonSchema for Reflection {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Reflection".into()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let table = generator.subschema_for::<ReflectionTable>();
+        let color = generator.subschema_for::<Rgb>();
+        schemars::json_schema!({
+            "description": "Mirror reflection: a number or colour (constant), or a table.",
+            "anyOf": [color, table]
+        })
+    }
+}
+
+/// The table form of `reflection`.
+#[derive(Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+struct ReflectionTable {
+    /// Reflectivity facing the viewer.
+    min: Option<Rgb>,
+    /// Reflectivity at grazing angles.
+    max: Option<Rgb>,
+    /// Exponent of the change from max to min.
+    #[serde(default = "one")]
+    falloff: f64,
+    /// Use Fresnel's equations (needs an `ior`).
+    #[serde(default)]
+    fresnel: bool,
+    /// Tint the reflection by the pigment (0..1).
+    #[serde(default)]
+    metallic: f64,
+    /// The reflected colour enters as L^(1 / exponent).
+    #[serde(default = "one")]
+    exponent: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+impl<'de> Deserialize<'de> for Reflection {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(ReflectionVisitor)
+    }
+}
+
+struct ReflectionVisitor;
+
+impl ReflectionVisitor {
+    fn constant(c: Rgb) -> Reflection {
+        Reflection { min: c, max: c, ..Reflection::default() }
+    }
+}
+
+impl<'de> Visitor<'de> for ReflectionVisitor {
+    type Value = Reflection;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a reflection: a number, [r, g, b], or a table { min, max, falloff, fresnel, metallic, exponent }")
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Reflection, E> {
+        Ok(Self::constant(Rgb::grey(v)))
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Reflection, E> {
+        Ok(Self::constant(Rgb::grey(v as f64)))
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Reflection, E> {
+        Ok(Self::constant(Rgb::grey(v as f64)))
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Reflection, A::Error> {
+        let c = Rgb::deserialize(de::value::SeqAccessDeserializer::new(seq))?;
+        Ok(Self::constant(c))
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Reflection, A::Error> {
+        let t = ReflectionTable::deserialize(de::value::MapAccessDeserializer::new(map))?;
+        // POV-Ray: one colour means min = max; with fresnel and one colour, min is 0.
+        let (min, max) = match (t.min, t.max) {
+            (Some(min), Some(max)) => (min, max),
+            (None, Some(max)) if t.fresnel => (Rgb::BLACK, max),
+            (Some(c), None) | (None, Some(c)) => (c, c),
+            (None, None) => (Rgb::BLACK, Rgb::BLACK),
+        };
+        Ok(Reflection { min, max, falloff: t.falloff, fresnel: t.fresnel, metallic: t.metallic, exponent: t.exponent })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_pov_ray_defaults() {
+        let m: MaterialSpec = toml::from_str("").unwrap();
+        assert_eq!(m.ambient, Rgb::grey(0.1));
+        assert_eq!(m.diffuse, 0.6);
+        assert_eq!(m.phong_size, 40.0);
+        assert_eq!(m.roughness, 0.05);
+        assert_eq!(m.ior, 1.0);
+    }
+
+    #[test]
+    fn reflection_forms() {
+        let m: MaterialSpec = toml::from_str("reflection = 0.8").unwrap();
+        assert_eq!(m.reflection.min, Rgb::grey(0.8));
+        let m: MaterialSpec = toml::from_str("reflection = { min = 0.1, max = 0.9, falloff = 2 }").unwrap();
+        assert_eq!((m.reflection.min, m.reflection.max, m.reflection.falloff), (Rgb::grey(0.1), Rgb::grey(0.9), 2.0));
+        let m: MaterialSpec = toml::from_str("reflection = { max = 1, fresnel = true }").unwrap();
+        assert_eq!(m.reflection.min, Rgb::BLACK);
+        assert!(toml::from_str::<MaterialSpec>("reflection = { mni = 1 }").is_err());
+    }
+
+    #[test]
+    fn round_trips_through_toml() {
+        let m: MaterialSpec =
+            toml::from_str("color = [0.9, 0.3, 0.1]\nphong = 0.5\nreflection = { min = 0.1, max = 0.9 }").unwrap();
+        let text = toml::to_string(&m).unwrap();
+        let back: MaterialSpec = toml::from_str(&text).unwrap();
+        assert_eq!(m, back);
+    }
+}
