@@ -452,7 +452,7 @@ impl Shape for MeshShape {
             (uv_area / cross.length()).sqrt()
         };
         let shading_normal = self.shading_normal(ray, &tri, (b1, b2), ng, uv);
-        Surface { point: ray.at(hit.t), normal: ng, shading_normal, uv, uv_density }
+        Surface { point: ray.at(hit.t), normal: ng, shading_normal, uv, uv_density, dpdu: prism_api::math::tangent(ng) }
     }
 
     fn area(&self) -> Option<f64> {
