@@ -193,7 +193,8 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
     for warning in prism::world::validate::warnings(&scene) {
         eprintln!("warning: {warning}");
     }
-    let options = RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal(), ..Default::default() };
+    let options =
+        RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal(), ..Default::default() };
     let (film, stats) = render_frame(&render_scene, &options).map_err(|e| e.to_string())?;
     let image =
         output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };

@@ -209,10 +209,7 @@ fn encode_layered_exr(film: &Film, half: bool, bytes: &mut Cursor<Vec<u8>>) -> e
         }
     }
     let (x0, y0) = film.origin;
-    let attributes = LayerAttributes {
-        layer_position: Vec2(x0 as i32, y0 as i32),
-        ..LayerAttributes::named("beauty")
-    };
+    let attributes = LayerAttributes { layer_position: Vec2(x0 as i32, y0 as i32), ..LayerAttributes::named("beauty") };
     let size = (film.width as usize, film.height as usize);
     let layer = Layer::new(size, attributes, Encoding::SMALL_LOSSLESS, AnyChannels::sort(channels));
     let frame = IntegerBounds::new((0, 0), (film.frame.0 as usize, film.frame.1 as usize));

@@ -8,12 +8,12 @@
 use glam::DVec3;
 use prism_api::Ray;
 
-use crate::accel::primitive::{Placement, Primitive};
+use crate::accel::primitive::Primitive;
 use crate::accel::scene_bvh::{ConvexHull, Gathered};
 use crate::material::Material;
 use crate::render::extract::RenderScene;
-use crate::render::lights::{AreaGrid, RenderLight};
 use crate::render::integrators::{FirstHit, Integrator, PixelSample};
+use crate::render::lights::{AreaGrid, RenderLight};
 use crate::render::sampling::SampleStream;
 use crate::world::components::LightKind;
 
@@ -152,17 +152,11 @@ impl<'a> Classic<'a> {
                 emitted: DVec3::ZERO,
             };
         }
-        let area_scale = if primitive.placement != Placement::Affine {
-            1.0
-        } else {
-            primitive.world_from_object.matrix3.determinant().abs()
-                * (primitive.normal_to_world * surface.normal).length()
-        };
+        let area_scale = primitive.area_scale(surface.normal);
         let footprint =
             crate::texture::uv_footprint(self.pixel_spread * distance, surface.uv_density, area_scale, cosine);
         material.at_surface(surface.uv, footprint)
     }
-
 
     fn medium_ior(&self, interiors: &Interiors) -> f64 {
         interiors.innermost().map_or(1.0, |p| self.material_of(p).ior)
