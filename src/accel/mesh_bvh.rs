@@ -1,12 +1,12 @@
 //! The bottom level of Prism's two-level BVH: one tree per mesh over its triangles, in f32
 //! object space.
 //!
-//! obvhs builds a binary tree (PLOC, reinsertion, SAH leaf collapse to at most four
-//! triangles); it is then collapsed into an 8-wide tree whose nodes hold their children's
-//! boxes as structure-of-arrays, so one AVX2 instruction tests a ray against eight boxes,
-//! and whose leaves are packets of four triangles tested together with the watertight test
-//! of [`super::triangle`] in SSE lanes. Children are visited nearest first. Without AVX2
-//! (or off x86-64) the same kernels run as plain loops.
+//! obvhs builds a binary tree (PLOC, reinsertion, one triangle per leaf); it is then
+//! collapsed into the 8-wide tree shared with the top level (`accel::wide`), whose leaves
+//! are packets of up to four triangles ([`TrianglePacket`]). A ray is tested against a
+//! node's eight boxes and a leaf's four triangles at once by the SIMD kernels
+//! (`accel::simd`: AVX2 where the CPU has it, plain loops otherwise, with the same hits);
+//! children are visited nearest first.
 
 use std::time::Duration;
 
@@ -14,49 +14,15 @@ use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::builder::build_bvh2;
 
-use super::triangle::{TriangleHit, WatertightRay};
-use crate::accel::wide::{BoxKernel, BoxRay, EMPTY, Node, ScalarBoxes, StackEntry, WideTree, with_traversal_stack};
-
-/// Triangles per leaf packet (and at most per leaf). Four, tested in SSE lanes: leaves of
-/// real meshes hold three to four triangles, and wider packets mostly carry padding through
-/// the cache.
-const PACKET: usize = 4;
-/// Four triangles, vertices as structure-of-arrays (`a[axis][lane]`). Unused lanes repeat
-/// the last triangle, so they can only report hits that are already reported.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(16))]
-struct Packet {
-    a: [[f32; PACKET]; 3],
-    b: [[f32; PACKET]; 3],
-    c: [[f32; PACKET]; 3],
-    /// Triangle index (into the mesh's triangle list) of each lane.
-    prim: [u32; PACKET],
-}
-
-impl Packet {
-    /// The packet of `prims` (at most `PACKET` indices into `triangles`).
-    fn new(triangles: &[[Vec3; 3]], prims: &[u32]) -> Self {
-        let count = prims.len().clamp(1, PACKET);
-        let mut p = Packet { a: [[0.0; PACKET]; 3], b: [[0.0; PACKET]; 3], c: [[0.0; PACKET]; 3], prim: [0; PACKET] };
-        for lane in 0..PACKET {
-            let prim = prims[lane.min(count - 1)];
-            let [a, b, c] = triangles[prim as usize];
-            for axis in 0..3 {
-                p.a[axis][lane] = a[axis];
-                p.b[axis][lane] = b[axis];
-                p.c[axis][lane] = c[axis];
-            }
-            p.prim[lane] = prim;
-        }
-        p
-    }
-}
+use super::simd::{self, BoxRay, Dispatch, Kernels};
+use super::triangle::{PACKET, PacketHits, TriangleHit, TrianglePacket, WatertightRay};
+use super::wide::{EMPTY, Node, StackEntry, WideTree, with_traversal_stack};
 
 /// A BVH over triangles.
 #[derive(Clone)]
 pub struct TriangleBvh {
     nodes: Vec<Node>,
-    packets: Vec<Packet>,
+    packets: Vec<TrianglePacket>,
     /// Vertices of each triangle, in input order (for refining hits in f64).
     triangles: Vec<[Vec3; 3]>,
     /// Deepest stack a traversal can need.
@@ -75,22 +41,17 @@ impl std::fmt::Debug for TriangleBvh {
     }
 }
 
-/// A ray prepared for traversal: the slab test's reciprocal direction and near/far planes
-/// per axis, and the watertight test's shear.
-struct Prepared {
-    wt: WatertightRay,
+/// A ray prepared for traversal: the watertight test's shear and the slab test's
+/// reciprocal direction.
+struct TraversalRay {
+    triangle: WatertightRay,
     boxes: BoxRay,
-    /// Origin, permuted to the watertight test's (kx, ky, kz).
-    org: [f32; 3],
-    perm: [usize; 3],
-    shear: [f32; 3],
 }
 
-impl Prepared {
-    fn new(wt: &WatertightRay) -> Self {
-        let o = wt.origin;
-        let (perm, shear) = wt.shear();
-        Self { wt: *wt, boxes: BoxRay::new(o, wt.direction), org: perm.map(|k| o[k]), perm, shear }
+impl TraversalRay {
+    #[inline(always)]
+    fn new(ray: &WatertightRay) -> Self {
+        Self { triangle: *ray, boxes: BoxRay::new(ray.origin, ray.direction) }
     }
 }
 
@@ -117,7 +78,7 @@ impl TriangleBvh {
         let bvh2 = build_bvh2(&boxes, params, &mut build_time);
         let mut packets = Vec::new();
         let tree = WideTree::collapse(&bvh2, PACKET, |prims| {
-            packets.push(Packet::new(triangles, prims));
+            packets.push(TrianglePacket::new(triangles, prims));
             (packets.len() - 1) as u32
         });
         let out =
@@ -145,8 +106,7 @@ impl TriangleBvh {
     /// triangles per packet).
     pub fn stats(&self) -> (usize, usize, f64, f64) {
         let children: usize = self.nodes.iter().map(|n| n.child.iter().filter(|&&c| c != EMPTY).count()).sum();
-        let distinct: usize =
-            self.packets.iter().map(|p| (0..PACKET).filter(|&l| l == 0 || p.prim[l] != p.prim[l - 1]).count()).sum();
+        let distinct: usize = self.packets.iter().map(TrianglePacket::distinct).sum();
         (
             self.nodes.len(),
             self.packets.len(),
@@ -158,7 +118,7 @@ impl TriangleBvh {
     /// Bytes used by the nodes and the leaf packets (not the triangle list kept for
     /// shading).
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node>() + self.packets.len() * std::mem::size_of::<Packet>()
+        self.nodes.len() * std::mem::size_of::<Node>() + self.packets.len() * std::mem::size_of::<TrianglePacket>()
     }
 
     /// Visits the triangles the ray may hit, nearest boxes first. `accept(triangle, hit)` is
@@ -166,29 +126,18 @@ impl TriangleBvh {
     /// accepted distance, which the traversal uses to prune) or `None` to reject the hit.
     #[inline]
     pub fn closest(&self, ray: &WatertightRay, t_max: f32, accept: impl FnMut(usize, TriangleHit) -> Option<f32>) {
-        let prepared = Prepared::new(ray);
+        let ray = TraversalRay::new(ray);
         with_traversal_stack(self.stack_size, |stack| {
-            #[cfg(target_arch = "x86_64")]
-            if simd::available() {
-                // SAFETY: the CPU has AVX2 and FMA (checked at run time).
-                unsafe { simd::closest(self, &prepared, t_max, stack, accept) };
-                return;
-            }
-            traverse::<Scalar, false>(self, &prepared, t_max, stack, &mut AcceptClosest(accept));
-        })
+            simd::dispatch(Query::<_, false> { bvh: self, ray: &ray, t_max, stack, acceptor: AcceptClosest(accept) })
+        });
     }
 
     /// True when `accept` takes any f32 hit with `t < t_max`.
     #[inline]
     pub fn any(&self, ray: &WatertightRay, t_max: f32, accept: impl FnMut(usize, TriangleHit) -> bool) -> bool {
-        let prepared = Prepared::new(ray);
+        let ray = TraversalRay::new(ray);
         with_traversal_stack(self.stack_size, |stack| {
-            #[cfg(target_arch = "x86_64")]
-            if simd::available() {
-                // SAFETY: the CPU has AVX2 and FMA (checked at run time).
-                return unsafe { simd::any(self, &prepared, t_max, stack, accept) };
-            }
-            traverse::<Scalar, true>(self, &prepared, t_max, stack, &mut AcceptAny(accept, false))
+            simd::dispatch(Query::<_, true> { bvh: self, ray: &ray, t_max, stack, acceptor: AcceptAny(accept, false) })
         })
     }
 }
@@ -234,68 +183,42 @@ impl<F: FnMut(usize, TriangleHit) -> bool> Acceptor for AcceptAny<F> {
     }
 }
 
-/// The two SIMD kernels: eight boxes, four triangles.
-trait Kernels {
-    /// The eight-box test.
-    type Boxes: BoxKernel;
-    /// Bit mask of the lanes hit with 0 < t < t_max, and per lane t, b1, b2; lanes whose
-    /// edge functions rounded to zero are left to the scalar test (their bits are in
-    /// `edge`).
-    fn triangles(p: &Packet, r: &Prepared, t_max: f32, out: &mut [[f32; PACKET]; 3], edge: &mut u32) -> u32;
+/// One query (closest hit, or any hit when `ANY`), for [`simd::dispatch`].
+struct Query<'a, A, const ANY: bool> {
+    bvh: &'a TriangleBvh,
+    ray: &'a TraversalRay,
+    t_max: f32,
+    stack: &'a mut [StackEntry],
+    acceptor: A,
 }
 
-/// Plain loops (used without AVX2).
-struct Scalar;
-
-impl Kernels for Scalar {
-    type Boxes = ScalarBoxes;
+impl<A: Acceptor, const ANY: bool> Dispatch for Query<'_, A, ANY> {
+    type Output = bool;
 
     #[inline(always)]
-    fn triangles(p: &Packet, r: &Prepared, t_max: f32, out: &mut [[f32; PACKET]; 3], edge: &mut u32) -> u32 {
-        let mut mask = 0;
-        for lane in 0..PACKET {
-            let v = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
-            if let Some(h) = r.wt.intersect(v(&p.a), v(&p.b), v(&p.c), t_max) {
-                out[0][lane] = h.t;
-                out[1][lane] = h.b1;
-                out[2][lane] = h.b2;
-                mask |= 1 << lane;
-            }
-        }
-        *edge = 0;
-        mask
+    fn run<K: Kernels>(mut self, kernels: K) -> bool {
+        traverse::<K, ANY>(kernels, self.bvh, self.ray, self.t_max, self.stack, &mut self.acceptor)
     }
 }
 
-/// The traversal, generic over the kernels and the query.
+/// The traversal with the kernels `K`; true when an any-hit query (`ANY`) found its hit.
 #[inline(always)]
 fn traverse<K: Kernels, const ANY: bool>(
+    kernels: K,
     bvh: &TriangleBvh,
-    r: &Prepared,
+    ray: &TraversalRay,
     t_max: f32,
     stack: &mut [StackEntry],
     acceptor: &mut impl Acceptor,
 ) -> bool {
-    let mut hits = [[0f32; PACKET]; 3];
-    crate::accel::wide::traverse::<K::Boxes, true>(&bvh.nodes, &r.boxes, t_max, stack, |leaf, t_max| {
+    let mut hits = PacketHits::default();
+    super::wide::traverse::<K, true>(kernels, &bvh.nodes, &ray.boxes, t_max, stack, |leaf, t_max| {
         let packet = &bvh.packets[leaf as usize];
-        let mut edge = 0;
-        let mut mask = K::triangles(packet, r, *t_max, &mut hits, &mut edge);
-        while edge != 0 {
-            let lane = edge.trailing_zeros() as usize;
-            edge &= edge - 1;
-            let v = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
-            if let Some(h) = r.wt.intersect(v(&packet.a), v(&packet.b), v(&packet.c), *t_max) {
-                hits[0][lane] = h.t;
-                hits[1][lane] = h.b1;
-                hits[2][lane] = h.b2;
-                mask |= 1 << lane;
-            }
-        }
+        let mut mask = kernels.triangles(packet, &ray.triangle, *t_max, &mut hits);
         while mask != 0 {
             let lane = mask.trailing_zeros() as usize;
             mask &= mask - 1;
-            let hit = TriangleHit { t: hits[0][lane], b1: hits[1][lane], b2: hits[2][lane] };
+            let hit = hits.get(lane);
             if hit.t < *t_max
                 && let Some(bound) = acceptor.offer(packet.prim[lane] as usize, hit)
             {
@@ -307,116 +230,6 @@ fn traverse<K: Kernels, const ANY: bool>(
         }
         false
     })
-}
-
-#[cfg(target_arch = "x86_64")]
-mod simd {
-    use std::arch::x86_64::*;
-
-    pub use crate::accel::wide::avx2_available as available;
-
-    use super::*;
-    use crate::accel::wide::Avx2Boxes;
-
-    struct Avx2;
-
-    impl Kernels for Avx2 {
-        type Boxes = Avx2Boxes;
-
-        #[inline(always)]
-        fn triangles(p: &Packet, r: &Prepared, t_max: f32, out: &mut [[f32; PACKET]; 3], edge: &mut u32) -> u32 {
-            // SAFETY: as for `boxes`; packet arrays are 16-byte aligned.
-            unsafe {
-                let [kx, ky, kz] = r.perm;
-                let (ox, oy, oz) = (_mm_set1_ps(r.org[0]), _mm_set1_ps(r.org[1]), _mm_set1_ps(r.org[2]));
-                let (sx, sy, sz) = (_mm_set1_ps(r.shear[0]), _mm_set1_ps(r.shear[1]), _mm_set1_ps(r.shear[2]));
-                // The same operations, in the same order, as the scalar test (no fused
-                // multiply-adds): shared edges then give exactly opposite edge functions.
-                macro_rules! sheared {
-                    ($v:expr) => {{
-                        let x = _mm_sub_ps(_mm_load_ps($v[kx].as_ptr()), ox);
-                        let y = _mm_sub_ps(_mm_load_ps($v[ky].as_ptr()), oy);
-                        let z = _mm_sub_ps(_mm_load_ps($v[kz].as_ptr()), oz);
-                        (_mm_sub_ps(x, _mm_mul_ps(sx, z)), _mm_sub_ps(y, _mm_mul_ps(sy, z)), z)
-                    }};
-                }
-                let (ax, ay, az) = sheared!(p.a);
-                let (bx, by, bz) = sheared!(p.b);
-                let (cx, cy, cz) = sheared!(p.c);
-                let u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
-                let v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
-                let w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
-                let zero = _mm_setzero_ps();
-                macro_rules! any3 {
-                    ($op:ident) => {
-                        _mm_or_ps(
-                            _mm_or_ps(_mm_cmp_ps::<$op>(u, zero), _mm_cmp_ps::<$op>(v, zero)),
-                            _mm_cmp_ps::<$op>(w, zero),
-                        )
-                    };
-                }
-                let negative = any3!(_CMP_LT_OQ);
-                let positive = any3!(_CMP_GT_OQ);
-                let on_edge = any3!(_CMP_EQ_OQ);
-                let outside = _mm_and_ps(negative, positive);
-                // Lanes with a zero edge function go to the scalar test (which redoes them
-                // in f64) unless they are already certainly outside.
-                *edge = _mm_movemask_ps(_mm_andnot_ps(outside, on_edge)) as u32;
-                let det = _mm_add_ps(_mm_add_ps(u, v), w);
-                let t_scaled = _mm_add_ps(
-                    _mm_add_ps(_mm_mul_ps(u, _mm_mul_ps(sz, az)), _mm_mul_ps(v, _mm_mul_ps(sz, bz))),
-                    _mm_mul_ps(w, _mm_mul_ps(sz, cz)),
-                );
-                let inv = _mm_div_ps(_mm_set1_ps(1.0), det);
-                let t = _mm_mul_ps(t_scaled, inv);
-                let in_range =
-                    _mm_and_ps(_mm_cmp_ps::<_CMP_GT_OQ>(t, zero), _mm_cmp_ps::<_CMP_LT_OQ>(t, _mm_set1_ps(t_max)));
-                let valid = _mm_andnot_ps(
-                    _mm_or_ps(outside, on_edge),
-                    _mm_and_ps(_mm_cmp_ps::<_CMP_NEQ_OQ>(det, zero), in_range),
-                );
-                let mask = _mm_movemask_ps(valid) as u32;
-                if mask != 0 {
-                    _mm_storeu_ps(out[0].as_mut_ptr(), t);
-                    _mm_storeu_ps(out[1].as_mut_ptr(), _mm_mul_ps(v, inv));
-                    _mm_storeu_ps(out[2].as_mut_ptr(), _mm_mul_ps(w, inv));
-                }
-                mask
-            }
-        }
-    }
-
-    /// Closest-hit traversal with the AVX2 kernels.
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX2 and FMA ([`available`]).
-    #[target_feature(enable = "avx2,fma,popcnt,bmi1")]
-    pub unsafe fn closest(
-        bvh: &TriangleBvh,
-        r: &Prepared,
-        t_max: f32,
-        stack: &mut [StackEntry],
-        accept: impl FnMut(usize, TriangleHit) -> Option<f32>,
-    ) {
-        traverse::<Avx2, false>(bvh, r, t_max, stack, &mut AcceptClosest(accept));
-    }
-
-    /// Any-hit traversal with the AVX2 kernels.
-    ///
-    /// # Safety
-    ///
-    /// The CPU must support AVX2 and FMA ([`available`]).
-    #[target_feature(enable = "avx2,fma,popcnt,bmi1")]
-    pub unsafe fn any(
-        bvh: &TriangleBvh,
-        r: &Prepared,
-        t_max: f32,
-        stack: &mut [StackEntry],
-        accept: impl FnMut(usize, TriangleHit) -> bool,
-    ) -> bool {
-        traverse::<Avx2, true>(bvh, r, t_max, stack, &mut AcceptAny(accept, false))
-    }
 }
 
 #[cfg(test)]
@@ -479,7 +292,7 @@ mod tests {
     }
 
     #[test]
-    fn scalar_and_simd_kernels_agree() {
+    fn scalar_and_fastest_traversals_agree() {
         let tris = grid(16);
         let (bvh, _) = TriangleBvh::build(&tris);
         let mut rng = TestRng::new(9);
@@ -487,12 +300,13 @@ mod tests {
             let o = Vec3::new(rng.range(-0.5, 1.5) as f32, rng.range(-1.0, 2.0) as f32, rng.range(-0.5, 1.5) as f32);
             let d = Vec3::new(rng.range(-1.0, 1.0) as f32, rng.range(-1.0, 1.0) as f32, rng.range(-1.0, 1.0) as f32);
             let Some(r) = WatertightRay::new(o, d) else { continue };
-            let p = Prepared::new(&r);
+            let ray = TraversalRay::new(&r);
             let mut stack = vec![std::mem::MaybeUninit::uninit(); bvh.stack_size];
             let mut scalar = None;
-            traverse::<Scalar, false>(
+            traverse::<_, false>(
+                simd::Scalar,
                 &bvh,
-                &p,
+                &ray,
                 f32::INFINITY,
                 &mut stack,
                 &mut AcceptClosest(|prim: usize, h: TriangleHit| {
