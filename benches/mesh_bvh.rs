@@ -301,7 +301,7 @@ fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays
     let mut bvh = None;
     for _ in 0..3 {
         let start = Instant::now();
-        let (b, _) = TriangleBvh::build(&corners);
+        let b = TriangleBvh::build(&corners);
         build_best = build_best.min(start.elapsed().as_secs_f64());
         bvh = Some(b);
     }

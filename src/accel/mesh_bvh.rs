@@ -56,13 +56,13 @@ impl TraversalRay {
 }
 
 impl TriangleBvh {
-    /// Builds the tree over `triangles` (given by their vertices). Returns it and the
-    /// identity order (triangles keep their indices; kept for the caller's bookkeeping).
+    /// Builds the tree over `triangles` (given by their vertices). Triangles keep their
+    /// indices: the hits name them by their place in `triangles`.
     ///
     /// # Panics
     ///
     /// When `triangles` is empty (meshes without triangles are rejected at import).
-    pub fn build(triangles: &[[Vec3; 3]]) -> (Self, Vec<u32>) {
+    pub fn build(triangles: &[[Vec3; 3]]) -> Self {
         assert!(!triangles.is_empty(), "a mesh BVH needs at least one triangle");
         let boxes: Vec<obvhs::aabb::Aabb> = triangles
             .iter()
@@ -81,9 +81,7 @@ impl TriangleBvh {
             packets.push(TrianglePacket::new(triangles, prims));
             (packets.len() - 1) as u32
         });
-        let out =
-            TriangleBvh { nodes: tree.nodes, packets, triangles: triangles.to_vec(), stack_size: tree.stack_size };
-        (out, (0..triangles.len() as u32).collect())
+        TriangleBvh { nodes: tree.nodes, packets, triangles: triangles.to_vec(), stack_size: tree.stack_size }
     }
 
     /// Number of triangles.
@@ -266,7 +264,7 @@ mod tests {
     #[test]
     fn matches_brute_force_and_is_watertight() {
         let tris = grid(40);
-        let (bvh, _) = TriangleBvh::build(&tris);
+        let bvh = TriangleBvh::build(&tris);
         let mut rng = TestRng::new(3);
         for i in 0..4000 {
             // From above the grid to below it, inside its footprint: the ray must cross it.
@@ -294,7 +292,7 @@ mod tests {
     #[test]
     fn scalar_and_fastest_traversals_agree() {
         let tris = grid(16);
-        let (bvh, _) = TriangleBvh::build(&tris);
+        let bvh = TriangleBvh::build(&tris);
         let mut rng = TestRng::new(9);
         for _ in 0..2000 {
             let o = Vec3::new(rng.range(-0.5, 1.5) as f32, rng.range(-1.0, 2.0) as f32, rng.range(-0.5, 1.5) as f32);
@@ -326,7 +324,7 @@ mod tests {
     #[test]
     fn tiny_meshes_build() {
         let one = vec![[Vec3::ZERO, Vec3::X, Vec3::Y]];
-        let (bvh, _) = TriangleBvh::build(&one);
+        let bvh = TriangleBvh::build(&one);
         let r = WatertightRay::new(Vec3::new(0.2, 0.2, 1.0), Vec3::NEG_Z).unwrap();
         let mut hit = None;
         bvh.closest(&r, f32::INFINITY, |p, h| {
