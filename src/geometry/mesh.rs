@@ -79,9 +79,9 @@ impl MeshBuilder {
         if self.triangles.is_empty() {
             return Err("no triangles with a non-zero area".into());
         }
+        self.triangles.shrink_to_fit();
         let corners: Vec<[Vec3; 3]> = self.triangles.iter().map(|t| t.map(|i| positions[i as usize])).collect();
-        let (bvh, order) = TriangleBvh::build(&corners);
-        let triangles: Vec<[u32; 3]> = order.iter().map(|&i| self.triangles[i as usize]).collect();
+        let bvh = TriangleBvh::build(&corners);
         let mut bounds = Aabb::EMPTY;
         let mut area = 0.0;
         for t in &corners {
@@ -95,7 +95,7 @@ impl MeshBuilder {
             normals: self.normals,
             uvs: self.uvs,
             tangents: self.tangents,
-            triangles,
+            triangles: self.triangles,
             bvh,
             bounds,
             area,
@@ -111,7 +111,7 @@ pub struct MeshData {
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
     tangents: Vec<Vec4>,
-    /// Vertex indices of each triangle, in BVH leaf order.
+    /// Vertex indices of each triangle (the BVH's hits name them by their index here).
     triangles: Vec<[u32; 3]>,
     bvh: TriangleBvh,
     bounds: Aabb,
