@@ -26,7 +26,7 @@ pub use ray::Ray;
 pub use registry::{ParamError, ShapeParams, ShapeType, shape_type};
 pub use shape::{
     AreaSample, CROSSING_GAP, DirectionSample, Hit, MAX_CROSSINGS, Shape, Surface, for_each_crossing,
-    pdf_toward_by_area, sample_toward_by_area,
+    pdf_toward_by_area, sample_toward_by_area, sample_toward_flat,
 };
 
 /// Re-exported so that plugins derive their parameter schema with the same version Prism uses.

@@ -255,6 +255,16 @@ pub fn sample_toward_by_area<S: Shape + ?Sized>(shape: &S, reference: DVec3, u: 
     })
 }
 
+/// [`Shape::sample_toward`] for flat shapes (discs, triangles, rectangles), which a ray
+/// crosses at most once: the area sample itself is the nearest crossing, so its density
+/// converted to solid angle is the direction's, with no ray to follow. `None` when
+/// `sample_area` is, or when the sample is seen edge-on.
+pub fn sample_toward_flat<S: Shape + ?Sized>(shape: &S, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
+    let sample = shape.sample_area(u)?;
+    let pdf = math::area_to_solid_angle(sample.pdf_area, reference, sample.point, sample.normal);
+    (pdf > 0.0).then_some(DirectionSample { point: sample.point, normal: sample.normal, pdf_solid_angle: pdf })
+}
+
 /// [`Shape::pdf_toward`] for points sampled by [`Shape::sample_area`], the trait's default:
 /// the sum over every crossing of the ray from `reference` along `direction`
 /// ([`for_each_crossing`]) of [`Shape::pdf_area`] there, converted to solid angle with

@@ -147,13 +147,9 @@ impl Shape for Disc {
         })
     }
 
-    /// Area sampling, as the default, but without following the ray: a flat disc is crossed
-    /// at most once, so the sampled point is the nearest crossing and its density alone is
-    /// that of the direction.
+    /// A flat disc is crossed at most once: its area sample is the nearest crossing.
     fn sample_toward(&self, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
-        let sample = self.sample_area(u)?;
-        let pdf = math::area_to_solid_angle(sample.pdf_area, reference, sample.point, sample.normal);
-        (pdf > 0.0).then_some(DirectionSample { point: sample.point, normal: sample.normal, pdf_solid_angle: pdf })
+        prism_api::sample_toward_flat(self, reference, u)
     }
 
     fn to_pov(&self) -> Option<String> {

@@ -165,7 +165,7 @@ mod tests {
     fn boxes_case(rng: &mut TestRng, case: usize, coordinate: impl Fn(&mut TestRng) -> f32) -> BoxLanes {
         let mut boxes = BoxLanes::EMPTY;
         for lane in 0..BOXES {
-            if case % 5 == 0 && lane % 3 == 0 {
+            if case.is_multiple_of(5) && lane.is_multiple_of(3) {
                 continue;
             }
             for axis in 0..3 {
