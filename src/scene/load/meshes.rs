@@ -69,21 +69,31 @@ pub(super) const LENS_KEYS: [&str; 2] = ["aperture", "focal_distance"];
 /// `[camera]` keys an imported camera takes from the file (a second source is an error).
 pub(super) const POSE_KEYS: [&str; 5] = ["position", "look_at", "up", "vfov", "aspect"];
 
+/// A `shape = "mesh"` object as [`Loader::object`] has read it: the keys common to every
+/// object are taken out and checked, the mesh keys are left in `table`.
+pub(super) struct MeshObject<'a> {
+    /// Index of the scene file it is written in.
+    pub(super) file: usize,
+    /// Its key path, such as `object[2]`.
+    pub(super) key: &'a str,
+    /// Its location (the `[[object]]` table).
+    pub(super) location: &'a Location,
+    /// The remaining keys: `file`, `material_map`, `smooth_angle`, `import_lights`,
+    /// `import_camera` (and any unknown ones).
+    pub(super) table: toml::Table,
+    /// Its `transform`.
+    pub(super) transform: Transform,
+    /// The material it names, if it names one (`None` keeps the file's materials).
+    pub(super) material: Option<MaterialComponent>,
+    /// Its `no_shadow` flag.
+    pub(super) flags: ObjectFlags,
+}
+
 impl Loader<'_> {
     /// A `shape = "mesh"` object: imports the file (once per file) and spawns the root
     /// entity and its parts; `None` after reporting a problem.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn mesh_object(
-        &mut self,
-        world: &mut hecs::World,
-        file: usize,
-        key: &str,
-        mut table: toml::Table,
-        transform: Transform,
-        material: Option<MaterialComponent>,
-        flags: ObjectFlags,
-        location: &Location,
-    ) -> Option<hecs::Entity> {
+    pub(super) fn mesh_object(&mut self, world: &mut hecs::World, object: MeshObject) -> Option<hecs::Entity> {
+        let MeshObject { file, key, location, mut table, transform, material, flags } = object;
         let material_failed = material.is_none()
             && self.diagnostics.iter().any(|d| d.location.key.starts_with(&format!("{key}.material")));
         let mut ok = true;

@@ -5,7 +5,7 @@
 mod lights;
 mod materials;
 mod meshes;
-use meshes::{CameraImport, LightImport, spawn_imported_camera, spawn_imported_lights};
+use meshes::{CameraImport, LightImport, MeshObject, spawn_imported_camera, spawn_imported_lights};
 mod objects;
 
 use std::collections::HashMap;
