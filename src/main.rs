@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
+use prism::diagnostics::Diagnostic;
 use prism::render::{RenderOptions, render};
 use prism::scene::load::{load_file, load_from};
 use prism::world::Scene;
@@ -117,6 +118,13 @@ impl From<ToneMapArg> for ToneMap {
     }
 }
 
+/// Prints warnings to standard error, one `file:line:col: warning in `key`: ...` each.
+fn print_warnings(warnings: &[Diagnostic]) {
+    for warning in warnings {
+        eprintln!("{warning}");
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -142,6 +150,7 @@ fn main() -> ExitCode {
 fn render_default() -> Result<(), String> {
     let registry = plugins::registry();
     let scene = load_from(&builtin::FILES, Path::new(builtin::DEFAULT_SCENE), &registry).map_err(|e| e.to_string())?;
+    print_warnings(&scene.warnings);
     let args = RenderArgs { output: Some(PathBuf::from("prism.png")), ..RenderArgs::default() };
     render_scene(scene, &args)
 }
@@ -149,6 +158,7 @@ fn render_default() -> Result<(), String> {
 fn render_command(args: &RenderArgs) -> Result<(), String> {
     let registry = plugins::registry();
     let scene = load_file(&args.scene, &registry).map_err(|e| e.to_string())?;
+    print_warnings(&scene.warnings);
     render_scene(scene, args)
 }
 
@@ -190,9 +200,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
         output::check_writable(path).map_err(|e| e.to_string())?;
     }
     let render_scene = prepare(&mut scene).map_err(|e| e.to_string())?;
-    for warning in prism::world::validate::warnings(&scene) {
-        eprintln!("warning: {warning}");
-    }
+    print_warnings(&prism::world::validate::warnings(&scene));
     let options = RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal() };
     let (film, stats) = render(&render_scene, &options).map_err(|e| e.to_string())?;
     let image =
@@ -218,6 +226,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
 fn save_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
     let registry = plugins::registry();
     let scene = load_file(path, &registry).map_err(|e| e.to_string())?;
+    print_warnings(&scene.warnings);
     // Written to a file, mesh and texture paths are relative to it; on standard output,
     // whose destination is unknown, they stay absolute.
     let text = match output {
@@ -249,6 +258,7 @@ fn schema_command(output: Option<&Path>) -> Result<(), String> {
 fn export_pov_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
     let registry = plugins::registry();
     let mut scene = load_file(path, &registry).map_err(|e| e.to_string())?;
+    print_warnings(&scene.warnings);
     prism::world::transforms::resolve_transforms(&mut scene).map_err(|e| e.to_string())?;
     prism::world::validate::validate(&scene).map_err(|e| e.to_string())?;
     let source = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());

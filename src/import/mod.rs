@@ -127,7 +127,8 @@ pub struct Model {
     /// Lights on nodes of the imported scene, in depth-first node order (imported only when
     /// the scene asks: `import_lights`).
     pub lights: Vec<ModelLight>,
-    /// Things in the file that were skipped or approximated.
+    /// Things in the file that were skipped or approximated, as sentences (the scene loader
+    /// turns them into warnings at the object that names the file).
     pub warnings: Vec<String>,
 }
 
@@ -277,17 +278,20 @@ impl MeshStore {
 
     /// The model for `path`, imported on first use.
     pub fn get(&mut self, path: &Path, options: &ImportOptions) -> Result<Arc<Model>, ImportError> {
+        self.fetch(path, options).map(|fetched| fetched.model)
+    }
+
+    /// The model for `path`, and whether this call imported it (so its
+    /// [`Model::warnings`] are reported once, not once per object using the file).
+    pub fn fetch(&mut self, path: &Path, options: &ImportOptions) -> Result<Fetched, ImportError> {
         let canonical = std::fs::canonicalize(path).map_err(|e| ImportError::new(path, ImportErrorKind::Read(e)))?;
         let key = (canonical, options.smooth_angle.map(f64::to_bits));
         if let Some(m) = self.models.get(&key) {
-            return Ok(m.clone());
+            return Ok(Fetched { model: m.clone(), first_use: false });
         }
         let model = Arc::new(import(path, options, &mut self.textures)?);
-        for warning in &model.warnings {
-            eprintln!("warning: {}: {warning}", path.display());
-        }
         self.models.insert(key, model.clone());
-        Ok(model)
+        Ok(Fetched { model, first_use: true })
     }
 
     /// Number of distinct imported files.
@@ -299,6 +303,15 @@ impl MeshStore {
     pub fn is_empty(&self) -> bool {
         self.models.is_empty()
     }
+}
+
+/// A model from [`MeshStore::fetch`].
+#[derive(Clone, Debug)]
+pub struct Fetched {
+    /// The imported file.
+    pub model: Arc<Model>,
+    /// True when this call imported it; false when an earlier call did.
+    pub first_use: bool,
 }
 
 /// Component of the entity a `shape = "mesh"` object becomes: what to write back on save.
