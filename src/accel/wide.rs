@@ -238,7 +238,10 @@ impl WideTree {
     }
 
     /// Fills node `index` from the binary inner node `bvh2_index`.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "one step of the recursive collapse: the fixed source tree and leaf policy, and the walk's position and depth"
+    )]
     fn fill(
         &mut self,
         bvh2: &obvhs::bvh2::Bvh2,

@@ -38,6 +38,14 @@ pub enum OutputError {
         /// What the encoder said.
         message: String,
     },
+    /// An EXR file cannot be read back.
+    #[error("{path}: {source}")]
+    ReadExr {
+        /// The EXR file.
+        path: PathBuf,
+        /// The cause.
+        source: exr::error::Error,
+    },
 }
 
 /// The file formats Prism writes.
@@ -223,7 +231,7 @@ pub fn write_image(film: &Film, path: &Path, settings: &ImageSettings) -> Result
 }
 
 /// Reads a linear RGB EXR back into a film (used by tests and the parity checks).
-pub fn read_exr(path: &Path) -> Result<Film, String> {
+pub fn read_exr(path: &Path) -> Result<Film, OutputError> {
     use exr::prelude::*;
     let image = read_first_rgba_layer_from_file(
         path,
@@ -233,7 +241,7 @@ pub fn read_exr(path: &Path) -> Result<Film, String> {
             film.pixels[p.y() * w + p.x()] = [r, g, b];
         },
     )
-    .map_err(|e| format!("{}: {e}", path.display()))?;
+    .map_err(|source| OutputError::ReadExr { path: path.to_path_buf(), source })?;
     Ok(image.layer_data.channel_data.pixels)
 }
 

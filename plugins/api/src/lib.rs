@@ -12,6 +12,8 @@
 //! Everything here is `f64`: analytic shapes are solved in double precision, as POV-Ray does.
 //! Right-handed, y up. The [`contract`] module is a test kit every plugin runs.
 
+#![forbid(unsafe_code)]
+
 mod aabb;
 pub mod contract;
 pub mod math;

@@ -12,6 +12,8 @@
 //! exactly ([`prism_api::math::polynomial_roots`]), with the polynomial formed at the start
 //! of its piece so that its coefficients stay well scaled.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 

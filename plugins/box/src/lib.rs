@@ -1,5 +1,7 @@
 //! The box shape plugin: an axis-aligned box between two corners.
 
+#![forbid(unsafe_code)]
+
 use std::sync::Arc;
 
 use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};

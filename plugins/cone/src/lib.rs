@@ -1,6 +1,8 @@
 //! The cone shape plugin: a finite cone or truncated cone (frustum) between two points, closed
 //! with flat end caps unless `open`.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 

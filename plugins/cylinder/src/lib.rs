@@ -1,6 +1,8 @@
 //! The cylinder shape plugin: a finite right circular cylinder between two points, closed with
 //! flat end caps unless `open`.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 

@@ -1,5 +1,7 @@
 //! The disc shape plugin: a flat disc (or annulus, with a hole) of zero thickness.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 

@@ -1,5 +1,7 @@
 //! The plane shape plugin: the infinite plane of points `p` with `normal · p = offset`.
 
+#![forbid(unsafe_code)]
+
 use std::sync::Arc;
 
 use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};

@@ -1,5 +1,7 @@
 //! The sphere shape plugin: a sphere of a given radius around a centre point.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 

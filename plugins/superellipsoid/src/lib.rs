@@ -27,6 +27,8 @@
 //!   one evaluation: samples are only evaluated where such bounds do not already rule out
 //!   the surface.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 

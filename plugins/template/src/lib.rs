@@ -5,6 +5,8 @@
 //! (a documented parameter struct, validation naming the key, the `Shape` impl, a POV-Ray
 //! export and the tests), and each part is marked with a `STEP` comment.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 

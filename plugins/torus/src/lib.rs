@@ -7,6 +7,8 @@
 //! derivatives ([`prism_api::math::polynomial_roots`]), never by Ferrari's formula, and each
 //! root is then polished with Newton's method on the torus's distance function.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 

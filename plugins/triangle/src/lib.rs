@@ -1,5 +1,7 @@
 //! The triangle shape plugin: a single two-sided flat triangle.
 
+#![forbid(unsafe_code)]
+
 use std::sync::Arc;
 
 use prism_api::{

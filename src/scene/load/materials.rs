@@ -42,7 +42,7 @@ impl Loader<'_> {
                     texture.texture = Some(t);
                 }
                 Err(e) => {
-                    self.diagnostics.push(Diagnostic::new(self.files[index].locate(key), e));
+                    self.diagnostics.push(Diagnostic::new(self.files[index].locate(key), e.to_string()));
                     ok = false;
                 }
             }

@@ -466,7 +466,10 @@ impl<'a> Classic<'a> {
     /// The hierarchical average of one area light's shadow at `point`: a fixed weighted sum
     /// when the grid always subdivides fully, else POV-Ray's recursion, memoising grid
     /// samples in `cache` under `stamp`.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the shading point, the light and its grid, and the per-ray state the recursion carries"
+    )]
     fn area_grid_average(
         &self,
         point: DVec3,
@@ -582,7 +585,7 @@ impl<'a> GridLattice<'a> {
 }
 
 /// One region of POV-Ray's recursive area-light average.
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, reason = "a region is its two corners (four numbers) plus the recursion's state")]
 fn block(
     sample: &mut impl FnMut(usize, usize, &mut PathState) -> DVec3,
     u1: usize,
