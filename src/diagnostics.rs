@@ -1,5 +1,8 @@
 //! Scene diagnostics: every problem in a scene names the file, line, column and key path,
-//! says what is wrong and, where it can, suggests the nearest valid name.
+//! says what is wrong and, where it can, suggests the nearest valid name. A problem is an
+//! error (the scene cannot be rendered; loading returns a [`SceneError`]) or a warning
+//! (something was skipped or approximated; the loaded scene carries it in
+//! [`crate::world::Scene::warnings`]). The library never prints: the caller shows them.
 
 use std::fmt;
 use std::ops::Range;
@@ -68,9 +71,30 @@ impl fmt::Display for Location {
     }
 }
 
+/// Whether a [`Diagnostic`] stops the scene from rendering.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Severity {
+    /// The scene cannot be rendered as written.
+    #[default]
+    Error,
+    /// Something was skipped or approximated; the scene still renders.
+    Warning,
+}
+
+impl fmt::Display for Severity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        })
+    }
+}
+
 /// One problem in a scene.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
+    /// Error or warning.
+    pub severity: Severity,
     /// Where it is.
     pub location: Location,
     /// What is wrong.
@@ -80,9 +104,14 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
-    /// A diagnostic at `location`.
+    /// An error at `location`.
     pub fn new(location: Location, message: impl Into<String>) -> Self {
-        Self { location, message: message.into(), help: None }
+        Self { severity: Severity::Error, location, message: message.into(), help: None }
+    }
+
+    /// A warning at `location`.
+    pub fn warning(location: Location, message: impl Into<String>) -> Self {
+        Self { severity: Severity::Warning, ..Self::new(location, message) }
     }
 
     /// The same diagnostic with a hint.
@@ -102,7 +131,7 @@ impl Diagnostic {
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: error", self.location)?;
+        write!(f, "{}: {}", self.location, self.severity)?;
         if !self.location.key.is_empty() {
             write!(f, " in `{}`", self.location.key)?;
         }
@@ -114,7 +143,7 @@ impl fmt::Display for Diagnostic {
     }
 }
 
-/// One or more problems that stop a scene from loading.
+/// One or more problems that stop a scene from loading (errors, never warnings).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SceneError {
     /// The problems, in file order.
@@ -159,7 +188,9 @@ pub fn nearest_name<'a>(wrong: &str, candidates: impl IntoIterator<Item = &'a st
 }
 
 /// Field names listed in a serde "unknown field `x`, expected one of `a`, `b`" message:
-/// the unknown field and the expected names.
+/// the unknown field and the expected names. serde reports an unknown field only as this
+/// text (`serde::de::Error::unknown_field` builds it; toml keeps no typed form), so this is
+/// the one place that reads an error message, and it reads serde's fixed wording, not ours.
 pub fn parse_unknown_field(message: &str) -> Option<(String, Vec<String>)> {
     let rest = message.strip_prefix("unknown field `")?;
     let end = rest.find('`')?;
@@ -185,6 +216,16 @@ mod tests {
         assert_eq!(nearest_name("radus", ["radius", "center"]), Some("radius"));
         assert_eq!(nearest_name("colour", ["color", "ambient"]), Some("color"));
         assert_eq!(nearest_name("zzzzzz", ["radius", "center"]), None);
+    }
+
+    #[test]
+    fn severity_is_shown_with_the_location_and_key() {
+        let location = Location { file: "s.toml".into(), line: 3, column: 7, key: "object[0].file".into() };
+        let warning = Diagnostic::warning(location.clone(), "`a.gltf`: animations are ignored");
+        assert_eq!(warning.to_string(), "s.toml:3:7: warning in `object[0].file`: `a.gltf`: animations are ignored");
+        let error = Diagnostic::new(location, "no").with_help("yes");
+        assert_eq!(error.severity, Severity::Error);
+        assert_eq!(error.to_string(), "s.toml:3:7: error in `object[0].file`: no\n  help: yes");
     }
 
     #[test]

@@ -5,7 +5,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
-use prism::render::{RenderOptions, render_frame};
+use prism::diagnostics::{Diagnostic, SceneError};
+use prism::output::OutputError;
+use prism::render::{RenderError, RenderOptions, render_frame};
 use prism::scene::load::{load_file, load_from};
 use prism::world::Scene;
 use prism::world::components::ToneMap;
@@ -117,6 +119,54 @@ impl From<ToneMapArg> for ToneMap {
     }
 }
 
+/// Why a command failed: printed to standard error, and the exit code is 1.
+#[derive(Debug, thiserror::Error)]
+enum CliError {
+    /// The scene has errors (each with file, line, column and key).
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// An image or text file cannot be written.
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    /// The render could not run.
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    /// `--threads 0`.
+    #[error("--threads must be at least 1")]
+    NoThreads,
+    /// `--exr` names a file of another format.
+    #[error("{}: --exr needs a file ending in .exr", path.display())]
+    ExrExtension {
+        /// The `--exr` path.
+        path: PathBuf,
+    },
+    /// The scene cannot be written back as TOML.
+    #[error("{}: cannot write scene: {source}", path.display())]
+    Save {
+        /// The scene file.
+        path: PathBuf,
+        /// The cause.
+        source: toml::ser::Error,
+    },
+    /// The JSON schema cannot be written.
+    #[error("cannot write the schema: {0}")]
+    Schema(#[from] serde_json::Error),
+}
+
+/// Prints warnings to standard error, one `file:line:col: warning in `key`: ...` each.
+fn print_warnings(warnings: &[Diagnostic]) {
+    for warning in warnings {
+        eprintln!("{warning}");
+    }
+}
+
+/// Loads the scene file at `path` and prints what loading warns about.
+fn load_and_warn(path: &Path) -> Result<Scene, CliError> {
+    let scene = load_file(path, &plugins::registry())?;
+    print_warnings(&scene.warnings);
+    Ok(scene)
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -132,27 +182,26 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
-            eprintln!("{message}");
+        Err(error) => {
+            eprintln!("{error}");
             ExitCode::FAILURE
         }
     }
 }
 
-fn render_default() -> Result<(), String> {
-    let registry = plugins::registry();
-    let scene = load_from(&builtin::FILES, Path::new(builtin::DEFAULT_SCENE), &registry).map_err(|e| e.to_string())?;
+fn render_default() -> Result<(), CliError> {
+    let scene = load_from(&builtin::FILES, Path::new(builtin::DEFAULT_SCENE), &plugins::registry())?;
+    print_warnings(&scene.warnings);
     let args = RenderArgs { output: Some(PathBuf::from("prism.png")), ..RenderArgs::default() };
     render_scene(scene, &args)
 }
 
-fn render_command(args: &RenderArgs) -> Result<(), String> {
-    let registry = plugins::registry();
-    let scene = load_file(&args.scene, &registry).map_err(|e| e.to_string())?;
+fn render_command(args: &RenderArgs) -> Result<(), CliError> {
+    let scene = load_and_warn(&args.scene)?;
     render_scene(scene, args)
 }
 
-fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
+fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     let settings = &mut scene.render;
     if let Some(w) = args.width {
         settings.width = w;
@@ -173,7 +222,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
         settings.tone_map = t.into();
     }
     if args.threads == Some(0) {
-        return Err("--threads must be at least 1".into());
+        return Err(CliError::NoThreads);
     }
     let mut outputs: Vec<PathBuf> = args.output.iter().chain(args.exr.iter()).cloned().collect();
     if outputs.is_empty() {
@@ -181,24 +230,23 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
         outputs.push(PathBuf::from(format!("{stem}.png")));
     }
     if let Some(exr) = &args.exr
-        && output::format_for(exr).map_err(|e| e.to_string())? != output::OutputFormat::Exr
+        && output::format_for(exr)? != output::OutputFormat::Exr
     {
-        return Err(format!("{}: --exr needs a file ending in .exr", exr.display()));
+        return Err(CliError::ExrExtension { path: exr.clone() });
     }
     // Fail before rendering, not after: bad paths and formats are found now.
     for path in &outputs {
-        output::check_writable(path).map_err(|e| e.to_string())?;
+        output::check_writable(path)?;
     }
-    let render_scene = prepare(&mut scene).map_err(|e| e.to_string())?;
-    for warning in prism::world::validate::warnings(&scene) {
-        eprintln!("warning: {warning}");
-    }
-    let options = RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal(), ..Default::default() };
-    let (film, stats) = render_frame(&render_scene, &options).map_err(|e| e.to_string())?;
+    let render_scene = prepare(&mut scene)?;
+    print_warnings(&prism::world::validate::warnings(&scene));
+    let options =
+        RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal(), ..Default::default() };
+    let (film, stats) = render_frame(&render_scene, &options)?;
     let image =
         output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };
     for path in &outputs {
-        output::write_image(&film, path, &image).map_err(|e| e.to_string())?;
+        output::write_image(&film, path, &image)?;
     }
     let names: Vec<String> = outputs.iter().map(|p| p.display().to_string()).collect();
     eprintln!(
@@ -215,18 +263,17 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), String> {
     Ok(())
 }
 
-fn save_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
-    let registry = plugins::registry();
-    let scene = load_file(path, &registry).map_err(|e| e.to_string())?;
+fn save_command(path: &Path, output: Option<&Path>) -> Result<(), CliError> {
+    let scene = load_and_warn(path)?;
     // Written to a file, mesh and texture paths are relative to it; on standard output,
     // whose destination is unknown, they stay absolute.
     let text = match output {
         Some(out) => prism::scene::save::save_for(&scene, out),
         None => prism::scene::save::save(&scene),
     };
-    let text = text.map_err(|e| format!("{}: cannot write scene: {e}", path.display()))?;
+    let text = text.map_err(|source| CliError::Save { path: path.to_path_buf(), source })?;
     match output {
-        Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
+        Some(out) => Ok(output::write_atomically(out, text.as_bytes())?),
         None => {
             print!("{text}");
             Ok(())
@@ -234,11 +281,11 @@ fn save_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
     }
 }
 
-fn schema_command(output: Option<&Path>) -> Result<(), String> {
+fn schema_command(output: Option<&Path>) -> Result<(), CliError> {
     let schema = prism::scene::schema::scene_schema(&plugins::registry());
-    let text = serde_json::to_string_pretty(&schema).map_err(|e| e.to_string())? + "\n";
+    let text = serde_json::to_string_pretty(&schema)? + "\n";
     match output {
-        Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
+        Some(out) => Ok(output::write_atomically(out, text.as_bytes())?),
         None => {
             print!("{text}");
             Ok(())
@@ -246,15 +293,14 @@ fn schema_command(output: Option<&Path>) -> Result<(), String> {
     }
 }
 
-fn export_pov_command(path: &Path, output: Option<&Path>) -> Result<(), String> {
-    let registry = plugins::registry();
-    let mut scene = load_file(path, &registry).map_err(|e| e.to_string())?;
-    prism::world::transforms::resolve_transforms(&mut scene).map_err(|e| e.to_string())?;
-    prism::world::validate::validate(&scene).map_err(|e| e.to_string())?;
+fn export_pov_command(path: &Path, output: Option<&Path>) -> Result<(), CliError> {
+    let mut scene = load_and_warn(path)?;
+    prism::world::transforms::resolve_transforms(&mut scene)?;
+    prism::world::validate::validate(&scene)?;
     let source = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
-    let text = prism::export::pov::export(&scene, &source).map_err(|e| e.to_string())?;
+    let text = prism::export::pov::export(&scene, &source)?;
     match output {
-        Some(out) => output::write_atomically(out, text.as_bytes()).map_err(|e| e.to_string()),
+        Some(out) => Ok(output::write_atomically(out, text.as_bytes())?),
         None => {
             print!("{text}");
             Ok(())

@@ -196,6 +196,56 @@ fn broken_scenes_fail_clearly_without_output() {
     assert!(failures.is_empty(), "{} of {} cases failed:\n{}", failures.len(), all.len(), failures.join("\n"));
 }
 
+/// A glTF quad (mesh 0: its triangles, then its corners again as points) and a point light
+/// with a `range` on node 1.
+const LAMP_GLTF: &str = r#"{
+  "asset": { "version": "2.0" },
+  "scene": 0,
+  "scenes": [{ "nodes": [0, 1] }],
+  "nodes": [
+    { "mesh": 0 },
+    { "translation": [0, 2, 0], "extensions": { "KHR_lights_punctual": { "light": 0 } } }
+  ],
+  "meshes": [{ "primitives": [
+    { "attributes": { "POSITION": 1 }, "indices": 0 },
+    { "attributes": { "POSITION": 1 }, "mode": 0 }
+  ] }],
+  "extensionsUsed": ["KHR_lights_punctual"],
+  "extensions": { "KHR_lights_punctual": { "lights": [{ "type": "point", "intensity": 20, "range": 10 }] } },
+  "buffers": [{ "byteLength": 60, "uri": "data:application/octet-stream;base64,AAABAAIAAAACAAMAAAAAwAAAAAAAAADAAAAAwAAAAAAAAABAAAAAQAAAAAAAAABAAAAAQAAAAAAAAADA" }],
+  "bufferViews": [
+    { "buffer": 0, "byteOffset": 0, "byteLength": 12 },
+    { "buffer": 0, "byteOffset": 12, "byteLength": 48 }
+  ],
+  "accessors": [
+    { "bufferView": 0, "componentType": 5123, "count": 6, "type": "SCALAR" },
+    { "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-2, 0, -2], "max": [2, 0, 2] }
+  ]
+}"#;
+
+#[test]
+fn warnings_name_the_place_and_the_render_goes_on() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("lamp.gltf"), LAMP_GLTF).unwrap();
+    let scene = "[render]\nwidth = 8\nheight = 6\n\n[[object]]\nshape = \"mesh\"\nfile = \"lamp.gltf\"\n\
+                 import_lights = true\ntransform = { translate = [0, -1, -3] }\n\n\
+                 [[object]]\nshape = \"mesh\"\nfile = \"lamp.gltf\"\n";
+    std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
+    let run = prism().current_dir(dir.path()).args(["render", "scene.toml", "-o", "out.png"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(dir.path().join("out.png").is_file(), "{stderr}");
+    // The imported light's `range`, at the key that imports it.
+    let range = "scene.toml:8:17: warning in `object[0].import_lights`: lamp.gltf: light 0: `range` 10 is ignored";
+    assert!(stderr.contains(range), "{stderr}");
+    // What the file skips, at the first object naming it, and only there.
+    let points = "scene.toml:7:8: warning in `object[0].file`: lamp.gltf: mesh 0 primitive 1: Points primitives \
+                  are not rendered; skipped";
+    assert!(stderr.contains(points), "{stderr}");
+    assert_eq!(stderr.matches("Points primitives").count(), 1, "{stderr}");
+    assert!(stderr.contains("rendered 8x6"), "{stderr}");
+}
+
 #[test]
 fn missing_scene_file_is_an_error() {
     let dir = tempfile::tempdir().unwrap();

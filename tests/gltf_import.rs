@@ -285,8 +285,13 @@ fn the_cli_save_writes_paths_relative_to_the_output() {
         .unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let stderr = String::from_utf8_lossy(&run.stderr);
-    assert!(stderr.contains("warning:") && stderr.contains("aspectRatio 1.5"), "{stderr}");
-    assert!(stderr.contains("range") && stderr.contains("ignored"), "{stderr}");
+    let camera = stderr.lines().find(|l| l.contains("aspectRatio 1.5")).unwrap_or_else(|| panic!("{stderr}"));
+    assert!(
+        camera.starts_with("sub/copy.toml:") && camera.contains(": warning in `object[0].import_camera`: "),
+        "{camera}"
+    );
+    let range = stderr.lines().find(|l| l.contains("`range`")).unwrap_or_else(|| panic!("{stderr}"));
+    assert!(range.contains(": warning in `object[0].import_lights`: ") && range.contains("ignored"), "{range}");
 }
 
 fn prism() -> Command {

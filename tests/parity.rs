@@ -179,7 +179,7 @@ fn check(name: &str, ours: &Film, reference: &Path, limits: &Tolerance, live: bo
     if !reference.exists() {
         return Err(format!("{name}: reference {} is missing; render it with: {regenerate}", reference.display()));
     }
-    let reference_film = read_exr(reference)?;
+    let reference_film = read_exr(reference).map_err(|e| e.to_string())?;
     if (reference_film.width, reference_film.height) != (ours.width, ours.height) {
         return Err(format!(
             "{name}: reference is {}x{}, Prism renders {}x{}; regenerate it with: {regenerate}",

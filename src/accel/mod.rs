@@ -1,9 +1,11 @@
 //! Acceleration: primitives placed in the world, and both levels of the BVH (the scene
 //! level over primitives, the mesh level over triangles), which share one 8-wide node
-//! layout and its SIMD box tests.
+//! layout; the SIMD kernels of both (box and triangle tests) live in [`simd`], once per
+//! instruction set.
 
 pub mod mesh_bvh;
 pub mod primitive;
 pub mod scene_bvh;
+pub(crate) mod simd;
 pub mod triangle;
 pub(crate) mod wide;

@@ -123,6 +123,31 @@ impl Primitive {
         }
     }
 
+    /// The factor by which this primitive's transform scales an area element whose
+    /// object-space unit normal is `object_normal` (Nanson's formula, `|det M| |M^-T n|`):
+    /// an object-space area density divided by it is the world-space density.
+    #[inline]
+    pub fn area_scale(&self, object_normal: DVec3) -> f64 {
+        match self.placement {
+            Placement::Identity | Placement::Translation(_) => 1.0,
+            Placement::Affine => {
+                self.world_from_object.matrix3.determinant().abs() * (self.normal_to_world * object_normal).length()
+            }
+        }
+    }
+
+    /// The factor by which this primitive's transform scales a solid-angle element around
+    /// the object-space direction `object_direction` (see
+    /// [`prism_api::math::solid_angle_scale`]): an object-space direction density from
+    /// [`Shape::sample_toward`] or [`Shape::pdf_toward`] divided by it is the world-space one.
+    #[inline]
+    pub fn solid_angle_scale(&self, object_direction: DVec3) -> f64 {
+        match self.placement {
+            Placement::Identity | Placement::Translation(_) => 1.0,
+            Placement::Affine => prism_api::math::solid_angle_scale(self.world_from_object.matrix3, object_direction),
+        }
+    }
+
     /// The object-space unit normal `n` as a world-space unit normal.
     #[inline]
     pub fn world_normal(&self, n: DVec3) -> DVec3 {
@@ -173,10 +198,25 @@ mod tests {
             assert_eq!(p.object_point(ray.origin), by_matrix.origin);
             let n = rng.unit_vector();
             assert_eq!(p.world_normal(n), n, "a translation leaves normals alone");
+            assert_eq!(p.area_scale(n), 1.0, "a translation keeps areas");
         }
         // The general case still maps normals with the inverse transpose.
         let squashed = sphere_at(DAffine3::from_scale(DVec3::new(1.0, 0.5, 1.0)));
         let n = squashed.world_normal(DVec2::new(1.0, 1.0).extend(0.0).normalize());
         assert!((n - DVec3::new(1.0, 2.0, 0.0).normalize()).length() < 1e-12);
+    }
+
+    /// The area scale agrees with a small parallelogram mapped through the transform.
+    #[test]
+    fn area_scale_matches_a_mapped_parallelogram() {
+        let m = DMat3::from_cols(DVec3::new(2.0, 0.3, 0.0), DVec3::new(-0.5, 1.5, 0.2), DVec3::new(0.1, 0.0, 0.7));
+        let p = sphere_at(DAffine3::from_mat3_translation(m, DVec3::new(1.0, 2.0, 3.0)));
+        let mut rng = TestRng::new(9);
+        for _ in 0..100 {
+            let n = rng.unit_vector();
+            let (t1, t2) = (n.any_orthonormal_pair().0 * 1e-3, n.any_orthonormal_pair().1 * 1e-3);
+            let mapped = (m * t1).cross(m * t2).length() / t1.cross(t2).length();
+            assert!((p.area_scale(n) / mapped - 1.0).abs() < 1e-9, "{} vs {mapped}", p.area_scale(n));
+        }
     }
 }

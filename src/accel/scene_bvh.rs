@@ -12,7 +12,8 @@ use obvhs::bvh2::builder::build_bvh2;
 use prism_api::{Hit, Ray};
 
 use super::primitive::Primitive;
-use crate::accel::wide::{BoxRay, EMPTY, LEAF, WIDTH, WideTree, traverse_fastest, with_traversal_stack};
+use super::simd::BoxRay;
+use super::wide::{EMPTY, LEAF, WIDTH, WideTree, traverse_fastest, with_traversal_stack};
 
 /// The acceleration structure.
 pub struct Accel {
@@ -202,7 +203,7 @@ impl Accel {
                 if child == EMPTY {
                     continue;
                 }
-                let b = &node.bounds;
+                let b = &node.bounds.planes;
                 let min = DVec3::new(b[0][slot].into(), b[1][slot].into(), b[2][slot].into());
                 let max = DVec3::new(b[3][slot].into(), b[4][slot].into(), b[5][slot].into());
                 if hull.excludes(min, max) {

@@ -5,7 +5,9 @@
 //! them; an edge function that rounds to zero is redone in f64, as the paper recommends.
 //!
 //! The test runs in f32 (mesh data is f32). The ray direction need not be unit length: `t`
-//! is in units of the direction, as everywhere in Prism.
+//! is in units of the direction, as everywhere in Prism. [`WatertightRay::intersect`] is the
+//! scalar test; a BVH leaf is a [`TrianglePacket`] of four triangles, which the SIMD
+//! kernels (`accel::simd`) test in lanes with exactly its results.
 
 use glam::{DVec3, Vec3};
 
@@ -17,12 +19,12 @@ pub struct WatertightRay {
     pub origin: Vec3,
     /// Ray direction (unnormalised).
     pub direction: Vec3,
-    kx: usize,
-    ky: usize,
-    kz: usize,
-    sx: f32,
-    sy: f32,
-    sz: f32,
+    /// The axes (kx, ky, kz): kz is the direction's dominant axis.
+    axes: [usize; 3],
+    /// The shear (sx, sy, sz) that maps the permuted direction to +z.
+    shear: [f32; 3],
+    /// The origin's coordinates on the axes (kx, ky, kz).
+    permuted_origin: [f32; 3],
 }
 
 /// Where a ray meets a triangle: the ray parameter and the barycentric weights of the
@@ -58,28 +60,48 @@ impl WatertightRay {
             std::mem::swap(&mut kx, &mut ky);
         }
         let sz = 1.0 / direction[kz];
-        Some(Self { origin, direction, kx, ky, kz, sx: direction[kx] * sz, sy: direction[ky] * sz, sz })
+        let axes = [kx, ky, kz];
+        Some(Self {
+            origin,
+            direction,
+            axes,
+            shear: [direction[kx] * sz, direction[ky] * sz, sz],
+            permuted_origin: axes.map(|k| origin[k]),
+        })
     }
 
-    /// The axis permutation (kx, ky, kz) and the shear (sx, sy, sz) of the test, for SIMD
-    /// versions that must compute exactly the same edge functions.
-    pub fn shear(&self) -> ([usize; 3], [f32; 3]) {
-        ([self.kx, self.ky, self.kz], [self.sx, self.sy, self.sz])
+    /// The axis permutation (kx, ky, kz) of the test.
+    #[inline(always)]
+    pub(crate) fn axes(&self) -> [usize; 3] {
+        self.axes
+    }
+
+    /// The shear (sx, sy, sz) of the test.
+    #[inline(always)]
+    pub(crate) fn shear(&self) -> [f32; 3] {
+        self.shear
+    }
+
+    /// The origin's coordinates on the axes (kx, ky, kz).
+    #[inline(always)]
+    pub(crate) fn permuted_origin(&self) -> [f32; 3] {
+        self.permuted_origin
     }
 
     /// The hit with triangle (a, b, c) with `0 < t < t_max`, if any. Both faces count.
     #[inline]
     pub fn intersect(&self, a: Vec3, b: Vec3, c: Vec3, t_max: f32) -> Option<TriangleHit> {
-        let (kx, ky, kz) = (self.kx, self.ky, self.kz);
+        let [kx, ky, kz] = self.axes;
+        let [sx, sy, sz] = self.shear;
         let a = a - self.origin;
         let b = b - self.origin;
         let c = c - self.origin;
-        let ax = a[kx] - self.sx * a[kz];
-        let ay = a[ky] - self.sy * a[kz];
-        let bx = b[kx] - self.sx * b[kz];
-        let by = b[ky] - self.sy * b[kz];
-        let cx = c[kx] - self.sx * c[kz];
-        let cy = c[ky] - self.sy * c[kz];
+        let ax = a[kx] - sx * a[kz];
+        let ay = a[ky] - sy * a[kz];
+        let bx = b[kx] - sx * b[kz];
+        let by = b[ky] - sy * b[kz];
+        let cx = c[kx] - sx * c[kz];
+        let cy = c[ky] - sy * c[kz];
         let mut u = cx * by - cy * bx;
         let mut v = ax * cy - ay * cx;
         let mut w = bx * ay - by * ax;
@@ -98,9 +120,9 @@ impl WatertightRay {
         if det == 0.0 || !det.is_finite() {
             return None;
         }
-        let az = self.sz * a[kz];
-        let bz = self.sz * b[kz];
-        let cz = self.sz * c[kz];
+        let az = sz * a[kz];
+        let bz = sz * b[kz];
+        let cz = sz * c[kz];
         let t_scaled = u * az + v * bz + w * cz;
         let inv = 1.0 / det;
         let t = t_scaled * inv;
@@ -108,6 +130,86 @@ impl WatertightRay {
             return None;
         }
         Some(TriangleHit { t, b1: v * inv, b2: w * inv })
+    }
+}
+
+/// Triangles per leaf packet (and at most per leaf of a mesh BVH). Four, tested in SSE
+/// lanes: leaves of real meshes hold three to four triangles, and wider packets mostly carry
+/// padding through the cache.
+pub const PACKET: usize = 4;
+
+/// Four triangles, vertices as structure of arrays (`a[axis][lane]`), tested together by
+/// the SIMD kernels (`accel::simd`), lane by lane as [`WatertightRay::intersect`]. Unused lanes repeat the last triangle, so they
+/// can only report hits that are already reported.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+pub struct TrianglePacket {
+    /// First vertices.
+    pub a: [[f32; PACKET]; 3],
+    /// Second vertices.
+    pub b: [[f32; PACKET]; 3],
+    /// Third vertices.
+    pub c: [[f32; PACKET]; 3],
+    /// Triangle index (into the mesh's triangle list) of each lane.
+    pub prim: [u32; PACKET],
+}
+
+impl TrianglePacket {
+    /// The packet of `prims` (one to `PACKET` indices into `triangles`).
+    pub fn new(triangles: &[[Vec3; 3]], prims: &[u32]) -> Self {
+        let count = prims.len().clamp(1, PACKET);
+        let mut packet =
+            Self { a: [[0.0; PACKET]; 3], b: [[0.0; PACKET]; 3], c: [[0.0; PACKET]; 3], prim: [0; PACKET] };
+        for lane in 0..PACKET {
+            let prim = prims[lane.min(count - 1)];
+            let [a, b, c] = triangles[prim as usize];
+            for axis in 0..3 {
+                packet.a[axis][lane] = a[axis];
+                packet.b[axis][lane] = b[axis];
+                packet.c[axis][lane] = c[axis];
+            }
+            packet.prim[lane] = prim;
+        }
+        packet
+    }
+
+    /// The vertices of the triangle in `lane`.
+    #[inline(always)]
+    pub fn vertices(&self, lane: usize) -> [Vec3; 3] {
+        let vertex = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
+        [vertex(&self.a), vertex(&self.b), vertex(&self.c)]
+    }
+
+    /// Distinct triangles in the packet (lanes that do not repeat their predecessor).
+    pub fn distinct(&self) -> usize {
+        (0..PACKET).filter(|&lane| lane == 0 || self.prim[lane] != self.prim[lane - 1]).count()
+    }
+}
+
+/// The hits of one ray with a packet's lanes, as structure of arrays.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PacketHits {
+    /// Ray parameter of each lane's hit.
+    pub t: [f32; PACKET],
+    /// Weight of vertex 1 of each lane's hit.
+    pub b1: [f32; PACKET],
+    /// Weight of vertex 2 of each lane's hit.
+    pub b2: [f32; PACKET],
+}
+
+impl PacketHits {
+    /// The hit in `lane`.
+    #[inline(always)]
+    pub fn get(&self, lane: usize) -> TriangleHit {
+        TriangleHit { t: self.t[lane], b1: self.b1[lane], b2: self.b2[lane] }
+    }
+
+    /// Stores `hit` in `lane`.
+    #[inline(always)]
+    pub fn set(&mut self, lane: usize, hit: TriangleHit) {
+        self.t[lane] = hit.t;
+        self.b1[lane] = hit.b1;
+        self.b2[lane] = hit.b2;
     }
 }
 

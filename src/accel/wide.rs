@@ -1,21 +1,20 @@
 //! The 8-wide BVH both levels of Prism's acceleration share: nodes holding their eight
-//! children's boxes as structure-of-arrays (one AVX2 instruction tests a ray against all
-//! eight), built by collapsing an obvhs binary tree, and traversed depth first, nearest
-//! child first. What a leaf is belongs to the user: a packet of triangles in a mesh
-//! ([`crate::geometry::mesh`]), one primitive at the top level ([`crate::accel::scene_bvh`]).
+//! children's boxes as structure-of-arrays (tested against a ray at once by the box kernel
+//! of [`crate::accel::simd`]), built by collapsing an obvhs binary tree, and traversed depth
+//! first, nearest child first. What a leaf is belongs to the user: a packet of triangles in
+//! a mesh ([`crate::accel::mesh_bvh`]), one primitive at the top level
+//! ([`crate::accel::scene_bvh`]).
 
 use std::mem::MaybeUninit;
 
-use glam::{Vec3, Vec3A};
+use super::simd::{self, BOXES, BoxLanes, BoxRay, Dispatch, Kernels};
 
 /// Children per node.
-pub const WIDTH: usize = 8;
+pub const WIDTH: usize = BOXES;
 /// Child slot marker: the child is a leaf (the low bits are the user's leaf reference).
 pub const LEAF: u32 = 1 << 31;
 /// An unused child slot.
 pub const EMPTY: u32 = u32::MAX;
-/// Ize's conservative slab test: far distances grow by 2 gamma(3) so rounding never loses a box.
-pub const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
 /// A traversal stack entry: a node reference and the distance at which the ray enters it.
 pub type StackEntry = MaybeUninit<(u32, f32)>;
@@ -24,153 +23,23 @@ pub type StackEntry = MaybeUninit<(u32, f32)>;
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
 pub struct Node {
-    /// min x, min y, min z, max x, max y, max z of each child.
-    pub bounds: [[f32; WIDTH]; 6],
+    /// The children's boxes.
+    pub bounds: BoxLanes,
     /// Inner node index, `LEAF | leaf reference`, or `EMPTY`.
     pub child: [u32; WIDTH],
 }
 
 impl Node {
     /// A node with no children (empty boxes that no ray enters).
-    pub const EMPTY: Node = Node {
-        bounds: [
-            [f32::INFINITY; WIDTH],
-            [f32::INFINITY; WIDTH],
-            [f32::INFINITY; WIDTH],
-            [f32::NEG_INFINITY; WIDTH],
-            [f32::NEG_INFINITY; WIDTH],
-            [f32::NEG_INFINITY; WIDTH],
-        ],
-        child: [EMPTY; WIDTH],
-    };
+    pub const EMPTY: Node = Node { bounds: BoxLanes::EMPTY, child: [EMPTY; WIDTH] };
 
     fn set_child(&mut self, slot: usize, child: &obvhs::bvh2::node::Bvh2Node, reference: u32) {
         let (min, max) = (child.aabb().min, child.aabb().max);
         for axis in 0..3 {
-            self.bounds[axis][slot] = min[axis];
-            self.bounds[axis + 3][slot] = max[axis];
+            self.bounds.planes[axis][slot] = min[axis];
+            self.bounds.planes[axis + 3][slot] = max[axis];
         }
         self.child[slot] = reference;
-    }
-}
-
-/// A ray prepared for the slab test: reciprocal direction, origin times it, and which
-/// bound is the near plane on each axis.
-#[derive(Clone, Copy, Debug)]
-pub struct BoxRay {
-    /// Reciprocal direction.
-    pub rdir: [f32; 3],
-    /// Origin times the reciprocal direction.
-    pub org_rdir: [f32; 3],
-    /// Index into `Node::bounds` of the near plane on each axis.
-    pub near: [usize; 3],
-    /// Index of the far plane on each axis (`near` + 3 mod 6).
-    pub far: [usize; 3],
-}
-
-impl BoxRay {
-    /// Prepares the ray `origin + t direction`.
-    #[inline]
-    pub fn new(origin: Vec3, direction: Vec3) -> Self {
-        let d = Vec3A::from(direction);
-        // Zero components become tiny ones (as Embree does): infinite reciprocals would turn
-        // the slab test's products into NaN.
-        let tiny = Vec3A::splat(1e-18);
-        let rdir = Vec3A::select(d.abs().cmplt(tiny), tiny.copysign(d), d).recip();
-        let org_rdir = Vec3A::from(origin) * rdir;
-        let negative = rdir.is_negative_bitmask();
-        let near_of = |axis: usize| if negative & (1 << axis) == 0 { axis } else { axis + 3 };
-        let far_of = |axis: usize| if negative & (1 << axis) == 0 { axis + 3 } else { axis };
-        Self {
-            rdir: rdir.to_array(),
-            org_rdir: org_rdir.to_array(),
-            near: [near_of(0), near_of(1), near_of(2)],
-            far: [far_of(0), far_of(1), far_of(2)],
-        }
-    }
-}
-
-/// Tests a ray against the eight boxes of a node.
-pub trait BoxKernel {
-    /// Bit mask of the children whose boxes the ray enters at `0 <= t <= t_max`, and their
-    /// entry distances in `near`.
-    fn boxes(node: &Node, r: &BoxRay, t_max: f32, near: &mut [f32; WIDTH]) -> u32;
-}
-
-/// The box test as a plain loop (without AVX2).
-pub struct ScalarBoxes;
-
-impl BoxKernel for ScalarBoxes {
-    #[inline(always)]
-    fn boxes(node: &Node, r: &BoxRay, t_max: f32, near: &mut [f32; WIDTH]) -> u32 {
-        let mut mask = 0;
-        for (i, entry) in near.iter_mut().enumerate() {
-            let mut t0 = 0.0f32;
-            let mut t1 = t_max;
-            for axis in 0..3 {
-                let n = node.bounds[r.near[axis]][i] * r.rdir[axis] - r.org_rdir[axis];
-                let f = (node.bounds[r.far[axis]][i] * r.rdir[axis] - r.org_rdir[axis]) * FAR_SCALE;
-                t0 = if n > t0 { n } else { t0 };
-                t1 = if f < t1 { f } else { t1 };
-            }
-            *entry = t0;
-            if t0 <= t1 {
-                mask |= 1 << i;
-            }
-        }
-        mask
-    }
-}
-
-/// True when the CPU runs the AVX2 + FMA kernels.
-#[cfg(target_arch = "x86_64")]
-pub fn avx2_available() -> bool {
-    static AVAILABLE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *AVAILABLE.get_or_init(|| {
-        is_x86_feature_detected!("avx2")
-            && is_x86_feature_detected!("fma")
-            && is_x86_feature_detected!("popcnt")
-            && is_x86_feature_detected!("bmi1")
-    })
-}
-
-/// The box test in AVX2 lanes. Only use it inside functions compiled with AVX2 and FMA
-/// enabled that run after [`avx2_available`].
-#[cfg(target_arch = "x86_64")]
-pub struct Avx2Boxes;
-
-#[cfg(target_arch = "x86_64")]
-impl BoxKernel for Avx2Boxes {
-    #[inline(always)]
-    fn boxes(node: &Node, r: &BoxRay, t_max: f32, near: &mut [f32; WIDTH]) -> u32 {
-        use std::arch::x86_64::*;
-        // SAFETY: only instantiated inside functions compiled with AVX2 and FMA enabled,
-        // which run only after `avx2_available()`; loads are of 32-byte aligned arrays.
-        unsafe {
-            let b = &node.bounds;
-            // Macros, not closures: a closure is a function of its own without AVX, and the
-            // intrinsics in it would not be inlined.
-            macro_rules! plane {
-                ($k:expr, $axis:expr) => {
-                    _mm256_fmsub_ps(
-                        _mm256_load_ps(b[$k].as_ptr()),
-                        _mm256_set1_ps(r.rdir[$axis]),
-                        _mm256_set1_ps(r.org_rdir[$axis]),
-                    )
-                };
-            }
-            let nx = plane!(r.near[0], 0);
-            let ny = plane!(r.near[1], 1);
-            let nz = plane!(r.near[2], 2);
-            let fx = plane!(r.far[0], 0);
-            let fy = plane!(r.far[1], 1);
-            let fz = plane!(r.far[2], 2);
-            let t0 = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, _mm256_setzero_ps()));
-            let t1 = _mm256_min_ps(_mm256_min_ps(fx, fy), fz);
-            let t1 = _mm256_min_ps(_mm256_mul_ps(t1, _mm256_set1_ps(FAR_SCALE)), _mm256_set1_ps(t_max));
-            _mm256_storeu_ps(near.as_mut_ptr(), t0);
-            _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(t0, t1)) as u32
-        }
     }
 }
 
@@ -261,7 +130,8 @@ pub fn pop_within(stack: &[StackEntry], sp: &mut usize, t_max: f32) -> Option<u3
 /// may lower `t_max`, and returns true to stop the traversal (an any-hit query that found
 /// one); `traverse` then returns true.
 #[inline(always)]
-pub fn traverse<K: BoxKernel, const NEAREST_FIRST: bool>(
+pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
+    kernels: K,
     nodes: &[Node],
     r: &BoxRay,
     t_max: f32,
@@ -275,7 +145,7 @@ pub fn traverse<K: BoxKernel, const NEAREST_FIRST: bool>(
     loop {
         if current & LEAF == 0 {
             let node = &nodes[current as usize];
-            let mask = K::boxes(node, r, t_max, &mut near);
+            let mask = kernels.boxes(&node.bounds, r, t_max, &mut near);
             let next = if NEAREST_FIRST {
                 order_children(node, mask, &near, stack, &mut sp)
             } else {
@@ -296,7 +166,7 @@ pub fn traverse<K: BoxKernel, const NEAREST_FIRST: bool>(
     }
 }
 
-/// [`traverse`] with the fastest box kernel the CPU runs.
+/// [`traverse`] with the fastest kernels the CPU runs.
 #[inline(always)]
 pub fn traverse_fastest<const NEAREST_FIRST: bool>(
     nodes: &[Node],
@@ -305,29 +175,25 @@ pub fn traverse_fastest<const NEAREST_FIRST: bool>(
     stack: &mut [StackEntry],
     leaf: impl FnMut(u32, &mut f32) -> bool,
 ) -> bool {
-    #[cfg(target_arch = "x86_64")]
-    if avx2_available() {
-        // SAFETY: the CPU has AVX2 and FMA (checked at run time).
-        return unsafe { traverse_avx2::<NEAREST_FIRST>(nodes, r, t_max, stack, leaf) };
-    }
-    traverse::<ScalarBoxes, NEAREST_FIRST>(nodes, r, t_max, stack, leaf)
+    simd::dispatch(Traversal::<_, NEAREST_FIRST> { nodes, ray: r, t_max, stack, leaf })
 }
 
-/// [`traverse`] with the AVX2 box kernel.
-///
-/// # Safety
-///
-/// The CPU must support AVX2 and FMA ([`avx2_available`]).
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma,popcnt,bmi1")]
-unsafe fn traverse_avx2<const NEAREST_FIRST: bool>(
-    nodes: &[Node],
-    r: &BoxRay,
+/// The arguments of [`traverse`], for [`simd::dispatch`].
+struct Traversal<'a, F, const NEAREST_FIRST: bool> {
+    nodes: &'a [Node],
+    ray: &'a BoxRay,
     t_max: f32,
-    stack: &mut [StackEntry],
-    leaf: impl FnMut(u32, &mut f32) -> bool,
-) -> bool {
-    traverse::<Avx2Boxes, NEAREST_FIRST>(nodes, r, t_max, stack, leaf)
+    stack: &'a mut [StackEntry],
+    leaf: F,
+}
+
+impl<F: FnMut(u32, &mut f32) -> bool, const NEAREST_FIRST: bool> Dispatch for Traversal<'_, F, NEAREST_FIRST> {
+    type Output = bool;
+
+    #[inline(always)]
+    fn run<K: Kernels>(self, kernels: K) -> bool {
+        traverse::<K, NEAREST_FIRST>(kernels, self.nodes, self.ray, self.t_max, self.stack, self.leaf)
+    }
 }
 
 /// Runs `f` with a traversal stack of `size` slots: on the call stack when it fits (the
@@ -372,7 +238,10 @@ impl WideTree {
     }
 
     /// Fills node `index` from the binary inner node `bvh2_index`.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "one step of the recursive collapse: the fixed source tree and leaf policy, and the walk's position and depth"
+    )]
     fn fill(
         &mut self,
         bvh2: &obvhs::bvh2::Bvh2,

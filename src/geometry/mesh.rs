@@ -11,6 +11,42 @@ use crate::accel::mesh_bvh::TriangleBvh;
 use crate::accel::triangle::{WatertightRay, plane_t};
 use crate::texture::TextureRef;
 
+/// Why vertex data cannot become a mesh.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    /// A position is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite position {position:?}")]
+    NonFinitePosition {
+        /// The vertex.
+        vertex: usize,
+        /// Its position.
+        position: [f32; 3],
+    },
+    /// An attribute array is neither empty nor one per position.
+    #[error("{len} {attribute} for {vertices} vertices")]
+    AttributeCount {
+        /// `normals`, `texture coordinates` or `tangents`.
+        attribute: &'static str,
+        /// How many the array holds.
+        len: usize,
+        /// How many positions there are.
+        vertices: usize,
+    },
+    /// A triangle names a vertex that does not exist.
+    #[error("triangle {triangle} uses vertex {corners:?}, but there are only {vertices} vertices")]
+    VertexOutOfRange {
+        /// The triangle.
+        triangle: usize,
+        /// Its vertex indices.
+        corners: [u32; 3],
+        /// How many vertices there are.
+        vertices: usize,
+    },
+    /// Every triangle has zero area (or there were none): nothing to hit.
+    #[error("no triangles with a non-zero area")]
+    NoTriangles,
+}
+
 /// Vertex data of a mesh before its BVH is built.
 #[derive(Clone, Debug, Default)]
 pub struct MeshBuilder {
@@ -30,22 +66,22 @@ impl MeshBuilder {
     /// Checks indices and values: every index in range, every position finite, attribute
     /// arrays empty or as long as the positions. Non-finite normals, uvs or tangents are
     /// dropped (the mesh falls back to flat shading or barycentric uvs), not fatal.
-    pub fn validate(&mut self) -> Result<(), String> {
+    pub fn validate(&mut self) -> Result<(), MeshError> {
         let n = self.positions.len();
         if let Some(i) = self.positions.iter().position(|p| !p.is_finite()) {
-            return Err(format!("vertex {i} has a non-finite position {:?}", self.positions[i].to_array()));
+            return Err(MeshError::NonFinitePosition { vertex: i, position: self.positions[i].to_array() });
         }
-        for (what, len) in [
+        for (attribute, len) in [
             ("normals", self.normals.len()),
             ("texture coordinates", self.uvs.len()),
             ("tangents", self.tangents.len()),
         ] {
             if len != 0 && len != n {
-                return Err(format!("{len} {what} for {n} vertices"));
+                return Err(MeshError::AttributeCount { attribute, len, vertices: n });
             }
         }
         if let Some((t, tri)) = self.triangles.iter().enumerate().find(|(_, t)| t.iter().any(|&i| i as usize >= n)) {
-            return Err(format!("triangle {t} uses vertex {:?}, but there are only {n} vertices", tri));
+            return Err(MeshError::VertexOutOfRange { triangle: t, corners: *tri, vertices: n });
         }
         if !self.normals.iter().all(|v| v.is_finite()) {
             self.normals.clear();
@@ -61,7 +97,7 @@ impl MeshBuilder {
 
     /// Validates and builds the mesh and its BVH. Triangles with zero area (nothing can hit
     /// them and they have no normal) and repeated triangles are dropped.
-    pub fn build(mut self) -> Result<MeshData, String> {
+    pub fn build(mut self) -> Result<MeshData, MeshError> {
         self.validate()?;
         let positions = &self.positions;
         self.triangles.retain(|t| {
@@ -77,11 +113,11 @@ impl MeshBuilder {
             seen.insert(key)
         });
         if self.triangles.is_empty() {
-            return Err("no triangles with a non-zero area".into());
+            return Err(MeshError::NoTriangles);
         }
+        self.triangles.shrink_to_fit();
         let corners: Vec<[Vec3; 3]> = self.triangles.iter().map(|t| t.map(|i| positions[i as usize])).collect();
-        let (bvh, order) = TriangleBvh::build(&corners);
-        let triangles: Vec<[u32; 3]> = order.iter().map(|&i| self.triangles[i as usize]).collect();
+        let bvh = TriangleBvh::build(&corners);
         let mut bounds = Aabb::EMPTY;
         let mut area = 0.0;
         for t in &corners {
@@ -95,7 +131,7 @@ impl MeshBuilder {
             normals: self.normals,
             uvs: self.uvs,
             tangents: self.tangents,
-            triangles,
+            triangles: self.triangles,
             bvh,
             bounds,
             area,
@@ -111,7 +147,7 @@ pub struct MeshData {
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
     tangents: Vec<Vec4>,
-    /// Vertex indices of each triangle, in BVH leaf order.
+    /// Vertex indices of each triangle (the BVH's hits name them by their index here).
     triangles: Vec<[u32; 3]>,
     bvh: TriangleBvh,
     bounds: Aabb,
@@ -452,7 +488,7 @@ impl Shape for MeshShape {
             (uv_area / cross.length()).sqrt()
         };
         let shading_normal = self.shading_normal(ray, &tri, (b1, b2), ng, uv);
-        Surface { point: ray.at(hit.t), normal: ng, shading_normal, uv, uv_density }
+        Surface { point: ray.at(hit.t), normal: ng, shading_normal, uv, uv_density, dpdu: prism_api::math::tangent(ng) }
     }
 
     fn area(&self) -> Option<f64> {
@@ -608,15 +644,18 @@ mod tests {
     fn validation_rejects_bad_data() {
         let mut bad =
             MeshBuilder { positions: vec![Vec3::ZERO; 3], triangles: vec![[0, 1, 3]], ..MeshBuilder::default() };
-        assert!(bad.validate().unwrap_err().contains("only 3 vertices"));
+        assert_eq!(
+            bad.validate().unwrap_err(),
+            MeshError::VertexOutOfRange { triangle: 0, corners: [0, 1, 3], vertices: 3 }
+        );
         let mut nan = MeshBuilder { positions: vec![Vec3::new(f32::NAN, 0.0, 0.0)], ..MeshBuilder::default() };
-        assert!(nan.validate().unwrap_err().contains("non-finite"));
+        assert!(matches!(nan.validate().unwrap_err(), MeshError::NonFinitePosition { vertex: 0, .. }));
         let flat = MeshBuilder {
             positions: vec![Vec3::ZERO, Vec3::X, Vec3::X * 2.0],
             triangles: vec![[0, 1, 2]],
             ..MeshBuilder::default()
         };
-        assert!(flat.build().unwrap_err().contains("no triangles"));
+        assert_eq!(flat.build().unwrap_err(), MeshError::NoTriangles);
     }
 
     #[test]

@@ -16,9 +16,11 @@ use std::sync::Arc;
 use glam::{DAffine3, DMat4, Vec2, Vec3, Vec4};
 use gltf::mesh::Mode;
 
-use super::{CameraProjection, ImportError, Model, ModelCamera, ModelLight, ModelNode, ModelPart, PunctualKind};
+use super::{
+    CameraProjection, ImportError, ImportErrorKind, Model, ModelCamera, ModelLight, ModelNode, ModelPart, PunctualKind,
+};
 use crate::color::Rgb;
-use crate::geometry::mesh::{AlphaMask, MeshBuilder, MeshData, MeshShape, NormalMap, SurfaceMaps};
+use crate::geometry::mesh::{AlphaMask, MeshBuilder, MeshData, MeshError, MeshShape, NormalMap, SurfaceMaps};
 use crate::material::{AlphaMode, Emission, Finish, Material, MetallicRoughness, SurfaceModel};
 use crate::texture::{ColorSpace, TextureRef, TextureStore, Wrap};
 
@@ -27,20 +29,17 @@ const MAX_DEPTH: usize = 256;
 
 /// Reads a glTF or GLB file.
 pub fn import(path: &Path, textures: &mut TextureStore) -> Result<Model, ImportError> {
-    let err = |m: String| ImportError::new(path, m);
-    let bytes = std::fs::read(path).map_err(|e| err(format!("cannot read: {e}")))?;
-    let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice(&bytes).map_err(|e| err(format!("invalid glTF: {e}")))?;
+    let err = |kind| ImportError::new(path, kind);
+    let bytes = std::fs::read(path).map_err(|e| err(ImportErrorKind::Read(e)))?;
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(&bytes).map_err(|e| err(ImportErrorKind::Gltf(e)))?;
     let base = path.parent().unwrap_or(Path::new(""));
     let buffers =
-        gltf::import_buffers(&document, Some(base), blob).map_err(|e| err(format!("cannot load buffers: {e}")))?;
-    check_views_and_accessors(&document, &buffers).map_err(err)?;
+        gltf::import_buffers(&document, Some(base), blob).map_err(|e| err(ImportErrorKind::GltfBuffers(e)))?;
+    check_views_and_accessors(&document, &buffers).map_err(|m| err(ImportErrorKind::Invalid(m)))?;
     let canonical = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
 
-    let scene = document
-        .default_scene()
-        .or_else(|| document.scenes().next())
-        .ok_or_else(|| err("the file has no scene".into()))?;
+    let scene =
+        document.default_scene().or_else(|| document.scenes().next()).ok_or_else(|| err(ImportErrorKind::NoScene))?;
     let mut importer = Importer {
         path,
         document: &document,
@@ -143,8 +142,9 @@ struct Importer<'a> {
 }
 
 impl Importer<'_> {
+    /// A broken-structure error about this file.
     fn err(&self, message: String) -> ImportError {
-        ImportError::new(self.path, message)
+        ImportError::new(self.path, ImportErrorKind::Invalid(message))
     }
 
     fn node(&mut self, node: gltf::Node, parent: Option<usize>, stack: &mut Vec<usize>) -> Result<(), ImportError> {
@@ -330,11 +330,11 @@ impl Importer<'_> {
         let builder = MeshBuilder { positions, normals, uvs, tangents, triangles };
         match builder.build() {
             Ok(d) => Ok(Some(Arc::new(d))),
-            Err(e) if e.starts_with("no triangles") => {
+            Err(e @ MeshError::NoTriangles) => {
                 self.model.warnings.push(format!("{what}: {e}; skipped"));
                 Ok(None)
             }
-            Err(e) => Err(self.err(format!("{what}: {e}"))),
+            Err(source) => Err(ImportError::new(self.path, ImportErrorKind::Mesh { part: what, source })),
         }
     }
 
@@ -356,10 +356,10 @@ impl Importer<'_> {
         let base = path.parent().unwrap_or(Path::new(""));
         let loaded = self.textures.load_embedded(self.canonical, index, space, || {
             let data = gltf::image::Data::from_source(image.source(), Some(base), buffers)
-                .map_err(|e| format!("image {index}: {e}"))?;
-            rgba8(&data).ok_or_else(|| format!("image {index}: unsupported pixel format {:?}", data.format))
+                .map_err(|source| ImportErrorKind::GltfImage { index, source })?;
+            rgba8(&data).ok_or(ImportErrorKind::PixelFormat { index, format: data.format })
         });
-        let loaded = loaded.map_err(|e| self.err(e))?;
+        let loaded = loaded.map_err(|kind| ImportError::new(path, kind))?;
         let sampler = texture.sampler();
         let wrap = |m: gltf::texture::WrappingMode| match m {
             gltf::texture::WrappingMode::ClampToEdge => Wrap::Clamp,
@@ -440,10 +440,8 @@ impl Importer<'_> {
         }
         let material = Material { surface: SurfaceModel::MetallicRoughness(params), emission, ..Material::default() };
         if let Err((key, message)) = material.check() {
-            return Err(self.err(format!(
-                "material {}: `{key}` {message}",
-                m.index().map_or("default".into(), |i| i.to_string())
-            )));
+            let material = m.index().map_or("default".into(), |i| i.to_string());
+            return Err(ImportError::new(self.path, ImportErrorKind::Material { material, key, message }));
         }
         Ok((Arc::new(material), maps, m.name().map(str::to_string)))
     }

@@ -127,7 +127,8 @@ pub struct Model {
     /// Lights on nodes of the imported scene, in depth-first node order (imported only when
     /// the scene asks: `import_lights`).
     pub lights: Vec<ModelLight>,
-    /// Things in the file that were skipped or approximated.
+    /// Things in the file that were skipped or approximated, as sentences (the scene loader
+    /// turns them into warnings at the object that names the file).
     pub warnings: Vec<String>,
 }
 
@@ -146,33 +147,106 @@ pub struct ImportOptions {
     pub smooth_angle: Option<f64>,
 }
 
-/// An import error: the file and what is wrong with it (OBJ errors give the line).
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// Why a mesh file cannot be imported: the file, the line when known (OBJ), and the cause.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {kind}", place(.file, .line))]
 pub struct ImportError {
     /// The file as given.
-    pub file: String,
+    pub file: PathBuf,
     /// 1-based line, when known.
     pub line: Option<usize>,
     /// What is wrong.
-    pub message: String,
+    pub kind: ImportErrorKind,
 }
 
-impl std::fmt::Display for ImportError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.line {
-            Some(line) => write!(f, "{}:{line}: {}", self.file, self.message),
-            None => write!(f, "{}: {}", self.file, self.message),
-        }
+/// `file` or `file:line`.
+fn place(file: &Path, line: &Option<usize>) -> String {
+    match *line {
+        Some(line) => format!("{}:{line}", file.display()),
+        None => file.display().to_string(),
     }
 }
-
-impl std::error::Error for ImportError {}
 
 impl ImportError {
     /// An error about `file` with no line.
-    pub fn new(file: &Path, message: impl Into<String>) -> Self {
-        Self { file: file.display().to_string(), line: None, message: message.into() }
+    pub fn new(file: &Path, kind: ImportErrorKind) -> Self {
+        Self { file: file.to_path_buf(), line: None, kind }
     }
+
+    /// The same error at 1-based line `line`.
+    pub fn at_line(self, line: Option<usize>) -> Self {
+        Self { line, ..self }
+    }
+}
+
+/// The cause of an [`ImportError`].
+#[derive(Debug, thiserror::Error)]
+pub enum ImportErrorKind {
+    /// The file cannot be read.
+    #[error("cannot read: {0}")]
+    Read(#[source] std::io::Error),
+    /// The extension is not `.obj`, `.gltf` or `.glb`.
+    #[error("unknown mesh format `.{extension}` (expected .obj, .gltf or .glb)")]
+    UnknownFormat {
+        /// The extension, lower case.
+        extension: String,
+    },
+    /// A parser crate panicked on the file.
+    #[error("the importer failed on malformed data")]
+    ImporterPanicked,
+    /// An OBJ file holds NUL bytes (UTF-16 or binary data).
+    #[error("not a text file (UTF-16 or binary data)")]
+    NotText,
+    /// tobj cannot parse an OBJ statement.
+    #[error("{}", obj::describe(.0))]
+    Obj(#[source] tobj::LoadError),
+    /// The gltf crate rejects the file.
+    #[error("invalid glTF: {0}")]
+    Gltf(#[source] ::gltf::Error),
+    /// A glTF buffer cannot be loaded.
+    #[error("cannot load buffers: {0}")]
+    GltfBuffers(#[source] ::gltf::Error),
+    /// A glTF image cannot be loaded.
+    #[error("image {index}: {source}")]
+    GltfImage {
+        /// The image's index in the file.
+        index: u32,
+        /// The cause.
+        source: ::gltf::Error,
+    },
+    /// A glTF image decodes to a pixel format Prism does not read.
+    #[error("image {index}: unsupported pixel format {format:?}")]
+    PixelFormat {
+        /// The image's index in the file.
+        index: u32,
+        /// What the gltf crate decoded.
+        format: ::gltf::image::Format,
+    },
+    /// The glTF file has no scene.
+    #[error("the file has no scene")]
+    NoScene,
+    /// A part's vertex data does not make a mesh.
+    #[error("{part}: {source}")]
+    Mesh {
+        /// The part: `mesh 0 primitive 1` (glTF), `material `red`` (OBJ).
+        part: String,
+        /// The cause.
+        source: crate::geometry::mesh::MeshError,
+    },
+    /// A material's values are out of range.
+    #[error("material {material}: `{key}` {message}")]
+    Material {
+        /// The material's index, or `default`.
+        material: String,
+        /// The offending key.
+        key: &'static str,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// The file's structure is broken (indices or accessors out of range, cycles, non-finite
+    /// values, faces that do not fit their data): the sentence names what and where.
+    #[error("{0}")]
+    Invalid(String),
 }
 
 /// Imports `path` by its extension (`.obj`, `.gltf`, `.glb`).
@@ -182,9 +256,9 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| match ext.as_str() {
         "obj" => obj::import(path, options, textures),
         "gltf" | "glb" => gltf::import(path, textures),
-        _ => Err(ImportError::new(path, format!("unknown mesh format `.{ext}` (expected .obj, .gltf or .glb)"))),
+        _ => Err(ImportError::new(path, ImportErrorKind::UnknownFormat { extension: ext.clone() })),
     }));
-    result.unwrap_or_else(|_| Err(ImportError::new(path, "the importer failed on malformed data")))
+    result.unwrap_or_else(|_| Err(ImportError::new(path, ImportErrorKind::ImporterPanicked)))
 }
 
 /// Imported files, keyed by canonical path and options: a file used by many objects is
@@ -204,17 +278,20 @@ impl MeshStore {
 
     /// The model for `path`, imported on first use.
     pub fn get(&mut self, path: &Path, options: &ImportOptions) -> Result<Arc<Model>, ImportError> {
-        let canonical = std::fs::canonicalize(path).map_err(|e| ImportError::new(path, format!("cannot read: {e}")))?;
+        self.fetch(path, options).map(|fetched| fetched.model)
+    }
+
+    /// The model for `path`, and whether this call imported it (so its
+    /// [`Model::warnings`] are reported once, not once per object using the file).
+    pub fn fetch(&mut self, path: &Path, options: &ImportOptions) -> Result<Fetched, ImportError> {
+        let canonical = std::fs::canonicalize(path).map_err(|e| ImportError::new(path, ImportErrorKind::Read(e)))?;
         let key = (canonical, options.smooth_angle.map(f64::to_bits));
         if let Some(m) = self.models.get(&key) {
-            return Ok(m.clone());
+            return Ok(Fetched { model: m.clone(), first_use: false });
         }
         let model = Arc::new(import(path, options, &mut self.textures)?);
-        for warning in &model.warnings {
-            eprintln!("warning: {}: {warning}", path.display());
-        }
         self.models.insert(key, model.clone());
-        Ok(model)
+        Ok(Fetched { model, first_use: true })
     }
 
     /// Number of distinct imported files.
@@ -226,6 +303,15 @@ impl MeshStore {
     pub fn is_empty(&self) -> bool {
         self.models.is_empty()
     }
+}
+
+/// A model from [`MeshStore::fetch`].
+#[derive(Clone, Debug)]
+pub struct Fetched {
+    /// The imported file.
+    pub model: Arc<Model>,
+    /// True when this call imported it; false when an earlier call did.
+    pub first_use: bool,
 }
 
 /// Component of the entity a `shape = "mesh"` object becomes: what to write back on save.

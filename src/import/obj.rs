@@ -11,24 +11,20 @@ use std::sync::Arc;
 use glam::{DAffine3, DVec3, Vec2, Vec3};
 
 use super::triangulate::triangulate;
-use super::{ImportError, ImportOptions, Model, ModelNode, ModelPart};
+use super::{ImportError, ImportErrorKind, ImportOptions, Model, ModelNode, ModelPart};
 use crate::color::Rgb;
-use crate::geometry::mesh::{MeshBuilder, MeshShape, NormalMap, SurfaceMaps};
+use crate::geometry::mesh::{MeshBuilder, MeshError, MeshShape, NormalMap, SurfaceMaps};
 use crate::material::{Emission, Material, Mtl, SurfaceModel};
 use crate::texture::{ColorSpace, TextureRef, TextureStore};
 
 /// Reads an OBJ file and its MTL files.
 pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore) -> Result<Model, ImportError> {
-    let bytes = std::fs::read(path).map_err(|e| ImportError::new(path, format!("cannot read: {e}")))?;
+    let bytes = std::fs::read(path).map_err(|e| ImportError::new(path, ImportErrorKind::Read(e)))?;
     // UTF-16 and binary files have NUL bytes; other stray bytes (Latin-1 names) are kept
     // as replacement characters, as they only ever appear in names and comments.
     if let Some(at) = bytes.iter().position(|&b| b == 0) {
         let line = bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
-        return Err(ImportError {
-            file: path.display().to_string(),
-            line: Some(line),
-            message: "not a text file (UTF-16 or binary data)".into(),
-        });
+        return Err(ImportError::new(path, ImportErrorKind::NotText).at_line(Some(line)));
     }
     let text = String::from_utf8_lossy(&bytes);
     let text: &str = &text;
@@ -49,10 +45,9 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
         // One bad library must not drop the others' materials.
         result.or_else(|_| empty_library())
     })
-    .map_err(|e| ImportError {
-        file: path.display().to_string(),
-        line: error_line(text, &e),
-        message: describe(&e),
+    .map_err(|e| {
+        let line = error_line(text, &e);
+        ImportError::new(path, ImportErrorKind::Obj(e)).at_line(line)
     })?;
     warnings.extend(mtl_errors.into_inner());
     let materials = materials.unwrap_or_default();
@@ -61,7 +56,9 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
     for (model_index, model) in models.iter().enumerate() {
         let mesh = &model.mesh;
         add_model(model_index, mesh, builders.entry(mesh.material_id.filter(|&i| i < materials.len())).or_default())
-            .map_err(|message| ImportError::new(path, format!("object `{}`: {message}", model.name)))?;
+            .map_err(|message| {
+                ImportError::new(path, ImportErrorKind::Invalid(format!("object `{}`: {message}", model.name)))
+            })?;
     }
     if builders.values().all(|b| b.builder.triangles.is_empty()) {
         warnings.push("no faces: nothing to render (points and lines are skipped)".into());
@@ -79,19 +76,24 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
         {
             smooth(&mut part, angle);
         }
-        let data = part.builder.build().map_err(|e| {
-            let line = if e.contains("non-finite") { nonfinite_line(text) } else { None };
-            ImportError { file: path.display().to_string(), line, message: e }
-        });
-        let data = match data {
+        let material = key.and_then(|i| materials.get(i));
+        let part_name =
+            material.map_or_else(|| "faces without a material".into(), |m| format!("material `{}`", m.name));
+        let data = match part.builder.build() {
             Ok(d) => Arc::new(d),
-            Err(e) if e.message.starts_with("no triangles") => {
-                warnings.push(format!("material group {key:?}: only zero-area faces; skipped"));
+            Err(MeshError::NoTriangles) => {
+                warnings.push(format!("{part_name}: only zero-area faces; skipped"));
                 continue;
             }
-            Err(e) => return Err(e),
+            Err(source) => {
+                let line = match source {
+                    MeshError::NonFinitePosition { .. } => nonfinite_line(text),
+                    _ => None,
+                };
+                return Err(ImportError::new(path, ImportErrorKind::Mesh { part: part_name, source }).at_line(line));
+            }
         };
-        let (material, maps, name) = match key.and_then(|i| materials.get(i)) {
+        let (material, maps, name) = match material {
             Some(m) => {
                 let (material, maps) = map_material(m, path, textures, &mut warnings);
                 (material, maps, Some(m.name.clone()))
@@ -376,7 +378,7 @@ fn map_material(
 }
 
 /// A sentence for a tobj error.
-fn describe(e: &tobj::LoadError) -> String {
+pub(super) fn describe(e: &tobj::LoadError) -> String {
     use tobj::LoadError as E;
     match e {
         E::PositionParseError => "cannot parse a vertex position (`v x y z`)".into(),
@@ -522,7 +524,7 @@ mod tests {
         assert!(m.parts.is_empty() && m.warnings[0].contains("no faces"), "{m:?}");
         std::fs::write(dir.path().join("u.obj"), [0xfe, 0xff, 0, b'v']).unwrap();
         let e = import(&dir.path().join("u.obj"), &ImportOptions::default(), &mut TextureStore::new()).unwrap_err();
-        assert!(e.message.contains("not a text file"), "{e}");
+        assert!(matches!(e.kind, ImportErrorKind::NotText), "{e}");
         // Latin-1 in a material name is not an error.
         std::fs::write(dir.path().join("l.obj"), b"v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Terraind\xe6k\nf 1 2 3\n")
             .unwrap();

@@ -38,6 +38,14 @@ pub enum OutputError {
         /// What the encoder said.
         message: String,
     },
+    /// An EXR file cannot be read back.
+    #[error("{path}: {source}")]
+    ReadExr {
+        /// The EXR file.
+        path: PathBuf,
+        /// The cause.
+        source: exr::error::Error,
+    },
 }
 
 /// The file formats Prism writes.
@@ -209,10 +217,7 @@ fn encode_layered_exr(film: &Film, half: bool, bytes: &mut Cursor<Vec<u8>>) -> e
         }
     }
     let (x0, y0) = film.origin;
-    let attributes = LayerAttributes {
-        layer_position: Vec2(x0 as i32, y0 as i32),
-        ..LayerAttributes::named("beauty")
-    };
+    let attributes = LayerAttributes { layer_position: Vec2(x0 as i32, y0 as i32), ..LayerAttributes::named("beauty") };
     let size = (film.width as usize, film.height as usize);
     let layer = Layer::new(size, attributes, Encoding::SMALL_LOSSLESS, AnyChannels::sort(channels));
     let frame = IntegerBounds::new((0, 0), (film.frame.0 as usize, film.frame.1 as usize));
@@ -226,7 +231,7 @@ pub fn write_image(film: &Film, path: &Path, settings: &ImageSettings) -> Result
 }
 
 /// Reads a linear RGB EXR back into a film (used by tests and the parity checks).
-pub fn read_exr(path: &Path) -> Result<Film, String> {
+pub fn read_exr(path: &Path) -> Result<Film, OutputError> {
     use exr::prelude::*;
     let image = read_first_rgba_layer_from_file(
         path,
@@ -236,7 +241,7 @@ pub fn read_exr(path: &Path) -> Result<Film, String> {
             film.pixels[p.y() * w + p.x()] = [r, g, b];
         },
     )
-    .map_err(|e| format!("{}: {e}", path.display()))?;
+    .map_err(|source| OutputError::ReadExr { path: path.to_path_buf(), source })?;
     Ok(image.layer_data.channel_data.pixels)
 }
 

@@ -128,7 +128,13 @@ pub struct Block {
 }
 
 /// Renders the block whose top-left pixel is (`left`, `top`) with `method`.
-pub fn render_block<I: Integrator>(scene: &RenderScene, integrator: &I, method: PovMethod, left: u32, top: u32) -> Block {
+pub fn render_block<I: Integrator>(
+    scene: &RenderScene,
+    integrator: &I,
+    method: PovMethod,
+    left: u32,
+    top: u32,
+) -> Block {
     let (width, height) = (scene.settings.width, scene.settings.height);
     let w = BLOCK_SIZE.min(width - left) as usize;
     let h = BLOCK_SIZE.min(height - top) as usize;
@@ -150,7 +156,15 @@ pub fn render_block<I: Integrator>(scene: &RenderScene, integrator: &I, method: 
 /// with its left and upper neighbours (as they are at that moment) and supersample every
 /// pixel of a differing pair that was not supersampled yet. The row above the block and the
 /// pixel left of each row are traced only to compare with and are never supersampled.
-fn non_adaptive<I: Integrator>(s: &mut Sampler<I>, left: f64, top: f64, w: usize, h: usize, threshold: f64, depth: u32) -> Vec<DVec3> {
+fn non_adaptive<I: Integrator>(
+    s: &mut Sampler<I>,
+    left: f64,
+    top: f64,
+    w: usize,
+    h: usize,
+    threshold: f64,
+    depth: u32,
+) -> Vec<DVec3> {
     // Each colour is graded for comparison once, when it is traced or supersampled.
     let above: Vec<DVec3> = (0..w).map(|x| aa_graded(s.trace(left + x as f64, top - 1.0))).collect();
     let mut pixels = vec![DVec3::ZERO; w * h];
@@ -209,7 +223,15 @@ fn supersample<I: Integrator>(s: &mut Sampler<I>, x: f64, y: f64, centre: DVec3,
 
 /// Method 2 (`TraceTask::AdaptiveSupersamplingM2`): trace every pixel corner, then
 /// subdivide each pixel while any two of a square's corners differ, down to 1 / 2^(depth-1).
-fn adaptive<I: Integrator>(s: &mut Sampler<I>, left: f64, top: f64, w: usize, h: usize, threshold: f64, depth: u32) -> Vec<DVec3> {
+fn adaptive<I: Integrator>(
+    s: &mut Sampler<I>,
+    left: f64,
+    top: f64,
+    w: usize,
+    h: usize,
+    threshold: f64,
+    depth: u32,
+) -> Vec<DVec3> {
     let mut corners = Vec::with_capacity((w + 1) * (h + 1));
     for y in 0..=h {
         for x in 0..=w {
@@ -271,7 +293,13 @@ struct Square {
 }
 
 /// `TraceTask::SubdivideOnePixel`: the value of one square.
-fn subdivide<I: Integrator>(s: &mut Sampler<I>, grid: &mut SubdivisionGrid, q: Square, level: i32, threshold: f64) -> DVec3 {
+fn subdivide<I: Integrator>(
+    s: &mut Sampler<I>,
+    grid: &mut SubdivisionGrid,
+    q: Square,
+    level: i32,
+    threshold: f64,
+) -> DVec3 {
     let c00 = grid.get(q.bx, q.by);
     let c02 = grid.get(q.bx, q.by + q.step);
     let c20 = grid.get(q.bx + q.step, q.by);

@@ -225,8 +225,10 @@ pub struct PatternTable {
 }
 
 /// The two patterns of one pixel: sample offsets in the pixel and lens positions.
-// `Own` is large on purpose: a pixel's patterns live on its stack, not the heap.
-#[allow(clippy::large_enum_variant)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "`Own` is large on purpose: a pixel's patterns live on its stack, not the heap"
+)]
 pub enum PixelPatterns<'a> {
     /// Slices of a [`PatternTable`].
     Tabulated {

@@ -242,6 +242,27 @@ fn downsample(l: &Level, space: ColorSpace) -> Level {
     Level { width, height, texels }
 }
 
+/// Why an image file cannot become a texture.
+#[derive(Debug, thiserror::Error)]
+pub enum TextureError {
+    /// The file cannot be opened or read.
+    #[error("cannot read image `{}`: {source}", path.display())]
+    Read {
+        /// The image file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The file is read but is not an image the `image` crate decodes.
+    #[error("cannot decode image `{}`: {source}", path.display())]
+    Decode {
+        /// The image file.
+        path: PathBuf,
+        /// The cause.
+        source: image::ImageError,
+    },
+}
+
 /// Decoded textures, keyed by (canonical file, image index inside a glTF file, colour
 /// space): an image used by many materials, meshes or instances is decoded once.
 #[derive(Default, Debug)]
@@ -256,32 +277,33 @@ impl TextureStore {
     }
 
     /// The texture decoded from the image file at `path`.
-    pub fn load_file(&mut self, path: &Path, space: ColorSpace) -> Result<Arc<Texture>, String> {
-        let canonical =
-            std::fs::canonicalize(path).map_err(|e| format!("cannot read image `{}`: {e}", path.display()))?;
+    pub fn load_file(&mut self, path: &Path, space: ColorSpace) -> Result<Arc<Texture>, TextureError> {
+        let read_error = |source| TextureError::Read { path: path.to_path_buf(), source };
+        let canonical = std::fs::canonicalize(path).map_err(read_error)?;
         let key = (canonical, None, space);
         if let Some(t) = self.textures.get(&key) {
             return Ok(t.clone());
         }
         let image = image::ImageReader::open(path)
             .and_then(|r| r.with_guessed_format())
-            .map_err(|e| format!("cannot read image `{}`: {e}", path.display()))?
+            .map_err(read_error)?
             .decode()
-            .map_err(|e| format!("cannot decode image `{}`: {e}", path.display()))?;
+            .map_err(|source| TextureError::Decode { path: path.to_path_buf(), source })?;
         let texture = Arc::new(Texture::from_image(image, space));
         self.textures.insert(key, texture.clone());
         Ok(texture)
     }
 
     /// The texture for image `index` of the glTF file at `canonical`, decoding it with
-    /// `decode` (width, height, RGBA8 texels) the first time.
-    pub fn load_embedded(
+    /// `decode` (width, height, RGBA8 texels) the first time; `decode`'s error is returned
+    /// as is.
+    pub fn load_embedded<E>(
         &mut self,
         canonical: &Path,
         index: u32,
         space: ColorSpace,
-        decode: impl FnOnce() -> Result<(usize, usize, Vec<[u8; 4]>), String>,
-    ) -> Result<Arc<Texture>, String> {
+        decode: impl FnOnce() -> Result<(usize, usize, Vec<[u8; 4]>), E>,
+    ) -> Result<Arc<Texture>, E> {
         let key = (canonical.to_path_buf(), Some(index), space);
         if let Some(t) = self.textures.get(&key) {
             return Ok(t.clone());

@@ -6,7 +6,7 @@ pub mod components;
 pub mod transforms;
 pub mod validate;
 
-use crate::diagnostics::Location;
+use crate::diagnostics::{Diagnostic, Location};
 use components::{Environment, RenderSettings};
 
 /// A loaded scene.
@@ -22,6 +22,9 @@ pub struct Scene {
     pub environment: Environment,
     /// The camera entity.
     pub camera: hecs::Entity,
+    /// What loading skipped or approximated without failing (parts of imported files that
+    /// are not rendered, glTF light ranges that are ignored), as warnings in file order.
+    pub warnings: Vec<Diagnostic>,
 }
 
 impl Scene {

@@ -14,15 +14,19 @@ pub const MAX_PIXELS: u64 = 268_435_456;
 /// Largest accepted samples per pixel.
 pub const MAX_SAMPLES: u32 = 1 << 20;
 
-/// Things worth a `warning:` line that do not stop the render, as messages: a camera imported
-/// from a file made for another aspect ratio than the image's (call it once the image size is
-/// final, after command-line overrides).
-pub fn warnings(scene: &Scene) -> Vec<String> {
+/// Warnings that depend on the final image size, so they are not among
+/// [`Scene::warnings`]: a camera imported from a file made for another aspect ratio than the
+/// image's (call it once the image size is final, after command-line overrides).
+pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     if let Ok(imported) = scene.world.get::<&ImportedCamera>(scene.camera)
         && let Some(w) = aspect_warning(imported.aspect_ratio, scene.render.width, scene.render.height)
     {
-        out.push(format!("{}: {w}", imported.description));
+        let location = match scene.world.get::<&Origin>(scene.camera) {
+            Ok(origin) => origin.0.clone(),
+            Err(_) => scene.render_origin.clone(),
+        };
+        out.push(Diagnostic::warning(location, format!("{}: {w}", imported.description)));
     }
     out
 }

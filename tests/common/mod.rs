@@ -1,6 +1,6 @@
 //! Helpers shared by the integration tests (each test file includes this module).
 
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each test file includes this module and uses only some of its helpers")]
 
 use std::path::PathBuf;
 use std::process::Output;

@@ -12,6 +12,8 @@
 //! Everything here is `f64`: analytic shapes are solved in double precision, as POV-Ray does.
 //! Right-handed, y up. The [`contract`] module is a test kit every plugin runs.
 
+#![forbid(unsafe_code)]
+
 mod aabb;
 pub mod contract;
 pub mod math;
@@ -24,7 +26,10 @@ pub use aabb::Aabb;
 pub use glam::{DAffine3, DMat3, DVec2, DVec3};
 pub use ray::Ray;
 pub use registry::{ParamError, ShapeParams, ShapeType, shape_type};
-pub use shape::{AreaSample, Hit, Shape, Surface};
+pub use shape::{
+    AreaSample, CROSSING_GAP, DirectionSample, Hit, MAX_CROSSINGS, Shape, Surface, for_each_crossing,
+    pdf_toward_by_area, sample_toward_by_area, sample_toward_flat,
+};
 
 /// Re-exported so that plugins derive their parameter schema with the same version Prism uses.
 pub use schemars;

@@ -1,6 +1,8 @@
 //! Small numerical helpers shared by shapes.
 
-use glam::DVec3;
+use std::f64::consts::TAU;
+
+use glam::{DMat3, DVec3};
 
 /// Real roots of `a t^2 + b t + c = 0` in ascending order, computed without catastrophic
 /// cancellation (the citardauq form for the smaller-magnitude root).
@@ -29,6 +31,66 @@ pub fn orthonormal_basis(n: DVec3) -> (DVec3, DVec3) {
     let a = -1.0 / (sign + n.z);
     let b = n.x * n.y * a;
     (DVec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), DVec3::new(b, sign + n.y * n.y * a, -n.y))
+}
+
+/// A unit tangent perpendicular to the unit vector `n`: the first vector of
+/// [`orthonormal_basis`]. [`crate::Surface::new`] gives it as `dpdu` where a shape has no
+/// better one.
+pub fn tangent(n: DVec3) -> DVec3 {
+    orthonormal_basis(n).0
+}
+
+/// ∂p/∂u of the longitude `u = 0.5 + atan2(d.z, -d.x) / TAU` of the direction `d` of a
+/// surface point from a centre, the latitude of `d` held fixed, as the sphere, the
+/// superellipsoid and the blob map their uv: `offset` is the point minus that centre and
+/// `normal` the unit normal there. Turning `d` about the y axis moves the point along
+/// `w = TAU (offset.z, 0, -offset.x)` plus whatever along `d` keeps it on the surface:
+/// `w - offset (normal · w) / (normal · offset)`. Where that degenerates (on the y axis
+/// through the centre, or where `d` is tangent to the surface) it is [`tangent`]`(normal)`.
+pub fn longitude_dpdu(offset: DVec3, normal: DVec3) -> DVec3 {
+    let w = TAU * DVec3::new(offset.z, 0.0, -offset.x);
+    let along = normal.dot(offset);
+    let size = offset.length();
+    if w.length() <= 1e-9 * size || along.abs() <= 1e-9 * size {
+        return tangent(normal);
+    }
+    let dpdu = w - offset * (normal.dot(w) / along);
+    if dpdu.is_finite() { dpdu } else { tangent(normal) }
+}
+
+/// A density with respect to area at `point` (unit `normal`) as a density with respect to
+/// solid angle seen from `reference`: `pdf_area * distance^2 / |cos|`, where `cos` is between
+/// the normal and the direction to the reference. 0 when that is not finite (the point at
+/// the reference, or seen exactly edge-on).
+pub fn area_to_solid_angle(pdf_area: f64, reference: DVec3, point: DVec3, normal: DVec3) -> f64 {
+    let to_point = point - reference;
+    let distance_squared = to_point.length_squared();
+    let cos = normal.dot(to_point).abs() / distance_squared.sqrt();
+    let pdf = pdf_area * distance_squared / cos;
+    if pdf.is_finite() { pdf } else { 0.0 }
+}
+
+/// The factor by which the linear map `matrix3` (invertible) scales an area element whose
+/// normal is `object_normal` (any non-zero length): `|det M| * |M^-T n| / |n|` (Nanson's
+/// formula). A shape's area density in object space divided by it is the density in world
+/// space: `pdf_world = pdf_area / area_scale(M, n)` for the object-to-world matrix `M`.
+pub fn area_scale(matrix3: DMat3, object_normal: DVec3) -> f64 {
+    let det = matrix3.determinant();
+    let transformed = matrix3.inverse().transpose() * object_normal;
+    det.abs() * transformed.length() / object_normal.length()
+}
+
+/// The factor by which the linear map `matrix3` (invertible) scales a solid-angle element
+/// around `object_direction` (any non-zero length) when directions are mapped by
+/// `d -> M d / |M d|`: `|det M| / |M d̂|^3` for the unit `d̂`. It converts the object-space
+/// solid-angle densities of [`crate::Shape::sample_toward`] and
+/// [`crate::Shape::pdf_toward`] to world space at the transformed reference point:
+/// `pdf_world = pdf_object / solid_angle_scale(M, d)`. Unlike a conversion through one
+/// surface point it holds for the sum over all crossings of a direction too, since it
+/// depends on the direction alone.
+pub fn solid_angle_scale(matrix3: DMat3, object_direction: DVec3) -> f64 {
+    let unit = object_direction / object_direction.length();
+    matrix3.determinant().abs() / (matrix3 * unit).length().powi(3)
 }
 
 /// The largest polynomial degree [`polynomial_roots`] accepts.
@@ -204,6 +266,89 @@ mod tests {
             assert!(t.dot(n).abs() < 1e-12 && b.dot(n).abs() < 1e-12 && t.dot(b).abs() < 1e-12);
         }
     }
+    /// A few invertible maps: a rotation with non-uniform scale, a shear, a reflection.
+    fn maps() -> [DMat3; 3] {
+        [
+            DMat3::from_quat(glam::DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 0.7))
+                * DMat3::from_diagonal(DVec3::new(0.5, 2.0, 3.0)),
+            DMat3::from_cols(DVec3::new(1.0, 0.3, 0.0), DVec3::new(-0.4, 1.5, 0.2), DVec3::new(0.1, 0.0, 0.8)),
+            DMat3::from_diagonal(DVec3::new(-1.0, 2.0, 0.25)),
+        ]
+    }
+
+    #[test]
+    fn area_scale_matches_a_mapped_parallelogram() {
+        for m in maps() {
+            for n in [DVec3::X, DVec3::new(0.3, -0.5, 2.0), DVec3::new(-1.0, 1.0, 1e-3)] {
+                // A small parallelogram around a point of the plane with normal n, mapped.
+                let (a, b) = orthonormal_basis(n.normalize());
+                let (a, b) = (a * 1e-3, (a * 0.4 + b) * 2e-3);
+                let p = DVec3::new(0.2, -1.0, 0.5);
+                let corners = [p, p + a, p + b].map(|c| m * c);
+                let mapped = (corners[1] - corners[0]).cross(corners[2] - corners[0]).length();
+                let scale = mapped / a.cross(b).length();
+                let expected = area_scale(m, n);
+                assert!((scale - expected).abs() < 1e-12 * expected, "{scale} vs {expected} for {n}");
+                assert!((area_scale(m, n * 7.0) - expected).abs() < 1e-12 * expected, "any length of n");
+            }
+        }
+        assert!((area_scale(DMat3::from_diagonal(DVec3::splat(2.0)), DVec3::Y) - 4.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn solid_angle_scale_matches_a_mapped_cone_of_directions() {
+        // The solid angle of the small spherical triangle spanned by three unit vectors
+        // (Van Oosterom and Strackee), before and after mapping them.
+        let solid_angle = |[a, b, c]: [DVec3; 3]| {
+            let (a, b, c) = (a.normalize(), b.normalize(), c.normalize());
+            2.0 * a.dot(b.cross(c)).abs().atan2(1.0 + a.dot(b) + b.dot(c) + c.dot(a))
+        };
+        for m in maps() {
+            for d in [DVec3::Z, DVec3::new(1.0, -2.0, 0.5), DVec3::new(-0.1, 0.2, -3.0)] {
+                let d = d.normalize();
+                let (a, b) = orthonormal_basis(d);
+                let corners = [d, d + a * 1e-4, d + b * 1e-4];
+                let ratio = solid_angle(corners.map(|c| m * c)) / solid_angle(corners);
+                let expected = solid_angle_scale(m, d);
+                assert!((ratio - expected).abs() < 1e-3 * expected, "{ratio} vs {expected} for {d}");
+                assert!((solid_angle_scale(m, d * 3.0) - expected).abs() < 1e-12 * expected);
+            }
+        }
+    }
+
+    #[test]
+    fn area_density_becomes_solid_angle_density() {
+        // 1 / area at distance 2 seen at 60 degrees from the normal: 4 / cos = 8 times it.
+        let normal = DVec3::Y;
+        let point = DVec3::new(2.0 * 60f64.to_radians().sin(), 2.0 * 60f64.to_radians().cos(), 0.0);
+        let pdf = area_to_solid_angle(0.25, DVec3::ZERO, point, normal);
+        assert!((pdf - 2.0).abs() < 1e-12, "{pdf}");
+        assert_eq!(area_to_solid_angle(1.0, DVec3::ZERO, DVec3::X, DVec3::Y), 0.0, "edge-on");
+        assert_eq!(area_to_solid_angle(1.0, DVec3::X, DVec3::X, DVec3::Y), 0.0, "at the reference");
+    }
+
+    #[test]
+    fn longitude_tangent_keeps_the_latitude_and_the_surface() {
+        // On an ellipsoid x^2 / 4 + y^2 + z^2 / 9 = 1, moving along dpdu keeps the point on the
+        // surface and its latitude about the origin, and turns the longitude by du.
+        let on_surface = |d: DVec3| d / (d.x * d.x / 4.0 + d.y * d.y + d.z * d.z / 9.0).sqrt();
+        let normal_at = |p: DVec3| DVec3::new(p.x / 4.0, p.y, p.z / 9.0).normalize();
+        let longitude = |p: DVec3| p.z.atan2(-p.x) / TAU;
+        let latitude = |p: DVec3| (p.y / p.length()).asin();
+        for d in [DVec3::new(1.0, 0.5, 0.3), DVec3::new(-0.2, -0.9, 0.4), DVec3::new(0.0, 0.1, -1.0)] {
+            let p = on_surface(d);
+            let dpdu = longitude_dpdu(p, normal_at(p));
+            assert!(dpdu.dot(normal_at(p)).abs() < 1e-12 * dpdu.length());
+            let h = 1e-6;
+            let q = on_surface(p + dpdu * h);
+            assert!((q - (p + dpdu * h)).length() < 1e-9, "stays on the surface to first order");
+            assert!((latitude(q) - latitude(p)).abs() < 1e-9, "latitude kept");
+            assert!((longitude(q) - longitude(p) - h).abs() < 1e-9, "longitude turns by du");
+        }
+        let pole = longitude_dpdu(DVec3::Y, DVec3::Y);
+        assert!((pole.length() - 1.0).abs() < 1e-15 && pole.dot(DVec3::Y).abs() < 1e-15, "a unit tangent");
+    }
+
     #[test]
     fn polynomial_roots_of_a_quartic_with_four_roots() {
         // (t - 1)(t - 2)(t - 3)(t - 4) = t^4 - 10 t^3 + 35 t^2 - 50 t + 24.

@@ -2,7 +2,7 @@ use std::fmt::Debug;
 
 use glam::{DVec2, DVec3};
 
-use crate::{Aabb, Ray};
+use crate::{Aabb, Ray, math};
 
 /// The cheap result of [`Shape::intersect`]: the ray parameter plus scratch values the
 /// shape may keep to finish the job in [`Shape::surface`] (which part was hit, barycentrics...).
@@ -45,12 +45,27 @@ pub struct Surface {
     /// (the square root of the uv-to-surface area ratio; meshes know it per triangle). Texture
     /// filtering turns a ray's footprint into texels with it; 0 when unknown.
     pub uv_density: f64,
+    /// Tangent ∂p/∂u: how the point moves per unit of `uv.x` with `uv.y` held fixed (object
+    /// space, not normalised), perpendicular to `normal`. Where the uv has no such derivative
+    /// (no parameterisation, or a point where it degenerates: a sphere's poles, a disc's
+    /// centre, a cone's tip) it is any unit vector perpendicular to `normal`. Always finite
+    /// and non-zero, so shading frames and anisotropic materials can be built from it.
+    pub dpdu: DVec3,
 }
 
 impl Surface {
-    /// A surface point whose shading normal is its geometric normal.
+    /// A surface point whose shading normal is its geometric normal, with a unit tangent
+    /// [`math::tangent`] built from the normal as `dpdu`; set the real ∂p/∂u with
+    /// [`Surface::with_dpdu`] where the uv has one.
     pub fn new(point: DVec3, normal: DVec3, uv: DVec2) -> Self {
-        Self { point, normal, shading_normal: normal, uv, uv_density: 0.0 }
+        Self { point, normal, shading_normal: normal, uv, uv_density: 0.0, dpdu: math::tangent(normal) }
+    }
+
+    /// The same surface with tangent `dpdu`, which must be perpendicular to the normal. Where
+    /// it cannot be normalised (zero or not finite: a degenerate point of the
+    /// parameterisation, a disc's centre) the unit tangent of [`Surface::new`] is kept.
+    pub fn with_dpdu(self, dpdu: DVec3) -> Self {
+        if dpdu.try_normalize().is_some() { Self { dpdu, ..self } } else { self }
     }
 }
 
@@ -61,8 +76,50 @@ pub struct AreaSample {
     pub point: DVec3,
     /// Unit outward normal there.
     pub normal: DVec3,
-    /// Probability density with respect to area (1 / area for uniform sampling).
+    /// Probability density with respect to area (1 / area for uniform sampling); equal to
+    /// [`Shape::pdf_area`] at `point`.
     pub pdf_area: f64,
+}
+
+/// A direction from a reference point toward a shape, sampled by [`Shape::sample_toward`]
+/// (object space).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionSample {
+    /// The nearest point of the shape along the sampled direction: the point the reference
+    /// sees, so a shadow ray toward it tests only the other objects. (A sampler that picks a
+    /// point hidden behind a nearer part of the same surface reports that nearer crossing.)
+    pub point: DVec3,
+    /// Unit outward normal at `point`.
+    pub normal: DVec3,
+    /// Probability density of the direction `point - reference` with respect to solid angle
+    /// at the reference, measured in object space: [`Shape::pdf_toward`] of that direction.
+    /// Convert it to world space with [`crate::math::solid_angle_scale`].
+    pub pdf_solid_angle: f64,
+}
+
+/// Crossings of one ray after another are looked for this fraction of the shape's size
+/// beyond the previous one, so that rounding cannot find the same crossing twice.
+pub const CROSSING_GAP: f64 = 1e-9;
+
+/// At most this many crossings are visited along one ray by [`for_each_crossing`].
+pub const MAX_CROSSINGS: usize = 4096;
+
+/// Calls `visit` with every crossing of `ray` with `shape` at `t > 0`, nearest first: the hit
+/// and its [`Shape::surface_geometry`]. Each search starts a hair ([`CROSSING_GAP`] of the
+/// shape's size) beyond the previous crossing, so two crossings closer than that (a ray all
+/// but tangent to the surface) count once. The default [`Shape::pdf_toward`] and the
+/// contract kit's area estimate are built on it.
+pub fn for_each_crossing<S: Shape + ?Sized>(shape: &S, ray: &Ray, mut visit: impl FnMut(&Hit, &Surface)) {
+    let bounds = shape.bounds();
+    let size = if bounds.is_bounded() { (bounds.max - bounds.min).max_element() } else { 0.0 };
+    let gap = CROSSING_GAP * size / ray.direction.length();
+    let mut t_min = 0.0;
+    for _ in 0..MAX_CROSSINGS {
+        let Some(hit) = shape.intersect(ray, t_min, f64::INFINITY) else { return };
+        visit(&hit, &shape.surface_geometry(ray, &hit));
+        // The relative step keeps the search moving for unbounded shapes and far crossings.
+        t_min = hit.t + gap.max(hit.t.abs() * 1e-14);
+    }
 }
 
 /// A shape in its own object space. Prism transforms rays into this space; `t` is shared
@@ -78,8 +135,8 @@ pub trait Shape: Send + Sync + Debug + 'static {
     /// The surface at a hit this shape returned for this ray.
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface;
 
-    /// The surface at a hit without its texture coordinates: `point`, `normal` and
-    /// `shading_normal` exactly as [`Shape::surface`] gives them, while `uv` and
+    /// The surface at a hit without its texture coordinates: `point`, `normal`,
+    /// `shading_normal` and `dpdu` exactly as [`Shape::surface`] gives them, while `uv` and
     /// `uv_density` may be left 0. Prism calls it for untextured materials, which is most
     /// hits; override it when the uv costs trigonometry (longitudes, latitudes), and let
     /// `surface` add the uv to it so the two cannot drift apart. The default is `surface`.
@@ -112,15 +169,60 @@ pub trait Shape: Send + Sync + Debug + 'static {
         false
     }
 
-    /// Surface area, for shapes that can be area lights.
+    /// Surface area, for shapes that can be area lights. Exact, or `None`.
     fn area(&self) -> Option<f64> {
         None
     }
 
-    /// A uniformly distributed point on the surface from `u` in [0,1)^2.
+    /// A point on the surface from `u` in [0,1)^2, distributed with density
+    /// [`Shape::pdf_area`] (uniformly, by default), with its outward normal. `None` when the
+    /// shape cannot be sampled (the default); then it cannot emit light.
     fn sample_area(&self, u: DVec2) -> Option<AreaSample> {
         let _ = u;
         None
+    }
+
+    /// The density with respect to area with which [`Shape::sample_area`] picks `point`, a
+    /// point of the surface. The default, `1 / area`, suits uniform sampling; 0 without an area.
+    fn pdf_area(&self, point: DVec3) -> f64 {
+        let _ = point;
+        self.area().map_or(0.0, |area| 1.0 / area)
+    }
+
+    /// True when the shape can be an emitter: it can sample points on itself
+    /// ([`Shape::sample_area`]) and directions toward itself ([`Shape::sample_toward`]).
+    /// Prism refuses an emissive material on a shape that cannot. The default asks
+    /// `sample_area` once.
+    fn can_emit(&self) -> bool {
+        self.sample_area(DVec2::splat(0.5)).is_some()
+    }
+
+    /// A direction from `reference` toward the shape, for next-event estimation: the nearest
+    /// point of the shape along it and its density with respect to solid angle at
+    /// `reference` (object space). `None` when nothing could be sampled (a degenerate sample
+    /// seen edge-on, or a shape that cannot emit).
+    ///
+    /// The default, [`sample_toward_by_area`], samples a point with [`Shape::sample_area`], then follows the ray from
+    /// `reference` through it: the nearest crossing is the point returned, and the density
+    /// is [`Shape::pdf_toward`] of the direction, which counts every crossing (each of them
+    /// could have been the sampled point). Override it with a sampler that spends its
+    /// samples on what the reference sees (the sphere samples the cone it subtends), and then
+    /// override `pdf_toward` to match.
+    fn sample_toward(&self, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
+        sample_toward_by_area(self, reference, u)
+    }
+
+    /// The density with respect to solid angle at `reference` (object space) with which
+    /// [`Shape::sample_toward`] produces `direction` (any non-zero length); 0 for directions
+    /// that miss the shape. A direction can cross the surface several times (a closed or
+    /// concave shape), and a sampler that picks points anywhere on the surface could have
+    /// picked any of those crossings: its density is the sum over all of them.
+    ///
+    /// The default, [`pdf_toward_by_area`], does exactly that for [`Shape::sample_area`]'s points: the sum over every
+    /// crossing ([`for_each_crossing`]) of [`Shape::pdf_area`] converted to solid angle,
+    /// `pdf_area * distance^2 / |cos|` ([`math::area_to_solid_angle`]).
+    fn pdf_toward(&self, reference: DVec3, direction: DVec3) -> f64 {
+        pdf_toward_by_area(self, reference, direction)
     }
 
     /// The POV-Ray 3.7 SDL of this shape in object space, already mapped to POV-Ray's
@@ -129,4 +231,48 @@ pub trait Shape: Send + Sync + Debug + 'static {
     fn to_pov(&self) -> Option<String> {
         None
     }
+}
+
+/// [`Shape::sample_toward`] built on [`Shape::sample_area`], the trait's default, for shapes
+/// that sample some references another way (the sphere from inside): a point sampled on the
+/// surface, replaced by the nearest crossing of the ray from `reference` through it, with
+/// the density [`pdf_toward_by_area`] of that direction. `None` when `sample_area` is, or
+/// when the density is 0 or infinite (the sample seen edge-on).
+pub fn sample_toward_by_area<S: Shape + ?Sized>(shape: &S, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
+    let sample = shape.sample_area(u)?;
+    let ray = Ray::new(reference, sample.point - reference);
+    let mut nearest: Option<Surface> = None;
+    let mut pdf = 0.0;
+    for_each_crossing(shape, &ray, |_, surface| {
+        nearest.get_or_insert(*surface);
+        pdf += math::area_to_solid_angle(shape.pdf_area(surface.point), reference, surface.point, surface.normal);
+    });
+    let nearest = nearest?;
+    (pdf > 0.0 && pdf.is_finite()).then_some(DirectionSample {
+        point: nearest.point,
+        normal: nearest.normal,
+        pdf_solid_angle: pdf,
+    })
+}
+
+/// [`Shape::sample_toward`] for flat shapes (discs, triangles, rectangles), which a ray
+/// crosses at most once: the area sample itself is the nearest crossing, so its density
+/// converted to solid angle is the direction's, with no ray to follow. `None` when
+/// `sample_area` is, or when the sample is seen edge-on.
+pub fn sample_toward_flat<S: Shape + ?Sized>(shape: &S, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
+    let sample = shape.sample_area(u)?;
+    let pdf = math::area_to_solid_angle(sample.pdf_area, reference, sample.point, sample.normal);
+    (pdf > 0.0).then_some(DirectionSample { point: sample.point, normal: sample.normal, pdf_solid_angle: pdf })
+}
+
+/// [`Shape::pdf_toward`] for points sampled by [`Shape::sample_area`], the trait's default:
+/// the sum over every crossing of the ray from `reference` along `direction`
+/// ([`for_each_crossing`]) of [`Shape::pdf_area`] there, converted to solid angle with
+/// [`math::area_to_solid_angle`].
+pub fn pdf_toward_by_area<S: Shape + ?Sized>(shape: &S, reference: DVec3, direction: DVec3) -> f64 {
+    let mut pdf = 0.0;
+    for_each_crossing(shape, &Ray::new(reference, direction), |_, surface| {
+        pdf += math::area_to_solid_angle(shape.pdf_area(surface.point), reference, surface.point, surface.normal);
+    });
+    pdf
 }

@@ -12,11 +12,13 @@
 //! exactly ([`prism_api::math::polynomial_roots`]), with the polynomial formed at the start
 //! of its piece so that its coefficients stay well scaled.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
 use prism_api::math::polynomial_roots;
-use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
+use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -260,7 +262,13 @@ impl Shape for Blob {
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
         let point = ray.at(hit.t);
         let normal = (-self.gradient(point)).try_normalize().unwrap_or_else(|| (-ray.direction).normalize_or(DVec3::Y));
-        Surface::new(point, normal, DVec2::ZERO)
+        Surface::new(point, normal, DVec2::ZERO).with_dpdu(math::longitude_dpdu(point - self.bounds.center(), normal))
+    }
+
+    /// No: a blob's surface is an iso-surface of a sum of fields with neither a closed-form
+    /// area nor a parameterisation to sample uniformly, so it cannot be an area light.
+    fn can_emit(&self) -> bool {
+        false
     }
 
     fn to_pov(&self) -> Option<String> {
@@ -281,7 +289,7 @@ impl Shape for Blob {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::{TestRng, check_shape};
+    use prism_api::contract::{TestRng, check_dpdu, check_shape};
 
     fn single(threshold: f64) -> Blob {
         Blob::new(threshold, vec![Component::new(DVec3::ZERO, 1.0, 1.0)])
@@ -321,6 +329,8 @@ mod tests {
         check_shape(&single(0.6));
         check_shape(&trio());
         check_shape(&dented());
+        check_dpdu(&trio());
+        assert!(!trio().can_emit());
     }
 
     #[test]

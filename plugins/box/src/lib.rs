@@ -1,5 +1,7 @@
 //! The box shape plugin: an axis-aligned box between two corners.
 
+#![forbid(unsafe_code)]
+
 use std::sync::Arc;
 
 use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
@@ -126,7 +128,10 @@ impl Shape for BoxShape {
         let (ua, va) = face_uv_axes(axis);
         let size = self.max - self.min;
         let rel = (point - self.min) / size;
-        Surface::new(point, normal, DVec2::new(rel[ua], rel[va]))
+        // u runs along the face's first texture axis, across the box's full size there.
+        let mut dpdu = DVec3::ZERO;
+        dpdu[ua] = size[ua];
+        Surface::new(point, normal, DVec2::new(rel[ua], rel[va])).with_dpdu(dpdu)
     }
 
     fn area(&self) -> Option<f64> {
@@ -171,7 +176,7 @@ impl Shape for BoxShape {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::check_shape;
+    use prism_api::contract::{check_dpdu, check_shape};
 
     fn cube() -> BoxShape {
         BoxShape { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) }
@@ -190,6 +195,7 @@ mod tests {
         check_shape(&cube());
         check_shape(&BoxShape { min: DVec3::new(-50.0, -0.01, -30.0), max: DVec3::new(50.0, 0.01, 30.0) });
         check_shape(&BoxShape { min: DVec3::new(0.1, 0.2, 0.3), max: DVec3::new(0.1005, 0.2002, 0.3001) });
+        check_dpdu(&BoxShape { min: DVec3::new(-1.0, 0.0, 2.0), max: DVec3::new(3.0, 0.5, 2.25) });
     }
 
     #[test]

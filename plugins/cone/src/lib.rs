@@ -1,6 +1,8 @@
 //! The cone shape plugin: a finite cone or truncated cone (frustum) between two points, closed
 //! with flat end caps unless `open`.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
@@ -243,12 +245,15 @@ impl Shape for Cone {
         let local = point - self.base;
         let s = local.dot(self.axis);
         let radial = local - s * self.axis;
+        // On the side and the caps alike, u turns the point about the axis by a full turn
+        // (zero at the tip and the caps' centres, where the tangent of Surface::new stays).
+        let dpdu = TAU * self.axis.cross(radial);
         match hit.part {
-            SIDE => Surface::new(point, self.side_normal(radial.normalize_or_zero()), DVec2::ZERO),
+            SIDE => Surface::new(point, self.side_normal(radial.normalize_or_zero()), DVec2::ZERO).with_dpdu(dpdu),
             part => {
                 let (s_cap, normal) = if part == BASE_CAP { (0.0, -self.axis) } else { (self.height, self.axis) };
                 // Project onto the cap's plane: removes the rounding of ray.at(t) along it.
-                Surface::new(self.base + s_cap * self.axis + radial, normal, DVec2::ZERO)
+                Surface::new(self.base + s_cap * self.axis + radial, normal, DVec2::ZERO).with_dpdu(dpdu)
             }
         }
     }
@@ -300,7 +305,7 @@ impl Shape for Cone {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::{TestRng, check_shape};
+    use prism_api::contract::{ContractConfig, TestRng, check_dpdu, check_sampling_toward, check_shape};
 
     /// The default cone: radius 1 at the origin, a point at y = 1.
     fn unit() -> Cone {
@@ -344,6 +349,17 @@ mod tests {
             2e-4,
             false,
         ));
+        check_dpdu(&unit());
+        check_dpdu(&Cone::new(DVec3::new(1.0, -2.0, 0.5), 0.0, DVec3::new(1.5, -1.0, 0.0), 0.3, false));
+    }
+
+    #[test]
+    fn sampling_from_the_tip_side_and_inside_an_open_frustum() {
+        let shade = Cone::new(DVec3::ZERO, 1.0, DVec3::Y, 0.4, true);
+        let pointed = unit();
+        let config = ContractConfig::default();
+        check_sampling_toward(&shade, &[DVec3::new(0.0, 0.5, 0.0), DVec3::new(0.0, 2.0, 0.0)], &config);
+        check_sampling_toward(&pointed, &[DVec3::new(0.0, 1.5, 0.0), DVec3::new(0.1, -0.5, 0.0)], &config);
     }
 
     #[test]

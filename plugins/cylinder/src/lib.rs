@@ -1,6 +1,8 @@
 //! The cylinder shape plugin: a finite right circular cylinder between two points, closed with
 //! flat end caps unless `open`.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
@@ -186,11 +188,13 @@ impl Shape for Cylinder {
                 let normal = radial.normalize_or(self.tangent);
                 // Project onto the side: removes the rounding of ray.at(t) along the normal.
                 let point = self.base + s * self.axis + normal * self.radius;
-                Surface::new(point, normal, DVec2::ZERO)
+                // u turns the normal about the axis by a full turn.
+                Surface::new(point, normal, DVec2::ZERO).with_dpdu(TAU * self.radius * self.axis.cross(normal))
             }
             part => {
                 let (s_cap, normal) = if part == BASE_CAP { (0.0, -self.axis) } else { (self.height, self.axis) };
                 Surface::new(self.base + s_cap * self.axis + radial, normal, DVec2::ZERO)
+                    .with_dpdu(TAU * self.axis.cross(radial))
             }
         }
     }
@@ -233,7 +237,7 @@ impl Shape for Cylinder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::check_shape;
+    use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape};
 
     fn unit() -> Cylinder {
         Cylinder::new(DVec3::ZERO, DVec3::Y, 1.0, false)
@@ -268,6 +272,17 @@ mod tests {
             2e-4,
             false,
         ));
+        check_dpdu(&unit());
+        check_dpdu(&Cylinder::new(DVec3::new(1.0, -2.0, 0.5), DVec3::new(0.0, 1.0, 2.0), 0.7, true));
+    }
+
+    #[test]
+    fn sampling_from_the_axis_of_an_open_tube_and_beside_it() {
+        // Inside a tube, most directions leave through the open ends; beside it, directions
+        // cross the near and far walls, and both could have been sampled.
+        let tube = Cylinder::new(DVec3::ZERO, DVec3::Y * 2.0, 0.5, true);
+        let references = [DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.0, 3.0, 0.0), DVec3::new(1.0, 0.5, 0.2)];
+        check_sampling_toward(&tube, &references, &ContractConfig::default());
     }
 
     #[test]

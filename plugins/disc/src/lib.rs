@@ -1,9 +1,13 @@
 //! The disc shape plugin: a flat disc (or annulus, with a hole) of zero thickness.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
-use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
+use prism_api::{
+    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov,
+};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -125,7 +129,8 @@ impl Shape for Disc {
         // Project onto the plane: removes the rounding error of ray.at(t) along the normal.
         let local = ray.at(hit.t) - self.center;
         let local = local - self.normal * self.normal.dot(local);
-        Surface::new(self.center + local, self.normal, DVec2::ZERO)
+        // u turns the point about the centre by a full turn (no tangent at the centre itself).
+        Surface::new(self.center + local, self.normal, DVec2::ZERO).with_dpdu(TAU * self.normal.cross(local))
     }
 
     fn area(&self) -> Option<f64> {
@@ -144,6 +149,11 @@ impl Shape for Disc {
         })
     }
 
+    /// A flat disc is crossed at most once: its area sample is the nearest crossing.
+    fn sample_toward(&self, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
+        prism_api::sample_toward_flat(self, reference, u)
+    }
+
     fn to_pov(&self) -> Option<String> {
         let hole = if self.hole_radius > 0.0 { format!(", {}", pov::number(self.hole_radius)) } else { String::new() };
         Some(format!(
@@ -158,7 +168,7 @@ impl Shape for Disc {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::check_shape;
+    use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape};
 
     fn unit() -> Disc {
         Disc::new(DVec3::ZERO, DVec3::Y, 1.0, 0.0)
@@ -173,6 +183,14 @@ mod tests {
         check_shape(&unit());
         check_shape(&Disc::new(DVec3::new(1.0, -2.0, 0.5), DVec3::new(1.0, 2.0, 3.0).normalize(), 50.0, 10.0));
         check_shape(&Disc::new(DVec3::new(0.1, 0.2, 0.3), DVec3::Z, 1e-3, 5e-4));
+        check_dpdu(&Disc::new(DVec3::new(1.0, -2.0, 0.5), DVec3::new(1.0, 2.0, 3.0).normalize(), 5.0, 1.0));
+    }
+
+    #[test]
+    fn sampling_from_above_the_hole_and_at_a_grazing_angle() {
+        let ring = Disc::new(DVec3::ZERO, DVec3::Y, 1.0, 0.5);
+        let references = [DVec3::new(0.0, 0.1, 0.0), DVec3::new(0.2, -0.3, 0.1), DVec3::new(3.0, 0.05, 0.0)];
+        check_sampling_toward(&ring, &references, &ContractConfig::default());
     }
 
     #[test]

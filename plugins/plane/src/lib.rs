@@ -1,5 +1,7 @@
 //! The plane shape plugin: the infinite plane of points `p` with `normal · p = offset`.
 
+#![forbid(unsafe_code)]
+
 use std::sync::Arc;
 
 use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
@@ -113,7 +115,12 @@ impl Shape for Plane {
         // Project onto the plane: removes the rounding error of ray.at(t) along the normal.
         let point = p - self.normal * (self.normal.dot(p) - self.offset);
         let uv = DVec2::new(point.dot(self.tangent), point.dot(self.bitangent));
-        Surface::new(point, self.normal, uv)
+        Surface::new(point, self.normal, uv).with_dpdu(self.tangent)
+    }
+
+    /// An infinite plane has no finite area to sample uniformly: it cannot be an area light.
+    fn can_emit(&self) -> bool {
+        false
     }
 
     fn to_pov(&self) -> Option<String> {
@@ -124,7 +131,7 @@ impl Shape for Plane {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::check_shape;
+    use prism_api::contract::{check_dpdu, check_shape};
 
     fn ground() -> Plane {
         Plane::new(DVec3::Y, 0.0)
@@ -181,6 +188,8 @@ mod tests {
         check_shape(&ground());
         check_shape(&Plane::new(DVec3::new(1.0, 2.0, -3.0).normalize(), 0.7));
         check_shape(&Plane::new(-DVec3::Z, -1.5));
+        check_dpdu(&Plane::new(DVec3::new(1.0, 2.0, -3.0).normalize(), 0.7));
+        assert!(!ground().can_emit());
     }
 
     #[test]

@@ -1,9 +1,14 @@
 //! The sphere shape plugin: a sphere of a given radius around a centre point.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
-use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
+use prism_api::{
+    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math,
+    pdf_toward_by_area, pov, sample_toward_by_area,
+};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -38,6 +43,30 @@ pub struct Sphere {
     pub center: DVec3,
     /// Radius (> 0).
     pub radius: f64,
+}
+
+/// The cone of directions a sphere subtends from a point outside it.
+struct Cone {
+    /// Unit vector from the point to the centre.
+    axis: DVec3,
+    /// sin^2 of the half angle: (radius / distance)^2.
+    sin2_max: f64,
+    /// 1 - cos of the half angle.
+    one_minus_cos_max: f64,
+}
+
+impl Sphere {
+    /// The cone subtended from `reference`, or `None` when it is not outside the sphere.
+    fn cone_from(&self, reference: DVec3) -> Option<Cone> {
+        let to_center = self.center - reference;
+        let distance_squared = to_center.length_squared();
+        let sin2_max = self.radius * self.radius / distance_squared;
+        (sin2_max < 1.0).then(|| Cone {
+            axis: to_center / distance_squared.sqrt(),
+            sin2_max,
+            one_minus_cos_max: sin2_max / (1.0 + (1.0 - sin2_max).sqrt()),
+        })
+    }
 }
 
 /// Squared half chords up to this count as tangent and miss (POV-Ray's `EPSILON`).
@@ -82,6 +111,7 @@ impl Shape for Sphere {
         let normal = (ray.at(hit.t) - self.center).normalize();
         // Project exactly onto the sphere: removes the error of ray.at(t) along the normal.
         Surface::new(self.center + normal * self.radius, normal, DVec2::ZERO)
+            .with_dpdu(math::longitude_dpdu(normal * self.radius, normal))
     }
 
     fn inside(&self, point: DVec3) -> bool {
@@ -100,6 +130,38 @@ impl Shape for Sphere {
         Some(AreaSample { point: self.center + normal * self.radius, normal, pdf_area: 1.0 / self.area()? })
     }
 
+    /// From outside, uniform over the cone of directions the sphere subtends (pbrt-v4's
+    /// `Sphere::Sample(ctx, u)`): every sample is a visible point. From inside (or on the
+    /// surface), where every direction meets the sphere once, uniform over the area.
+    fn sample_toward(&self, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
+        let Some(cone) = self.cone_from(reference) else { return sample_toward_by_area(self, reference, u) };
+        // cos(theta) = 1 - u.x (1 - cos(theta_max)) from the axis toward the centre, kept as
+        // 1 - cos(theta) so that tiny cones lose nothing to cancellation.
+        let one_minus_cos = u.x * cone.one_minus_cos_max;
+        let cos_theta = 1.0 - one_minus_cos;
+        let sin2_theta = one_minus_cos * (2.0 - one_minus_cos);
+        // The angle alpha at the centre between the axis back to the reference and the point
+        // where the sampled direction first meets the sphere.
+        let sin_max = cone.sin2_max.sqrt();
+        let cos_alpha = sin2_theta / sin_max + cos_theta * (1.0 - sin2_theta / cone.sin2_max).max(0.0).sqrt();
+        let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
+        let (sin_phi, cos_phi) = (TAU * u.y).sin_cos();
+        let (x, y) = math::orthonormal_basis(cone.axis);
+        let normal = (x * (sin_alpha * cos_phi) + y * (sin_alpha * sin_phi) - cone.axis * cos_alpha).normalize();
+        Some(DirectionSample {
+            point: self.center + normal * self.radius,
+            normal,
+            pdf_solid_angle: 1.0 / (TAU * cone.one_minus_cos_max),
+        })
+    }
+
+    fn pdf_toward(&self, reference: DVec3, direction: DVec3) -> f64 {
+        let Some(cone) = self.cone_from(reference) else { return pdf_toward_by_area(self, reference, direction) };
+        // 1 - cos of the angle to the axis, from the chord between the unit vectors.
+        let one_minus_cos = 0.5 * (direction.normalize() - cone.axis).length_squared();
+        if one_minus_cos <= cone.one_minus_cos_max { 1.0 / (TAU * cone.one_minus_cos_max) } else { 0.0 }
+    }
+
     fn to_pov(&self) -> Option<String> {
         Some(format!("sphere {{ {}, {} }}", pov::vector(self.center), pov::number(self.radius)))
     }
@@ -108,7 +170,7 @@ impl Shape for Sphere {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::check_shape;
+    use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape};
 
     fn unit() -> Sphere {
         Sphere { center: DVec3::ZERO, radius: 1.0 }
@@ -119,6 +181,43 @@ mod tests {
         check_shape(&unit());
         check_shape(&Sphere { center: DVec3::new(3.0, -2.0, 1.0), radius: 0.25 });
         check_shape(&Sphere { center: DVec3::ZERO, radius: 1e3 });
+        check_dpdu(&unit());
+    }
+
+    #[test]
+    fn cone_sampling_from_far_near_and_just_outside() {
+        let s = Sphere { center: DVec3::new(1.0, 2.0, -1.0), radius: 0.5 };
+        let config = ContractConfig::default();
+        // A tiny cone (1e-4 radians), a wide one, and one just off the surface.
+        let references = [
+            s.center + DVec3::new(3.0, 4.0, 0.0) * 1e3,
+            s.center + DVec3::new(0.0, 0.0, 0.6),
+            s.center + DVec3::new(0.3, -0.4, 0.0) * 1.001,
+            s.center + DVec3::new(0.1, 0.2, 0.1),
+        ];
+        check_sampling_toward(&s, &references, &config);
+    }
+
+    #[test]
+    fn cone_samples_are_visible_and_uniform_in_the_cone() {
+        let s = unit();
+        let reference = DVec3::new(0.0, 0.0, 2.0);
+        // Half angle 30 degrees: 1 - cos = 1 - sqrt(3) / 2.
+        let pdf = 1.0 / (TAU * (1.0 - 0.75f64.sqrt()));
+        for u in [DVec2::ZERO, DVec2::new(0.5, 0.25), DVec2::new(0.999_999, 0.7)] {
+            let sample = s.sample_toward(reference, u).unwrap();
+            assert!((sample.point.length() - 1.0).abs() < 1e-14);
+            assert!(sample.normal.dot(reference - sample.point) >= -1e-12, "faces the reference");
+            assert!((sample.pdf_solid_angle - pdf).abs() < 1e-12 * pdf);
+            assert_eq!(s.pdf_toward(reference, sample.point - reference), sample.pdf_solid_angle);
+        }
+        let axis = s.sample_toward(reference, DVec2::ZERO).unwrap().point;
+        assert!(axis.distance(DVec3::Z) < 1e-15, "u.x = 0: the axis, got {axis}");
+        assert_eq!(s.pdf_toward(reference, DVec3::new(0.0, 1.0, -1.0)), 0.0, "outside the cone");
+        assert!((s.pdf_toward(reference, -DVec3::Z * 3.0) - pdf).abs() < 1e-12 * pdf, "any length");
+        // From inside, area sampling: the density of the single crossing.
+        let inside = s.sample_toward(DVec3::ZERO, DVec2::new(0.3, 0.3)).unwrap();
+        assert!((inside.pdf_solid_angle - 1.0 / (4.0 * PI)).abs() < 1e-12, "{}", inside.pdf_solid_angle);
     }
 
     #[test]

@@ -27,10 +27,12 @@
 //!   one evaluation: samples are only evaluated where such bounds do not already rule out
 //!   the surface.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
-use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
+use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -682,7 +684,15 @@ impl Shape for Superellipsoid {
         // G is homogeneous: p / G(p) lies exactly on the surface, along the radial direction.
         let (g, grad) = self.gauge_and_gradient(p);
         let point = if g > 0.0 && g.is_finite() { p / g } else { p };
-        Surface::new(point, Self::normal_from_gradient(grad, point), DVec2::ZERO)
+        let normal = Self::normal_from_gradient(grad, point);
+        Surface::new(point, normal, DVec2::ZERO).with_dpdu(math::longitude_dpdu(point, normal))
+    }
+
+    /// No: the superellipsoid's area has no closed form, and uniform area sampling would
+    /// need a tabulated parameterisation (its uv is far from area-preserving for small
+    /// exponents), so it cannot be an area light.
+    fn can_emit(&self) -> bool {
+        false
     }
 
     fn to_pov(&self) -> Option<String> {
@@ -694,7 +704,7 @@ impl Shape for Superellipsoid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::{TestRng, check_shape};
+    use prism_api::contract::{TestRng, check_dpdu, check_shape};
 
     /// POV-Ray's implicit function, written as POV-Ray writes it.
     fn pov_function(s: &Superellipsoid, p: DVec3) -> f64 {
@@ -713,6 +723,8 @@ mod tests {
         check_shape(&Superellipsoid::new(1.0, 0.1));
         check_shape(&Superellipsoid::new(2.5, 3.0));
         check_shape(&Superellipsoid::new(0.5, 2.5));
+        check_dpdu(&Superellipsoid::new(0.5, 2.5));
+        assert!(!Superellipsoid::new(1.0, 1.0).can_emit());
     }
 
     #[test]

@@ -5,11 +5,13 @@
 //! (a documented parameter struct, validation naming the key, the `Shape` impl, a POV-Ray
 //! export and the tests), and each part is marked with a `STEP` comment.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
 use prism_api::math::solve_quadratic;
-use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
+use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -149,7 +151,11 @@ impl Shape for Capsule {
         };
         let normal = (p - axis).try_normalize().unwrap_or(DVec3::Y);
         // Project onto the surface to remove the rounding of ray.at(t) along the normal.
+        // The tangent dpdu is how the point moves as u grows with v held: u turns the normal
+        // about the y axis and v fixes the height, so the point circles the axis. The helper
+        // gives exactly that, and a unit tangent at the caps' poles, where it vanishes.
         Surface::new(axis + normal * self.radius, normal, DVec2::ZERO)
+            .with_dpdu(math::longitude_dpdu(normal * self.radius, normal))
     }
 
     // Closed shapes say which points are inside: Prism starts camera rays inside the
@@ -159,7 +165,13 @@ impl Shape for Capsule {
     }
 
     // STEP 5 (optional): area and uniform area sampling make the shape usable as an area
-    // light. Return None from `area` (the default) if you do not need that.
+    // light (`can_emit` is then true). Leave them out (the defaults return None) if it cannot
+    // be sampled exactly; say so with `fn can_emit(&self) -> bool { false }` and a comment.
+    // Direction sampling for next-event estimation (`sample_toward`, `pdf_toward`) then comes
+    // for free: the defaults are built on `sample_area` and count every crossing of a
+    // direction, as a closed shape needs. Override the pair together only with a better
+    // sampler (the sphere samples the cone it subtends); the contract kit checks them with a
+    // chi-square test.
     fn area(&self) -> Option<f64> {
         let r = self.radius;
         Some(4.0 * PI * r * r + 2.0 * PI * r * 2.0 * self.half_length)
@@ -207,7 +219,7 @@ impl Shape for Capsule {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::check_shape;
+    use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape};
 
     fn pill() -> Capsule {
         Capsule::new(0.5, 1.0)
@@ -228,6 +240,10 @@ mod tests {
         check_shape(&pill());
         check_shape(&Capsule::new(1.0, 0.0));
         check_shape(&Capsule::new(0.05, 4.0));
+        // The tangent follows the uv, and direction sampling holds from the hard places too:
+        // the axis beyond a cap, and the middle of the tube.
+        check_dpdu(&pill());
+        check_sampling_toward(&pill(), &[DVec3::new(0.0, 3.0, 0.0), DVec3::ZERO], &ContractConfig::default());
     }
 
     #[test]

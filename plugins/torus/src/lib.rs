@@ -7,11 +7,15 @@
 //! derivatives ([`prism_api::math::polynomial_roots`]), never by Ferrari's formula, and each
 //! root is then polished with Newton's method on the torus's distance function.
 
+#![forbid(unsafe_code)]
+
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
-use prism_api::math::polynomial_roots;
-use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
+use prism_api::math::{PolynomialRoots, polynomial_roots};
+use prism_api::{
+    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov,
+};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -62,7 +66,73 @@ pub struct Torus {
     pub minor: f64,
 }
 
+/// The torus's quartic along a ray, set up from the entry of the bounds along the unit
+/// direction, with its real roots there.
+struct Quartic {
+    /// Ray parameter of the bounds' entry.
+    t_enter: f64,
+    /// The entry point.
+    origin: DVec3,
+    /// Unit direction.
+    dir: DVec3,
+    /// Length of the ray's direction.
+    length: f64,
+    /// Roots in distance along `dir` from `origin`, ascending.
+    roots: PolynomialRoots,
+}
+
+impl Quartic {
+    /// The ray parameter of a root, polished on the distance function.
+    fn t(&self, torus: &Torus, u: f64) -> f64 {
+        self.t_enter + torus.polish(self.origin, self.dir, u) / self.length
+    }
+}
+
 impl Torus {
+    /// The quartic of `ray` clipped to the bounds within `(t_min, t_max)`, or `None` when the
+    /// ray misses the bounds there.
+    fn quartic(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Quartic> {
+        let (t_enter, t_exit) = self.bounds().ray_interval(ray, t_min, t_max)?;
+        let length = ray.direction.length();
+        if !(length > 0.0 && length.is_finite() && t_enter.is_finite() && t_exit.is_finite()) {
+            return None;
+        }
+        // Work from the box entry along the unit direction: u = (t - t_enter) * length.
+        let dir = ray.direction / length;
+        let o = ray.at(t_enter);
+        let span = (t_exit - t_enter) * length;
+
+        // (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + z^2) = 0 with p = o + u dir, |dir| = 1.
+        let r2 = self.major * self.major;
+        let m = o.dot(dir);
+        let k = o.length_squared() + r2 - self.minor * self.minor;
+        let planar_dd = dir.x * dir.x + dir.z * dir.z;
+        let planar_od = o.x * dir.x + o.z * dir.z;
+        let planar_oo = o.x * o.x + o.z * o.z;
+        let coefficients = [
+            k * k - 4.0 * r2 * planar_oo,
+            4.0 * m * k - 8.0 * r2 * planar_od,
+            4.0 * m * m + 2.0 * k - 4.0 * r2 * planar_dd,
+            4.0 * m,
+            1.0,
+        ];
+        // Roots on the box's faces (the outer equator, the top and bottom circles) must not be
+        // lost to rounding at the ends of the interval: search slightly beyond both ends;
+        // anything found there is still a point of the surface, and t is checked by the caller.
+        let margin = 1e-9 * (self.major + self.minor);
+        let roots = polynomial_roots(&coefficients, -margin, span + margin);
+        Some(Quartic { t_enter, origin: o, dir, length, roots })
+    }
+
+    /// Every crossing of `ray` at `t > 0` from one solution of the quartic (rather than one
+    /// per crossing, as the API's defaults would): `visit` gets each surface, nearest first.
+    fn for_each_crossing(&self, ray: &Ray, mut visit: impl FnMut(&Surface)) {
+        let Some(quartic) = self.quartic(ray, 0.0, f64::INFINITY) else { return };
+        for t in quartic.roots.as_slice().iter().map(|&u| quartic.t(self, u)).filter(|&t| t > 0.0) {
+            visit(&self.surface_geometry(ray, &Hit::at(t)));
+        }
+    }
+
     /// A torus with `0 < minor < major` (not checked here; [`TorusParams`] validates).
     pub fn new(major: f64, minor: f64) -> Self {
         Self { major, minor }
@@ -80,6 +150,36 @@ impl Torus {
         let core =
             if rho > 0.0 { DVec3::new(p.x, 0.0, p.z) * (self.major / rho) } else { DVec3::new(self.major, 0.0, 0.0) };
         (p - core).normalize_or(DVec3::Y)
+    }
+
+    /// The tube angle theta in [0, 2 pi) at which the CDF of the marginal density
+    /// (R + r cos theta) / (2 pi R), that is (R theta + r sin theta) / (2 pi R), equals `x`
+    /// in [0, 1]. The CDF is increasing, so Newton's method kept inside a shrinking bracket
+    /// (bisection when a step would leave it) converges for every ratio r / R < 1; plain
+    /// Newton overshoots where the density is small (thick tori, theta near pi).
+    fn tube_angle(&self, x: f64) -> f64 {
+        let target = TAU * self.major * x;
+        let (mut lo, mut hi) = (0.0, TAU);
+        let mut theta = TAU * x;
+        for _ in 0..200 {
+            let f = self.major * theta + self.minor * theta.sin() - target;
+            if f == 0.0 {
+                break;
+            }
+            if f < 0.0 {
+                lo = theta;
+            } else {
+                hi = theta;
+            }
+            let newton = theta - f / (self.major + self.minor * theta.cos());
+            let next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+            let step = (next - theta).abs();
+            theta = next;
+            if step <= 1e-15 * TAU || hi - lo <= 1e-15 * TAU {
+                break;
+            }
+        }
+        theta
     }
 
     /// Newton's method on the distance function along the unit direction `dir` from
@@ -121,40 +221,8 @@ impl Shape for Torus {
     }
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        let (t_enter, t_exit) = self.bounds().ray_interval(ray, t_min, t_max)?;
-        let length = ray.direction.length();
-        if !(length > 0.0 && length.is_finite() && t_enter.is_finite() && t_exit.is_finite()) {
-            return None;
-        }
-        // Work from the box entry along the unit direction: u = (t - t_enter) * length.
-        let dir = ray.direction / length;
-        let o = ray.at(t_enter);
-        let span = (t_exit - t_enter) * length;
-
-        // (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + z^2) = 0 with p = o + u dir, |dir| = 1.
-        let r2 = self.major * self.major;
-        let m = o.dot(dir);
-        let k = o.length_squared() + r2 - self.minor * self.minor;
-        let planar_dd = dir.x * dir.x + dir.z * dir.z;
-        let planar_od = o.x * dir.x + o.z * dir.z;
-        let planar_oo = o.x * o.x + o.z * o.z;
-        let coefficients = [
-            k * k - 4.0 * r2 * planar_oo,
-            4.0 * m * k - 8.0 * r2 * planar_od,
-            4.0 * m * m + 2.0 * k - 4.0 * r2 * planar_dd,
-            4.0 * m,
-            1.0,
-        ];
-        // Roots on the box's faces (the outer equator, the top and bottom circles) must not be
-        // lost to rounding at the ends of the interval: search slightly beyond both ends;
-        // anything found there is still a point of the surface, and t is checked below.
-        let margin = 1e-9 * (self.major + self.minor);
-        polynomial_roots(&coefficients, -margin, span + margin)
-            .as_slice()
-            .iter()
-            .map(|&u| t_enter + self.polish(o, dir, u) / length)
-            .find(|&t| t > t_min && t < t_max)
-            .map(Hit::at)
+        let quartic = self.quartic(ray, t_min, t_max)?;
+        quartic.roots.as_slice().iter().map(|&u| quartic.t(self, u)).find(|&t| t > t_min && t < t_max).map(Hit::at)
     }
 
     fn inside(&self, p: DVec3) -> bool {
@@ -179,26 +247,49 @@ impl Shape for Torus {
         let rho = (p.x * p.x + p.z * p.z).sqrt();
         let core = if rho > 0.0 { DVec3::new(p.x, 0.0, p.z) * (self.major / rho) } else { p };
         // Project exactly onto the tube: removes the error of ray.at(t) along the normal.
-        Surface::new(core + normal * self.minor, normal, DVec2::ZERO)
+        let point = core + normal * self.minor;
+        // u turns the point about the y axis by a full turn, keeping its place around the tube.
+        Surface::new(point, normal, DVec2::ZERO).with_dpdu(TAU * DVec3::new(point.z, 0.0, -point.x))
     }
 
     fn area(&self) -> Option<f64> {
         Some(4.0 * PI * PI * self.major * self.minor)
     }
 
+    /// Uniform in area, exactly: the area element is r (R + r cos theta) dtheta dphi, so the
+    /// angle around the y axis is uniform and the tube angle theta (0 on the outer equator)
+    /// has the marginal density (R + r cos theta) / (2 pi R), whose CDF is inverted.
     fn sample_area(&self, u: DVec2) -> Option<AreaSample> {
         let phi = TAU * u.x;
-        // The tube angle theta has density proportional to R + r cos(theta): invert its CDF
-        // (R theta + r sin theta) / (2 pi R) with Newton's method, which is monotonic here.
-        let target = TAU * self.major * u.y;
-        let mut theta = TAU * u.y;
-        for _ in 0..16 {
-            let f = self.major * theta + self.minor * theta.sin() - target;
-            theta -= f / (self.major + self.minor * theta.cos());
-        }
+        let theta = self.tube_angle(u.y);
         let normal = DVec3::new(theta.cos() * phi.cos(), theta.sin(), theta.cos() * phi.sin());
         let core = DVec3::new(phi.cos(), 0.0, phi.sin()) * self.major;
         Some(AreaSample { point: core + normal * self.minor, normal, pdf_area: 1.0 / self.area()? })
+    }
+
+    /// The default, area sampling with every crossing counted, from one solution of the
+    /// quartic per direction instead of one per crossing.
+    fn sample_toward(&self, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
+        let sample = self.sample_area(u)?;
+        let (mut nearest, mut pdf) = (None, 0.0);
+        self.for_each_crossing(&Ray::new(reference, sample.point - reference), |surface| {
+            nearest.get_or_insert(*surface);
+            pdf += math::area_to_solid_angle(sample.pdf_area, reference, surface.point, surface.normal);
+        });
+        let nearest: Surface = nearest?;
+        (pdf > 0.0 && pdf.is_finite()).then_some(DirectionSample {
+            point: nearest.point,
+            normal: nearest.normal,
+            pdf_solid_angle: pdf,
+        })
+    }
+
+    fn pdf_toward(&self, reference: DVec3, direction: DVec3) -> f64 {
+        let mut pdf = 0.0;
+        self.for_each_crossing(&Ray::new(reference, direction), |surface| {
+            pdf += math::area_to_solid_angle(self.pdf_area(surface.point), reference, surface.point, surface.normal);
+        });
+        pdf
     }
 
     fn to_pov(&self) -> Option<String> {
@@ -210,7 +301,7 @@ impl Shape for Torus {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::{TestRng, check_shape};
+    use prism_api::contract::{ContractConfig, TestRng, check_dpdu, check_sampling_toward, check_shape};
 
     fn standard() -> Torus {
         Torus::new(1.0, 0.25)
@@ -230,6 +321,32 @@ mod tests {
         check_shape(&Torus::new(3.0, 1.0));
         check_shape(&Torus::new(1.0, 0.02));
         check_shape(&Torus::new(200.0, 199.0));
+        check_dpdu(&Torus::new(3.0, 1.0));
+    }
+
+    #[test]
+    fn sampling_from_the_hole_the_axis_and_the_tube() {
+        // From the centre of the hole every direction in the torus's plane crosses the inner
+        // and the outer wall twice (four crossings), all of which could have been sampled.
+        let config = ContractConfig::default();
+        for torus in [standard(), Torus::new(2.0, 1.5)] {
+            let references = [DVec3::ZERO, DVec3::new(0.0, 1.0, 0.0), DVec3::new(torus.major, 0.0, 0.0)];
+            check_sampling_toward(&torus, &references, &config);
+        }
+    }
+
+    #[test]
+    fn tube_angles_invert_the_marginal_cdf() {
+        for torus in [standard(), Torus::new(1.0, 0.999), Torus::new(200.0, 199.0)] {
+            let (big, small) = (torus.major, torus.minor);
+            for i in 0..=1000 {
+                let x = i as f64 / 1000.0;
+                let theta = torus.tube_angle(x);
+                assert!((0.0..=TAU).contains(&theta), "{theta}");
+                let cdf = (big * theta + small * theta.sin()) / (TAU * big);
+                assert!((cdf - x).abs() < 1e-13, "{torus:?}: x = {x}, theta = {theta}, cdf = {cdf}");
+            }
+        }
     }
 
     #[test]

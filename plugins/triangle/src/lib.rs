@@ -1,8 +1,12 @@
 //! The triangle shape plugin: a single two-sided flat triangle.
 
+#![forbid(unsafe_code)]
+
 use std::sync::Arc;
 
-use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
+use prism_api::{
+    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov,
+};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -101,7 +105,8 @@ impl Shape for Triangle {
         let (u, v) = (hit.scratch.x, hit.scratch.y);
         // The barycentric point lies on the triangle up to rounding, unlike ray.at(t).
         let point = self.vertices[0] + u * self.edge1 + v * self.edge2;
-        Surface::new(point, self.normal, DVec2::new(u, v))
+        // The uv is (u, v) itself: p = v0 + u e1 + v e2.
+        Surface::new(point, self.normal, DVec2::new(u, v)).with_dpdu(self.edge1)
     }
 
     fn area(&self) -> Option<f64> {
@@ -119,6 +124,11 @@ impl Shape for Triangle {
         })
     }
 
+    /// A flat triangle is crossed at most once: its area sample is the nearest crossing.
+    fn sample_toward(&self, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
+        prism_api::sample_toward_flat(self, reference, u)
+    }
+
     fn to_pov(&self) -> Option<String> {
         let [a, b, c] = self.vertices.map(pov::vector);
         Some(format!("triangle {{ {a}, {b}, {c} }}"))
@@ -128,7 +138,7 @@ impl Shape for Triangle {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::check_shape;
+    use prism_api::contract::{check_dpdu, check_shape};
 
     fn xy() -> Triangle {
         Triangle::new([DVec3::ZERO, DVec3::X, DVec3::Y])
@@ -140,6 +150,11 @@ mod tests {
 
     #[test]
     fn contract_holds() {
+        check_dpdu(&Triangle::new([
+            DVec3::new(1.0, -2.0, 0.5),
+            DVec3::new(3.0, 1.0, -1.0),
+            DVec3::new(-2.0, 2.0, 2.0),
+        ]));
         check_shape(&xy());
         check_shape(&Triangle::new([
             DVec3::new(-40.0, 0.0, -40.0),

@@ -45,7 +45,7 @@ impl Loader<'_> {
                     texture.texture = Some(t);
                 }
                 Err(e) => {
-                    self.diagnostics.push(Diagnostic::new(self.files[index].locate(key), e));
+                    self.diagnostics.push(Diagnostic::new(self.files[index].locate(key), e.to_string()));
                     ok = false;
                 }
             }

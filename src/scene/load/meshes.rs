@@ -5,18 +5,26 @@ use super::*;
 
 /// Spawns the lights of every `import_lights` object, placed by their node's world transform
 /// (parents are linked by now; a parent cycle is reported later by `resolve_transforms`).
-pub(super) fn spawn_imported_lights(world: &mut hecs::World, imports: Vec<LightImport>) {
+/// A light's `range`, which Prism does not use, is reported in `warnings`.
+pub(super) fn spawn_imported_lights(
+    world: &mut hecs::World,
+    imports: Vec<LightImport>,
+    warnings: &mut Vec<Diagnostic>,
+) {
     for import in imports {
         let Some(object) = world_from_local(world, import.root) else { continue };
         let scale = punctual::uniform_scale(&object);
         for light in &import.model.lights {
             let Some(world_from_light) = world_from_local(world, import.nodes[light.node]) else { continue };
             if let Some(range) = light.range {
-                eprintln!(
-                    "warning: {}: {}: `range` {range} is ignored (imported lights fall off with the inverse square of the distance)",
-                    import.file,
-                    punctual::describe_light(light)
-                );
+                warnings.push(Diagnostic::warning(
+                    import.location.clone(),
+                    format!(
+                        "{}: {}: `range` {range} is ignored (imported lights fall off with the inverse square of the distance)",
+                        import.file,
+                        punctual::describe_light(light)
+                    ),
+                ));
             }
             let prism_light = punctual::light_from_node(light, world_from_light, scale);
             world.spawn((prism_light, Origin(import.location.clone()), Imported));
@@ -43,7 +51,7 @@ pub(super) struct LightImport {
     nodes: Vec<hecs::Entity>,
     /// The mesh file as the scene wrote it, for warnings.
     file: String,
-    /// The `import_lights` key.
+    /// The `import_lights` key (where its warnings point).
     location: Location,
 }
 
@@ -69,21 +77,32 @@ pub(super) const LENS_KEYS: [&str; 2] = ["aperture", "focal_distance"];
 /// `[camera]` keys an imported camera takes from the file (a second source is an error).
 pub(super) const POSE_KEYS: [&str; 5] = ["position", "look_at", "up", "vfov", "aspect"];
 
+/// A `shape = "mesh"` object as [`Loader::object`] has read it: the keys common to every
+/// object are taken out and checked, the mesh keys are left in `table`.
+pub(super) struct MeshObject<'a> {
+    /// Index of the scene file it is written in.
+    pub(super) file: usize,
+    /// Its key path, such as `object[2]`.
+    pub(super) key: &'a str,
+    /// Its location (the `[[object]]` table).
+    pub(super) location: &'a Location,
+    /// The remaining keys: `file`, `material_map`, `smooth_angle`, `import_lights`,
+    /// `import_camera` (and any unknown ones).
+    pub(super) table: toml::Table,
+    /// Its `transform`.
+    pub(super) transform: Transform,
+    /// The material it names, if it names one (`None` keeps the file's materials).
+    pub(super) material: Option<MaterialComponent>,
+    /// Its `no_shadow` flag.
+    pub(super) flags: ObjectFlags,
+}
+
 impl Loader<'_> {
     /// A `shape = "mesh"` object: imports the file (once per file) and spawns the root
-    /// entity and its parts; `None` after reporting a problem.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn mesh_object(
-        &mut self,
-        world: &mut hecs::World,
-        file: usize,
-        key: &str,
-        mut table: toml::Table,
-        transform: Transform,
-        material: Option<MaterialComponent>,
-        flags: ObjectFlags,
-        location: &Location,
-    ) -> Option<hecs::Entity> {
+    /// entity and its parts; `None` after reporting a problem. The file's import warnings
+    /// are reported once, at the first object that names it.
+    pub(super) fn mesh_object(&mut self, world: &mut hecs::World, object: MeshObject) -> Option<hecs::Entity> {
+        let MeshObject { file, key, location, mut table, transform, material, flags } = object;
         let material_failed = material.is_none()
             && self.diagnostics.iter().any(|d| d.location.key.starts_with(&format!("{key}.material")));
         let mut ok = true;
@@ -166,8 +185,17 @@ impl Loader<'_> {
                 return None;
             }
         }
-        let model = match self.meshes.get(&path, &ImportOptions { smooth_angle }) {
-            Ok(model) => model,
+        let model = match self.meshes.fetch(&path, &ImportOptions { smooth_angle }) {
+            Ok(fetched) => {
+                if fetched.first_use {
+                    let file_location = self.files[file].locate_value(&format!("{key}.file"));
+                    for warning in &fetched.model.warnings {
+                        self.warnings
+                            .push(Diagnostic::warning(file_location.clone(), format!("{relative}: {warning}")));
+                    }
+                }
+                fetched.model
+            }
             Err(e) => {
                 let d = Diagnostic::new(
                     self.files[file].locate_value(&format!("{key}.file")),

@@ -1,11 +1,13 @@
 //! `load`: scene files (with includes and named materials) into a hecs `World` plus the
 //! scene-wide settings. Every problem becomes a [`Diagnostic`] with file, line, column and
-//! key path; loading goes on after a problem so one run reports as many as it can.
+//! key path; loading goes on after a problem so one run reports as many as it can. Errors
+//! end in a [`SceneError`]; warnings (what an imported file skips or approximates) ride
+//! along in [`Scene::warnings`].
 
 mod lights;
 mod materials;
 mod meshes;
-use meshes::{CameraImport, LightImport, spawn_imported_camera, spawn_imported_lights};
+use meshes::{CameraImport, LightImport, MeshObject, spawn_imported_camera, spawn_imported_lights};
 mod objects;
 
 use std::collections::HashMap;
@@ -102,6 +104,7 @@ pub fn load_from(source: &dyn SceneSource, path: &Path, registry: &ShapeRegistry
         stack: Vec::new(),
         files: Vec::new(),
         diagnostics: Vec::new(),
+        warnings: Vec::new(),
         render: Section::default(),
         camera: Section::default(),
         environment: Section::default(),
@@ -137,7 +140,10 @@ struct Loader<'a> {
     registry: &'a ShapeRegistry,
     stack: Vec<PathBuf>,
     files: Vec<ParsedFile>,
+    /// Errors found so far.
     diagnostics: Vec<Diagnostic>,
+    /// Warnings found so far.
+    warnings: Vec<Diagnostic>,
     render: Section,
     camera: Section,
     environment: Section,
@@ -368,14 +374,12 @@ impl Loader<'_> {
         self.check_camera_keys();
 
         if !self.diagnostics.is_empty() {
-            let files = &self.files;
-            self.diagnostics.sort_by_key(|d| {
-                (files.iter().position(|f| f.name == d.location.file), d.location.line, d.location.column)
-            });
-            return Err(SceneError { diagnostics: self.diagnostics });
+            let mut diagnostics = std::mem::take(&mut self.diagnostics);
+            self.sort_in_file_order(&mut diagnostics);
+            return Err(SceneError { diagnostics });
         }
         let render = render.expect("no diagnostics");
-        spawn_imported_lights(&mut world, std::mem::take(&mut self.light_imports));
+        spawn_imported_lights(&mut world, std::mem::take(&mut self.light_imports), &mut self.warnings);
         let camera = camera.expect("no diagnostics");
         let camera = match self.camera_import.take() {
             Some(import) => spawn_imported_camera(&mut world, import, &camera),
@@ -391,7 +395,17 @@ impl Loader<'_> {
             Some(&file) => self.files[file].locate("render"),
             None => Location::file_only(self.files[0].name.clone(), "render"),
         };
-        Ok(Scene { world, render, render_origin, environment: environment.expect("no diagnostics"), camera })
+        let mut warnings = std::mem::take(&mut self.warnings);
+        self.sort_in_file_order(&mut warnings);
+        Ok(Scene { world, render, render_origin, environment: environment.expect("no diagnostics"), camera, warnings })
+    }
+
+    /// Sorts by file (in load order), line and column; a stable sort, so problems at one
+    /// place keep the order they were found in.
+    fn sort_in_file_order(&self, diagnostics: &mut [Diagnostic]) {
+        diagnostics.sort_by_key(|d| {
+            (self.files.iter().position(|f| f.name == d.location.file), d.location.line, d.location.column)
+        });
     }
 
     /// The directory of scene file `index` (mesh and texture paths are relative to it).

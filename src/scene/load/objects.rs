@@ -133,13 +133,15 @@ impl Loader<'_> {
         let entity = match shape_type {
             None => match self.mesh_object(
                 world,
-                file,
-                &key,
-                table,
-                transform,
-                material.filter(|_| explicit_material),
-                flags,
-                &location,
+                MeshObject {
+                    file,
+                    key: &key,
+                    location: &location,
+                    table,
+                    transform,
+                    material: material.filter(|_| explicit_material),
+                    flags,
+                },
             ) {
                 Some(entity) => entity,
                 None => return,

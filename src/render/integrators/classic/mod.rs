@@ -8,7 +8,7 @@
 use glam::DVec3;
 use prism_api::Ray;
 
-use crate::accel::primitive::{Placement, Primitive};
+use crate::accel::primitive::Primitive;
 use crate::accel::scene_bvh::{ConvexHull, Gathered};
 use crate::material::pov_view::{PovFinish, PovView, ShadedFinish};
 use crate::render::extract::RenderScene;
@@ -153,12 +153,7 @@ impl<'a> Classic<'a> {
         if !view.varies_over_surface() {
             return ShadedFinish { finish: std::borrow::Cow::Borrowed(&view.base), emitted: DVec3::ZERO };
         }
-        let area_scale = if primitive.placement != Placement::Affine {
-            1.0
-        } else {
-            primitive.world_from_object.matrix3.determinant().abs()
-                * (primitive.normal_to_world * surface.normal).length()
-        };
+        let area_scale = primitive.area_scale(surface.normal);
         let footprint =
             crate::texture::uv_footprint(self.pixel_spread * distance, surface.uv_density, area_scale, cosine);
         view.at_surface(surface.uv, footprint)
@@ -472,7 +467,10 @@ impl<'a> Classic<'a> {
     /// The hierarchical average of one area light's shadow at `point`: a fixed weighted sum
     /// when the grid always subdivides fully, else POV-Ray's recursion, memoising grid
     /// samples in `cache` under `stamp`.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the shading point, the light and its grid, and the per-ray state the recursion carries"
+    )]
     fn area_grid_average(
         &self,
         point: DVec3,
@@ -588,7 +586,7 @@ impl<'a> GridLattice<'a> {
 }
 
 /// One region of POV-Ray's recursive area-light average.
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, reason = "a region is its two corners (four numbers) plus the recursion's state")]
 fn block(
     sample: &mut impl FnMut(usize, usize, &mut PathState) -> DVec3,
     u1: usize,

@@ -1,0 +1,120 @@
+//! The SIMD kernels of both BVH levels, each written once per instruction set: the test of
+//! one ray against eight boxes (a wide node's children) and against a leaf packet of four
+//! triangles.
+//!
+//! An instruction set is a zero-sized token type that implements [`Kernels`]: [`Scalar`]
+//! (plain loops, always available, the reference the others are tested against) and, on
+//! x86-64, [`Avx2`], whose only constructor is the run-time CPU check. A safe kernel taking
+//! an `Avx2` is therefore sound by construction: holding one proves the CPU has the
+//! instructions. [`dispatch`] runs work generic over the kernels with the fastest set the
+//! CPU has, inside a function compiled for that set so that the kernels inline into it.
+
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+mod scalar;
+
+#[cfg(target_arch = "x86_64")]
+pub use avx2::Avx2;
+use glam::{Vec3, Vec3A};
+pub use scalar::Scalar;
+
+use super::triangle::{PacketHits, TrianglePacket, WatertightRay};
+
+/// Boxes tested together: the children of one wide node.
+pub const BOXES: usize = 8;
+
+/// Ize's conservative slab test: far distances grow by 2 gamma(3) so rounding never loses a
+/// box.
+pub const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+
+/// Eight boxes as structure of arrays, aligned for 256-bit loads.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(32))]
+pub struct BoxLanes {
+    /// min x, min y, min z, max x, max y, max z, each for the eight boxes.
+    pub planes: [[f32; BOXES]; 6],
+}
+
+impl BoxLanes {
+    /// Eight empty boxes (inverted bounds), which no ray enters.
+    pub const EMPTY: BoxLanes = BoxLanes {
+        planes: [
+            [f32::INFINITY; BOXES],
+            [f32::INFINITY; BOXES],
+            [f32::INFINITY; BOXES],
+            [f32::NEG_INFINITY; BOXES],
+            [f32::NEG_INFINITY; BOXES],
+            [f32::NEG_INFINITY; BOXES],
+        ],
+    };
+}
+
+/// A ray prepared for the slab test: reciprocal direction, origin times it, and which
+/// bound is the near plane on each axis.
+#[derive(Clone, Copy, Debug)]
+pub struct BoxRay {
+    /// Reciprocal direction.
+    pub rdir: [f32; 3],
+    /// Origin times the reciprocal direction.
+    pub org_rdir: [f32; 3],
+    /// Index into [`BoxLanes::planes`] of the near plane on each axis.
+    pub near: [usize; 3],
+    /// Index of the far plane on each axis (`near` + 3 mod 6).
+    pub far: [usize; 3],
+}
+
+impl BoxRay {
+    /// Prepares the ray `origin + t direction`.
+    #[inline]
+    pub fn new(origin: Vec3, direction: Vec3) -> Self {
+        let d = Vec3A::from(direction);
+        // Zero components become tiny ones (as Embree does): infinite reciprocals would turn
+        // the slab test's products into NaN.
+        let tiny = Vec3A::splat(1e-18);
+        let rdir = Vec3A::select(d.abs().cmplt(tiny), tiny.copysign(d), d).recip();
+        let org_rdir = Vec3A::from(origin) * rdir;
+        let negative = rdir.is_negative_bitmask();
+        let near_of = |axis: usize| if negative & (1 << axis) == 0 { axis } else { axis + 3 };
+        let far_of = |axis: usize| if negative & (1 << axis) == 0 { axis + 3 } else { axis };
+        Self {
+            rdir: rdir.to_array(),
+            org_rdir: org_rdir.to_array(),
+            near: [near_of(0), near_of(1), near_of(2)],
+            far: [far_of(0), far_of(1), far_of(2)],
+        }
+    }
+}
+
+/// One instruction set's kernels. Implemented by tokens that prove the CPU runs them, so
+/// every method is safe to call.
+pub trait Kernels: Copy {
+    /// Bit mask of the boxes the ray enters at `0 <= t <= t_max`, and their entry distances
+    /// in `near` (written for every box). Far distances are scaled by [`FAR_SCALE`].
+    fn boxes(self, boxes: &BoxLanes, ray: &BoxRay, t_max: f32, near: &mut [f32; BOXES]) -> u32;
+
+    /// Bit mask of the packet's lanes that [`WatertightRay::intersect`] hits with
+    /// `0 < t < t_max`, and those hits in `hits` (other lanes are left as they were).
+    /// Every implementation returns exactly the scalar test's hits, bit for bit.
+    fn triangles(self, packet: &TrianglePacket, ray: &WatertightRay, t_max: f32, hits: &mut PacketHits) -> u32;
+}
+
+/// Work generic over the kernels, run by [`dispatch`].
+pub trait Dispatch {
+    /// What the work returns.
+    type Output;
+
+    /// Does the work with `kernels`. Mark implementations `#[inline(always)]`: [`dispatch`]
+    /// compiles them inside a function with the instruction set enabled only if they inline.
+    fn run<K: Kernels>(self, kernels: K) -> Self::Output;
+}
+
+/// Runs `work` with the fastest kernels the CPU has: AVX2 where the CPU has it, else the
+/// scalar ones.
+#[inline(always)]
+pub fn dispatch<D: Dispatch>(work: D) -> D::Output {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(avx2) = Avx2::detect() {
+        return avx2.run(work);
+    }
+    work.run(Scalar)
+}
