@@ -225,16 +225,7 @@ impl Material {
                 textures.extend(&m.map_kd);
             }
         }
-        for (key, c) in colors {
-            if !c.is_finite() {
-                return Err((key, format!("must be finite, got {:?}", c.0.to_array())));
-            }
-        }
-        for (key, v) in numbers {
-            if !v.is_finite() {
-                return Err((key, format!("must be finite, got {v}")));
-            }
-        }
+        check_finite(&colors, &numbers)?;
         if self.interior.ior <= 0.0 {
             return Err(("ior", format!("must be greater than 0, got {}", self.interior.ior)));
         }
@@ -245,6 +236,20 @@ impl Material {
     }
 }
 
+/// The first of `colors`, then of `numbers`, that is not finite, as (key, message).
+pub(crate) fn check_finite(
+    colors: &[(&'static str, Rgb)],
+    numbers: &[(&'static str, f64)],
+) -> Result<(), (&'static str, String)> {
+    if let Some((key, c)) = colors.iter().find(|(_, c)| !c.is_finite()) {
+        return Err((key, format!("must be finite, got {:?}", c.0.to_array())));
+    }
+    if let Some((key, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
+        return Err((key, format!("must be finite, got {v}")));
+    }
+    Ok(())
+}
+
 /// The checks of [`MaterialSpec::check`] on a finish's own fields.
 fn check_finish(f: &Finish) -> Result<(), (&'static str, String)> {
     let colors = [
@@ -253,11 +258,6 @@ fn check_finish(f: &Finish) -> Result<(), (&'static str, String)> {
         ("reflection.min", f.reflection.min),
         ("reflection.max", f.reflection.max),
     ];
-    for (key, c) in colors {
-        if !c.is_finite() {
-            return Err((key, format!("must be finite, got {:?}", c.0.to_array())));
-        }
-    }
     let numbers = [
         ("filter", f.filter),
         ("transmit", f.transmit),
@@ -272,11 +272,7 @@ fn check_finish(f: &Finish) -> Result<(), (&'static str, String)> {
         ("reflection.exponent", f.reflection.exponent),
         ("reflection.metallic", f.reflection.metallic),
     ];
-    for (key, v) in numbers {
-        if !v.is_finite() {
-            return Err((key, format!("must be finite, got {v}")));
-        }
-    }
+    check_finite(&colors, &numbers)?;
     if f.roughness <= 0.0 {
         return Err(("roughness", format!("must be greater than 0, got {}", f.roughness)));
     }

@@ -139,11 +139,6 @@ impl MaterialSpec {
             ("reflection.min", self.reflection.min),
             ("reflection.max", self.reflection.max),
         ];
-        for (key, c) in colors {
-            if !c.is_finite() {
-                return Err((key, format!("must be finite, got {:?}", c.0.to_array())));
-            }
-        }
         let numbers = [
             ("filter", self.filter),
             ("transmit", self.transmit),
@@ -161,11 +156,7 @@ impl MaterialSpec {
             ("fade_distance", self.fade_distance),
             ("fade_power", self.fade_power),
         ];
-        for (key, v) in numbers {
-            if !v.is_finite() {
-                return Err((key, format!("must be finite, got {v}")));
-            }
-        }
+        super::check_finite(&colors, &numbers)?;
         if self.roughness <= 0.0 {
             return Err(("roughness", format!("must be greater than 0, got {}", self.roughness)));
         }
