@@ -122,54 +122,62 @@ pub enum LightKind {
     Area,
 }
 
+/// Every key of a `[[light]]` table besides `kind`, with the kinds that accept it: the one
+/// list that loading, saving, the schema and the documentation's table follow.
+pub const LIGHT_KEYS: [(&str, &[LightKind]); 19] = {
+    use LightKind::{Area, Parallel, Point, Spot};
+    const ALL: &[LightKind] = &[Point, Spot, Parallel, Area];
+    const CONE: &[LightKind] = &[Spot, Area];
+    [
+        ("position", ALL),
+        ("color", ALL),
+        ("intensity", ALL),
+        ("fade_distance", ALL),
+        ("fade_power", ALL),
+        ("shadowless", ALL),
+        ("axis1", &[Area]),
+        ("axis2", &[Area]),
+        ("size1", &[Area]),
+        ("size2", &[Area]),
+        ("adaptive", &[Area]),
+        ("jitter", &[Area]),
+        ("circular", &[Area]),
+        ("orient", &[Area]),
+        ("point_at", &[Spot, Parallel, Area]),
+        ("radius", CONE),
+        ("falloff", CONE),
+        ("tightness", CONE),
+        ("spot", &[Area]),
+    ]
+};
+
 impl LightKind {
-    /// The keys a light of this kind accepts (besides `kind`).
-    pub fn allowed_keys(self) -> &'static [&'static str] {
-        const COMMON: [&str; 6] = ["position", "color", "intensity", "fade_distance", "fade_power", "shadowless"];
+    /// Every kind, in the order the scene format lists them.
+    pub const ALL: [LightKind; 4] = [LightKind::Point, LightKind::Spot, LightKind::Parallel, LightKind::Area];
+
+    /// The name a scene writes as `kind` (`"point"`, ...).
+    pub fn name(self) -> &'static str {
         match self {
-            LightKind::Point => &COMMON,
-            LightKind::Spot => &[
-                "position",
-                "color",
-                "intensity",
-                "fade_distance",
-                "fade_power",
-                "shadowless",
-                "point_at",
-                "radius",
-                "falloff",
-                "tightness",
-            ],
-            LightKind::Parallel => {
-                &["position", "color", "intensity", "fade_distance", "fade_power", "shadowless", "point_at"]
-            }
-            LightKind::Area => &[
-                "position",
-                "color",
-                "intensity",
-                "fade_distance",
-                "fade_power",
-                "shadowless",
-                "axis1",
-                "axis2",
-                "size1",
-                "size2",
-                "adaptive",
-                "jitter",
-                "circular",
-                "orient",
-                "point_at",
-                "radius",
-                "falloff",
-                "tightness",
-                "spot",
-            ],
+            LightKind::Point => "point",
+            LightKind::Spot => "spot",
+            LightKind::Parallel => "parallel",
+            LightKind::Area => "area",
         }
+    }
+
+    /// True when a light of this kind accepts `key` (besides `kind`), by [`LIGHT_KEYS`].
+    pub fn accepts(self, key: &str) -> bool {
+        LIGHT_KEYS.iter().any(|(name, kinds)| *name == key && kinds.contains(&self))
+    }
+
+    /// The keys a light of this kind accepts (besides `kind`), in the order of [`LIGHT_KEYS`].
+    pub fn keys(self) -> impl Iterator<Item = &'static str> {
+        LIGHT_KEYS.iter().filter(move |(_, kinds)| kinds.contains(&self)).map(|(name, _)| *name)
     }
 }
 
-/// A light source. One flat record; which keys apply depends on `kind`
-/// ([`LightKind::allowed_keys`]). Defaults are POV-Ray's.
+/// A `[[light]]` of the scene as written: one flat record of POV-Ray's `light_source`
+/// parameters; which keys apply depends on `kind` ([`LIGHT_KEYS`]). Defaults are POV-Ray's.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Light {
@@ -414,6 +422,44 @@ impl Default for Environment {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_documented_light_keys_are_the_key_table() {
+        let doc = include_str!("../../docs/scene-format.md");
+        let section = doc.split("\n## Lights\n").nth(1).expect("a Lights section").split("\n#").next().unwrap();
+        let mut documented: Vec<(&str, Vec<LightKind>)> = Vec::new();
+        for row in section.lines().filter(|l| l.starts_with("| `")) {
+            let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+            let kinds = if cells[2] == "all" {
+                LightKind::ALL.to_vec()
+            } else {
+                cells[2].split(", ").map(|k| *LightKind::ALL.iter().find(|kind| kind.name() == k).expect(k)).collect()
+            };
+            for key in cells[1].split(", ") {
+                documented.push((key.trim_matches('`'), kinds.clone()));
+            }
+        }
+        let mut table: Vec<(&str, Vec<LightKind>)> = LIGHT_KEYS.iter().map(|(k, kinds)| (*k, kinds.to_vec())).collect();
+        documented.sort_by_key(|(k, _)| *k);
+        table.sort_by_key(|(k, _)| *k);
+        assert_eq!(documented, table);
+    }
+
+    #[test]
+    fn every_key_is_a_field_and_spot_lights_take_spot_keys() {
+        let toml::Value::Table(fields) = toml::Value::try_from(Light::default()).unwrap() else { panic!() };
+        let names: Vec<&str> = LIGHT_KEYS.iter().map(|(k, _)| *k).collect();
+        let mut expected: Vec<&str> = fields.keys().map(String::as_str).filter(|k| *k != "kind").collect();
+        expected.sort_unstable();
+        let mut sorted = names.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, expected);
+        assert_eq!(LightKind::Point.keys().count(), 6);
+        assert!(LightKind::Spot.accepts("tightness") && !LightKind::Point.accepts("tightness"));
+        assert!(!LightKind::Parallel.accepts("radius") && !LightKind::Area.accepts("kind"));
+        let serialised = LightKind::ALL.map(|k| toml::Value::try_from(k).unwrap().as_str().unwrap().to_string());
+        assert_eq!(serialised, LightKind::ALL.map(|k| k.name().to_string()));
+    }
 
     #[test]
     fn rotation_order_is_x_then_y_then_z() {
