@@ -2,14 +2,15 @@
 //! both transforms, materials, lights, the camera and the acceleration structure.
 
 use super::camera::RenderCamera;
-use super::lights::{RenderLight, render_light};
+use super::lights::{RenderLight, SceneLights};
 use super::sampling::PatternTable;
 use crate::accel::primitive::Primitive;
 use crate::accel::scene_bvh::Accel;
 use crate::material::Material;
 use crate::world::Scene;
 use crate::world::components::{
-    Environment, Light, MaterialComponent, ObjectFlags, RenderSettings, ShapeComponent, WorldTransform,
+    Environment, Light, MaterialComponent, ObjectFlags, PhotometricLight, RenderSettings, ShapeComponent,
+    WorldTransform,
 };
 
 /// Everything a render needs, immutable and shareable across threads.
@@ -18,8 +19,8 @@ pub struct RenderScene {
     pub primitives: Vec<Primitive>,
     /// Materials, indexed by `Primitive::material`.
     pub materials: Vec<Material>,
-    /// Lights.
-    pub lights: Vec<RenderLight>,
+    /// Light sources.
+    pub lights: SceneLights,
     /// The camera.
     pub camera: RenderCamera,
     /// Render settings.
@@ -62,8 +63,12 @@ pub fn extract(scene: &Scene) -> RenderScene {
     }
 
     let mut lights: Vec<(hecs::Entity, RenderLight)> =
-        scene.world.query::<(hecs::Entity, &Light)>().iter().map(|(e, l)| (e, render_light(l))).collect();
+        scene.world.query::<(hecs::Entity, &Light)>().iter().map(|(e, l)| (e, RenderLight::from_scene(l))).collect();
+    let mut imported = scene.world.query::<(hecs::Entity, &PhotometricLight)>();
+    lights.extend(imported.iter().map(|(e, l)| (e, RenderLight::from_photometric(l))));
     lights.sort_by_key(|(e, _)| e.id());
+    let sources = lights.into_iter().map(|(_, l)| l).collect();
+    let lights = SceneLights::new(sources);
 
     let accel = Accel::build(&primitives);
     let has_transparency = materials.iter().any(Material::is_transparent);
@@ -78,7 +83,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
         camera,
         primitives,
         materials,
-        lights: lights.into_iter().map(|(_, l)| l).collect(),
+        lights,
         settings: scene.render.clone(),
         environment: scene.environment.clone(),
         accel,

@@ -176,8 +176,11 @@ impl LightKind {
     }
 }
 
-/// A `[[light]]` of the scene as written: one flat record of POV-Ray's `light_source`
-/// parameters; which keys apply depends on `kind` ([`LIGHT_KEYS`]). Defaults are POV-Ray's.
+/// A `[[light]]` of the scene as written: one flat record whose keys are POV-Ray's
+/// `light_source` parameters; which keys apply depends on `kind` ([`LIGHT_KEYS`]). Defaults
+/// are POV-Ray's. `render::lights` reads it as a physical light (`color * intensity` is a
+/// radiant intensity in W/sr, or for `parallel` an irradiance in W/m^2) plus the POV-Ray
+/// parameters only the classic integrator uses (fade, tightness, shadowless).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Light {
@@ -185,15 +188,18 @@ pub struct Light {
     pub kind: LightKind,
     /// Position (for parallel lights: a point the light comes from).
     pub position: [f64; 3],
-    /// Colour.
+    /// Colour (linear RGB).
     pub color: Rgb,
-    /// Multiplies the colour (the seed's source intensity).
+    /// Multiplies the colour: `color * intensity` is the radiant intensity in W/sr (point,
+    /// spot; for area the whole grid's), or for parallel the irradiance in W/m^2 on a surface
+    /// facing the light.
     pub intensity: f64,
-    /// Distance at which the light has its nominal colour (0 = no fading).
+    /// POV-Ray's distance at which the light has its nominal colour (0 = no fading; read by
+    /// the classic integrator only).
     pub fade_distance: f64,
-    /// Power of the distance fade (0 = no fading; 2 = physically based).
+    /// POV-Ray's power of the distance fade (0 = no fading; classic integrator only).
     pub fade_power: f64,
-    /// Casts no shadows and makes no highlights.
+    /// Casts no shadows and makes no highlights (classic integrator only).
     pub shadowless: bool,
     /// Where a spot or parallel light points.
     pub point_at: [f64; 3],
@@ -201,7 +207,8 @@ pub struct Light {
     pub radius: f64,
     /// Spot: half-angle in degrees where the light reaches zero.
     pub falloff: f64,
-    /// Spot: exponent that concentrates the light toward the axis.
+    /// Spot: POV-Ray's exponent that concentrates the light toward the axis (classic
+    /// integrator only).
     pub tightness: f64,
     /// Area: makes the area light a spotlight too.
     pub spot: bool,
@@ -248,6 +255,43 @@ impl Default for Light {
             orient: false,
         }
     }
+}
+
+/// The kind of a `KHR_lights_punctual` light (of a glTF file, or imported from one).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PunctualKind {
+    /// Shines in all directions from the node's origin; intensity in candela.
+    Point,
+    /// Shines down the node's -z within a cone; intensity in candela.
+    Spot {
+        /// Angle in radians from the axis where the falloff begins.
+        inner_cone_angle: f64,
+        /// Angle in radians from the axis where the light reaches zero.
+        outer_cone_angle: f64,
+    },
+    /// Parallel light down the node's -z, infinitely far; intensity in lux.
+    Directional,
+}
+
+/// A light imported from a glTF file (`import_lights`), placed in the world by its node, with
+/// the photometric value the file gives: it is not a `[[light]]`, so it has no POV-Ray
+/// parameters. `render::lights` converts it to radiometric units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhotometricLight {
+    /// Point, spot (with its cone) or directional.
+    pub kind: PunctualKind,
+    /// The node's origin in world space.
+    pub position: DVec3,
+    /// The node's -z in world space, unit length: where a spot or directional light shines.
+    pub direction: DVec3,
+    /// Linear RGB colour, as in the file.
+    pub color: Rgb,
+    /// Luminous intensity in candela (point, spot) or illuminance in lux (directional), as in
+    /// the file.
+    pub intensity: f64,
+    /// World units per metre of the file: the uniform scale of the mesh object's transform
+    /// (glTF lengths are metres, so the inverse-square falloff is measured in file metres).
+    pub world_units_per_metre: f64,
 }
 
 /// The camera. Without a `[camera]` table this is the seed's camera: the eye one unit
