@@ -1,5 +1,6 @@
 //! `extract`: the hecs world to an immutable, `Send + Sync` render scene: primitives with
-//! both transforms, materials, lights, the camera and the acceleration structure.
+//! both transforms, materials, lights (with the table from primitives to the area emitters),
+//! the camera and the acceleration structure.
 
 use super::camera::RenderCamera;
 use super::lights::{RenderLight, SceneLights};
@@ -19,7 +20,7 @@ pub struct RenderScene {
     pub primitives: Vec<Primitive>,
     /// Materials, indexed by `Primitive::material`.
     pub materials: Vec<Material>,
-    /// Light sources.
+    /// Light sources, area emitters and the environment.
     pub lights: SceneLights,
     /// The camera.
     pub camera: RenderCamera,
@@ -68,7 +69,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
     lights.extend(imported.iter().map(|(e, l)| (e, RenderLight::from_photometric(l))));
     lights.sort_by_key(|(e, _)| e.id());
     let sources = lights.into_iter().map(|(_, l)| l).collect();
-    let lights = SceneLights::new(sources);
+    let lights = SceneLights::new(sources, &primitives, &materials, scene.environment.background.0);
 
     let accel = Accel::build(&primitives);
     let has_transparency = materials.iter().any(Material::is_transparent);

@@ -1,5 +1,7 @@
 //! Lights as the renderer sees them, in physical units: point and spot lights (radiant
-//! intensity, W/sr), directional lights (irradiance, W/m^2) and POV-Ray's area grid.
+//! intensity, W/sr), directional lights (irradiance, W/m^2), POV-Ray's area grid, the
+//! emissive primitives (area emitters, each naming its primitive) and the environment
+//! (radiance, W/(m^2 sr)).
 //!
 //! Colours are linear RGB and Prism's radiometric unit is a "watt" per RGB channel: the unit
 //! its images are in, with no spectrum behind it. The path integrator reads the physical
@@ -10,6 +12,8 @@
 
 use glam::DVec3;
 
+use crate::accel::primitive::Primitive;
+use crate::material::Material;
 use crate::world::components::{Light, LightKind, PhotometricLight, PunctualKind};
 
 /// Prism's radiometric unit per photometric unit: a glTF light of 1 cd (lm/sr) is 1 W/sr of
@@ -273,23 +277,100 @@ impl RenderLight {
     }
 }
 
+/// A primitive whose material emits: a light with the primitive's shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct AreaEmitter {
+    /// Index into the render scene's primitives.
+    pub primitive: u32,
+}
+
+/// What surrounds the scene, as a light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EnvironmentLight {
+    /// Radiance in W/(m^2 sr) (linear RGB) arriving from every direction: `[world]
+    /// background`.
+    pub radiance: DVec3,
+}
+
 /// Every light of a render scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneLights {
     /// The `[[light]]`s and imported lights, in load order.
     pub sources: Vec<RenderLight>,
+    /// The emissive primitives, in primitive order.
+    pub area_emitters: Vec<AreaEmitter>,
+    /// For each primitive, the index of its entry in `area_emitters`, if it emits.
+    pub emitter_of_primitive: Vec<Option<u32>>,
+    /// The environment.
+    pub environment: EnvironmentLight,
 }
 
 impl SceneLights {
-    /// The lights of a scene with these light sources.
-    pub fn new(sources: Vec<RenderLight>) -> Self {
-        Self { sources }
+    /// The lights of a scene: `sources`, an area emitter for every primitive whose material
+    /// emits ([`emits`]), and `background` (linear RGB radiance) as the environment.
+    pub fn new(sources: Vec<RenderLight>, primitives: &[Primitive], materials: &[Material], background: DVec3) -> Self {
+        let mut area_emitters = Vec::new();
+        let emitter_of_primitive = (0..primitives.len() as u32)
+            .map(|primitive| {
+                emits(&materials[primitives[primitive as usize].material as usize]).then(|| {
+                    area_emitters.push(AreaEmitter { primitive });
+                    area_emitters.len() as u32 - 1
+                })
+            })
+            .collect();
+        Self { sources, area_emitters, emitter_of_primitive, environment: EnvironmentLight { radiance: background } }
     }
+
+    /// The area emitter of `primitive`, if its material emits.
+    pub fn emitter_of(&self, primitive: u32) -> Option<&AreaEmitter> {
+        let index = (*self.emitter_of_primitive.get(primitive as usize)?)?;
+        Some(&self.area_emitters[index as usize])
+    }
+}
+
+/// True when a surface of this material emits light: a non-zero `emission` (which the
+/// classic integrator multiplies by the colour) or a non-zero glTF `pbr.emissive` (which a
+/// texture may modulate). The classic integrator shades emission from the material at each
+/// hit and does not sample emitters; this only decides which primitives are area emitters.
+pub fn emits(material: &Material) -> bool {
+    material.emission.0 != DVec3::ZERO || material.pbr.as_ref().is_some_and(|p| p.emissive.0 != DVec3::ZERO)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::load::{Embedded, load_from};
+
+    #[test]
+    fn primitives_reach_their_emitters_and_back() {
+        const SCENE: Embedded = Embedded(&[(
+            "s.toml",
+            "[materials.lamp]\nemission = 2.0\n\
+             [[object]]\nshape = \"sphere\"\nradius = 1.0\n\
+             [[object]]\nshape = \"sphere\"\nradius = 1.0\nmaterial = \"lamp\"\n\
+             [[object]]\nshape = \"sphere\"\nradius = 1.0\nmaterial = { pbr = { emissive = [0.0, 0.5, 0.0] } }\n\
+             [[object]]\nshape = \"sphere\"\nradius = 1.0\nmaterial = { pbr = { metallic = 0.0 } }\n\
+             [[object]]\nshape = \"sphere\"\nradius = 1.0\nmaterial = \"lamp\"\n",
+        )]);
+        let mut scene = load_from(&SCENE, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+        let scene = crate::prepare(&mut scene).unwrap();
+        let lights = &scene.lights;
+        assert_eq!(lights.emitter_of_primitive.len(), scene.primitives.len());
+        let emitting: Vec<u32> = lights.area_emitters.iter().map(|e| e.primitive).collect();
+        assert_eq!(emitting, [1, 2, 4]);
+        for (primitive, emitter) in lights.emitter_of_primitive.iter().enumerate() {
+            let material = &scene.materials[scene.primitives[primitive].material as usize];
+            assert_eq!(emitter.is_some(), emits(material), "primitive {primitive}");
+            if let Some(e) = emitter {
+                assert_eq!(lights.area_emitters[*e as usize].primitive, primitive as u32);
+                assert_eq!(lights.emitter_of(primitive as u32), Some(&lights.area_emitters[*e as usize]));
+            }
+        }
+        for (index, emitter) in lights.area_emitters.iter().enumerate() {
+            assert_eq!(lights.emitter_of_primitive[emitter.primitive as usize], Some(index as u32));
+        }
+        assert_eq!(lights.emitter_of(99), None);
+    }
 
     #[test]
     fn scene_lights_read_color_times_intensity_as_physical_units() {
