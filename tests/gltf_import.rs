@@ -15,10 +15,11 @@ use std::process::Command;
 use glam::{DAffine3, DQuat, DVec3};
 use prism::import::Imported;
 use prism::plugins::registry;
+use prism::render::integrators::classic::lights::pov_equivalent;
 use prism::render::{RenderOptions, render_frame};
 use prism::scene::load::load_file;
 use prism::world::Scene;
-use prism::world::components::{Light, LightKind};
+use prism::world::components::{PhotometricLight, PunctualKind};
 use serde_json::{Value, json};
 
 fn base64(bytes: &[u8]) -> String {
@@ -134,9 +135,14 @@ fn load(path: &Path) -> Scene {
 }
 
 /// The lights imported from files, in load order.
-fn imported_lights(scene: &Scene) -> Vec<Light> {
-    let mut lights: Vec<(hecs::Entity, Light)> =
-        scene.world.query::<(hecs::Entity, &Light)>().with::<&Imported>().iter().map(|(e, l)| (e, l.clone())).collect();
+fn imported_lights(scene: &Scene) -> Vec<PhotometricLight> {
+    let mut lights: Vec<(hecs::Entity, PhotometricLight)> = scene
+        .world
+        .query::<(hecs::Entity, &PhotometricLight)>()
+        .with::<&Imported>()
+        .iter()
+        .map(|(e, l)| (e, l.clone()))
+        .collect();
     lights.sort_by_key(|(e, _)| e.id());
     lights.into_iter().map(|(_, l)| l).collect()
 }
@@ -170,33 +176,36 @@ fn camera_and_lights_follow_nested_nodes_under_the_object_transform() {
     assert_eq!(lights.len(), 3);
     // The spot: rig (translate x 1, scale 2) then lamp (2 up): file position (1, 4, 0).
     let spot = &lights[0];
-    assert_eq!(spot.kind, LightKind::Spot);
-    assert!(close(spot.position, object.transform_point3(DVec3::new(1.0, 4.0, 0.0))), "{:?}", spot.position);
-    let axis = DVec3::from_array(spot.point_at) - DVec3::from_array(spot.position);
-    assert!(close(axis.normalize().to_array(), DVec3::NEG_Y), "spot points along {axis}");
-    assert!((spot.radius - 0.3f64.to_degrees()).abs() < 1e-5 && (spot.falloff - 0.5f64.to_degrees()).abs() < 1e-5);
+    let PunctualKind::Spot { inner_cone_angle, outer_cone_angle } = spot.kind else { panic!("{spot:?}") };
+    assert!((inner_cone_angle - 0.3).abs() < 1e-7 && (outer_cone_angle - 0.5).abs() < 1e-7);
+    assert!(close(spot.position.to_array(), object.transform_point3(DVec3::new(1.0, 4.0, 0.0))), "{}", spot.position);
+    assert!(close(spot.direction.to_array(), DVec3::NEG_Y), "spot points along {}", spot.direction);
     assert_eq!(spot.color.0, DVec3::new(1.0, 0.5, 0.25));
-    // Inverse square in file units: 20 cd at 2 m gives 20 / pi / 4.
-    let at = |l: &Light, d: f64| l.intensity * 2.0 / (1.0 + (d / l.fade_distance).powf(l.fade_power));
-    assert!((at(spot, 2.0) / (20.0 / PI / 4.0) - 1.0).abs() < 1e-5, "{}", at(spot, 2.0));
+    // The file's candela, exactly; the object's transform has no scale.
+    assert_eq!(spot.intensity, 20.0);
+    assert!((spot.world_units_per_metre - 1.0).abs() < 1e-12, "{}", spot.world_units_per_metre);
+    // The classic view: inverse square in file units, 20 cd at 2 m gives 20 / pi / 4.
+    let pov = pov_equivalent(spot);
+    let at = |d: f64| pov.intensity * 2.0 / (1.0 + (d / pov.fade_distance).powf(pov.fade_power));
+    assert!((at(2.0) / (20.0 / PI / 4.0) - 1.0).abs() < 1e-5, "{}", at(2.0));
     // The point light: rig then bulb (0, 1, 1) scaled by 2: file position (1, 2, 2).
     let point = &lights[1];
-    assert_eq!(point.kind, LightKind::Point);
-    assert!(close(point.position, object.transform_point3(DVec3::new(1.0, 2.0, 2.0))), "{:?}", point.position);
+    assert_eq!((point.kind, point.intensity), (PunctualKind::Point, 5.0));
+    assert!(close(point.position.to_array(), object.transform_point3(DVec3::new(1.0, 2.0, 2.0))), "{}", point.position);
     assert_eq!(point.color.0, DVec3::ONE);
-    // The sun: a parallel light shining down its node's -z, turned with the object.
+    // The sun: shining down its node's -z, turned with the object; lux kept as they are.
     let sun = &lights[2];
-    assert_eq!(sun.kind, LightKind::Parallel);
-    let direction = (DVec3::from_array(sun.point_at) - DVec3::from_array(sun.position)).normalize();
+    assert_eq!((sun.kind, sun.intensity), (PunctualKind::Directional, 3.0));
     let expected = object.transform_vector3(DQuat::from_rotation_x(-PI / 4.0) * DVec3::NEG_Z);
-    assert!(close(direction.to_array(), expected), "sun shines along {direction}, expected {expected}");
-    assert!((sun.intensity - 3.0 / PI).abs() < 1e-12 && sun.fade_power == 0.0);
+    assert!(close(sun.direction.to_array(), expected), "sun shines along {}, expected {expected}", sun.direction);
     assert_eq!(sun.color.0, DVec3::new(0.5, 0.5, 1.0));
+    let pov = pov_equivalent(sun);
+    assert!((pov.intensity - 3.0 / PI).abs() < 1e-12 && pov.fade_power == 0.0);
 
     // The scene's own render: lights, camera and quad all make it into the render scene.
     let mut scene = scene;
     let render_scene = prism::prepare(&mut scene).unwrap();
-    assert_eq!(render_scene.lights.len(), 3);
+    assert_eq!(render_scene.lights.sources.len(), 3);
 }
 
 #[test]

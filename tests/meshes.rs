@@ -15,6 +15,7 @@ use std::sync::Arc;
 use glam::DVec3;
 use prism::plugins::registry;
 use prism::render::camera::RenderCamera;
+use prism::render::lights::{LightOrigin, LightSource, RenderLight};
 use prism::render::{RenderOptions, render_frame};
 use prism::scene::load::load_file;
 use prism::world::components::{Camera, ShapeComponent};
@@ -46,8 +47,10 @@ fn render_mesh(file: &Path) -> Result<usize, String> {
     let eye = center + DVec3::new(0.4, 0.5, 1.0).normalize() * radius * 2.5;
     let camera = Camera { position: eye.to_array(), look_at: center.to_array(), vfov: 50.0, ..Camera::default() };
     render_scene.camera = RenderCamera::new(&camera, 64, 36);
-    if let Some(light) = render_scene.lights.first_mut() {
-        light.position = eye;
+    if let Some(RenderLight { source: LightSource::Point(light), origin: LightOrigin::Scene(pov) }) =
+        render_scene.lights.sources.first_mut()
+    {
+        (light.position, pov.position) = (eye, eye);
     }
     let (film, _) = render_frame(&render_scene, &RenderOptions::default()).map_err(|e| e.to_string())?;
     Ok(film.pixels.iter().filter(|p| **p != [0.25, 0.5, 0.75]).count())

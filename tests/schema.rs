@@ -48,6 +48,8 @@ fn broken_scenes_are_rejected() {
         "[[object]]\nshape = \"sphere\"\nradius = \"big\"\n",
         "[materials.m]\ncolr = 1\n",
         "[[light]]\nkind = \"laser\"\n",
+        "[[light]]\nradius = 10\n",
+        "[[light]]\nkind = \"parallel\"\nsize1 = 3\n",
     ] {
         assert!(!validator.is_valid(&as_json(text)), "schema accepted:\n{text}");
     }

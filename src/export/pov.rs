@@ -24,10 +24,11 @@ use crate::diagnostics::{Diagnostic, SceneError};
 use crate::material::pov_view::{PovFinish, PovView};
 use crate::material::{Material, Reflection, SurfaceModel};
 use crate::render::camera::CameraFrame;
+use crate::render::integrators::classic::lights::pov_equivalent;
 use crate::world::Scene;
 use crate::world::components::{
     Antialias, Camera, Environment, IntegratorKind, Light, LightKind, MaterialComponent, Name, ObjectFlags, Origin,
-    RenderSettings, ShapeComponent, WorldTransform,
+    PhotometricLight, RenderSettings, ShapeComponent, WorldTransform,
 };
 
 /// The deepest `max_trace_level` POV-Ray 3.7 accepts.
@@ -163,9 +164,13 @@ fn camera(out: &mut String, camera: &Camera, samples: u32) {
     out.push_str("}\n\n");
 }
 
+/// Every light, in load order; a light imported from a glTF file as the POV-Ray light source
+/// the classic integrator renders it as.
 fn lights(out: &mut String, scene: &Scene) {
     let mut lights: Vec<(hecs::Entity, Light)> =
         scene.world.query::<(hecs::Entity, &Light)>().iter().map(|(e, l)| (e, l.clone())).collect();
+    let mut imported = scene.world.query::<(hecs::Entity, &PhotometricLight)>();
+    lights.extend(imported.iter().map(|(e, l)| (e, pov_equivalent(l))));
     lights.sort_by_key(|(e, _)| e.id());
     for (_, light) in lights {
         light_source(out, &light);

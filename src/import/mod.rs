@@ -22,6 +22,7 @@ use glam::DAffine3;
 use crate::geometry::mesh::MeshShape;
 use crate::material::Material;
 use crate::texture::TextureStore;
+pub use crate::world::components::PunctualKind;
 
 /// A node of an imported file's scene tree (glTF nodes; an OBJ file has one).
 #[derive(Clone, Debug)]
@@ -77,22 +78,6 @@ pub enum CameraProjection {
         /// Half the viewport's height.
         ymag: f64,
     },
-}
-
-/// The kind of a [`ModelLight`] (`KHR_lights_punctual` types).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum PunctualKind {
-    /// Shines in all directions from the node's origin; intensity in candela.
-    Point,
-    /// Shines down the node's -z within a cone; intensity in candela.
-    Spot {
-        /// Angle in radians from the axis where the falloff begins.
-        inner_cone_angle: f64,
-        /// Angle in radians from the axis where the light reaches zero.
-        outer_cone_angle: f64,
-    },
-    /// Parallel light down the node's -z, infinitely far; intensity in lux.
-    Directional,
 }
 
 /// A `KHR_lights_punctual` light on a node of an imported file.

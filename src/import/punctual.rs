@@ -1,15 +1,13 @@
 //! Cameras and `KHR_lights_punctual` lights of an imported glTF file, used when a mesh object
 //! asks for them (`import_camera`, `import_lights`): choosing the camera, and mapping the
-//! file's cameras and lights to Prism's [`Camera`] and [`Light`], placed by their node's world
-//! transform (the node tree of the file under the object's own transform). The mapping, with
-//! its units, is documented in `docs/meshes.md`.
+//! file's cameras and lights to Prism's [`Camera`] and [`PhotometricLight`], placed by their
+//! node's world transform (the node tree of the file under the object's own transform). The
+//! mapping, with its units, is documented in `docs/meshes.md`.
 //!
 //! glTF cameras and spot and directional lights look down their node's local -z with +y up,
-//! as Prism's default camera does. Light intensities are photometric: candela for point and
-//! spot lights (inverse-square falloff), lux for directional lights. Prism's lights follow
-//! POV-Ray (no falloff unless `fade_distance` and `fade_power` are set), so imported point and
-//! spot lights get `fade_power = 2` with a tiny `fade_distance`, which makes POV-Ray's fade
-//! `2 / (1 + (d / fade_distance)^2)` an inverse square law.
+//! as Prism's default camera does. Light intensities are photometric, candela for point and
+//! spot lights and lux for directional lights, and are kept as the file gives them
+//! (`render::lights` converts them to radiometric units).
 
 use std::f64::consts::PI;
 
@@ -17,22 +15,7 @@ use glam::{DAffine3, DVec3};
 
 use super::{CameraProjection, Model, ModelCamera, ModelLight, PunctualKind};
 use crate::color::Rgb;
-use crate::world::components::{Camera, Light, LightKind};
-
-/// Imported point and spot lights follow `I / (d^2 + LIGHT_CORE^2)` with d in file units
-/// (metres): an inverse square law softened within a millimetre of the light.
-pub const LIGHT_CORE: f64 = 1e-3;
-
-/// Imported directional lights become parallel lights whose `position` lies this many file
-/// units (metres) back along the light's direction from their node: POV-Ray's parallel lights
-/// cast shadows only from objects in front of `position`.
-pub const SUN_DISTANCE: f64 = 1e6;
-
-/// Prism light value per photometric unit: a light of `E` lux (or `I / d^2` from a point or
-/// spot light) gets a Prism intensity of `E / pi`, so a surface with Prism's `diffuse` d and
-/// colour c shows `c d E / pi`, the radiance of a Lambertian surface of albedo `c d` (the
-/// convention of physically based real-time renderers such as three.js).
-pub const PHOTOMETRIC_SCALE: f64 = 1.0 / PI;
+use crate::world::components::{Camera, PhotometricLight};
 
 /// Which camera of the file `import_camera` asks for.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -192,40 +175,21 @@ pub fn check_light(light: &ModelLight) -> Result<(), String> {
     Ok(())
 }
 
-/// Prism's light for a file's light (checked by [`check_light`]) whose node has the world
-/// transform `world_from_light`. `object_scale` is the mesh object's world scale (the cube
+/// The world's light for a file's light (checked by [`check_light`]) whose node has the world
+/// transform `world_from_light`: at the node's origin, shining down its -z, with the file's
+/// colour and photometric intensity. `object_scale` is the mesh object's world scale (the cube
 /// root of its transform's determinant): file units (metres) times it are world units, so the
-/// inverse-square falloff and the sun's distance are measured in file units.
-pub fn light_from_node(light: &ModelLight, world_from_light: DAffine3, object_scale: f64) -> Light {
-    let position = world_from_light.translation;
-    let direction = world_from_light.transform_vector3(DVec3::NEG_Z).normalize_or(DVec3::NEG_Z);
+/// inverse-square falloff is measured in file units. The node's own scale changes neither the
+/// intensity nor the cone (glTF's rule).
+pub fn light_from_node(light: &ModelLight, world_from_light: DAffine3, object_scale: f64) -> PhotometricLight {
     let [r, g, b] = light.color;
-    let base = Light { color: Rgb::new(r, g, b), position: position.to_array(), ..Light::default() };
-    // POV-Ray's fade 2 / (1 + (d / f)^2) with f = core * scale, times I / (2 core^2), is
-    // I / (core^2 + (d / scale)^2): the inverse square law in file units.
-    let inverse_square = Light {
-        intensity: light.intensity * PHOTOMETRIC_SCALE / (2.0 * LIGHT_CORE * LIGHT_CORE),
-        fade_distance: LIGHT_CORE * object_scale,
-        fade_power: 2.0,
-        ..base.clone()
-    };
-    match light.kind {
-        PunctualKind::Point => Light { kind: LightKind::Point, ..inverse_square },
-        PunctualKind::Spot { inner_cone_angle, outer_cone_angle } => Light {
-            kind: LightKind::Spot,
-            point_at: (position + direction).to_array(),
-            radius: inner_cone_angle.to_degrees(),
-            falloff: outer_cone_angle.to_degrees(),
-            tightness: 0.0,
-            ..inverse_square
-        },
-        PunctualKind::Directional => Light {
-            kind: LightKind::Parallel,
-            position: (position - direction * SUN_DISTANCE * object_scale).to_array(),
-            point_at: position.to_array(),
-            intensity: light.intensity * PHOTOMETRIC_SCALE,
-            ..base
-        },
+    PhotometricLight {
+        kind: light.kind,
+        position: world_from_light.translation,
+        direction: world_from_light.transform_vector3(DVec3::NEG_Z).normalize_or(DVec3::NEG_Z),
+        color: Rgb::new(r, g, b),
+        intensity: light.intensity,
+        world_units_per_metre: object_scale,
     }
 }
 
@@ -244,56 +208,32 @@ mod tests {
         ModelLight { node: 0, index: 0, name: None, kind, color: [1.0, 0.5, 0.25], intensity: 10.0, range: None }
     }
 
-    /// Prism's light value at distance `d` (the classic integrator's fade).
-    fn value_at(light: &Light, d: f64) -> f64 {
-        let fade = if light.fade_power > 0.0 && light.fade_distance != 0.0 {
-            2.0 / (1.0 + (d / light.fade_distance).powf(light.fade_power))
-        } else {
-            1.0
-        };
-        light.intensity * fade
-    }
-
     #[test]
-    fn point_lights_fall_off_with_the_inverse_square_in_file_units() {
-        let l =
-            light_from_node(&light(PunctualKind::Point), DAffine3::from_translation(DVec3::new(1.0, 2.0, 3.0)), 1.0);
-        assert_eq!(l.kind, LightKind::Point);
-        assert_eq!(l.position, [1.0, 2.0, 3.0]);
+    fn lights_keep_the_files_photometric_values() {
+        let m = DAffine3::from_translation(DVec3::new(1.0, 2.0, 3.0));
+        let l = light_from_node(&light(PunctualKind::Point), m, 2.5);
+        assert_eq!(l.kind, PunctualKind::Point);
+        assert_eq!(l.position, DVec3::new(1.0, 2.0, 3.0));
         assert_eq!(l.color, Rgb::new(1.0, 0.5, 0.25));
-        for d in [0.5, 2.0, 10.0] {
-            let expected = 10.0 / PI / (d * d);
-            assert!((value_at(&l, d) / expected - 1.0).abs() < 1e-5, "at {d}: {} vs {expected}", value_at(&l, d));
-        }
-        // A model scaled by 100 (centimetres): the same light 100 world units away lights as
-        // it did 1 metre away.
-        let scaled = light_from_node(&light(PunctualKind::Point), DAffine3::from_scale(DVec3::splat(100.0)), 100.0);
-        assert!((value_at(&scaled, 100.0) / value_at(&l, 1.0) - 1.0).abs() < 1e-9);
+        assert_eq!((l.intensity, l.world_units_per_metre), (10.0, 2.5));
     }
 
     #[test]
-    fn spot_lights_point_down_their_nodes_minus_z() {
+    fn spot_and_directional_lights_shine_down_their_nodes_minus_z() {
         let kind = PunctualKind::Spot { inner_cone_angle: 0.2, outer_cone_angle: 0.4 };
-        // Turned 90 degrees about +y: -z becomes -x.
-        let m = DAffine3::from_rotation_translation(DQuat::from_rotation_y(PI / 2.0), DVec3::new(0.0, 5.0, 0.0));
+        // Turned 90 degrees about +y and scaled: -z becomes -x, still of unit length.
+        let m = DAffine3::from_scale_rotation_translation(
+            DVec3::splat(3.0),
+            DQuat::from_rotation_y(PI / 2.0),
+            DVec3::new(0.0, 5.0, 0.0),
+        );
         let l = light_from_node(&light(kind), m, 1.0);
-        assert_eq!(l.kind, LightKind::Spot);
-        let axis = DVec3::from_array(l.point_at) - DVec3::from_array(l.position);
-        assert!((axis - DVec3::NEG_X).length() < 1e-12, "{axis}");
-        assert!((l.radius - 0.2f64.to_degrees()).abs() < 1e-12 && (l.falloff - 0.4f64.to_degrees()).abs() < 1e-12);
-        assert_eq!((l.fade_power, l.tightness), (2.0, 0.0));
-    }
-
-    #[test]
-    fn directional_lights_are_distant_parallel_lights_without_fade() {
-        let m = DAffine3::from_rotation_x(-PI / 2.0); // -z turns to -y: straight down
-        let l = light_from_node(&light(PunctualKind::Directional), m, 2.0);
-        assert_eq!(l.kind, LightKind::Parallel);
-        assert_eq!((l.fade_power, l.fade_distance), (0.0, 0.0));
-        assert!((l.intensity - 10.0 / PI).abs() < 1e-12);
-        let from = DVec3::from_array(l.position);
-        assert!((from - DVec3::new(0.0, 2.0 * SUN_DISTANCE, 0.0)).length() < 1e-6, "{from}");
-        assert!(DVec3::from_array(l.point_at).length() < 1e-9);
+        assert_eq!(l.kind, kind);
+        assert!((l.direction - DVec3::NEG_X).length() < 1e-12, "{}", l.direction);
+        assert_eq!(l.position, DVec3::new(0.0, 5.0, 0.0));
+        let sun = light_from_node(&light(PunctualKind::Directional), DAffine3::from_rotation_x(-PI / 2.0), 2.0);
+        assert!((sun.direction - DVec3::NEG_Y).length() < 1e-12, "{}", sun.direction);
+        assert_eq!(sun.intensity, 10.0);
     }
 
     #[test]

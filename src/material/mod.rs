@@ -182,6 +182,12 @@ pub struct Emission {
 }
 
 impl Emission {
+    /// True when this emission can be non-zero somewhere: some radiance or some radiance per
+    /// unit of colour (a texture only scales `radiance`).
+    pub fn can_emit(&self) -> bool {
+        self.radiance.0 != glam::DVec3::ZERO || self.times_color.0 != glam::DVec3::ZERO
+    }
+
     /// The emitted radiance in W/(m^2 sr) where the surface colour is `color` and the
     /// emission texture reads `texel` (linear RGB; 1 without a texture).
     pub fn radiance_at(&self, color: Rgb, texel: Rgb) -> Rgb {

@@ -1,8 +1,9 @@
 //! `extract`: the hecs world to an immutable, `Send + Sync` render scene: primitives with
-//! both transforms, materials, lights, the camera and the acceleration structure.
+//! both transforms, materials, lights (with the table from primitives to the area emitters),
+//! the camera and the acceleration structure.
 
 use super::camera::RenderCamera;
-use super::lights::{RenderLight, render_light};
+use super::lights::{RenderLight, SceneLights};
 use super::sampling::PatternTable;
 use crate::accel::primitive::Primitive;
 use crate::accel::scene_bvh::Accel;
@@ -13,7 +14,8 @@ use crate::material::Material;
 use crate::material::pov_view::PovView;
 use crate::world::Scene;
 use crate::world::components::{
-    Environment, Light, MaterialComponent, ObjectFlags, RenderSettings, ShapeComponent, WorldTransform,
+    Environment, Light, MaterialComponent, ObjectFlags, PhotometricLight, RenderSettings, ShapeComponent,
+    WorldTransform,
 };
 
 /// Everything a render needs, immutable and shareable across threads.
@@ -23,8 +25,8 @@ pub struct RenderScene {
     /// Materials, indexed by `Primitive::material`: one per shared material (`Arc`), in the
     /// order primitives first use them (load order).
     pub materials: Vec<Material>,
-    /// Lights.
-    pub lights: Vec<RenderLight>,
+    /// Light sources, area emitters and the environment.
+    pub lights: SceneLights,
     /// The camera.
     pub camera: RenderCamera,
     /// Render settings.
@@ -66,8 +68,12 @@ pub fn extract(scene: &Scene) -> RenderScene {
     }
 
     let mut lights: Vec<(hecs::Entity, RenderLight)> =
-        scene.world.query::<(hecs::Entity, &Light)>().iter().map(|(e, l)| (e, render_light(l))).collect();
+        scene.world.query::<(hecs::Entity, &Light)>().iter().map(|(e, l)| (e, RenderLight::from_scene(l))).collect();
+    let mut imported = scene.world.query::<(hecs::Entity, &PhotometricLight)>();
+    lights.extend(imported.iter().map(|(e, l)| (e, RenderLight::from_photometric(l))));
     lights.sort_by_key(|(e, _)| e.id());
+    let sources = lights.into_iter().map(|(_, l)| l).collect();
+    let lights = SceneLights::new(sources, &primitives, &materials, scene.environment.background.0);
 
     let accel = Accel::build(&primitives);
     let has_transparency = materials.iter().any(|m| PovView::new(m).base.is_transparent());
@@ -82,7 +88,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
         camera,
         primitives,
         materials,
-        lights: lights.into_iter().map(|(_, l)| l).collect(),
+        lights,
         settings: scene.render.clone(),
         environment: scene.environment.clone(),
         accel,

@@ -158,8 +158,7 @@ fn write_scene(scene: &Scene, paths: &FilePaths) -> Result<String, toml::ser::Er
         let toml::Value::Table(all) = toml::Value::try_from(light)? else {
             unreachable!("a struct serialises to a table")
         };
-        let allowed = light.kind.allowed_keys();
-        let t = all.into_iter().filter(|(k, _)| k == "kind" || allowed.contains(&k.as_str())).collect();
+        let t = all.into_iter().filter(|(k, _)| k == "kind" || light.kind.accepts(k)).collect();
         lights.push((entity, t));
     }
     lights.sort_by_key(|(e, _)| e.id());

@@ -7,7 +7,7 @@ use serde_json::{Map, Value, json};
 
 use crate::material::MaterialSpec;
 use crate::registry::ShapeRegistry;
-use crate::world::components::{Camera, Environment, Light, RenderSettings, Transform};
+use crate::world::components::{Camera, Environment, Light, LightKind, RenderSettings, Transform};
 
 /// The JSON Schema (draft 2020-12) of a scene file for shapes in `registry`.
 pub fn scene_schema(registry: &ShapeRegistry) -> Value {
@@ -17,7 +17,7 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
     let world = generator.subschema_for::<Environment>().to_value();
     let material = generator.subschema_for::<MaterialSpec>().to_value();
     let transform = generator.subschema_for::<Transform>().to_value();
-    let light = generator.subschema_for::<Light>().to_value();
+    generator.subschema_for::<Light>();
 
     let objects: Vec<Value> = registry
         .iter()
@@ -64,7 +64,8 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
     insert_common_keys(&mut mesh, crate::import::spawn::MESH_SHAPE, &material, &transform);
     objects.push(mesh);
 
-    let definitions: Map<String, Value> = generator.take_definitions(true);
+    let mut definitions: Map<String, Value> = generator.take_definitions(true);
+    let light = light_variants(&definitions.remove("Light").expect("the light schema is a definition"), &definitions);
     json!({
         "$schema": "https://json-schema.org/draft/2020-12/schema",
         "$id": "https://prism.invalid/scene.schema.json",
@@ -86,6 +87,34 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
         },
         "$defs": definitions
     })
+}
+
+/// A `[[light]]` table: one variant per kind, each with the keys
+/// [`LIGHT_KEYS`](crate::world::components::LIGHT_KEYS) gives it, taken
+/// from `light`, the schema of the flat [`Light`] record; `kind` picks the variant (a table
+/// without it is a point light). `definitions` holds the description of each kind.
+fn light_variants(light: &Value, definitions: &Map<String, Value>) -> Value {
+    let properties = light["properties"].as_object().expect("the light schema has properties");
+    let kind_descriptions = definitions["LightKind"]["oneOf"].as_array().expect("light kinds are a oneOf");
+    let variants: Vec<Value> = LightKind::ALL
+        .into_iter()
+        .map(|kind| {
+            let description = kind_descriptions.iter().find(|k| k["const"] == kind.name()).map(|k| &k["description"]);
+            let mut keys: Map<String, Value> =
+                kind.keys().map(|key| (key.to_string(), properties[key].clone())).collect();
+            keys.insert("kind".into(), json!({ "const": kind.name() }));
+            let required = if kind == LightKind::Point { json!([]) } else { json!(["kind"]) };
+            json!({
+                "title": kind.name(),
+                "description": description,
+                "type": "object",
+                "additionalProperties": false,
+                "required": required,
+                "properties": keys
+            })
+        })
+        .collect();
+    json!({ "oneOf": variants })
 }
 
 /// Adds the keys every `[[object]]` has (shape, name, material, transform, parent,

@@ -134,54 +134,65 @@ pub enum LightKind {
     Area,
 }
 
+/// Every key of a `[[light]]` table besides `kind`, with the kinds that accept it: the one
+/// list that loading, saving, the schema and the documentation's table follow.
+pub const LIGHT_KEYS: [(&str, &[LightKind]); 19] = {
+    use LightKind::{Area, Parallel, Point, Spot};
+    const ALL: &[LightKind] = &[Point, Spot, Parallel, Area];
+    const CONE: &[LightKind] = &[Spot, Area];
+    [
+        ("position", ALL),
+        ("color", ALL),
+        ("intensity", ALL),
+        ("fade_distance", ALL),
+        ("fade_power", ALL),
+        ("shadowless", ALL),
+        ("axis1", &[Area]),
+        ("axis2", &[Area]),
+        ("size1", &[Area]),
+        ("size2", &[Area]),
+        ("adaptive", &[Area]),
+        ("jitter", &[Area]),
+        ("circular", &[Area]),
+        ("orient", &[Area]),
+        ("point_at", &[Spot, Parallel, Area]),
+        ("radius", CONE),
+        ("falloff", CONE),
+        ("tightness", CONE),
+        ("spot", &[Area]),
+    ]
+};
+
 impl LightKind {
-    /// The keys a light of this kind accepts (besides `kind`).
-    pub fn allowed_keys(self) -> &'static [&'static str] {
-        const COMMON: [&str; 6] = ["position", "color", "intensity", "fade_distance", "fade_power", "shadowless"];
+    /// Every kind, in the order the scene format lists them.
+    pub const ALL: [LightKind; 4] = [LightKind::Point, LightKind::Spot, LightKind::Parallel, LightKind::Area];
+
+    /// The name a scene writes as `kind` (`"point"`, ...).
+    pub fn name(self) -> &'static str {
         match self {
-            LightKind::Point => &COMMON,
-            LightKind::Spot => &[
-                "position",
-                "color",
-                "intensity",
-                "fade_distance",
-                "fade_power",
-                "shadowless",
-                "point_at",
-                "radius",
-                "falloff",
-                "tightness",
-            ],
-            LightKind::Parallel => {
-                &["position", "color", "intensity", "fade_distance", "fade_power", "shadowless", "point_at"]
-            }
-            LightKind::Area => &[
-                "position",
-                "color",
-                "intensity",
-                "fade_distance",
-                "fade_power",
-                "shadowless",
-                "axis1",
-                "axis2",
-                "size1",
-                "size2",
-                "adaptive",
-                "jitter",
-                "circular",
-                "orient",
-                "point_at",
-                "radius",
-                "falloff",
-                "tightness",
-                "spot",
-            ],
+            LightKind::Point => "point",
+            LightKind::Spot => "spot",
+            LightKind::Parallel => "parallel",
+            LightKind::Area => "area",
         }
+    }
+
+    /// True when a light of this kind accepts `key` (besides `kind`), by [`LIGHT_KEYS`].
+    pub fn accepts(self, key: &str) -> bool {
+        LIGHT_KEYS.iter().any(|(name, kinds)| *name == key && kinds.contains(&self))
+    }
+
+    /// The keys a light of this kind accepts (besides `kind`), in the order of [`LIGHT_KEYS`].
+    pub fn keys(self) -> impl Iterator<Item = &'static str> {
+        LIGHT_KEYS.iter().filter(move |(_, kinds)| kinds.contains(&self)).map(|(name, _)| *name)
     }
 }
 
-/// A light source. One flat record; which keys apply depends on `kind`
-/// ([`LightKind::allowed_keys`]). Defaults are POV-Ray's.
+/// A `[[light]]` of the scene as written: one flat record whose keys are POV-Ray's
+/// `light_source` parameters; which keys apply depends on `kind` ([`LIGHT_KEYS`]). Defaults
+/// are POV-Ray's. `render::lights` reads it as a physical light (`color * intensity` is a
+/// radiant intensity in W/sr, or for `parallel` an irradiance in W/m^2) plus the POV-Ray
+/// parameters only the classic integrator uses (fade, tightness, shadowless).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Light {
@@ -189,15 +200,18 @@ pub struct Light {
     pub kind: LightKind,
     /// Position (for parallel lights: a point the light comes from).
     pub position: [f64; 3],
-    /// Colour.
+    /// Colour (linear RGB).
     pub color: Rgb,
-    /// Multiplies the colour (the seed's source intensity).
+    /// Multiplies the colour: `color * intensity` is the radiant intensity in W/sr (point,
+    /// spot; for area the whole grid's), or for parallel the irradiance in W/m^2 on a surface
+    /// facing the light.
     pub intensity: f64,
-    /// Distance at which the light has its nominal colour (0 = no fading).
+    /// POV-Ray's distance at which the light has its nominal colour (0 = no fading; read by
+    /// the classic integrator only).
     pub fade_distance: f64,
-    /// Power of the distance fade (0 = no fading; 2 = physically based).
+    /// POV-Ray's power of the distance fade (0 = no fading; classic integrator only).
     pub fade_power: f64,
-    /// Casts no shadows and makes no highlights.
+    /// Casts no shadows and makes no highlights (classic integrator only).
     pub shadowless: bool,
     /// Where a spot or parallel light points.
     pub point_at: [f64; 3],
@@ -205,7 +219,8 @@ pub struct Light {
     pub radius: f64,
     /// Spot: half-angle in degrees where the light reaches zero.
     pub falloff: f64,
-    /// Spot: exponent that concentrates the light toward the axis.
+    /// Spot: POV-Ray's exponent that concentrates the light toward the axis (classic
+    /// integrator only).
     pub tightness: f64,
     /// Area: makes the area light a spotlight too.
     pub spot: bool,
@@ -252,6 +267,43 @@ impl Default for Light {
             orient: false,
         }
     }
+}
+
+/// The kind of a `KHR_lights_punctual` light (of a glTF file, or imported from one).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PunctualKind {
+    /// Shines in all directions from the node's origin; intensity in candela.
+    Point,
+    /// Shines down the node's -z within a cone; intensity in candela.
+    Spot {
+        /// Angle in radians from the axis where the falloff begins.
+        inner_cone_angle: f64,
+        /// Angle in radians from the axis where the light reaches zero.
+        outer_cone_angle: f64,
+    },
+    /// Parallel light down the node's -z, infinitely far; intensity in lux.
+    Directional,
+}
+
+/// A light imported from a glTF file (`import_lights`), placed in the world by its node, with
+/// the photometric value the file gives: it is not a `[[light]]`, so it has no POV-Ray
+/// parameters. `render::lights` converts it to radiometric units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhotometricLight {
+    /// Point, spot (with its cone) or directional.
+    pub kind: PunctualKind,
+    /// The node's origin in world space.
+    pub position: DVec3,
+    /// The node's -z in world space, unit length: where a spot or directional light shines.
+    pub direction: DVec3,
+    /// Linear RGB colour, as in the file.
+    pub color: Rgb,
+    /// Luminous intensity in candela (point, spot) or illuminance in lux (directional), as in
+    /// the file.
+    pub intensity: f64,
+    /// World units per metre of the file: the uniform scale of the mesh object's transform
+    /// (glTF lengths are metres, so the inverse-square falloff is measured in file metres).
+    pub world_units_per_metre: f64,
 }
 
 /// The camera. Without a `[camera]` table this is the seed's camera: the eye one unit
@@ -426,6 +478,44 @@ impl Default for Environment {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_documented_light_keys_are_the_key_table() {
+        let doc = include_str!("../../docs/scene-format.md");
+        let section = doc.split("\n## Lights\n").nth(1).expect("a Lights section").split("\n#").next().unwrap();
+        let mut documented: Vec<(&str, Vec<LightKind>)> = Vec::new();
+        for row in section.lines().filter(|l| l.starts_with("| `")) {
+            let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+            let kinds = if cells[2] == "all" {
+                LightKind::ALL.to_vec()
+            } else {
+                cells[2].split(", ").map(|k| *LightKind::ALL.iter().find(|kind| kind.name() == k).expect(k)).collect()
+            };
+            for key in cells[1].split(", ") {
+                documented.push((key.trim_matches('`'), kinds.clone()));
+            }
+        }
+        let mut table: Vec<(&str, Vec<LightKind>)> = LIGHT_KEYS.iter().map(|(k, kinds)| (*k, kinds.to_vec())).collect();
+        documented.sort_by_key(|(k, _)| *k);
+        table.sort_by_key(|(k, _)| *k);
+        assert_eq!(documented, table);
+    }
+
+    #[test]
+    fn every_key_is_a_field_and_spot_lights_take_spot_keys() {
+        let toml::Value::Table(fields) = toml::Value::try_from(Light::default()).unwrap() else { panic!() };
+        let names: Vec<&str> = LIGHT_KEYS.iter().map(|(k, _)| *k).collect();
+        let mut expected: Vec<&str> = fields.keys().map(String::as_str).filter(|k| *k != "kind").collect();
+        expected.sort_unstable();
+        let mut sorted = names.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, expected);
+        assert_eq!(LightKind::Point.keys().count(), 6);
+        assert!(LightKind::Spot.accepts("tightness") && !LightKind::Point.accepts("tightness"));
+        assert!(!LightKind::Parallel.accepts("radius") && !LightKind::Area.accepts("kind"));
+        let serialised = LightKind::ALL.map(|k| toml::Value::try_from(k).unwrap().as_str().unwrap().to_string());
+        assert_eq!(serialised, LightKind::ALL.map(|k| k.name().to_string()));
+    }
 
     #[test]
     fn rotation_order_is_x_then_y_then_z() {

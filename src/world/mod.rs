@@ -12,7 +12,8 @@ use components::{Environment, RenderSettings};
 /// A loaded scene.
 pub struct Scene {
     /// Entities: objects (Shape, Transform, Material, flags, optional Name and Parent),
-    /// lights (Light) and the camera (Camera).
+    /// lights (Light; PhotometricLight for lights imported from glTF files) and the camera
+    /// (Camera).
     pub world: hecs::World,
     /// `[render]` settings.
     pub render: RenderSettings,

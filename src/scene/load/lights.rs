@@ -1,6 +1,7 @@
-//! `[[light]]` tables: each kind's keys, checked before deserialising.
+//! `[[light]]` tables: each kind's keys ([`LIGHT_KEYS`]), checked before deserialising.
 
 use super::*;
+use crate::world::components::LIGHT_KEYS;
 
 impl Loader<'_> {
     pub(super) fn light(&mut self, index: usize, key: &str, table: toml::Table) -> Option<Light> {
@@ -8,24 +9,21 @@ impl Loader<'_> {
             None => LightKind::Point,
             Some(v) => self.deserialize::<LightKind>(index, &format!("{key}.kind"), v.clone())?,
         };
-        let allowed = kind.allowed_keys();
         let mut ok = true;
         let mut reported = Vec::new();
         for k in table.keys() {
-            if k != "kind" && !allowed.contains(&k.as_str()) {
-                let known_elsewhere = LightKind::Area.allowed_keys().contains(&k.as_str())
-                    || LightKind::Spot.allowed_keys().contains(&k.as_str());
-                let message = if known_elsewhere {
-                    format!("key `{k}` does not apply to a {kind:?} light", kind = kind).to_lowercase()
+            if k != "kind" && !kind.accepts(k) {
+                let message = if LIGHT_KEYS.iter().any(|(name, _)| name == k) {
+                    format!("key `{k}` does not apply to a {} light", kind.name())
                 } else {
                     format!("unknown key `{k}`")
                 };
                 // Suggest among every light's keys (a misspelt `tightness` on a point light is
                 // still most likely `tightness`), else list this kind's.
-                let every_key = [LightKind::Area, LightKind::Spot].into_iter().flat_map(|kind| kind.allowed_keys());
-                let help = match crate::diagnostics::nearest_name(k, every_key.copied().chain(["kind"])) {
+                let every_key = LIGHT_KEYS.iter().map(|(name, _)| *name);
+                let help = match crate::diagnostics::nearest_name(k, every_key.chain(["kind"])) {
                     Some(name) => format!("did you mean `{name}`?"),
-                    None => format!("valid keys here: kind, {}", allowed.join(", ")),
+                    None => format!("valid keys here: kind, {}", kind.keys().collect::<Vec<_>>().join(", ")),
                 };
                 let d = Diagnostic::new(self.files[index].locate(&format!("{key}.{k}")), message).with_help(help);
                 self.diagnostics.push(d);

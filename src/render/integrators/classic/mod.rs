@@ -5,6 +5,8 @@
 //! Fresnel, metallic, exponent), refraction with an interior stack, interior fade, and the
 //! max_trace_level / adc_bailout limits that return black.
 
+pub mod lights;
+
 use glam::DVec3;
 use prism_api::Ray;
 
@@ -13,9 +15,9 @@ use crate::accel::scene_bvh::{ConvexHull, Gathered};
 use crate::material::pov_view::{PovFinish, PovView, ShadedFinish};
 use crate::render::extract::RenderScene;
 use crate::render::integrators::{FirstHit, Integrator, PixelSample};
-use crate::render::lights::{AreaGrid, RenderLight};
+use crate::render::lights::AreaGrid;
 use crate::render::sampling::SampleStream;
-use crate::world::components::LightKind;
+use lights::{PovLight, attenuation};
 
 /// POV-Ray ignores shadow-ray hits closer than this to the surface or the light.
 const SHADOW_TOLERANCE: f64 = 1e-3;
@@ -105,6 +107,8 @@ pub struct Classic<'a> {
     camera_candidates: Vec<u32>,
     /// The interiors every camera ray starts in, when all start at one point (no aperture).
     pinhole_interiors: Option<Interiors>,
+    /// The scene's lights as POV-Ray shades them.
+    lights: Vec<PovLight>,
 }
 
 impl<'a> Classic<'a> {
@@ -119,7 +123,8 @@ impl<'a> Classic<'a> {
             })
             .collect();
         let views = scene.materials.iter().map(PovView::new).collect();
-        let mut integrator = Self { scene, views, pixel_spread, camera_candidates, pinhole_interiors: None };
+        let lights = scene.lights.sources.iter().map(PovLight::new).collect();
+        let mut integrator = Self { scene, views, pixel_spread, camera_candidates, pinhole_interiors: None, lights };
         if scene.camera.aperture <= 0.0 {
             integrator.pinhole_interiors = Some(integrator.interiors_at(scene.camera.position));
         }
@@ -313,17 +318,14 @@ impl<'a> Classic<'a> {
             return colour;
         }
         let mirror = d - 2.0 * d.dot(n) * n;
-        for light in &scene.lights {
-            let (l, distance) = match light.kind {
-                LightKind::Parallel => {
-                    let l = -light.axis;
-                    (l, (light.position - point).dot(l))
-                }
-                _ => {
-                    let to_light = light.position - point;
-                    let distance = to_light.length();
-                    (to_light / distance, distance)
-                }
+        for light in &self.lights {
+            let (l, distance) = if light.parallel {
+                let l = -light.axis;
+                (l, (light.position - point).dot(l))
+            } else {
+                let to_light = light.position - point;
+                let distance = to_light.length();
+                (to_light / distance, distance)
             };
             let n_dot_l = n.dot(l);
             if n_dot_l < 1e-10 {
@@ -436,7 +438,7 @@ impl<'a> Classic<'a> {
         &self,
         point: DVec3,
         l: DVec3,
-        light: &RenderLight,
+        light: &PovLight,
         grid: &AreaGrid,
         interiors: &Interiors,
         state: &mut PathState,
@@ -474,7 +476,7 @@ impl<'a> Classic<'a> {
     fn area_grid_average(
         &self,
         point: DVec3,
-        light: &RenderLight,
+        light: &PovLight,
         grid: &AreaGrid,
         axes: (DVec3, DVec3),
         interiors: &Interiors,
@@ -616,32 +618,6 @@ fn block(
     }
 }
 
-/// Spotlight cone and distance fade, as POV-Ray computes them.
-fn attenuation(light: &RenderLight, l: DVec3, distance: f64) -> f64 {
-    let mut a = 1.0;
-    if let Some((cos_radius, cos_falloff, tightness)) = light.spot {
-        let cos_theta = light.axis.dot(-l);
-        if cos_theta <= 0.0 {
-            return 0.0;
-        }
-        a = if tightness != 0.0 { pow(cos_theta, tightness) } else { 1.0 };
-        if cos_theta < cos_radius {
-            let p = (cos_theta - cos_falloff) / (cos_radius - cos_falloff);
-            a *= if p < 0.0 {
-                0.0
-            } else if p < 1.0 {
-                (3.0 - 2.0 * p) * p * p
-            } else {
-                1.0
-            };
-        }
-    }
-    if light.fade_power > 0.0 && light.fade_distance != 0.0 {
-        a *= 2.0 / (1.0 + pow(distance / light.fade_distance, light.fade_power));
-    }
-    a
-}
-
 /// `x^e`, with whole exponents (phong sizes, tightness, fade powers are usually whole) by
 /// repeated multiplication, which is several times faster than `powf` and as accurate.
 #[inline]
@@ -725,47 +701,6 @@ mod tests {
         // A shallow adaptive level leaves the rest to the samples.
         assert!(AreaGrid::fixed_weights(5, 5, 1).is_none());
         assert!(AreaGrid::fixed_weights(5, 5, 2).is_some());
-    }
-
-    #[test]
-    fn spotlight_cone() {
-        // radius 10, falloff 20, tightness 10, 15 degrees off axis: cos^10 times the
-        // smoothstep (3 - 2p) p^2 of p = (cos15 - cos20) / (cos10 - cos20).
-        let light = RenderLight {
-            kind: LightKind::Spot,
-            position: DVec3::ZERO,
-            color: DVec3::ONE,
-            fade_distance: 0.0,
-            fade_power: 0.0,
-            shadowless: false,
-            axis: DVec3::NEG_Y,
-            spot: Some((10f64.to_radians().cos(), 20f64.to_radians().cos(), 10.0)),
-            area: None,
-        };
-        let dir = DVec3::new(15f64.to_radians().sin(), -15f64.to_radians().cos(), 0.0);
-        let (c15, c10, c20) = (15f64.to_radians().cos(), 10f64.to_radians().cos(), 20f64.to_radians().cos());
-        let p = (c15 - c20) / (c10 - c20);
-        let expected = c15.powi(10) * (3.0 - 2.0 * p) * p * p;
-        assert!((attenuation(&light, -dir, 1.0) - expected).abs() < 1e-12);
-        assert_eq!(attenuation(&light, DVec3::new(0.0, -1.0, 0.0), 1.0), 0.0, "behind the spot");
-        assert!((attenuation(&light, DVec3::Y, 1.0) - 1.0).abs() < 1e-12, "on the axis");
-    }
-
-    #[test]
-    fn fade_has_povs_factor_two() {
-        let light = RenderLight {
-            kind: LightKind::Point,
-            position: DVec3::ZERO,
-            color: DVec3::ONE,
-            fade_distance: 5.0,
-            fade_power: 2.0,
-            shadowless: false,
-            axis: DVec3::NEG_Y,
-            spot: None,
-            area: None,
-        };
-        assert!((attenuation(&light, DVec3::X, 10.0) - 0.4).abs() < 1e-12);
-        assert!((attenuation(&light, DVec3::X, 5.0) - 1.0).abs() < 1e-12);
     }
 
     /// Camera rays start inside the objects whose solids hold the camera: with and without
