@@ -10,7 +10,7 @@ use prism::output::OutputError;
 use prism::render::{RenderError, RenderOptions, render_frame};
 use prism::scene::load::{load_file, load_from};
 use prism::world::Scene;
-use prism::world::components::ToneMap;
+use prism::world::components::{IntegratorKind, ToneMap};
 use prism::{builtin, output, plugins, prepare};
 
 /// Prism renders scenes written as TOML: analytic shapes, lights and materials, to PNG and
@@ -96,6 +96,27 @@ struct RenderArgs {
     /// Tone-mapping operator for the tone-mapped image (overrides the scene).
     #[arg(long, value_enum)]
     tone_map: Option<ToneMapArg>,
+    /// The light transport algorithm (overrides the scene's `[render] integrator`).
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorArg>,
+}
+
+/// `--integrator`: the command-line names of [`IntegratorKind`].
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum IntegratorArg {
+    /// Whitted-style tracing with POV-Ray 3.7's shading model.
+    Classic,
+    /// Physically based path tracing.
+    Path,
+}
+
+impl From<IntegratorArg> for IntegratorKind {
+    fn from(arg: IntegratorArg) -> Self {
+        match arg {
+            IntegratorArg::Classic => IntegratorKind::Classic,
+            IntegratorArg::Path => IntegratorKind::Path,
+        }
+    }
 }
 
 /// `--tone-map`: the command-line names of [`ToneMap`].
@@ -220,6 +241,9 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     }
     if let Some(t) = args.tone_map {
         settings.tone_map = t.into();
+    }
+    if let Some(i) = args.integrator {
+        settings.integrator = i.into();
     }
     if args.threads == Some(0) {
         return Err(CliError::NoThreads);

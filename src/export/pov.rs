@@ -79,6 +79,7 @@ fn povray_options(scene: &Scene, errors: &mut Vec<Diagnostic>) -> String {
         height,
         samples,
         max_depth: _,
+        rr_depth: _,
         adc_bailout: _,
         seed: _,
         integrator,
@@ -88,6 +89,12 @@ fn povray_options(scene: &Scene, errors: &mut Vec<Diagnostic>) -> String {
     } = &scene.render;
     match integrator {
         IntegratorKind::Classic => {}
+        IntegratorKind::Path => errors.push(Diagnostic::new(
+            scene.render_origin.child("integrator"),
+            "POV-Ray renders the classic integrator's model; export a scene with integrator = \"classic\" \
+             (or render `path` scenes against Mitsuba with `prism export mitsuba`)"
+                .to_string(),
+        )),
     }
     let aa = match *antialias {
         Antialias::Stratified => {
@@ -318,6 +325,7 @@ fn texture(out: &mut String, m: &Material) -> Result<(), Vec<(&'static str, Stri
         SurfaceModel::Finish(f) => (f.texture.is_some(), false),
         SurfaceModel::MetallicRoughness(p) => (p.finish.texture.is_some(), true),
         SurfaceModel::Mtl(mtl) => (mtl.map_kd.is_some(), false),
+        SurfaceModel::Physical(p) => (p.texture.is_some(), false),
     };
     let mut problems = Vec::new();
     if texture {

@@ -7,6 +7,7 @@
 //! reads the model. The scene file's form is [`spec::MaterialSpec`]; importers build
 //! materials directly. `docs/meshes.md` documents the mappings.
 
+pub mod metals;
 pub mod pov_view;
 pub mod spec;
 
@@ -42,6 +43,59 @@ pub enum SurfaceModel {
     MetallicRoughness(MetallicRoughness),
     /// OBJ/MTL parameters, as the `.mtl` file wrote them.
     Mtl(Mtl),
+    /// A physically based scattering model, as a scene's `bsdf` table wrote it.
+    Physical(Physical),
+}
+
+/// A physically based surface: a scattering model and the colour (with its texture) that
+/// tints it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Physical {
+    /// The scattering model.
+    pub scattering: Scattering,
+    /// Linear RGB: the reflectance of `diffuse` and `plastic`'s base, the tint of the
+    /// others' specular reflection (conductors) or transmission (dielectrics).
+    pub color: Rgb,
+    /// An image (linear after decoding) multiplying `color`.
+    pub texture: Option<TextureRef>,
+}
+
+/// A physically based scattering model, in Mitsuba 3's terms (GGX `alpha` is the microfacet
+/// roughness itself, glTF's perceptual roughness squared).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Scattering {
+    /// Lambertian reflection.
+    Diffuse,
+    /// A metal: complex index of refraction `eta + i k` per channel, GGX roughness `alpha`
+    /// (0 = mirror).
+    Conductor {
+        /// Real part of the index of refraction (linear RGB channels).
+        eta: Rgb,
+        /// Imaginary part (absorption).
+        k: Rgb,
+        /// GGX alpha (0 = smooth).
+        alpha: f64,
+    },
+    /// An interface into glass or water: index of refraction inside over outside.
+    Dielectric {
+        /// Relative index of refraction (inside / outside).
+        ior: f64,
+        /// GGX alpha (0 = smooth).
+        alpha: f64,
+    },
+    /// A thin slab of a dielectric (window pane, soap film): no refraction, internal
+    /// reflections summed.
+    ThinDielectric {
+        /// Index of refraction of the slab.
+        ior: f64,
+    },
+    /// A diffuse base under a dielectric coating (Mitsuba's `plastic` / `roughplastic`).
+    Plastic {
+        /// Index of refraction of the coating.
+        ior: f64,
+        /// GGX alpha of the coating (0 = smooth).
+        alpha: f64,
+    },
 }
 
 /// POV-Ray 3.7's pigment and finish. Every field has POV-Ray's meaning (and the scene
@@ -225,6 +279,12 @@ impl Material {
                 }
                 textures.extend(&p.metallic_roughness_texture);
             }
+            SurfaceModel::Physical(p) => {
+                colors.push(("color", p.color));
+                textures.extend(&p.texture);
+                check_finite(&colors, &numbers)?;
+                p.scattering.check()?;
+            }
             SurfaceModel::Mtl(m) => {
                 colors.extend([("Kd", m.kd), ("Ks", m.ks)].into_iter().filter_map(|(k, c)| Some((k, c?))));
                 numbers.extend([("Ns", m.ns), ("Ni", m.ni), ("d", m.d)].into_iter().filter_map(|(k, v)| Some((k, v?))));
@@ -241,6 +301,44 @@ impl Material {
         Ok(())
     }
 }
+
+impl Scattering {
+    /// The first out-of-range parameter, as (key under `bsdf`, message).
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        let (alpha, ior) = match *self {
+            Scattering::Diffuse => (None, None),
+            Scattering::Conductor { eta, k, alpha } => {
+                check_finite(&[("bsdf.eta", eta), ("bsdf.k", k)], &[])?;
+                for (key, c) in [("bsdf.eta", eta), ("bsdf.k", k)] {
+                    if c.0.min_element() < 0.0 {
+                        return Err((key, format!("must not be negative, got {:?}", c.0.to_array())));
+                    }
+                }
+                (Some(alpha), None)
+            }
+            Scattering::Dielectric { ior, alpha } | Scattering::Plastic { ior, alpha } => (Some(alpha), Some(ior)),
+            Scattering::ThinDielectric { ior } => (None, Some(ior)),
+        };
+        if let Some(alpha) = alpha
+            && !(0.0..=1.0).contains(&alpha)
+        {
+            return Err(("bsdf.alpha", format!("must be between 0 and 1, got {alpha}")));
+        }
+        if let Some(ior) = ior
+            && !(ior.is_finite() && (MIN_IOR..=MAX_IOR).contains(&ior))
+        {
+            return Err(("bsdf.ior", format!("must be between {MIN_IOR} and {MAX_IOR}, got {ior}")));
+        }
+        Ok(())
+    }
+}
+
+/// The smallest relative index of refraction a `bsdf` accepts (an air bubble in diamond is
+/// about 0.41).
+pub const MIN_IOR: f64 = 0.2;
+/// The largest relative index of refraction a `bsdf` accepts (diamond is 2.42; 5 leaves
+/// room for exotic media while catching typos such as 15).
+pub const MAX_IOR: f64 = 5.0;
 
 /// The first of `colors`, then of `numbers`, that is not finite, as (key, message).
 pub(crate) fn check_finite(

@@ -8,7 +8,7 @@ use std::borrow::Cow;
 
 use glam::{DVec2, DVec3};
 
-use super::{AlphaMode, Finish, Material, MetallicRoughness, Mtl, Reflection, SurfaceModel};
+use super::{AlphaMode, Finish, Material, MetallicRoughness, Mtl, Physical, Reflection, Scattering, SurfaceModel};
 use crate::color::Rgb;
 use crate::texture::TextureRef;
 
@@ -147,6 +147,17 @@ impl PovView {
                     Varying { texture: p.finish.texture.clone(), pbr: Some(pbr_params(p)), emitted: Some(emitted()) };
                 Self { base, varying: Some(varying) }
             }
+            SurfaceModel::Physical(p) => {
+                let (derived, ior) = physical_finish(p);
+                let base = PovFinish { ior, ..finish(&derived, emission.times_color) };
+                let glows = emission.radiance != Rgb::BLACK || emission.texture.is_some();
+                let varying = (p.texture.is_some() || glows).then(|| Varying {
+                    texture: p.texture.clone(),
+                    pbr: None,
+                    emitted: glows.then(emitted),
+                });
+                Self { base, varying }
+            }
             SurfaceModel::Mtl(m) => {
                 let (mapped, texture) = mtl_finish(m, emission.radiance, interior.ior);
                 let base = PovFinish { ior: mapped.ior, ..finish(&mapped.finish, mapped.emission) };
@@ -214,6 +225,66 @@ fn pbr_params(p: &MetallicRoughness) -> PbrParams {
         roughness: p.roughness,
         metallic_roughness_texture: p.metallic_roughness_texture.clone(),
     }
+}
+
+/// A physically based model read as a POV-Ray finish (documented in `docs/scene-format.md`):
+/// `diffuse` is POV-Ray's default finish in the colour; a conductor is a mirror whose
+/// reflectivity is its normal-incidence Fresnel reflectance times the colour, with a Blinn
+/// highlight when rough; a dielectric is fully transmitting glass of its index with Fresnel
+/// reflection; a thin dielectric transmits without bending; plastic is the diffuse colour with
+/// Fresnel reflection and a highlight. Returns the finish and the interior's index.
+fn physical_finish(p: &Physical) -> (Finish, f64) {
+    let mut finish = Finish { color: p.color, texture: p.texture.clone(), ..Finish::default() };
+    let fresnel = Reflection { min: Rgb::BLACK, max: Rgb::WHITE, fresnel: true, ..Reflection::default() };
+    let highlight = |finish: &mut Finish, alpha: f64| {
+        if alpha > 0.0 {
+            finish.specular = 1.0;
+            // Blinn's exponent 2 / alpha^2 - 2 is GGX's best match (Walter et al.).
+            let alpha2 = (alpha * alpha).min(0.999);
+            finish.roughness = (alpha2 / (2.0 - 2.0 * alpha2)).clamp(5e-4, 1.0);
+        }
+    };
+    let ior = match p.scattering {
+        Scattering::Diffuse => 1.0,
+        Scattering::Conductor { eta, k, alpha } => {
+            let (eta, k) = (eta.0, k.0);
+            let f0 = ((eta - 1.0) * (eta - 1.0) + k * k) / ((eta + 1.0) * (eta + 1.0) + k * k);
+            let tint = Rgb(f0 * p.color.0);
+            finish.diffuse = 0.0;
+            finish.ambient = Rgb::BLACK;
+            finish.metallic = 1.0;
+            finish.color = tint;
+            finish.reflection = Reflection { min: tint, max: tint, ..Reflection::default() };
+            highlight(&mut finish, alpha);
+            1.0
+        }
+        Scattering::Dielectric { ior, alpha } => {
+            finish.diffuse = 0.0;
+            finish.ambient = Rgb::BLACK;
+            finish.filter = 1.0;
+            finish.reflection = fresnel;
+            finish.conserve_energy = true;
+            highlight(&mut finish, alpha);
+            ior
+        }
+        Scattering::ThinDielectric { ior } => {
+            finish.diffuse = 0.0;
+            finish.ambient = Rgb::BLACK;
+            finish.filter = 1.0;
+            let r0 = ((ior - 1.0) / (ior + 1.0)).powi(2);
+            let r = 2.0 * r0 / (1.0 + r0);
+            finish.reflection =
+                Reflection { min: Rgb::grey(r), max: Rgb::WHITE, falloff: 5.0, ..Reflection::default() };
+            finish.conserve_energy = true;
+            1.0
+        }
+        Scattering::Plastic { ior, alpha } => {
+            finish.reflection = fresnel;
+            highlight(&mut finish, alpha.max(0.05));
+            ior
+        }
+    };
+    (finish, ior)
 }
 
 /// A finish with the emission coefficient and index of refraction MTL gives it.

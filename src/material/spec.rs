@@ -13,7 +13,7 @@ use schemars::JsonSchema;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
-use super::{AlphaMode, Emission, Finish, Interior, Material, MetallicRoughness, SurfaceModel};
+use super::{AlphaMode, Emission, Finish, Interior, Material, MetallicRoughness, Physical, Scattering, SurfaceModel};
 use crate::color::Rgb;
 use crate::texture::{ColorSpace, TextureRef};
 
@@ -69,6 +69,97 @@ pub struct MaterialSpec {
     /// instead of read from the fields above.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pbr: Option<Pbr>,
+    /// A physically based scattering model (`docs/scene-format.md`, "Physically based
+    /// materials"): `{ type = "diffuse" | "conductor" | "dielectric" | "thin_dielectric" |
+    /// "plastic", ... }`. With it, `color` and `texture` tint the model, `emission` is
+    /// radiance (not multiplied by the colour), and the POV-Ray finish keys above may not be written:
+    /// the classic integrator derives its finish from the model.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bsdf: Option<BsdfSpec>,
+}
+
+/// A scene's `bsdf` table: a physically based scattering model and its parameters, named and
+/// valued as Mitsuba 3's BSDF plugins (`alpha` is GGX's roughness itself).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum BsdfSpec {
+    /// Lambertian reflection with reflectance `color`.
+    Diffuse {},
+    /// A metal: a named one (`metal = "Au"`; Au, Ag, Cu, Al, Cr, Fe, Ti) or a complex index
+    /// of refraction `eta` + i `k` per RGB channel; `color` tints its reflection.
+    Conductor {
+        /// A named metal (exclusive with `eta` and `k`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        metal: Option<String>,
+        /// Real part of the index of refraction (linear RGB).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        eta: Option<Rgb>,
+        /// Imaginary part of the index of refraction (linear RGB).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        k: Option<Rgb>,
+        /// GGX roughness alpha, 0 (mirror) to 1.
+        #[serde(default)]
+        alpha: f64,
+    },
+    /// Glass or water: index of refraction `ior` (inside over outside, default 1.5); `color`
+    /// tints transmitted light.
+    Dielectric {
+        /// Relative index of refraction.
+        #[serde(default = "glass_ior")]
+        ior: f64,
+        /// GGX roughness alpha, 0 (smooth) to 1.
+        #[serde(default)]
+        alpha: f64,
+    },
+    /// A thin slab (window pane, soap film) of index `ior`: light passes straight through.
+    ThinDielectric {
+        /// Index of refraction of the slab.
+        #[serde(default = "glass_ior")]
+        ior: f64,
+    },
+    /// Diffuse `color` under a clear dielectric coating of index `ior` (Mitsuba's `plastic`,
+    /// `roughplastic` when `alpha` > 0).
+    Plastic {
+        /// Index of refraction of the coating.
+        #[serde(default = "plastic_ior")]
+        ior: f64,
+        /// GGX roughness alpha of the coating, 0 (smooth) to 1.
+        #[serde(default)]
+        alpha: f64,
+    },
+}
+
+fn glass_ior() -> f64 {
+    1.5
+}
+
+/// Mitsuba's default `int_ior` of plastic (polypropylene).
+fn plastic_ior() -> f64 {
+    1.49
+}
+
+impl BsdfSpec {
+    /// The scattering model, with a named metal looked up; (key, message) when the
+    /// parameters contradict each other.
+    pub fn to_scattering(&self) -> Result<Scattering, (&'static str, String)> {
+        Ok(match self {
+            BsdfSpec::Diffuse {} => Scattering::Diffuse,
+            BsdfSpec::Conductor { metal, eta, k, alpha } => {
+                let (eta, k) = match (metal, eta, k) {
+                    (Some(name), None, None) => super::metals::metal(name).ok_or_else(|| {
+                        ("bsdf.metal", format!("unknown metal; known: {}", super::metals::METAL_NAMES.join(", ")))
+                    })?,
+                    (None, Some(eta), Some(k)) => (eta.0, k.0),
+                    (Some(_), _, _) => return Err(("bsdf.metal", "give either `metal` or `eta` and `k`".into())),
+                    (None, _, _) => return Err(("bsdf.eta", "a conductor needs `metal` or both `eta` and `k`".into())),
+                };
+                Scattering::Conductor { eta: Rgb(eta), k: Rgb(k), alpha: *alpha }
+            }
+            BsdfSpec::Dielectric { ior, alpha } => Scattering::Dielectric { ior: *ior, alpha: *alpha },
+            BsdfSpec::ThinDielectric { ior } => Scattering::ThinDielectric { ior: *ior },
+            BsdfSpec::Plastic { ior, alpha } => Scattering::Plastic { ior: *ior, alpha: *alpha },
+        })
+    }
 }
 
 /// glTF 2.0 metallic-roughness parameters (the core material model plus emission).
@@ -124,6 +215,7 @@ impl Default for MaterialSpec {
             fade_color: Rgb::BLACK,
             texture: None,
             pbr: None,
+            bsdf: None,
         }
     }
 }
@@ -169,6 +261,10 @@ impl MaterialSpec {
         if let Some(t) = &self.texture {
             t.check()?;
         }
+        if let Some(bsdf) = &self.bsdf {
+            self.check_only_bsdf()?;
+            bsdf.to_scattering()?.check()?;
+        }
         if let Some(p) = &self.pbr {
             for (key, v) in [("pbr.metallic", p.metallic), ("pbr.roughness", p.roughness)] {
                 if !(0.0..=1.0).contains(&v) {
@@ -183,6 +279,40 @@ impl MaterialSpec {
             }
         }
         Ok(())
+    }
+
+    /// With a `bsdf`, the first POV-Ray finish or interior key (or `pbr`) written beside it:
+    /// those belong to another model.
+    fn check_only_bsdf(&self) -> Result<(), (&'static str, String)> {
+        let d = Self::default();
+        let written = [
+            ("filter", self.filter != d.filter),
+            ("transmit", self.transmit != d.transmit),
+            ("ambient", self.ambient != d.ambient),
+            ("diffuse", self.diffuse != d.diffuse),
+            ("brilliance", self.brilliance != d.brilliance),
+            ("phong", self.phong != d.phong),
+            ("phong_size", self.phong_size != d.phong_size),
+            ("specular", self.specular != d.specular),
+            ("roughness", self.roughness != d.roughness),
+            ("metallic", self.metallic != d.metallic),
+            ("reflection", self.reflection != d.reflection),
+            ("conserve_energy", self.conserve_energy != d.conserve_energy),
+            ("ior", self.ior != d.ior),
+            ("fade_distance", self.fade_distance != d.fade_distance),
+            ("fade_power", self.fade_power != d.fade_power),
+            ("fade_color", self.fade_color != d.fade_color),
+            ("pbr", self.pbr.is_some()),
+        ];
+        match written.iter().find(|(_, w)| *w) {
+            Some((key, _)) => Err((
+                key,
+                "is a POV-Ray finish key, and this material has a `bsdf`: write the model's own \
+                 parameters inside `bsdf` (the classic integrator derives its finish from it)"
+                    .into(),
+            )),
+            None => Ok(()),
+        }
     }
 
     /// Every texture reference of the material with the colour space of its image, for
@@ -225,9 +355,17 @@ impl MaterialSpec {
             texture: self.texture.clone(),
         };
         let mut emission = Emission { times_color: self.emission, ..Emission::default() };
-        let surface = match &self.pbr {
-            None => SurfaceModel::Finish(finish),
-            Some(p) => {
+        let physical = self.bsdf.as_ref().and_then(|b| b.to_scattering().ok());
+        if physical.is_some() {
+            // A physical model's emission is radiance, not radiance per unit of colour.
+            emission = Emission { radiance: self.emission, ..Emission::default() };
+        }
+        let surface = match (&self.pbr, physical) {
+            (_, Some(scattering)) => {
+                SurfaceModel::Physical(Physical { scattering, color: self.color, texture: self.texture.clone() })
+            }
+            (None, None) => SurfaceModel::Finish(finish),
+            (Some(p), None) => {
                 emission.radiance = p.emissive;
                 emission.texture = p.emissive_texture.clone();
                 SurfaceModel::MetallicRoughness(MetallicRoughness {

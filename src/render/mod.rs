@@ -5,6 +5,7 @@
 //! tiling or region.
 
 pub mod antialias;
+pub mod bsdf;
 pub mod camera;
 pub mod extract;
 pub mod integrators;
@@ -24,6 +25,7 @@ use crate::world::components::IntegratorKind;
 use camera::pov_screen;
 use extract::RenderScene;
 use integrators::classic::Classic;
+use integrators::path::Path;
 use integrators::{FirstHit, Integrator, PixelSample};
 use sampling::{SampleStream, hash4};
 
@@ -92,6 +94,7 @@ pub fn render_frame(scene: &RenderScene, options: &RenderOptions) -> Result<(Fil
     let region = Region::full(scene.settings.width, scene.settings.height);
     match scene.settings.integrator {
         IntegratorKind::Classic => render(scene, &Classic::new(scene), region, options),
+        IntegratorKind::Path => render(scene, &Path::new(scene), region, options),
     }
 }
 

@@ -364,6 +364,9 @@ pub enum IntegratorKind {
     /// Whitted-style tracing with POV-Ray 3.7's shading model.
     #[default]
     Classic,
+    /// Physically based unidirectional path tracing (next-event estimation with multiple
+    /// importance sampling).
+    Path,
 }
 
 /// How each pixel is sampled: `antialias = { method = "stratified" }` (the default) or one of
@@ -416,8 +419,13 @@ pub struct RenderSettings {
     pub height: u32,
     /// Samples per pixel.
     pub samples: u32,
-    /// Maximum trace depth (POV-Ray `max_trace_level`; the primary ray is level 1).
+    /// Maximum path length in segments, the camera ray's being the first: POV-Ray's
+    /// `max_trace_level` under `classic`, Mitsuba's `max_depth` under `path` (1 = only
+    /// emitters seen directly).
     pub max_depth: u32,
+    /// Under `path`: Russian roulette may end paths from this many segments on (Mitsuba's
+    /// `rr_depth`).
+    pub rr_depth: u32,
     /// Rays whose weight falls below this return black (POV-Ray `adc_bailout`).
     pub adc_bailout: f64,
     /// Seed of every random number (samples are a pure function of pixel, sample and seed).
@@ -439,6 +447,7 @@ impl Default for RenderSettings {
             height: 563,
             samples: 1,
             max_depth: 5,
+            rr_depth: 5,
             adc_bailout: 1.0 / 255.0,
             seed: 0,
             integrator: IntegratorKind::Classic,

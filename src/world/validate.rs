@@ -95,6 +95,9 @@ fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
             format!("max_depth must be between 1 and 1000, got {}", r.max_depth),
         ));
     }
+    if r.rr_depth == 0 {
+        out.push(Diagnostic::new(at("rr_depth"), "rr_depth must be at least 1, got 0".to_string()));
+    }
     if !(r.adc_bailout.is_finite() && (0.0..1.0).contains(&r.adc_bailout)) {
         out.push(Diagnostic::new(at("adc_bailout"), format!("adc_bailout must be in [0, 1), got {}", r.adc_bailout)));
     }

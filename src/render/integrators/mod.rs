@@ -3,6 +3,7 @@
 //! knows which integrator runs; an integrator never knows about tiles, threads or films.
 
 pub mod classic;
+pub mod path;
 
 use glam::{DVec2, DVec3};
 use prism_api::Ray;

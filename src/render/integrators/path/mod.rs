@@ -1,0 +1,330 @@
+//! The `path` integrator: unidirectional path tracing with next-event estimation and
+//! multiple importance sampling (power heuristic) between BSDF and light sampling, Russian
+//! roulette, and delta lobes and delta lights handled apart (they are never weighted).
+//!
+//! Path length follows Mitsuba 3: `max_depth` counts segments, the camera ray's being the
+//! first, so `max_depth = 1` shows only emitters seen directly. Every random number of a
+//! path comes from its sample's stream at fixed dimensions per bounce, so the image is a pure
+//! function of (pixel, sample, dimension, seed).
+
+pub mod light_sampler;
+pub mod scatter;
+
+use glam::{DVec2, DVec3};
+use prism_api::Ray;
+
+use super::{FirstHit, Integrator, PixelSample};
+use crate::accel::scene_bvh::ClosestHit;
+use crate::render::bsdf::Frame;
+use crate::render::extract::RenderScene;
+use crate::render::sampling::SampleStream;
+use light_sampler::{LightSample, LightSampler};
+use scatter::{PathMaterial, SurfacePoint};
+
+/// Rays start this far (relative to the scene's scale at the hit) beyond their origin.
+const RAY_EPSILON: f64 = 1e-6;
+/// Rays end this far away.
+const MAX_DISTANCE: f64 = 1e7;
+/// The scheduler's dimensions (pixel and lens position) come first.
+const FIRST_DIMENSION: u64 = 4;
+/// Dimensions each bounce draws: light choice, light position (2), lobe, direction (2),
+/// Russian roulette.
+const DIMENSIONS_PER_BOUNCE: u64 = 8;
+/// Russian roulette never keeps a path with more than this probability.
+const MAX_SURVIVAL: f64 = 0.95;
+
+/// The path tracer over one render scene.
+pub struct Path<'a> {
+    scene: &'a RenderScene,
+    materials: Vec<PathMaterial>,
+    lights: LightSampler,
+    environment: DVec3,
+}
+
+/// The power heuristic (beta = 2) weight of a strategy with density `a` against one with `b`.
+fn power_heuristic(a: f64, b: f64) -> f64 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
+}
+
+/// A hit with what the path needs from it, in world space.
+struct Vertex {
+    point: DVec3,
+    /// Unit geometric normal, pointing out of the shape (its front side).
+    geometric_normal: DVec3,
+    /// Unit shading normal on the same side as `geometric_normal`.
+    shading_normal: DVec3,
+    tangent: DVec3,
+    uv: DVec2,
+    primitive: u32,
+    material: u32,
+    distance: f64,
+}
+
+impl<'a> Path<'a> {
+    /// The path integrator for `scene`.
+    pub fn new(scene: &'a RenderScene) -> Self {
+        let materials = scene.materials.iter().map(PathMaterial::new).collect();
+        let environment = scene.lights.environment.radiance;
+        let radius = scene_radius(scene);
+        let lights = LightSampler::new(scene, radius, environment);
+        Self { scene, materials, lights, environment }
+    }
+
+    fn closest(&self, ray: &Ray, t_max: f64) -> Option<ClosestHit> {
+        self.scene.accel.closest(&self.scene.primitives, ray, RAY_EPSILON, t_max, |_| true)
+    }
+
+    fn vertex(&self, ray: &Ray, closest: &ClosestHit) -> Vertex {
+        let primitive = &self.scene.primitives[closest.primitive as usize];
+        let surface = primitive.shape.surface(&closest.object_ray, &closest.hit);
+        let geometric_normal = primitive.world_normal(surface.normal);
+        let mut shading_normal = primitive.world_normal(surface.shading_normal);
+        if shading_normal.dot(geometric_normal) < 0.0 {
+            shading_normal = -shading_normal;
+        }
+        let tangent = match primitive.placement {
+            crate::accel::primitive::Placement::Affine => primitive.world_from_object.transform_vector3(surface.dpdu),
+            _ => surface.dpdu,
+        };
+        Vertex {
+            point: primitive.world_point(surface.point),
+            geometric_normal,
+            shading_normal,
+            tangent,
+            uv: surface.uv,
+            primitive: closest.primitive,
+            material: primitive.material,
+            distance: closest.hit.t * ray.direction.length(),
+        }
+    }
+
+    /// Radiance a vertex emits toward direction `toward` (unit, away from the surface):
+    /// emitters shine from their front side.
+    fn emitted(&self, vertex: &Vertex, toward: DVec3) -> DVec3 {
+        let material = &self.materials[vertex.material as usize];
+        if !material.can_emit() || vertex.geometric_normal.dot(toward) <= 0.0 {
+            return DVec3::ZERO;
+        }
+        material.emitted(&SurfacePoint { uv: vertex.uv })
+    }
+
+    /// Solid-angle density with which light sampling from `from` picks `direction` toward the
+    /// emissive primitive `primitive`, selection included.
+    fn emitter_pdf(&self, primitive: u32, from: DVec3, direction: DVec3) -> f64 {
+        let probability = self.lights.emitter_probability(primitive);
+        if probability <= 0.0 {
+            return 0.0;
+        }
+        let p = &self.scene.primitives[primitive as usize];
+        let reference = p.object_point(from);
+        let object_direction = match p.placement {
+            crate::accel::primitive::Placement::Affine => p.object_from_world.transform_vector3(direction),
+            _ => direction,
+        };
+        let pdf = p.shape.pdf_toward(reference, object_direction) / p.solid_angle_scale(object_direction);
+        if pdf.is_finite() { pdf * probability } else { 0.0 }
+    }
+
+    /// A point just off the surface on the side of `direction`.
+    fn offset_origin(vertex: &Vertex, direction: DVec3) -> DVec3 {
+        let scale = RAY_EPSILON * (1.0 + vertex.point.abs().max_element());
+        let side = if direction.dot(vertex.geometric_normal) >= 0.0 { 1.0 } else { -1.0 };
+        vertex.point + vertex.geometric_normal * (side * scale)
+    }
+
+    fn trace(&self, camera_ray: &Ray, stream: SampleStream) -> PixelSample {
+        let scene = self.scene;
+        let max_depth = scene.settings.max_depth;
+        let rr_depth = scene.settings.rr_depth;
+        let mut radiance = DVec3::ZERO;
+        let mut throughput = DVec3::ONE;
+        let mut ray = *camera_ray;
+        let mut first_hit = None;
+        let mut rays = 0u64;
+        // The previous scattering: its solid-angle pdf (0 after a delta lobe) and its point.
+        let mut previous_pdf = 0.0;
+        let mut previous_delta = true;
+        let mut previous_point = ray.origin;
+        let mut depth = 1u32;
+        loop {
+            rays += 1;
+            let direction = ray.direction.normalize();
+            let Some(closest) = self.closest(&ray, MAX_DISTANCE) else {
+                if self.environment.max_element() > 0.0 {
+                    let weight = if previous_delta {
+                        1.0
+                    } else {
+                        power_heuristic(previous_pdf, self.lights.environment_pdf(direction))
+                    };
+                    radiance += throughput * self.environment * weight;
+                }
+                break;
+            };
+            let vertex = self.vertex(&ray, &closest);
+            let emitted = self.emitted(&vertex, -direction);
+            if emitted.max_element() > 0.0 {
+                let weight = if previous_delta {
+                    1.0
+                } else {
+                    power_heuristic(previous_pdf, self.emitter_pdf(vertex.primitive, previous_point, direction))
+                };
+                radiance += throughput * emitted * weight;
+            }
+            if depth >= max_depth {
+                if first_hit.is_none() && depth == 1 {
+                    first_hit = Some(self.first_hit(&vertex, -direction));
+                }
+                break;
+            }
+            let material = &self.materials[vertex.material as usize];
+            let shaded = material.shade(&SurfacePoint { uv: vertex.uv });
+            let scatter = &shaded.scatter;
+            if depth == 1 {
+                first_hit = Some(FirstHit { albedo: scatter.albedo(), ..self.first_hit(&vertex, -direction) });
+            }
+            if scatter.is_black() {
+                break;
+            }
+            let frame = Frame::new(vertex.shading_normal, vertex.tangent);
+            let wo = frame.to_local(-direction);
+            let base = FIRST_DIMENSION + u64::from(depth - 1) * DIMENSIONS_PER_BOUNCE;
+
+            // Next-event estimation.
+            if scatter.has_smooth_lobe() {
+                let sample = self.lights.sample(
+                    scene,
+                    self.environment,
+                    vertex.point,
+                    stream.uniform(base),
+                    stream.uniform2(base + 1),
+                );
+                if let Some(sample) = sample {
+                    rays += 1;
+                    radiance += throughput * self.direct(&vertex, &frame, wo, scatter, sample);
+                }
+            }
+
+            // Continue the path by sampling the scattering.
+            let Some(s) = scatter.sample(wo, stream.uniform(base + 3), stream.uniform2(base + 4)) else { break };
+            if !(s.weight.is_finite() && s.weight.max_element() > 0.0) {
+                break;
+            }
+            let next = frame.to_world(s.wi);
+            throughput *= s.weight;
+            previous_pdf = s.pdf;
+            previous_delta = s.delta;
+            previous_point = vertex.point;
+            ray = Ray::new(Self::offset_origin(&vertex, next), next);
+            depth += 1;
+            if depth > rr_depth {
+                let survival = throughput.max_element().min(MAX_SURVIVAL);
+                if stream.uniform(base + 6) >= survival {
+                    break;
+                }
+                throughput /= survival;
+            }
+        }
+        let radiance = if radiance.is_finite() { radiance.max(DVec3::ZERO) } else { DVec3::ZERO };
+        PixelSample { radiance, first_hit, rays }
+    }
+
+    /// The light-sampling estimate of one sampled light at `vertex`, MIS-weighted.
+    fn direct(
+        &self,
+        vertex: &Vertex,
+        frame: &Frame,
+        wo: DVec3,
+        scatter: &scatter::Scatter,
+        sample: LightSample,
+    ) -> DVec3 {
+        let scene = self.scene;
+        match sample {
+            LightSample::Delta { direction, distance, irradiance } => {
+                let f = scatter.eval(wo, frame.to_local(direction));
+                if f.max_element() <= 0.0 {
+                    return DVec3::ZERO;
+                }
+                let origin = Self::offset_origin(vertex, direction);
+                let t_max = if distance.is_finite() { distance * (1.0 - 1e-7) } else { MAX_DISTANCE };
+                let shadow = Ray::new(origin, direction);
+                if scene.accel.occluded(&scene.primitives, &shadow, RAY_EPSILON, t_max, |i| {
+                    !scene.primitives[i as usize].no_shadow
+                }) {
+                    return DVec3::ZERO;
+                }
+                f * irradiance
+            }
+            LightSample::Emitter { primitive, direction, distance, pdf } => {
+                let wi = frame.to_local(direction);
+                let f = scatter.eval(wo, wi);
+                if f.max_element() <= 0.0 {
+                    return DVec3::ZERO;
+                }
+                let origin = Self::offset_origin(vertex, direction);
+                let ray = Ray::new(origin, direction);
+                let Some(hit) = self.closest(&ray, distance * (1.0 + 1e-6) + RAY_EPSILON) else {
+                    return DVec3::ZERO;
+                };
+                if hit.primitive != primitive {
+                    return DVec3::ZERO;
+                }
+                let light_vertex = self.vertex(&ray, &hit);
+                let emitted = self.emitted(&light_vertex, -direction);
+                let weight = power_heuristic(pdf, scatter.pdf(wo, wi));
+                f * emitted * (weight / pdf)
+            }
+            LightSample::Environment { direction, radiance, pdf } => {
+                let wi = frame.to_local(direction);
+                let f = scatter.eval(wo, wi);
+                if f.max_element() <= 0.0 {
+                    return DVec3::ZERO;
+                }
+                let shadow = Ray::new(Self::offset_origin(vertex, direction), direction);
+                if scene.accel.occluded(&scene.primitives, &shadow, RAY_EPSILON, MAX_DISTANCE, |i| {
+                    !scene.primitives[i as usize].no_shadow
+                }) {
+                    return DVec3::ZERO;
+                }
+                let weight = power_heuristic(pdf, scatter.pdf(wo, wi));
+                f * radiance * (weight / pdf)
+            }
+        }
+    }
+
+    fn first_hit(&self, vertex: &Vertex, toward_viewer: DVec3) -> FirstHit {
+        let normal =
+            if vertex.shading_normal.dot(toward_viewer) < 0.0 { -vertex.shading_normal } else { vertex.shading_normal };
+        FirstHit {
+            albedo: DVec3::ZERO,
+            normal,
+            position: vertex.point,
+            depth: vertex.distance,
+            uv: vertex.uv,
+            primitive: vertex.primitive,
+            material: vertex.material,
+        }
+    }
+}
+
+/// The radius of a sphere around the origin-centred bounds of the scene's finite primitives
+/// (at least 1).
+fn scene_radius(scene: &RenderScene) -> f64 {
+    let mut min = DVec3::splat(f64::INFINITY);
+    let mut max = DVec3::splat(f64::NEG_INFINITY);
+    for p in &scene.primitives {
+        if p.world_bounds.is_bounded() {
+            min = min.min(p.world_bounds.min);
+            max = max.max(p.world_bounds.max);
+        }
+    }
+    min = min.min(scene.camera.position);
+    max = max.max(scene.camera.position);
+    (0.5 * (max - min).length()).max(1.0)
+}
+
+impl Integrator for Path<'_> {
+    fn sample(&self, ray: &Ray, stream: SampleStream) -> PixelSample {
+        self.trace(ray, stream)
+    }
+}

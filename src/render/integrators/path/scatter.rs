@@ -1,0 +1,362 @@
+//! The path integrator's view of a material: how the surface scatters light at one hit, as a
+//! sum of at most [`MAX_LOBES`] weighted lobes (BSDFs, a delta mirror, a delta pass-through),
+//! built from whichever surface model the material was written in.
+//!
+//! Readings (documented in `docs/scene-format.md`, "Materials under the path integrator"):
+//! - `bsdf` tables are Mitsuba 3's BSDFs of the same name;
+//! - glTF metallic-roughness is glTF 2.0's appendix B model; alpha blending is stochastic
+//!   coverage (light passes straight through with probability 1 - alpha);
+//! - a POV-Ray finish is a diffuse albedo `color` (0 when `diffuse` is 0), plus a mirror of
+//!   reflectivity `reflection` (the maximum of min and max), plus, when `filter` or
+//!   `transmit` let light through, a smooth dielectric of the interior's `ior` tinted by
+//!   `color * filter + transmit`; the opaque part is scaled by `1 - filter - transmit` and
+//!   the diffuse part by `1 - reflection`, so no POV-Ray finish creates energy. Phong and
+//!   specular highlights are the lights' reflections in Whitted tracing and have no extra
+//!   lobe: under `path` they are what the mirror lobe (or nothing) reflects;
+//! - OBJ/MTL: `Kd` (times `map_Kd`) diffuse, `Ks` with `Ns` a plastic-like glossy lobe
+//!   (roughness from Phong's exponent), illum 3/5-7 a mirror, `d` < 1 a dielectric of `Ni`.
+
+use glam::{DVec2, DVec3};
+
+use crate::color::Rgb;
+use crate::material::{AlphaMode, Finish, Material, MetallicRoughness, Mtl, Physical, Scattering, SurfaceModel};
+use crate::render::bsdf::{Bsdf, BsdfSample};
+
+/// At most this many lobes at one hit.
+pub const MAX_LOBES: usize = 3;
+
+/// One part of a surface's scattering.
+#[derive(Clone, Debug)]
+pub enum Lobe {
+    /// A BSDF in the shading frame. `two_sided` BSDFs scatter the same on both sides: they
+    /// are evaluated with the frame turned toward the viewer. A one-sided one (a dielectric
+    /// interface) sees the outward normal as its exterior.
+    Bsdf {
+        /// The BSDF.
+        bsdf: Bsdf,
+        /// True for reflection models that apply on either side.
+        two_sided: bool,
+    },
+    /// Perfect mirror reflection.
+    Mirror,
+    /// Light passing straight through, unchanged in direction (alpha coverage).
+    PassThrough,
+}
+
+/// The scattering at one hit: `weight[i] * lobe[i]` summed.
+#[derive(Clone, Debug)]
+pub struct Scatter {
+    lobes: [Option<(DVec3, Lobe)>; MAX_LOBES],
+    /// Probability of sampling each lobe (sums to 1 over the present lobes).
+    probability: [f64; MAX_LOBES],
+}
+
+/// Surface data at a hit that the materials read.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfacePoint {
+    /// Texture coordinates.
+    pub uv: DVec2,
+}
+
+/// Luminance of linear Rec. 709 RGB.
+pub fn luminance(c: DVec3) -> f64 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+impl Scatter {
+    /// The scattering from `lobes` (weight, lobe); lobes of zero weight are dropped. Each is
+    /// sampled in proportion to its weight's luminance times its albedo's.
+    pub fn new(lobes: impl IntoIterator<Item = (DVec3, Lobe)>) -> Self {
+        let mut out = Self { lobes: [None, None, None], probability: [0.0; MAX_LOBES] };
+        let mut count = 0;
+        for (weight, lobe) in lobes {
+            if count < MAX_LOBES && weight.max_element() > 0.0 {
+                let albedo = match &lobe {
+                    Lobe::Bsdf { bsdf, .. } => luminance(bsdf.albedo()).max(0.05),
+                    Lobe::Mirror | Lobe::PassThrough => 1.0,
+                };
+                out.probability[count] = luminance(weight).max(1e-6) * albedo;
+                out.lobes[count] = Some((weight, lobe));
+                count += 1;
+            }
+        }
+        let total: f64 = out.probability.iter().sum();
+        if total > 0.0 {
+            for p in &mut out.probability {
+                *p /= total;
+            }
+        }
+        out
+    }
+
+    /// True when nothing scatters (a black surface): the path ends.
+    pub fn is_black(&self) -> bool {
+        self.lobes.iter().all(Option::is_none)
+    }
+
+    /// True when some lobe is not a delta lobe, so that light sampling can help.
+    pub fn has_smooth_lobe(&self) -> bool {
+        self.present().any(|(_, _, lobe)| matches!(lobe, Lobe::Bsdf { bsdf, .. } if bsdf.has_smooth_lobe()))
+    }
+
+    /// Reflectance estimate for the albedo AOV.
+    pub fn albedo(&self) -> DVec3 {
+        self.present()
+            .map(|(_, weight, lobe)| match lobe {
+                Lobe::Bsdf { bsdf, .. } => weight * bsdf.albedo(),
+                Lobe::Mirror | Lobe::PassThrough => weight,
+            })
+            .sum::<DVec3>()
+            .min(DVec3::ONE)
+    }
+
+    fn present(&self) -> impl Iterator<Item = (f64, DVec3, &Lobe)> {
+        self.lobes.iter().zip(self.probability).filter_map(|(l, p)| l.as_ref().map(|(w, lobe)| (p, *w, lobe)))
+    }
+
+    /// f * |cos wi| of the non-delta lobes, local directions.
+    pub fn eval(&self, wo: DVec3, wi: DVec3) -> DVec3 {
+        self.present()
+            .map(|(_, weight, lobe)| match lobe {
+                Lobe::Bsdf { bsdf, two_sided } => {
+                    let (wo, wi) = oriented(*two_sided, wo, wi);
+                    weight * bsdf.eval(wo, wi)
+                }
+                Lobe::Mirror | Lobe::PassThrough => DVec3::ZERO,
+            })
+            .sum()
+    }
+
+    /// Solid-angle pdf of `sample` producing wi through a non-delta lobe.
+    pub fn pdf(&self, wo: DVec3, wi: DVec3) -> f64 {
+        self.present()
+            .map(|(p, _, lobe)| match lobe {
+                Lobe::Bsdf { bsdf, two_sided } => {
+                    let (wo, wi) = oriented(*two_sided, wo, wi);
+                    p * bsdf.pdf(wo, wi)
+                }
+                Lobe::Mirror | Lobe::PassThrough => 0.0,
+            })
+            .sum()
+    }
+
+    /// Samples a direction: a lobe by `u_lobe`, then a direction from it by `u_dir`.
+    pub fn sample(&self, wo: DVec3, u_lobe: f64, u_dir: DVec2) -> Option<BsdfSample> {
+        let mut chosen = None;
+        let mut cumulative = 0.0;
+        let mut u = u_lobe;
+        for (p, weight, lobe) in self.present() {
+            cumulative += p;
+            chosen = Some((p, weight, lobe));
+            if u_lobe < cumulative {
+                // Rescale the lobe's share of the uniform for the BSDF's own lobe choice.
+                u = ((u_lobe - (cumulative - p)) / p).clamp(0.0, 1.0 - f64::EPSILON);
+                break;
+            }
+        }
+        let (p, weight, lobe) = chosen?;
+        match lobe {
+            Lobe::Mirror => {
+                Some(BsdfSample { wi: DVec3::new(-wo.x, -wo.y, wo.z), weight: weight / p, pdf: p, delta: true })
+            }
+            Lobe::PassThrough => Some(BsdfSample { wi: -wo, weight: weight / p, pdf: p, delta: true }),
+            Lobe::Bsdf { bsdf, two_sided } => {
+                let flip = *two_sided && wo.z < 0.0;
+                let local_wo = if flip { flip_z(wo) } else { wo };
+                let mut s = bsdf.sample(local_wo, u, u_dir)?;
+                if flip {
+                    s.wi = flip_z(s.wi);
+                }
+                if s.delta {
+                    s.weight *= weight / p;
+                    s.pdf *= p;
+                    return Some(s);
+                }
+                // A smooth direction could have come from any smooth lobe: weigh by all.
+                let pdf = self.pdf(wo, s.wi);
+                let value = self.eval(wo, s.wi);
+                (pdf > 0.0).then(|| BsdfSample { wi: s.wi, weight: value / pdf, pdf, delta: false })
+            }
+        }
+    }
+}
+
+fn flip_z(v: DVec3) -> DVec3 {
+    DVec3::new(v.x, v.y, -v.z)
+}
+
+/// The directions a two-sided lobe sees: the frame turned toward `wo`.
+fn oriented(two_sided: bool, wo: DVec3, wi: DVec3) -> (DVec3, DVec3) {
+    if two_sided && wo.z < 0.0 { (flip_z(wo), flip_z(wi)) } else { (wo, wi) }
+}
+
+/// A material as the path integrator reads it: what it looks up per hit.
+#[derive(Clone, Debug)]
+pub struct PathMaterial {
+    material: Material,
+}
+
+/// What a hit needs to know besides the scattering: the surface colour (for emission).
+pub struct Shaded {
+    /// How the surface scatters.
+    pub scatter: Scatter,
+    /// Emitted radiance W/(m^2 sr), linear RGB, on the emitting side.
+    pub emitted: DVec3,
+}
+
+fn texel(texture: &Option<crate::texture::TextureRef>, uv: DVec2) -> glam::Vec4 {
+    // Footprint 0: the full-resolution level, bilinear (Mitsuba's bitmap textures).
+    texture.as_ref().map_or(glam::Vec4::ONE, |t| t.sample(uv, 0.0))
+}
+
+fn rgb_of(v: glam::Vec4) -> DVec3 {
+    v.truncate().as_dvec3()
+}
+
+impl PathMaterial {
+    /// The path integrator's view of `material`.
+    pub fn new(material: &Material) -> Self {
+        Self { material: material.clone() }
+    }
+
+    /// True when a surface of this material may emit.
+    pub fn can_emit(&self) -> bool {
+        self.material.emission.can_emit()
+    }
+
+    /// The emitted radiance where the surface colour is `color` (before the emission texture).
+    fn emission(&self, color: DVec3, uv: DVec2) -> DVec3 {
+        let e = &self.material.emission;
+        if !e.can_emit() {
+            return DVec3::ZERO;
+        }
+        e.radiance_at(Rgb(color), Rgb(rgb_of(texel(&e.texture, uv)))).0
+    }
+
+    /// Emitted radiance alone at `point` (no scattering built), for emitter hits.
+    pub fn emitted(&self, point: &SurfacePoint) -> DVec3 {
+        if !self.can_emit() {
+            return DVec3::ZERO;
+        }
+        self.emission(self.surface_color(point.uv), point.uv)
+    }
+
+    fn surface_color(&self, uv: DVec2) -> DVec3 {
+        match &self.material.surface {
+            SurfaceModel::Finish(f) => f.color.0 * rgb_of(texel(&f.texture, uv)),
+            SurfaceModel::MetallicRoughness(m) => m.finish.color.0 * rgb_of(texel(&m.finish.texture, uv)),
+            SurfaceModel::Mtl(m) => m.kd.unwrap_or(Rgb::WHITE).0 * rgb_of(texel(&m.map_kd, uv)),
+            SurfaceModel::Physical(p) => p.color.0 * rgb_of(texel(&p.texture, uv)),
+        }
+    }
+
+    /// The scattering and emission at `point`.
+    pub fn shade(&self, point: &SurfacePoint) -> Shaded {
+        let uv = point.uv;
+        let color = self.surface_color(uv);
+        let scatter = match &self.material.surface {
+            SurfaceModel::Finish(f) => finish_scatter(f, color, self.material.interior.ior),
+            SurfaceModel::MetallicRoughness(m) => metallic_roughness_scatter(m, color, uv),
+            SurfaceModel::Mtl(m) => mtl_scatter(m, color),
+            SurfaceModel::Physical(p) => physical_scatter(p, color),
+        };
+        Shaded { scatter, emitted: self.emission(color, uv) }
+    }
+}
+
+fn diffuse(reflectance: DVec3) -> Lobe {
+    Lobe::Bsdf { bsdf: Bsdf::Diffuse { reflectance }, two_sided: true }
+}
+
+fn smooth_dielectric(ior: f64, transmit_tint: DVec3) -> Lobe {
+    Lobe::Bsdf {
+        bsdf: Bsdf::Dielectric { eta: ior, alpha: 0.0, reflect_tint: DVec3::ONE, transmit_tint },
+        two_sided: false,
+    }
+}
+
+fn finish_scatter(f: &Finish, color: DVec3, ior: f64) -> Scatter {
+    let transmitted = f.filter * color + DVec3::splat(f.transmit);
+    let opacity = (1.0 - f.filter - f.transmit).clamp(0.0, 1.0);
+    let mirror = f.reflection.min.0.max(f.reflection.max.0).clamp(DVec3::ZERO, DVec3::ONE);
+    let albedo = if f.diffuse > 0.0 { color.clamp(DVec3::ZERO, DVec3::ONE) } else { DVec3::ZERO };
+    // The transparent share is a dielectric whose transmission carries the filter's tint.
+    let through = (opacity < 1.0 && transmitted.max_element() > 0.0).then(|| {
+        let share = 1.0 - opacity;
+        (DVec3::splat(share), smooth_dielectric(ior, (transmitted / share).min(DVec3::ONE)))
+    });
+    Scatter::new(
+        [(opacity * (DVec3::ONE - mirror) * albedo, diffuse(DVec3::ONE)), (opacity * mirror, Lobe::Mirror)]
+            .into_iter()
+            .chain(through),
+    )
+}
+
+fn metallic_roughness_scatter(m: &MetallicRoughness, base_color: DVec3, uv: DVec2) -> Scatter {
+    let (mut metallic, mut roughness) = (m.metallic, m.roughness);
+    if let Some(t) = &m.metallic_roughness_texture {
+        let v = t.sample(uv, 0.0);
+        roughness *= f64::from(v.y);
+        metallic *= f64::from(v.z);
+    }
+    let bsdf = Bsdf::MetallicRoughness {
+        base_color: base_color.clamp(DVec3::ZERO, DVec3::ONE),
+        metallic: metallic.clamp(0.0, 1.0),
+        alpha: (roughness * roughness).clamp(0.0, 1.0),
+        ior: 1.5,
+        transmission: 0.0,
+        clearcoat: 0.0,
+        clearcoat_alpha: 0.0,
+    };
+    let coverage = match m.alpha_mode {
+        AlphaMode::Blend => m.alpha.clamp(0.0, 1.0),
+        AlphaMode::Opaque | AlphaMode::Mask { .. } => 1.0,
+    };
+    Scatter::new([
+        (DVec3::splat(coverage), Lobe::Bsdf { bsdf, two_sided: true }),
+        (DVec3::splat(1.0 - coverage), Lobe::PassThrough),
+    ])
+}
+
+fn mtl_scatter(m: &Mtl, kd: DVec3) -> Scatter {
+    let ks = m.ks.unwrap_or(Rgb::BLACK).0.clamp(DVec3::ZERO, DVec3::ONE);
+    let dissolve = m.d.unwrap_or(1.0).clamp(0.0, 1.0);
+    let mirror = matches!(m.illum.unwrap_or(2), 3 | 5..=7);
+    // Phong's exponent n matches GGX alpha = sqrt(2 / (n + 2)) (Walter et al. 2007).
+    let alpha = (2.0 / (m.ns.unwrap_or(10.0).max(0.0) + 2.0)).sqrt();
+    let glossy = if ks.max_element() > 0.0 && !mirror {
+        let bsdf = Bsdf::Conductor { eta: DVec3::ZERO, k: DVec3::splat(1e4), alpha, tint: ks };
+        Some((DVec3::splat(dissolve), Lobe::Bsdf { bsdf, two_sided: true }))
+    } else {
+        None
+    };
+    let ior = m.ni.filter(|n| n.is_finite() && *n > 0.0).unwrap_or(1.0);
+    let kd = kd.clamp(DVec3::ZERO, DVec3::ONE) * (DVec3::ONE - ks);
+    Scatter::new(
+        [
+            (dissolve * kd, diffuse(DVec3::ONE)),
+            (if mirror { dissolve * ks } else { DVec3::ZERO }, Lobe::Mirror),
+            (DVec3::splat(1.0 - dissolve), smooth_dielectric(ior, DVec3::ONE)),
+        ]
+        .into_iter()
+        .chain(glossy),
+    )
+}
+
+fn physical_scatter(p: &Physical, color: DVec3) -> Scatter {
+    let bsdf = match p.scattering {
+        Scattering::Diffuse => Bsdf::Diffuse { reflectance: color.clamp(DVec3::ZERO, DVec3::ONE) },
+        Scattering::Conductor { eta, k, alpha } => Bsdf::Conductor { eta: eta.0, k: k.0, alpha, tint: color },
+        Scattering::Dielectric { ior, alpha } => {
+            Bsdf::Dielectric { eta: ior, alpha, reflect_tint: DVec3::ONE, transmit_tint: color }
+        }
+        Scattering::ThinDielectric { ior } => {
+            Bsdf::ThinDielectric { eta: ior, reflect_tint: DVec3::ONE, transmit_tint: color }
+        }
+        Scattering::Plastic { ior, alpha } => {
+            Bsdf::Plastic { diffuse: color.clamp(DVec3::ZERO, DVec3::ONE), eta: ior, alpha }
+        }
+    };
+    let two_sided = !matches!(p.scattering, Scattering::Dielectric { .. });
+    Scatter::new([(DVec3::ONE, Lobe::Bsdf { bsdf, two_sided })])
+}
