@@ -233,6 +233,9 @@ pub struct Emission {
     pub texture: Option<TextureRef>,
     /// Emitted radiance per unit of surface colour, W/(m^2 sr) (POV-Ray's `emission`).
     pub times_color: Rgb,
+    /// Emits from both sides of the surface. Otherwise (physically based integrators) only
+    /// from the side the shape's normal points to; POV-Ray's emission is always two-sided.
+    pub two_sided: bool,
 }
 
 impl Emission {

@@ -33,6 +33,9 @@ pub struct MaterialSpec {
     pub ambient: Rgb,
     /// Light the surface emits by itself (multiplied by the colour, like ambient).
     pub emission: Rgb,
+    /// Under `path`: emit from both sides of the surface, not only the side its normal
+    /// points to (the classic integrator's emission is always two-sided).
+    pub emission_two_sided: bool,
     /// Diffuse coefficient.
     pub diffuse: f64,
     /// Exponent on the diffuse cosine (1 = Lambert).
@@ -200,6 +203,7 @@ impl Default for MaterialSpec {
             transmit: 0.0,
             ambient: Rgb::grey(0.1),
             emission: Rgb::BLACK,
+            emission_two_sided: false,
             diffuse: 0.6,
             brilliance: 1.0,
             phong: 0.0,
@@ -360,6 +364,7 @@ impl MaterialSpec {
             // A physical model's emission is radiance, not radiance per unit of colour.
             emission = Emission { radiance: self.emission, ..Emission::default() };
         }
+        emission.two_sided = self.emission_two_sided;
         let surface = match (&self.pbr, physical) {
             (_, Some(scattering)) => {
                 SurfaceModel::Physical(Physical { scattering, color: self.color, texture: self.texture.clone() })

@@ -100,10 +100,10 @@ impl<'a> Path<'a> {
     }
 
     /// Radiance a vertex emits toward direction `toward` (unit, away from the surface):
-    /// emitters shine from their front side.
+    /// emitters shine from their front side, two-sided ones from both.
     fn emitted(&self, vertex: &Vertex, toward: DVec3) -> DVec3 {
         let material = &self.materials[vertex.material as usize];
-        if !material.can_emit() || vertex.geometric_normal.dot(toward) <= 0.0 {
+        if !material.can_emit() || (!material.emits_both_sides() && vertex.geometric_normal.dot(toward) <= 0.0) {
             return DVec3::ZERO;
         }
         material.emitted(&SurfacePoint { uv: vertex.uv })
@@ -190,12 +190,18 @@ impl<'a> Path<'a> {
             let wo = frame.to_local(-direction);
             let base = FIRST_DIMENSION + u64::from(depth - 1) * DIMENSIONS_PER_BOUNCE;
 
+            // Lights are sampled from just off the surface on the viewer's side, so that a
+            // shape sampled from a point on itself (the inside of an emitting sphere) never
+            // counts the point as a crossing; the BSDF-sampled hit's MIS weight uses the
+            // same reference point.
+            let reference = Self::offset_origin(&vertex, -direction);
+
             // Next-event estimation.
             if scatter.has_smooth_lobe() {
                 let sample = self.lights.sample(
                     scene,
                     self.environment,
-                    vertex.point,
+                    reference,
                     stream.uniform(base),
                     stream.uniform2(base + 1),
                 );
@@ -214,7 +220,7 @@ impl<'a> Path<'a> {
             throughput *= s.weight;
             previous_pdf = s.pdf;
             previous_delta = s.delta;
-            previous_point = vertex.point;
+            previous_point = reference;
             ray = Ray::new(Self::offset_origin(&vertex, next), next);
             depth += 1;
             if depth > rr_depth {

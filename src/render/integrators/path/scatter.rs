@@ -224,6 +224,11 @@ impl PathMaterial {
         self.material.emission.can_emit()
     }
 
+    /// True when the surface emits from both sides.
+    pub fn emits_both_sides(&self) -> bool {
+        self.material.emission.two_sided
+    }
+
     /// The emitted radiance where the surface colour is `color` (before the emission texture).
     fn emission(&self, color: DVec3, uv: DVec2) -> DVec3 {
         let e = &self.material.emission;

@@ -1,0 +1,135 @@
+//! The `path` integrator against closed-form answers (pbrt-v4's and Mitsuba's habit): a
+//! white furnace, a camera inside an emitting, reflecting sphere, direct light from a
+//! spherical emitter, no NaN or infinity on the film, and the same image for any thread
+//! count.
+//!
+//! Each test states its tolerance as a number of standard errors of the pixel mean, which
+//! the test measures from the image itself.
+
+use std::path::Path;
+
+use prism::film::Film;
+use prism::render::{RenderOptions, render_frame};
+use prism::scene::load::{Embedded, load_from};
+
+fn render_text(text: &'static str, threads: usize) -> Film {
+    let files: &'static [(&'static str, &'static str)] = Box::leak(Box::new([("scene.toml", text)]));
+    let embedded: &'static Embedded = Box::leak(Box::new(Embedded(files)));
+    let mut scene = load_from(embedded, Path::new("scene.toml"), &prism::plugins::registry()).unwrap();
+    let prepared = prism::prepare(&mut scene).unwrap();
+    let options = RenderOptions { threads: Some(threads), ..Default::default() };
+    render_frame(&prepared, &options).unwrap().0
+}
+
+/// Mean and standard error of the mean of one channel over all pixels.
+fn mean_and_error(film: &Film, channel: usize) -> (f64, f64) {
+    let values: Vec<f64> = film.pixels.iter().map(|p| f64::from(p[channel])).collect();
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let variance = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (mean, (variance / n).sqrt())
+}
+
+fn assert_mean(film: &Film, expected: [f64; 3], what: &str) {
+    for (c, want) in expected.into_iter().enumerate() {
+        let (mean, error) = mean_and_error(film, c);
+        // 4 standard errors plus a floor for the float film.
+        let tolerance = 4.0 * error + 1e-4 * want.abs();
+        assert!(
+            (mean - want).abs() <= tolerance,
+            "{what}: channel {c} mean {mean} differs from {want} by more than {tolerance} (4 standard errors)"
+        );
+    }
+}
+
+#[test]
+fn a_white_diffuse_sphere_in_a_uniform_environment_vanishes() {
+    // White furnace: a non-absorbing convex object under a uniform environment returns
+    // exactly the environment, at every depth that lets light in and out.
+    let film = render_text(
+        "[render]\nwidth = 24\nheight = 24\nsamples = 64\nmax_depth = 10\nintegrator = \"path\"\n\
+         [world]\nbackground = [0.5, 0.5, 0.5]\n\
+         [camera]\nposition = [0, 0, 4]\nvfov = 30\n\
+         [[object]]\nshape = \"sphere\"\nradius = 1.0\nmaterial = { bsdf = { type = \"diffuse\" } }\n",
+        2,
+    );
+    assert_mean(&film, [0.5; 3], "furnace");
+    // Every pixel, not just the mean: a perfectly white object under white light is exact
+    // up to noise in each pixel too, so look for any pixel far off.
+    for p in &film.pixels {
+        for &c in p {
+            assert!((0.0..3.0).contains(&c), "pixel value {c} out of range");
+        }
+    }
+}
+
+#[test]
+fn inside_an_emitting_reflecting_sphere_radiance_sums_the_geometric_series() {
+    // Le = 0.5 emitted inward (two-sided emission), albedo 0.5: L = Le / (1 - albedo) = 1
+    // (pbrt-v4's analytic test).
+    let film = render_text(
+        "[render]\nwidth = 16\nheight = 16\nsamples = 64\nmax_depth = 200\nrr_depth = 5\nintegrator = \"path\"\n\
+         [camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nvfov = 60\n\
+         [[object]]\nshape = \"sphere\"\nradius = 2.0\n\
+         material = { color = 0.5, bsdf = { type = \"diffuse\" }, emission = 0.5, emission_two_sided = true }\n",
+        2,
+    );
+    assert_mean(&film, [1.0; 3], "emitting sphere");
+}
+
+#[test]
+fn a_spherical_lamp_lights_a_diffuse_floor_as_the_formula_says() {
+    // A lamp of radius r and radiance L at height h above a floor of albedo a: the floor
+    // point straight below sees it within a cone of half-angle asin(r/h), receives
+    // E = pi L (r/h)^2 and reflects a E / pi = a L (r/h)^2. The camera looks straight down
+    // at that point through a narrow field of view (so the floor under it is nearly that
+    // point); max_depth 2 is direct light only. The lamp is behind the camera.
+    let film = render_text(
+        "[render]\nwidth = 8\nheight = 8\nsamples = 256\nmax_depth = 2\nintegrator = \"path\"\n\
+         [camera]\nposition = [0, 1, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, -1]\nvfov = 0.5\n\
+         [[object]]\nshape = \"plane\"\nnormal = [0, 1, 0]\noffset = 0.0\n\
+         material = { color = 0.8, bsdf = { type = \"diffuse\" } }\n\
+         [[object]]\nshape = \"sphere\"\nradius = 0.5\ntransform = { translate = [0, 2, 0] }\n\
+         material = { color = 0.0, bsdf = { type = \"diffuse\" }, emission = 3.0 }\n",
+        2,
+    );
+    let expected = 0.8 * 3.0 * (0.5f64 / 2.0).powi(2);
+    assert_mean(&film, [expected; 3], "direct light from a sphere");
+}
+
+#[test]
+fn no_nan_or_infinity_reaches_the_film() {
+    // Grazing geometry, a light inside an object, index-matched and dense glass, a zero
+    // roughness conductor, a lamp of enormous radiance touching a surface.
+    let film = render_text(
+        "[render]\nwidth = 32\nheight = 32\nsamples = 16\nmax_depth = 12\nrr_depth = 2\nintegrator = \"path\"\n\
+         [world]\nbackground = [0.2, 0.3, 0.4]\n\
+         [camera]\nposition = [0, 0.001, 3]\nlook_at = [0, 0, 0]\nvfov = 70\n\
+         [[object]]\nshape = \"plane\"\nnormal = [0, 1, 0]\noffset = 0.0\nmaterial = { bsdf = { type = \"conductor\", metal = \"Au\" } }\n\
+         [[object]]\nshape = \"sphere\"\nradius = 0.5\ntransform = { translate = [0, 0.5, 0] }\n\
+         material = { bsdf = { type = \"dielectric\", ior = 1.0 } }\n\
+         [[object]]\nshape = \"sphere\"\nradius = 0.3\ntransform = { translate = [0.8, 0.3, 0] }\n\
+         material = { bsdf = { type = \"dielectric\", ior = 4.0 } }\n\
+         [[object]]\nshape = \"sphere\"\nradius = 0.1\ntransform = { translate = [-0.8, 0.1, 0] }\n\
+         material = { bsdf = { type = \"diffuse\" }, emission = 1e30 }\n\
+         [[light]]\nkind = \"point\"\nposition = [0, 0.5, 0]\nintensity = 10.0\n\
+         [[light]]\nkind = \"point\"\nposition = [0, 0, 0]\nintensity = 10.0\n",
+        2,
+    );
+    for p in &film.pixels {
+        assert!(p.iter().all(|c| c.is_finite() && *c >= 0.0), "pixel {p:?}");
+    }
+}
+
+#[test]
+fn the_image_is_the_same_for_any_thread_count() {
+    const SCENE: &str = "[render]\nwidth = 40\nheight = 30\nsamples = 4\nmax_depth = 6\nintegrator = \"path\"\n\
+         [world]\nbackground = [0.3, 0.3, 0.3]\n\
+         [[object]]\nshape = \"sphere\"\nradius = 0.4\ntransform = { translate = [0, 0, -2] }\n\
+         material = { bsdf = { type = \"plastic\", alpha = 0.2 }, color = [0.8, 0.2, 0.1] }\n\
+         [[object]]\nshape = \"plane\"\nnormal = [0, 1, 0]\noffset = -0.4\nmaterial = { bsdf = { type = \"diffuse\" } }\n\
+         [[light]]\nkind = \"spot\"\nposition = [1, 2, -1]\npoint_at = [0, 0, -2]\nintensity = 5.0\n";
+    let one = render_text(SCENE, 1);
+    let two = render_text(SCENE, 2);
+    assert_eq!(one.pixels, two.pixels);
+}
