@@ -59,6 +59,15 @@ enum ExportCommand {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+    /// Mitsuba 3 XML, rendering with Mitsuba's `path` integrator to the image of Prism's `path`
+    /// integrator. Meshes are written as PLY files into `<output stem>_meshes/` beside it.
+    Mitsuba {
+        /// The scene file.
+        scene: PathBuf,
+        /// Where to write the XML.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
 }
 
 #[derive(Args, Default)]
@@ -172,6 +181,14 @@ enum CliError {
     /// The JSON schema cannot be written.
     #[error("cannot write the schema: {0}")]
     Schema(#[from] serde_json::Error),
+    /// A folder for the output cannot be made.
+    #[error("{}: cannot create the folder: {source}", path.display())]
+    Io {
+        /// The folder.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
 }
 
 /// Prints warnings to standard error, one `file:line:col: warning in `key`: ...` each.
@@ -200,6 +217,7 @@ fn main() -> ExitCode {
         Some(Command::Save { scene, output }) => save_command(&scene, output.as_deref()),
         Some(Command::Schema { output }) => schema_command(output.as_deref()),
         Some(Command::Export(ExportCommand::Pov { scene, output })) => export_pov_command(&scene, output.as_deref()),
+        Some(Command::Export(ExportCommand::Mitsuba { scene, output })) => export_mitsuba_command(&scene, &output),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -315,6 +333,25 @@ fn schema_command(output: Option<&Path>) -> Result<(), CliError> {
             Ok(())
         }
     }
+}
+
+fn export_mitsuba_command(path: &Path, output: &Path) -> Result<(), CliError> {
+    let mut scene = load_and_warn(path)?;
+    prism::world::transforms::resolve_transforms(&mut scene)?;
+    prism::world::validate::validate(&scene)?;
+    let source = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+    let stem = output.file_stem().map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
+    let folder = format!("{stem}_meshes");
+    let exported = prism::export::mitsuba::export(&scene, &source, &format!("{folder}/"))?;
+    let beside = output.parent().unwrap_or(Path::new(""));
+    if !exported.meshes.is_empty() {
+        let dir = beside.join(&folder);
+        std::fs::create_dir_all(&dir).map_err(|source| CliError::Io { path: dir.clone(), source })?;
+    }
+    for (name, bytes) in &exported.meshes {
+        output::write_atomically(&beside.join(name), bytes)?;
+    }
+    Ok(output::write_atomically(output, exported.xml.as_bytes())?)
 }
 
 fn export_pov_command(path: &Path, output: Option<&Path>) -> Result<(), CliError> {

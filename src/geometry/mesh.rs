@@ -511,6 +511,22 @@ impl Shape for MeshShape {
         Some(AreaSample { point, normal, pdf_area: 1.0 / total })
     }
 
+    fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
+        use prism_api::mitsuba::{MitsubaKind, MitsubaShape, TriangleList};
+        if self.maps.is_some() {
+            // Alpha masks and normal maps have no Mitsuba mesh equivalent.
+            return None;
+        }
+        let d = &self.data;
+        let triangles = TriangleList {
+            positions: d.positions.iter().map(|p| p.to_array()).collect(),
+            normals: d.normals.iter().map(|n| n.to_array()).collect(),
+            uvs: d.uvs.iter().map(|t| t.to_array()).collect(),
+            triangles: d.triangles.clone(),
+        };
+        Some(vec![MitsubaShape::new(MitsubaKind::Triangles(triangles), prism_api::DAffine3::IDENTITY)])
+    }
+
     fn to_pov(&self) -> Option<String> {
         use prism_api::pov::vector;
         let d = &self.data;

@@ -17,6 +17,7 @@
 mod aabb;
 pub mod contract;
 pub mod math;
+pub mod mitsuba;
 pub mod pov;
 mod ray;
 mod registry;

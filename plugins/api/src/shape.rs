@@ -231,6 +231,13 @@ pub trait Shape: Send + Sync + Debug + 'static {
     fn to_pov(&self) -> Option<String> {
         None
     }
+
+    /// The shape as canonical Mitsuba 3 shapes in object space (a closed cylinder is a tube
+    /// and two disks), for `prism export mitsuba`. `None` when Mitsuba has no equivalent;
+    /// the exporter then reports an error naming the shape.
+    fn to_mitsuba(&self) -> Option<Vec<crate::mitsuba::MitsubaShape>> {
+        None
+    }
 }
 
 /// [`Shape::sample_toward`] built on [`Shape::sample_area`], the trait's default, for shapes

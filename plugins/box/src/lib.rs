@@ -171,6 +171,12 @@ impl Shape for BoxShape {
         // Mirroring z makes `max` the smaller POV z; POV accepts any two opposite corners.
         Some(format!("box {{ {}, {} }}", pov::vector(self.min), pov::vector(self.max)))
     }
+
+    fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
+        let place = prism_api::DAffine3::from_translation(0.5 * (self.min + self.max))
+            * prism_api::DAffine3::from_scale(0.5 * (self.max - self.min));
+        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Cube, place)])
+    }
 }
 
 #[cfg(test)]

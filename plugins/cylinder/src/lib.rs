@@ -232,6 +232,26 @@ impl Shape for Cylinder {
             if self.open { " open" } else { "" }
         ))
     }
+
+    fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
+        use prism_api::DAffine3;
+        let axis = self.top - self.base;
+        let frame = prism_api::mitsuba::frame_with_z(axis);
+        let tube = DAffine3::from_mat3_translation(
+            prism_api::DMat3::from_cols(frame.x_axis * self.radius, frame.y_axis * self.radius, axis),
+            self.base,
+        );
+        let mut shapes = vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Cylinder, tube)];
+        if !self.open {
+            // Caps facing out: the top along the axis, the base against it.
+            let top = DAffine3::from_mat3_translation(frame * self.radius, self.top);
+            let flipped = prism_api::DMat3::from_cols(frame.x_axis, -frame.y_axis, -frame.z_axis);
+            let base = DAffine3::from_mat3_translation(flipped * self.radius, self.base);
+            shapes.push(prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Disk, top));
+            shapes.push(prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Disk, base));
+        }
+        Some(shapes)
+    }
 }
 
 #[cfg(test)]

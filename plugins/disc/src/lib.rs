@@ -163,6 +163,15 @@ impl Shape for Disc {
             pov::number(self.radius)
         ))
     }
+
+    fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
+        if self.hole_radius > 0.0 {
+            return None;
+        }
+        let frame = prism_api::mitsuba::frame_with_z(self.normal);
+        let place = prism_api::DAffine3::from_mat3_translation(frame * self.radius, self.center);
+        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Disk, place)])
+    }
 }
 
 #[cfg(test)]

@@ -51,6 +51,9 @@ impl ShapeParams for PlaneParams {
     }
 }
 
+/// Side of the square that stands in for an infinite plane in Mitsuba 3 (scene units).
+pub const MITSUBA_PLANE_SIZE: f64 = 1e5;
+
 /// An infinite plane `normal · p = offset`, one-sided only in the direction of its normal.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plane {
@@ -125,6 +128,18 @@ impl Shape for Plane {
 
     fn to_pov(&self) -> Option<String> {
         Some(format!("plane {{ {}, {} }}", pov::vector(self.normal), pov::number(self.offset)))
+    }
+
+    /// Mitsuba has no infinite plane: a square of side [`MITSUBA_PLANE_SIZE`] centred on the
+    /// plane's point nearest the origin stands in for it.
+    fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
+        let frame = prism_api::mitsuba::frame_with_z(self.normal);
+        let half = 0.5 * MITSUBA_PLANE_SIZE;
+        let place = prism_api::DAffine3::from_mat3_translation(
+            prism_api::DMat3::from_cols(frame.x_axis * half, frame.y_axis * half, frame.z_axis),
+            self.normal * self.offset,
+        );
+        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Rectangle, place)])
     }
 }
 

@@ -165,6 +165,12 @@ impl Shape for Sphere {
     fn to_pov(&self) -> Option<String> {
         Some(format!("sphere {{ {}, {} }}", pov::vector(self.center), pov::number(self.radius)))
     }
+
+    fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
+        let place = prism_api::DAffine3::from_translation(self.center)
+            * prism_api::DAffine3::from_scale(DVec3::splat(self.radius));
+        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Sphere, place)])
+    }
 }
 
 #[cfg(test)]

@@ -133,6 +133,18 @@ impl Shape for Triangle {
         let [a, b, c] = self.vertices.map(pov::vector);
         Some(format!("triangle {{ {a}, {b}, {c} }}"))
     }
+
+    fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
+        let triangles = prism_api::mitsuba::TriangleList {
+            positions: self.vertices.map(|v| v.as_vec3().to_array()).to_vec(),
+            triangles: vec![[0, 1, 2]],
+            ..Default::default()
+        };
+        Some(vec![prism_api::mitsuba::MitsubaShape::new(
+            prism_api::mitsuba::MitsubaKind::Triangles(triangles),
+            prism_api::DAffine3::IDENTITY,
+        )])
+    }
 }
 
 #[cfg(test)]

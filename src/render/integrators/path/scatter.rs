@@ -110,6 +110,11 @@ impl Scatter {
             .min(DVec3::ONE)
     }
 
+    /// The lobes with their weights, in the order they were given.
+    pub fn lobes(&self) -> impl Iterator<Item = (DVec3, &Lobe)> {
+        self.lobes.iter().filter_map(|l| l.as_ref().map(|(w, lobe)| (*w, lobe)))
+    }
+
     fn present(&self) -> impl Iterator<Item = (f64, DVec3, &Lobe)> {
         self.lobes.iter().zip(self.probability).filter_map(|(l, p)| l.as_ref().map(|(w, lobe)| (p, *w, lobe)))
     }

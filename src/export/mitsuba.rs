@@ -1,0 +1,602 @@
+//! `prism export mitsuba`: a scene as Mitsuba 3 XML (`version="3.0.0"`) that renders, with
+//! Mitsuba's `path` integrator, the image Prism's `path` integrator renders.
+//!
+//! Every default is written out: the `path` integrator's `max_depth` and `rr_depth`, a
+//! `perspective` (or `thinlens`) sensor with `fov_axis="y"`, an `independent` sampler with
+//! the scene's samples and seed, an `hdrfilm` with a `box` filter, and `ext_ior = 1` on every
+//! dielectric interface. Materials are written from the path integrator's own reading of
+//! them ([`crate::render::integrators::path::scatter`]), lobe by lobe: one lobe is its
+//! Mitsuba BSDF (wrapped in `twosided` where Prism scatters alike on both sides), several
+//! are a `blendbsdf` tree with the same weights. Meshes become binary PLY files beside the
+//! XML. Lights keep their physical units (W/sr, W/m^2, W/(m^2 sr)).
+//!
+//! What Mitsuba cannot express is an error naming the object, material or light: textures,
+//! glTF metallic-roughness (Mitsuba's `principled` is a different model), shapes without a
+//! Mitsuba form (torus, blob, superellipsoid, cone, a disc with a hole), spheres and
+//! cylinders under non-uniform scales, spot cones with a soft edge (Mitsuba's falls off
+//! linearly in angle, Prism's in a smoothstep of the cosine), POV-Ray's antialiasing methods.
+//! An infinite plane is written as a square of side `MITSUBA_PLANE_SIZE`.
+
+use std::fmt::Write;
+
+use glam::{DAffine3, DVec3};
+use prism_api::mitsuba::{MitsubaKind, MitsubaShape, TriangleList};
+
+use crate::diagnostics::{Diagnostic, SceneError};
+use crate::render::bsdf::Bsdf;
+use crate::render::camera::CameraFrame;
+use crate::render::integrators::path::scatter::{Lobe, PathMaterial, SurfacePoint};
+use crate::render::lights::{LightSource, RenderLight};
+use crate::world::Scene;
+use crate::world::components::{
+    Antialias, Light, MaterialComponent, Origin, PhotometricLight, ShapeComponent, WorldTransform,
+};
+
+/// A Mitsuba scene: the XML and the mesh files it refers to.
+#[derive(Debug, Default)]
+pub struct MitsubaScene {
+    /// The scene file's text.
+    pub xml: String,
+    /// Mesh files to write beside it: (path relative to the XML, binary PLY bytes).
+    pub meshes: Vec<(String, Vec<u8>)>,
+}
+
+/// Writes `scene` (after `resolve_transforms` and `validate`) as Mitsuba 3 XML, naming mesh
+/// files `{mesh_prefix}NNN.ply`. `source` names the scene in the header comment.
+pub fn export(scene: &Scene, source: &str, mesh_prefix: &str) -> Result<MitsubaScene, SceneError> {
+    let mut errors = Vec::new();
+    let mut out = MitsubaScene::default();
+    let xml = &mut out.xml;
+    let _ = writeln!(
+        xml,
+        "<!-- Mitsuba 3 scene written by `prism export mitsuba` from {}; regenerate, do not edit. -->",
+        escape(source)
+    );
+    xml.push_str("<scene version=\"3.0.0\">\n");
+    let render = &scene.render;
+    let _ = writeln!(
+        xml,
+        "  <integrator type=\"path\">\n    <integer name=\"max_depth\" value=\"{}\"/>\n    <integer name=\"rr_depth\" value=\"{}\"/>\n    <boolean name=\"hide_emitters\" value=\"false\"/>\n  </integrator>",
+        render.max_depth, render.rr_depth
+    );
+    if render.antialias != Antialias::Stratified {
+        errors.push(Diagnostic::new(
+            scene.render_origin.child("antialias"),
+            "POV-Ray's antialiasing methods have no Mitsuba equivalent; use stratified sampling",
+        ));
+    }
+    sensor(xml, scene, &mut errors);
+    let background = scene.environment.background.0;
+    if background.max_element() > 0.0 {
+        let _ = writeln!(
+            xml,
+            "  <emitter type=\"constant\">\n    <rgb name=\"radiance\" value=\"{}\"/>\n  </emitter>",
+            rgb(background)
+        );
+    }
+    lights(xml, scene, &mut errors);
+    objects(&mut out, scene, mesh_prefix, &mut errors);
+    out.xml.push_str("</scene>\n");
+    if errors.is_empty() {
+        return Ok(out);
+    }
+    errors.sort_by(|a, b| {
+        let key = |d: &Diagnostic| (d.location.file.clone(), d.location.line, d.location.column);
+        key(a).cmp(&key(b))
+    });
+    errors.dedup();
+    Err(SceneError { diagnostics: errors })
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;").replace("--", "- -")
+}
+
+fn number(x: f64) -> String {
+    format!("{x:?}")
+}
+
+fn rgb(c: DVec3) -> String {
+    format!("{}, {}, {}", number(c.x), number(c.y), number(c.z))
+}
+
+/// A 4x4 row-major `matrix` value.
+fn matrix(m: &DAffine3) -> String {
+    let (a, t) = (m.matrix3, m.translation);
+    let rows = [
+        [a.x_axis.x, a.y_axis.x, a.z_axis.x, t.x],
+        [a.x_axis.y, a.y_axis.y, a.z_axis.y, t.y],
+        [a.x_axis.z, a.y_axis.z, a.z_axis.z, t.z],
+        [0.0, 0.0, 0.0, 1.0],
+    ];
+    rows.iter().flatten().map(|v| number(*v)).collect::<Vec<_>>().join(" ")
+}
+
+fn sensor(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
+    let camera = scene.camera();
+    let render = &scene.render;
+    let frame = CameraFrame::new(&camera);
+    let image_aspect = f64::from(render.width) / f64::from(render.height);
+    if let Some(aspect) = camera.aspect
+        && (aspect - image_aspect).abs() > 1e-9 * image_aspect
+    {
+        let origin =
+            scene.world.get::<&Origin>(scene.camera).map_or_else(|_| scene.render_origin.clone(), |o| o.0.clone());
+        errors.push(Diagnostic::new(
+            origin.child("aspect"),
+            "Mitsuba's pixels are square: a viewport aspect other than the image's cannot be exported",
+        ));
+    }
+    let kind = if camera.aperture > 0.0 { "thinlens" } else { "perspective" };
+    let _ = writeln!(xml, "  <sensor type=\"{kind}\">");
+    let _ = writeln!(xml, "    <string name=\"fov_axis\" value=\"y\"/>");
+    let _ = writeln!(xml, "    <float name=\"fov\" value=\"{}\"/>", number(camera.vfov));
+    let _ = writeln!(
+        xml,
+        "    <float name=\"near_clip\" value=\"0.0001\"/>\n    <float name=\"far_clip\" value=\"10000000.0\"/>"
+    );
+    if camera.aperture > 0.0 {
+        let _ = writeln!(xml, "    <float name=\"aperture_radius\" value=\"{}\"/>", number(0.5 * camera.aperture));
+        let _ = writeln!(xml, "    <float name=\"focus_distance\" value=\"{}\"/>", number(frame.focal_distance));
+    }
+    let target = frame.position + frame.direction;
+    let _ = writeln!(
+        xml,
+        "    <transform name=\"to_world\">\n      <lookat origin=\"{}\" target=\"{}\" up=\"{}\"/>\n    </transform>",
+        rgb(frame.position),
+        rgb(target),
+        rgb(frame.up)
+    );
+    let _ = writeln!(
+        xml,
+        "    <sampler type=\"independent\">\n      <integer name=\"sample_count\" value=\"{}\"/>\n      <integer name=\"seed\" value=\"{}\"/>\n    </sampler>",
+        render.samples, render.seed
+    );
+    let _ = writeln!(
+        xml,
+        "    <film type=\"hdrfilm\">\n      <integer name=\"width\" value=\"{}\"/>\n      <integer name=\"height\" value=\"{}\"/>\n      <string name=\"pixel_format\" value=\"rgb\"/>\n      <string name=\"component_format\" value=\"float32\"/>\n      <rfilter type=\"box\"/>\n    </film>\n  </sensor>",
+        render.width, render.height
+    );
+}
+
+fn lights(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
+    let mut entries: Vec<(hecs::Entity, RenderLight, Option<Origin>)> = Vec::new();
+    for (e, l, o) in scene.world.query::<(hecs::Entity, &Light, Option<&Origin>)>().iter() {
+        entries.push((e, RenderLight::from_scene(l), o.cloned()));
+    }
+    for (e, l, o) in scene.world.query::<(hecs::Entity, &PhotometricLight, Option<&Origin>)>().iter() {
+        entries.push((e, RenderLight::from_photometric(l), o.cloned()));
+    }
+    entries.sort_by_key(|(e, ..)| e.id());
+    for (_, light, origin) in entries {
+        let at = |key: &str| origin.as_ref().map_or_else(|| scene.render_origin.clone(), |o| o.0.child(key));
+        match &light.source {
+            LightSource::Point(l) => point(xml, l.position, l.intensity),
+            LightSource::Spot(l) => {
+                if (l.cone.cos_inner - l.cone.cos_outer).abs() > 1e-12 {
+                    errors.push(Diagnostic::new(
+                        at("radius"),
+                        "Mitsuba's spot light falls off linearly in angle and Prism's smoothly: only a \
+                         hard-edged cone (radius = falloff) can be exported",
+                    ));
+                    continue;
+                }
+                let angle = l.cone.cos_outer.clamp(-1.0, 1.0).acos().to_degrees();
+                let up = prism_api::math::tangent(l.cone.axis);
+                let _ = writeln!(
+                    xml,
+                    "  <emitter type=\"spot\">\n    <rgb name=\"intensity\" value=\"{}\"/>\n    <float name=\"cutoff_angle\" value=\"{}\"/>\n    <float name=\"beam_width\" value=\"{}\"/>\n    <transform name=\"to_world\">\n      <lookat origin=\"{}\" target=\"{}\" up=\"{}\"/>\n    </transform>\n  </emitter>",
+                    rgb(l.intensity),
+                    number(angle),
+                    number(angle),
+                    rgb(l.position),
+                    rgb(l.position + l.cone.axis),
+                    rgb(up)
+                );
+            }
+            LightSource::Directional(l) => {
+                let _ = writeln!(
+                    xml,
+                    "  <emitter type=\"directional\">\n    <vector name=\"direction\" value=\"{}\"/>\n    <rgb name=\"irradiance\" value=\"{}\"/>\n  </emitter>",
+                    rgb(l.direction),
+                    rgb(l.irradiance)
+                );
+            }
+            LightSource::AreaGrid(l) => {
+                if l.cone.is_some() || l.grid.orient || l.grid.circular || l.grid.jitter {
+                    errors.push(Diagnostic::new(
+                        at("kind"),
+                        "only a plain rectangular area light (no spotlight, orient, circular or jitter) \
+                         is exported, as its grid of point lights",
+                    ));
+                    continue;
+                }
+                // The path integrator's reading: the grid's points share its intensity.
+                let (n1, n2) = (l.grid.size1.max(1), l.grid.size2.max(1));
+                let share = l.intensity / f64::from(n1 * n2);
+                let at = |i: u32, n: u32| if n > 1 { f64::from(i) / f64::from(n - 1) - 0.5 } else { 0.0 };
+                for j in 0..n2 {
+                    for i in 0..n1 {
+                        point(xml, l.centre + l.grid.axis1 * at(i, n1) + l.grid.axis2 * at(j, n2), share);
+                    }
+                }
+            }
+        }
+    }
+}
+
+fn point(xml: &mut String, position: DVec3, intensity: DVec3) {
+    let _ = writeln!(
+        xml,
+        "  <emitter type=\"point\">\n    <point name=\"position\" value=\"{}\"/>\n    <rgb name=\"intensity\" value=\"{}\"/>\n  </emitter>",
+        rgb(position),
+        rgb(intensity)
+    );
+}
+
+/// True when `m` scales every direction by the same factor (a rotation, a mirror and a
+/// uniform scale), as Mitsuba's spheres and cylinders need.
+fn is_similarity(m: &glam::DMat3) -> bool {
+    let (a, b, c) = (m.x_axis, m.y_axis, m.z_axis);
+    let s = a.length();
+    let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * s * s;
+    close(b.length_squared(), s * s)
+        && close(c.length_squared(), s * s)
+        && close(a.dot(b), 0.0)
+        && close(a.dot(c), 0.0)
+        && close(b.dot(c), 0.0)
+}
+
+fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mut Vec<Diagnostic>) {
+    let mut query =
+        scene
+            .world
+            .query::<(hecs::Entity, &ShapeComponent, Option<&WorldTransform>, &MaterialComponent, Option<&Origin>)>();
+    let mut entries: Vec<_> = query.iter().collect();
+    entries.sort_by_key(|(e, ..)| e.id());
+    for (_, shape, transform, material, origin) in entries {
+        let at = |key: &str| origin.map_or_else(|| scene.render_origin.clone(), |o| o.0.child(key));
+        let Some(parts) = shape.geometry.to_mitsuba() else {
+            errors.push(
+                Diagnostic::new(at("shape"), format!("shape `{}` has no Mitsuba 3 equivalent", shape.kind))
+                    .with_help("its plugin must implement `Shape::to_mitsuba`"),
+            );
+            continue;
+        };
+        let bsdf = match bsdf_xml(&material.material) {
+            Ok(bsdf) => bsdf,
+            Err((key, message)) => {
+                errors.push(Diagnostic::new(at(&format!("material.{key}")), message));
+                continue;
+            }
+        };
+        let emission = match emitter_xml(&material.material) {
+            Ok(e) => e,
+            Err((key, message)) => {
+                errors.push(Diagnostic::new(at(&format!("material.{key}")), message));
+                continue;
+            }
+        };
+        let world_from_object = transform.map_or(DAffine3::IDENTITY, |t| t.0);
+        for part in parts {
+            let world_from_shape = world_from_object * part.object_from_shape;
+            let needs_similarity = matches!(part.kind, MitsubaKind::Sphere | MitsubaKind::Cylinder);
+            if needs_similarity && !is_similarity(&world_from_shape.matrix3) {
+                errors.push(Diagnostic::new(
+                    at("transform"),
+                    format!(
+                        "Mitsuba's {} cannot be scaled unevenly",
+                        if part.kind == MitsubaKind::Sphere { "sphere" } else { "cylinder" }
+                    ),
+                ));
+                continue;
+            }
+            let sides: &[bool] =
+                if material.material.emission.two_sided && emission.is_some() { &[false, true] } else { &[false] };
+            for &flip in sides {
+                shape_xml(out, &part, &world_from_shape, &bsdf, emission.as_deref(), flip, mesh_prefix);
+            }
+        }
+    }
+}
+
+fn shape_xml(
+    out: &mut MitsubaScene,
+    part: &MitsubaShape,
+    world_from_shape: &DAffine3,
+    bsdf: &str,
+    emission: Option<&str>,
+    flip_normals: bool,
+    mesh_prefix: &str,
+) {
+    let kind = match &part.kind {
+        MitsubaKind::Sphere => "sphere",
+        MitsubaKind::Rectangle => "rectangle",
+        MitsubaKind::Disk => "disk",
+        MitsubaKind::Cube => "cube",
+        MitsubaKind::Cylinder => "cylinder",
+        MitsubaKind::Triangles(_) => "ply",
+    };
+    let xml = &mut out.xml;
+    let _ = writeln!(xml, "  <shape type=\"{kind}\">");
+    if let MitsubaKind::Triangles(triangles) = &part.kind {
+        let name = format!("{mesh_prefix}{:03}.ply", out.meshes.len());
+        let _ = writeln!(xml, "    <string name=\"filename\" value=\"{}\"/>", escape(&name));
+        let _ = writeln!(xml, "    <boolean name=\"face_normals\" value=\"{}\"/>", triangles.normals.is_empty());
+        out.meshes.push((name, ply(triangles)));
+    }
+    if flip_normals {
+        let _ = writeln!(xml, "    <boolean name=\"flip_normals\" value=\"true\"/>");
+    }
+    let _ = writeln!(
+        xml,
+        "    <transform name=\"to_world\">\n      <matrix value=\"{}\"/>\n    </transform>",
+        matrix(world_from_shape)
+    );
+    xml.push_str(bsdf);
+    if let Some(emission) = emission {
+        xml.push_str(emission);
+    }
+    xml.push_str("  </shape>\n");
+}
+
+/// Binary little-endian PLY of `triangles`: positions, normals when present, and faces.
+fn ply(t: &TriangleList) -> Vec<u8> {
+    let normals = t.normals.len() == t.positions.len() && !t.normals.is_empty();
+    let mut header = format!("ply\nformat binary_little_endian 1.0\nelement vertex {}\n", t.positions.len());
+    header.push_str("property float x\nproperty float y\nproperty float z\n");
+    if normals {
+        header.push_str("property float nx\nproperty float ny\nproperty float nz\n");
+    }
+    let _ = write!(header, "element face {}\nproperty list uchar int vertex_indices\nend_header\n", t.triangles.len());
+    let mut bytes = header.into_bytes();
+    for (i, p) in t.positions.iter().enumerate() {
+        for v in p {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+        if normals {
+            for v in t.normals[i] {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+    }
+    for tri in &t.triangles {
+        bytes.push(3);
+        for i in tri {
+            bytes.extend_from_slice(&(*i as i32).to_le_bytes());
+        }
+    }
+    bytes
+}
+
+type Problem = (&'static str, String);
+
+fn has_texture(material: &crate::material::Material) -> bool {
+    use crate::material::SurfaceModel;
+    material.emission.texture.is_some()
+        || match &material.surface {
+            SurfaceModel::Finish(f) => f.texture.is_some(),
+            SurfaceModel::MetallicRoughness(m) => m.finish.texture.is_some() || m.metallic_roughness_texture.is_some(),
+            SurfaceModel::Mtl(m) => m.map_kd.is_some(),
+            SurfaceModel::Physical(p) => p.texture.is_some(),
+        }
+}
+
+/// The `<bsdf>` of a material, indented for a shape.
+fn bsdf_xml(material: &crate::material::Material) -> Result<String, Problem> {
+    if has_texture(material) {
+        return Err(("texture", "textures are not exported to Mitsuba yet".into()));
+    }
+    if matches!(material.surface, crate::material::SurfaceModel::MetallicRoughness(_)) {
+        return Err((
+            "pbr",
+            "glTF metallic-roughness has no exact Mitsuba 3 equivalent (`principled` is another model)".into(),
+        ));
+    }
+    let shaded = PathMaterial::new(material).shade(&SurfacePoint { uv: glam::DVec2::ZERO });
+    let lobes: Vec<(DVec3, &Lobe)> = shaded.scatter.lobes().collect();
+    if lobes.is_empty() {
+        return Ok(
+            "    <bsdf type=\"diffuse\">\n      <rgb name=\"reflectance\" value=\"0, 0, 0\"/>\n    </bsdf>\n".into()
+        );
+    }
+    // A sum of weighted lobes as nested blends: lobe i's grey weight s_i (the largest
+    // channel) goes into the blend, the rest of its colour into the lobe's own tint.
+    let mut parts = Vec::new();
+    for (weight, lobe) in &lobes {
+        let scale = weight.max_element();
+        parts.push((scale, lobe_xml(lobe, *weight / scale)?));
+    }
+    let total: f64 = parts.iter().map(|(s, _)| s).sum();
+    if total > 1.0 + 1e-9 {
+        return Err((
+            "reflection",
+            format!("the lobes' weights sum to {total} > 1, which Mitsuba's blendbsdf cannot hold"),
+        ));
+    }
+    if total < 1.0 - 1e-12 {
+        parts.push((1.0 - total, "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0, 0, 0\"/></bsdf>".into()));
+    }
+    Ok(format!("    {}\n", blend(&parts)))
+}
+
+/// `parts` (weights summing to 1) as a `blendbsdf` tree.
+fn blend(parts: &[(f64, String)]) -> String {
+    match parts {
+        [] => String::new(),
+        [(_, only)] => only.clone(),
+        [(w, first), rest @ ..] => {
+            let rest_total: f64 = rest.iter().map(|(s, _)| s).sum();
+            let total = w + rest_total;
+            let normalised: Vec<(f64, String)> = rest.iter().map(|(s, x)| (s / rest_total, x.clone())).collect();
+            // blendbsdf is (1 - weight) * first + weight * second.
+            format!(
+                "<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"{}\"/>{first}{}</bsdf>",
+                number(rest_total / total),
+                blend(&normalised)
+            )
+        }
+    }
+}
+
+fn lobe_xml(lobe: &Lobe, tint: DVec3) -> Result<String, Problem> {
+    let twosided = |inner: String| format!("<bsdf type=\"twosided\">{inner}</bsdf>");
+    Ok(match lobe {
+        Lobe::Mirror => twosided(format!(
+            "<bsdf type=\"conductor\"><string name=\"material\" value=\"none\"/><rgb name=\"specular_reflectance\" value=\"{}\"/></bsdf>",
+            rgb(tint)
+        )),
+        Lobe::PassThrough => "<bsdf type=\"null\"/>".into(),
+        Lobe::Bsdf { bsdf, two_sided } => {
+            let inner = bsdf_model_xml(bsdf, tint)?;
+            if *two_sided { twosided(inner) } else { inner }
+        }
+    })
+}
+
+fn ggx(alpha: f64) -> String {
+    format!(
+        "<string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"{}\"/><boolean name=\"sample_visible\" value=\"true\"/>",
+        number(alpha)
+    )
+}
+
+fn bsdf_model_xml(bsdf: &Bsdf, tint: DVec3) -> Result<String, Problem> {
+    Ok(match bsdf {
+        Bsdf::Diffuse { reflectance } => {
+            format!("<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"{}\"/></bsdf>", rgb(*reflectance * tint))
+        }
+        Bsdf::Conductor { eta, k, alpha, tint: own } => {
+            let kind = if *alpha > 0.0 { "roughconductor" } else { "conductor" };
+            let rough = if *alpha > 0.0 { ggx(*alpha) } else { String::new() };
+            format!(
+                "<bsdf type=\"{kind}\">{rough}<rgb name=\"eta\" value=\"{}\"/><rgb name=\"k\" value=\"{}\"/><rgb name=\"specular_reflectance\" value=\"{}\"/></bsdf>",
+                rgb(*eta),
+                rgb(*k),
+                rgb(*own * tint)
+            )
+        }
+        Bsdf::Dielectric { eta, alpha, reflect_tint, transmit_tint } => {
+            let kind = if *alpha > 0.0 { "roughdielectric" } else { "dielectric" };
+            let rough = if *alpha > 0.0 { ggx(*alpha) } else { String::new() };
+            format!(
+                "<bsdf type=\"{kind}\">{rough}<float name=\"int_ior\" value=\"{}\"/><float name=\"ext_ior\" value=\"1.0\"/><rgb name=\"specular_reflectance\" value=\"{}\"/><rgb name=\"specular_transmittance\" value=\"{}\"/></bsdf>",
+                number(*eta),
+                rgb(*reflect_tint * tint),
+                rgb(*transmit_tint * tint)
+            )
+        }
+        Bsdf::ThinDielectric { eta, reflect_tint, transmit_tint } => format!(
+            "<bsdf type=\"thindielectric\"><float name=\"int_ior\" value=\"{}\"/><float name=\"ext_ior\" value=\"1.0\"/><rgb name=\"specular_reflectance\" value=\"{}\"/><rgb name=\"specular_transmittance\" value=\"{}\"/></bsdf>",
+            number(*eta),
+            rgb(*reflect_tint * tint),
+            rgb(*transmit_tint * tint)
+        ),
+        Bsdf::Plastic { diffuse, eta, alpha } => {
+            if tint != DVec3::ONE {
+                return Err(("bsdf", "a tinted plastic lobe has no Mitsuba equivalent".into()));
+            }
+            let kind = if *alpha > 0.0 { "roughplastic" } else { "plastic" };
+            let rough = if *alpha > 0.0 {
+                format!(
+                    "<string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"{}\"/>",
+                    number(*alpha)
+                )
+            } else {
+                String::new()
+            };
+            format!(
+                "<bsdf type=\"{kind}\">{rough}<rgb name=\"diffuse_reflectance\" value=\"{}\"/><float name=\"int_ior\" value=\"{}\"/><float name=\"ext_ior\" value=\"1.0\"/><boolean name=\"nonlinear\" value=\"false\"/></bsdf>",
+                rgb(*diffuse),
+                number(*eta)
+            )
+        }
+        Bsdf::MetallicRoughness { .. } => {
+            return Err(("pbr", "glTF metallic-roughness has no exact Mitsuba 3 equivalent".into()));
+        }
+    })
+}
+
+/// The `<emitter type="area">` of an emissive material, if it emits.
+fn emitter_xml(material: &crate::material::Material) -> Result<Option<String>, Problem> {
+    let path = PathMaterial::new(material);
+    if !path.can_emit() {
+        return Ok(None);
+    }
+    let radiance = path.emitted(&SurfacePoint { uv: glam::DVec2::ZERO });
+    if radiance.max_element() <= 0.0 {
+        return Ok(None);
+    }
+    Ok(Some(format!(
+        "    <emitter type=\"area\">\n      <rgb name=\"radiance\" value=\"{}\"/>\n    </emitter>\n",
+        rgb(radiance)
+    )))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::load::{Embedded, load_from};
+
+    fn export_text(text: &'static str) -> Result<MitsubaScene, SceneError> {
+        let files: &'static [(&'static str, &'static str)] = Box::leak(Box::new([("s.toml", text)]));
+        let embedded: &'static Embedded = Box::leak(Box::new(Embedded(files)));
+        let mut scene = load_from(embedded, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+        crate::world::transforms::resolve_transforms(&mut scene).unwrap();
+        crate::world::validate::validate(&scene).unwrap();
+        export(&scene, "s.toml", "s_meshes/")
+    }
+
+    #[test]
+    fn every_default_is_written() {
+        let out = export_text(
+            "[render]\nwidth = 64\nheight = 48\nsamples = 16\nmax_depth = 7\nintegrator = \"path\"\n\
+             [[object]]\nshape = \"sphere\"\nradius = 0.5\nmaterial = { bsdf = { type = \"conductor\", metal = \"Au\", alpha = 0.2 } }\n",
+        )
+        .unwrap();
+        for needle in [
+            "<scene version=\"3.0.0\">",
+            "name=\"max_depth\" value=\"7\"",
+            "name=\"rr_depth\" value=\"5\"",
+            "name=\"fov_axis\" value=\"y\"",
+            "<sampler type=\"independent\">",
+            "<rfilter type=\"box\"/>",
+            "type=\"roughconductor\"",
+            "name=\"distribution\" value=\"ggx\"",
+            "<bsdf type=\"twosided\">",
+        ] {
+            assert!(out.xml.contains(needle), "missing {needle} in\n{}", out.xml);
+        }
+    }
+
+    #[test]
+    fn what_mitsuba_cannot_express_is_an_error_naming_it() {
+        let error = export_text("[[object]]\nshape = \"torus\"\nmajor_radius = 1.0\nminor_radius = 0.2\n").unwrap_err();
+        assert!(error.to_string().contains("torus"), "{error}");
+        let error = export_text(
+            "[[light]]\nkind = \"spot\"\nposition = [0, 1, 0]\npoint_at = [0, 0, 0]\nradius = 10\nfalloff = 20\n",
+        )
+        .unwrap_err();
+        assert!(error.to_string().contains("radius"), "{error}");
+    }
+
+    #[test]
+    fn a_pov_finish_becomes_a_blend_with_the_same_weights() {
+        let out =
+            export_text("[[object]]\nshape = \"sphere\"\nmaterial = { color = [0.8, 0.4, 0.2], reflection = 0.25 }\n")
+                .unwrap();
+        assert!(out.xml.contains("type=\"blendbsdf\""), "{}", out.xml);
+        assert!(out.xml.contains("name=\"material\" value=\"none\""), "{}", out.xml);
+    }
+
+    #[test]
+    fn meshes_become_ply_files() {
+        let out =
+            export_text("[[object]]\nshape = \"triangle\"\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n").unwrap();
+        assert_eq!(out.meshes.len(), 1);
+        let (name, bytes) = &out.meshes[0];
+        assert_eq!(name, "s_meshes/000.ply");
+        assert!(bytes.starts_with(b"ply\nformat binary_little_endian 1.0\nelement vertex 3\n"));
+        assert!(out.xml.contains("s_meshes/000.ply"));
+    }
+}
