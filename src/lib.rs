@@ -33,3 +33,6 @@ pub fn prepare(scene: &mut Scene) -> Result<RenderScene, SceneError> {
     world::validate::validate(scene)?;
     Ok(render::extract::extract(scene))
 }
+
+#[cfg(test)]
+pub(crate) mod test_support;

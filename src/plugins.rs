@@ -10,6 +10,10 @@ pub fn registry() -> ShapeRegistry {
     registry.add(shape_type::<prism_sphere::SphereParams>("sphere", "A sphere around a centre point."));
     registry.add(shape_type::<prism_plane::PlaneParams>("plane", "An infinite plane (a solid half-space)."));
     registry.add(shape_type::<prism_disc::DiscParams>("disc", "A flat disc, optionally with a hole."));
+    registry.add(shape_type::<prism_rectangle::RectangleParams>(
+        "rectangle",
+        "A flat rectangle in the z = 0 plane, facing +z (Mitsuba 3's rectangle).",
+    ));
     registry.add(shape_type::<prism_cone::ConeParams>("cone", "A finite cone, capped unless open."));
     registry.add(shape_type::<prism_cylinder::CylinderParams>("cylinder", "A finite cylinder, capped unless open."));
     registry.add(shape_type::<prism_box::BoxParams>("box", "An axis-aligned box."));

@@ -6,6 +6,9 @@
 //! the right and v downward. The OBJ importer flips `vt`'s v (OBJ counts from the bottom).
 //! Texel `i` covers `[i / w, (i + 1) / w]`, so its centre is at `(i + 0.5) / w`.
 
+pub mod distribution;
+pub mod environment;
+
 use std::collections::HashMap;
 use std::fmt;
 use std::path::{Path, PathBuf};

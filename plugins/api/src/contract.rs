@@ -615,6 +615,14 @@ fn ln_gamma(x: f64) -> f64 {
     0.5 * TAU.ln() + (x + 0.5) * t.ln() - t + sum.ln()
 }
 
+/// The p-value of Pearson's chi-square statistic `statistic` with `dof` degrees of freedom:
+/// the chance that a correct sampler gives a statistic at least this large, `Q(dof/2,
+/// statistic/2)`. Public so that Prism's own sampling tests (environment maps, light
+/// selection) share this one implementation.
+pub fn chi_square_p_value(statistic: f64, dof: usize) -> f64 {
+    gamma_q(0.5 * dof as f64, 0.5 * statistic)
+}
+
 /// The regularised upper incomplete gamma function Q(a, x) (series below a + 1, Lentz's
 /// continued fraction above).
 fn gamma_q(a: f64, x: f64) -> f64 {

@@ -1,0 +1,3 @@
+//! Helpers shared by the crate's unit tests (compiled for tests only).
+
+pub(crate) mod chi2;
