@@ -342,8 +342,8 @@ fn export_mitsuba_command(path: &Path, output: &Path) -> Result<(), CliError> {
     let source = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let stem = output.file_stem().map_or_else(|| "scene".to_string(), |s| s.to_string_lossy().into_owned());
     let folder = format!("{stem}_meshes");
-    let exported = prism::export::mitsuba::export(&scene, &source, &format!("{folder}/"))?;
-    let beside = output.parent().unwrap_or(Path::new(""));
+    let beside = output.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let exported = prism::export::mitsuba::export(&scene, &source, &format!("{folder}/"), beside)?;
     if !exported.meshes.is_empty() {
         let dir = beside.join(&folder);
         std::fs::create_dir_all(&dir).map_err(|source| CliError::Io { path: dir.clone(), source })?;

@@ -18,6 +18,7 @@
 //! An infinite plane is written as a square of side `MITSUBA_PLANE_SIZE`.
 
 use std::fmt::Write;
+use std::path::{Path, PathBuf};
 
 use glam::{DAffine3, DVec3};
 use prism_api::mitsuba::{MitsubaKind, MitsubaShape, TriangleList};
@@ -42,8 +43,10 @@ pub struct MitsubaScene {
 }
 
 /// Writes `scene` (after `resolve_transforms` and `validate`) as Mitsuba 3 XML, naming mesh
-/// files `{mesh_prefix}NNN.ply`. `source` names the scene in the header comment.
-pub fn export(scene: &Scene, source: &str, mesh_prefix: &str) -> Result<MitsubaScene, SceneError> {
+/// files `{mesh_prefix}NNN.ply`; files the scene reads (environment maps) are referred to
+/// relative to `xml_dir`, the folder the XML will be written to. `source` names the scene
+/// in the header comment.
+pub fn export(scene: &Scene, source: &str, mesh_prefix: &str, xml_dir: &Path) -> Result<MitsubaScene, SceneError> {
     let mut errors = Vec::new();
     let mut out = MitsubaScene::default();
     let xml = &mut out.xml;
@@ -67,7 +70,15 @@ pub fn export(scene: &Scene, source: &str, mesh_prefix: &str) -> Result<MitsubaS
     }
     sensor(xml, scene, &mut errors);
     let background = scene.environment.background.0;
-    if background.max_element() > 0.0 {
+    if let Some(map) = &scene.environment.environment {
+        let _ = writeln!(
+            xml,
+            "  <emitter type=\"envmap\">\n    <string name=\"filename\" value=\"{}\"/>\n    <float name=\"scale\" value=\"{}\"/>\n    <transform name=\"to_world\">\n      <rotate y=\"1\" angle=\"{}\"/>\n    </transform>\n  </emitter>",
+            escape(&relative_path(Path::new(&map.file), xml_dir).display().to_string()),
+            number(map.intensity),
+            number(map.rotate)
+        );
+    } else if background.max_element() > 0.0 {
         let _ = writeln!(
             xml,
             "  <emitter type=\"constant\">\n    <rgb name=\"radiance\" value=\"{}\"/>\n  </emitter>",
@@ -86,6 +97,23 @@ pub fn export(scene: &Scene, source: &str, mesh_prefix: &str) -> Result<MitsubaS
     });
     errors.dedup();
     Err(SceneError { diagnostics: errors })
+}
+
+/// `path` relative to the folder `base` (both made absolute first), for file references that
+/// survive moving the repository.
+fn relative_path(path: &Path, base: &Path) -> PathBuf {
+    let absolute = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+    let (path, base) = (absolute(path), absolute(base));
+    let common = path.components().zip(base.components()).take_while(|(a, b)| a == b).count();
+    if common == 0 {
+        return path;
+    }
+    let mut out = PathBuf::new();
+    for _ in base.components().skip(common) {
+        out.push("..");
+    }
+    out.extend(path.components().skip(common));
+    out
 }
 
 fn escape(text: &str) -> String {
@@ -544,7 +572,7 @@ mod tests {
         let mut scene = load_from(embedded, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
         crate::world::transforms::resolve_transforms(&mut scene).unwrap();
         crate::world::validate::validate(&scene).unwrap();
-        export(&scene, "s.toml", "s_meshes/")
+        export(&scene, "s.toml", "s_meshes/", Path::new("."))
     }
 
     #[test]

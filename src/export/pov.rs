@@ -123,7 +123,8 @@ fn rgb(c: Rgb) -> String {
 }
 
 fn globals(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
-    let Environment { background, ambient_light } = &scene.environment;
+    // The environment map is the path integrator's; classic, and so POV-Ray, sees the background.
+    let Environment { background, ambient_light, environment: _ } = &scene.environment;
     let render = &scene.render;
     if render.max_depth > MAX_TRACE_LEVEL {
         errors.push(Diagnostic::new(

@@ -73,7 +73,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
     lights.extend(imported.iter().map(|(e, l)| (e, RenderLight::from_photometric(l))));
     lights.sort_by_key(|(e, _)| e.id());
     let sources = lights.into_iter().map(|(_, l)| l).collect();
-    let lights = SceneLights::new(sources, &primitives, &materials, scene.environment.background.0);
+    let lights = SceneLights::new(sources, &primitives, &materials, &scene.environment);
 
     let accel = Accel::build(&primitives);
     let has_transparency = materials.iter().any(|m| PovView::new(m).base.is_transparent());

@@ -285,11 +285,60 @@ pub struct AreaEmitter {
 }
 
 /// What surrounds the scene, as a light.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct EnvironmentLight {
     /// Radiance in W/(m^2 sr) (linear RGB) arriving from every direction: `[world]
-    /// background`.
+    /// background` (the classic integrator's background; the path integrator's environment
+    /// when there is no map).
     pub radiance: DVec3,
+    /// The environment map, which replaces `radiance` for the path integrator.
+    pub map: Option<EnvironmentMapLight>,
+}
+
+/// An HDR environment map placed around the scene.
+#[derive(Clone, Debug)]
+pub struct EnvironmentMapLight {
+    /// The image and its sampling distribution.
+    pub map: std::sync::Arc<crate::texture::environment::EnvironmentMap>,
+    /// Multiplies the image's radiance.
+    pub intensity: f64,
+    /// World directions from the map's local frame (a rotation about +y).
+    pub world_from_map: glam::DMat3,
+}
+
+impl PartialEq for EnvironmentMapLight {
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.map, &other.map)
+            && self.intensity == other.intensity
+            && self.world_from_map == other.world_from_map
+    }
+}
+
+impl EnvironmentMapLight {
+    /// The light of `[world] environment`, if its image was loaded.
+    pub fn new(spec: &crate::world::components::EnvironmentMapRef) -> Option<Self> {
+        Some(Self {
+            map: spec.map.clone()?,
+            intensity: spec.intensity,
+            world_from_map: glam::DMat3::from_rotation_y(spec.rotate.to_radians()),
+        })
+    }
+
+    /// Radiance W/(m^2 sr) arriving from world direction `direction` (unit).
+    pub fn radiance(&self, direction: DVec3) -> DVec3 {
+        self.map.eval(self.world_from_map.transpose() * direction) * self.intensity
+    }
+
+    /// Solid-angle density of [`EnvironmentMapLight::sample`] at world direction `direction`.
+    pub fn pdf(&self, direction: DVec3) -> f64 {
+        self.map.pdf(self.world_from_map.transpose() * direction)
+    }
+
+    /// A world direction by importance (luminance), its radiance and solid-angle density.
+    pub fn sample(&self, u: glam::DVec2) -> (DVec3, DVec3, f64) {
+        let s = self.map.sample(u);
+        (self.world_from_map * s.direction, s.radiance * self.intensity, s.pdf)
+    }
 }
 
 /// Every light of a render scene.
@@ -308,7 +357,12 @@ pub struct SceneLights {
 impl SceneLights {
     /// The lights of a scene: `sources`, an area emitter for every primitive whose material
     /// emits ([`emits`]), and `background` (linear RGB radiance) as the environment.
-    pub fn new(sources: Vec<RenderLight>, primitives: &[Primitive], materials: &[Material], background: DVec3) -> Self {
+    pub fn new(
+        sources: Vec<RenderLight>,
+        primitives: &[Primitive],
+        materials: &[Material],
+        environment: &crate::world::components::Environment,
+    ) -> Self {
         let mut area_emitters = Vec::new();
         let emitter_of_primitive = (0..primitives.len() as u32)
             .map(|primitive| {
@@ -318,7 +372,11 @@ impl SceneLights {
                 })
             })
             .collect();
-        Self { sources, area_emitters, emitter_of_primitive, environment: EnvironmentLight { radiance: background } }
+        let environment = EnvironmentLight {
+            radiance: environment.background.0,
+            map: environment.environment.as_ref().and_then(EnvironmentMapLight::new),
+        };
+        Self { sources, area_emitters, emitter_of_primitive, environment }
     }
 
     /// The area emitter of `primitive`, if its material emits.

@@ -472,15 +472,62 @@ pub struct ImportedCamera {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Environment {
-    /// Colour of rays that escape the scene.
+    /// Colour of rays that escape the scene: under `path`, the radiance (W/(m^2 sr)) of a
+    /// constant environment.
     pub background: Rgb,
     /// Global ambient light, multiplied by each material's `ambient`.
     pub ambient_light: Rgb,
+    /// Under `path`: an HDR latitude-longitude image around the scene, replacing
+    /// `background` as the environment's radiance.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub environment: Option<EnvironmentMapRef>,
 }
 
 impl Default for Environment {
     fn default() -> Self {
-        Self { background: Rgb::BLACK, ambient_light: Rgb::WHITE }
+        Self { background: Rgb::BLACK, ambient_light: Rgb::WHITE, environment: None }
+    }
+}
+
+/// `[world] environment = { file = "sky.exr", intensity = 1, rotate = 0 }`: an HDR
+/// latitude-longitude map (2:1, OpenEXR or Radiance `.hdr`) in Mitsuba 3's `envmap`
+/// orientation, scaled by `intensity` and turned by `rotate` degrees about +y.
+#[derive(Clone, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentMapRef {
+    /// The image file, relative to the scene file (absolute once loaded).
+    pub file: String,
+    /// Multiplies the image's radiance.
+    #[serde(default = "unit_intensity")]
+    pub intensity: f64,
+    /// Rotation about +y in degrees (right-hand rule).
+    #[serde(default)]
+    pub rotate: f64,
+    /// The decoded map (set by the loader).
+    #[serde(skip)]
+    #[schemars(skip)]
+    pub map: Option<std::sync::Arc<crate::texture::environment::EnvironmentMap>>,
+}
+
+fn unit_intensity() -> f64 {
+    1.0
+}
+
+impl std::fmt::Debug for EnvironmentMapRef {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("EnvironmentMapRef")
+            .field("file", &self.file)
+            .field("intensity", &self.intensity)
+            .field("rotate", &self.rotate)
+            .field("loaded", &self.map.is_some())
+            .finish()
+    }
+}
+
+impl PartialEq for EnvironmentMapRef {
+    /// Equal when they name the same file the same way (the image follows from that).
+    fn eq(&self, other: &Self) -> bool {
+        self.file == other.file && self.intensity == other.intensity && self.rotate == other.rotate
     }
 }
 

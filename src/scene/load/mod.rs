@@ -346,7 +346,10 @@ impl Loader<'_> {
         }
         let render: Option<RenderSettings> = self.section(0, "render");
         let camera: Option<Camera> = self.section(1, "camera");
-        let environment: Option<Environment> = self.section(2, "world");
+        let mut environment: Option<Environment> = self.section(2, "world");
+        if let Some(map) = environment.as_mut().and_then(|e| e.environment.as_mut()) {
+            self.environment_map(map);
+        }
 
         let mut world = hecs::World::new();
         let mut by_name: HashMap<String, (hecs::Entity, Location)> = HashMap::new();
@@ -398,6 +401,30 @@ impl Loader<'_> {
         let mut warnings = std::mem::take(&mut self.warnings);
         self.sort_in_file_order(&mut warnings);
         Ok(Scene { world, render, render_origin, environment: environment.expect("no diagnostics"), camera, warnings })
+    }
+
+    /// Checks `[world] environment` and decodes its image (relative to the file that wrote it).
+    fn environment_map(&mut self, map: &mut crate::world::components::EnvironmentMapRef) {
+        let index = self.environment.origin.get("environment").copied().unwrap_or(0);
+        let at = |key: &str| self.files[index].locate(&format!("world.environment.{key}"));
+        for (key, value) in [("intensity", map.intensity), ("rotate", map.rotate)] {
+            if !value.is_finite() {
+                self.diagnostics.push(Diagnostic::new(at(key), format!("must be finite, got {value}")));
+                return;
+            }
+        }
+        if map.intensity < 0.0 {
+            self.diagnostics.push(Diagnostic::new(at("intensity"), format!("must not be negative, got {}", map.intensity)));
+            return;
+        }
+        let path = self.directory(index).join(&map.file);
+        match crate::texture::environment::EnvironmentMap::load(&path) {
+            Ok(loaded) => {
+                map.file = std::fs::canonicalize(&path).unwrap_or(path).display().to_string();
+                map.map = Some(std::sync::Arc::new(loaded));
+            }
+            Err(e) => self.diagnostics.push(Diagnostic::new(at("file"), e.to_string())),
+        }
     }
 
     /// Sorts by file (in load order), line and column; a stable sort, so problems at one

@@ -7,7 +7,72 @@ use glam::{DVec2, DVec3};
 
 use super::scatter::luminance;
 use crate::render::extract::RenderScene;
-use crate::render::lights::{LightSource, SpotCone};
+use crate::render::lights::{EnvironmentMapLight, LightSource, SpotCone};
+
+/// What surrounds the scene under the path integrator.
+#[derive(Clone, Debug)]
+pub enum Environment {
+    /// Black.
+    None,
+    /// The same radiance (W/(m^2 sr)) from every direction.
+    Constant(DVec3),
+    /// An HDR map.
+    Map(EnvironmentMapLight),
+}
+
+impl Environment {
+    /// The environment of `scene`: its map, else its background when not black.
+    pub fn of(scene: &RenderScene) -> Self {
+        let light = &scene.lights.environment;
+        match &light.map {
+            Some(map) => Environment::Map(map.clone()),
+            None if light.radiance.max_element() > 0.0 => Environment::Constant(light.radiance),
+            None => Environment::None,
+        }
+    }
+
+    /// Radiance arriving from world direction `direction` (unit).
+    pub fn radiance(&self, direction: DVec3) -> DVec3 {
+        match self {
+            Environment::None => DVec3::ZERO,
+            Environment::Constant(c) => *c,
+            Environment::Map(m) => m.radiance(direction),
+        }
+    }
+
+    /// True when some direction has radiance.
+    pub fn is_black(&self) -> bool {
+        matches!(self, Environment::None)
+    }
+
+    /// ∫ luminance dω (W/(m^2 sr) · sr): with the scene's cross-section, its power.
+    fn luminance_integral(&self) -> f64 {
+        match self {
+            Environment::None => 0.0,
+            Environment::Constant(c) => 4.0 * std::f64::consts::PI * luminance(*c),
+            Environment::Map(m) => m.map.power() * m.intensity,
+        }
+    }
+
+    /// A direction toward the environment, its radiance and solid-angle density.
+    fn sample(&self, u: DVec2) -> (DVec3, DVec3, f64) {
+        match self {
+            Environment::Map(m) => m.sample(u),
+            _ => {
+                let d = uniform_sphere(u);
+                (d, self.radiance(d), UNIFORM_SPHERE_PDF)
+            }
+        }
+    }
+
+    /// Solid-angle density of `sample` at `direction`.
+    fn pdf(&self, direction: DVec3) -> f64 {
+        match self {
+            Environment::Map(m) => m.pdf(direction),
+            _ => UNIFORM_SPHERE_PDF,
+        }
+    }
+}
 
 /// One light in the selection distribution.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -99,7 +164,7 @@ impl LightSampler {
     /// The distribution for `scene`, with `scene_radius` the radius of a sphere bounding the
     /// scene's finite geometry (it turns directional irradiance and environment radiance into
     /// powers comparable with the others').
-    pub fn new(scene: &RenderScene, scene_radius: f64, environment_radiance: DVec3) -> Self {
+    pub fn new(scene: &RenderScene, scene_radius: f64, environment: &Environment) -> Self {
         let pi = std::f64::consts::PI;
         let disc = pi * scene_radius * scene_radius;
         let mut lights = Vec::new();
@@ -125,9 +190,9 @@ impl LightSampler {
             lights.push(LightRef::Emitter(emitter.primitive));
             power.push((pi * area * luminance(radiance)).max(0.0));
         }
-        if environment_radiance.max_element() > 0.0 {
+        if !environment.is_black() {
             lights.push(LightRef::Environment);
-            power.push(4.0 * pi * disc * luminance(environment_radiance));
+            power.push(disc * environment.luminance_integral());
         }
         let total: f64 = power.iter().sum();
         let probability: Vec<f64> = if total > 0.0 && total.is_finite() {
@@ -181,7 +246,7 @@ impl LightSampler {
     pub fn sample(
         &self,
         scene: &RenderScene,
-        environment_radiance: DVec3,
+        environment: &Environment,
         point: DVec3,
         u_select: f64,
         u: DVec2,
@@ -246,19 +311,15 @@ impl LightSampler {
                 })
             }
             LightRef::Environment => {
-                let direction = uniform_sphere(u);
-                Some(LightSample::Environment {
-                    direction,
-                    radiance: environment_radiance,
-                    pdf: UNIFORM_SPHERE_PDF * probability,
-                })
+                let (direction, radiance, pdf) = environment.sample(u);
+                (pdf > 0.0).then_some(LightSample::Environment { direction, radiance, pdf: pdf * probability })
             }
         }
     }
 
     /// The solid-angle density, including selection, with which [`LightSampler::sample`]
     /// picks `direction` toward the environment.
-    pub fn environment_pdf(&self, _direction: DVec3) -> f64 {
-        UNIFORM_SPHERE_PDF * self.environment_probability
+    pub fn environment_pdf(&self, environment: &Environment, direction: DVec3) -> f64 {
+        environment.pdf(direction) * self.environment_probability
     }
 }

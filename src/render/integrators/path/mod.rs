@@ -18,7 +18,7 @@ use crate::accel::scene_bvh::ClosestHit;
 use crate::render::bsdf::Frame;
 use crate::render::extract::RenderScene;
 use crate::render::sampling::SampleStream;
-use light_sampler::{LightSample, LightSampler};
+use light_sampler::{Environment, LightSample, LightSampler};
 use scatter::{PathMaterial, SurfacePoint};
 
 /// Rays start this far (relative to the scene's scale at the hit) beyond their origin.
@@ -38,7 +38,7 @@ pub struct Path<'a> {
     scene: &'a RenderScene,
     materials: Vec<PathMaterial>,
     lights: LightSampler,
-    environment: DVec3,
+    environment: Environment,
 }
 
 /// The power heuristic (beta = 2) weight of a strategy with density `a` against one with `b`.
@@ -65,9 +65,9 @@ impl<'a> Path<'a> {
     /// The path integrator for `scene`.
     pub fn new(scene: &'a RenderScene) -> Self {
         let materials = scene.materials.iter().map(PathMaterial::new).collect();
-        let environment = scene.lights.environment.radiance;
+        let environment = Environment::of(scene);
         let radius = scene_radius(scene);
-        let lights = LightSampler::new(scene, radius, environment);
+        let lights = LightSampler::new(scene, radius, &environment);
         Self { scene, materials, lights, environment }
     }
 
@@ -151,13 +151,13 @@ impl<'a> Path<'a> {
             rays += 1;
             let direction = ray.direction.normalize();
             let Some(closest) = self.closest(&ray, MAX_DISTANCE) else {
-                if self.environment.max_element() > 0.0 {
+                if !self.environment.is_black() {
                     let weight = if previous_delta {
                         1.0
                     } else {
-                        power_heuristic(previous_pdf, self.lights.environment_pdf(direction))
+                        power_heuristic(previous_pdf, self.lights.environment_pdf(&self.environment, direction))
                     };
-                    radiance += throughput * self.environment * weight;
+                    radiance += throughput * self.environment.radiance(direction) * weight;
                 }
                 break;
             };
@@ -200,7 +200,7 @@ impl<'a> Path<'a> {
             if scatter.has_smooth_lobe() {
                 let sample = self.lights.sample(
                     scene,
-                    self.environment,
+                    &self.environment,
                     reference,
                     stream.uniform(base),
                     stream.uniform2(base + 1),
