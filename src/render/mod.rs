@@ -5,6 +5,7 @@
 //! tiling or region.
 
 pub mod antialias;
+pub mod bsdf;
 pub mod camera;
 pub mod extract;
 pub mod integrators;
