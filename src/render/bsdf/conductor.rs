@@ -6,9 +6,9 @@
 
 use glam::{DVec2, DVec3};
 
+use super::BsdfSample;
 use super::fresnel::{fresnel_conductor, reflect, reflect_about};
 use super::microfacet::Ggx;
-use super::BsdfSample;
 
 /// f cos θi of the rough conductor (0 for the smooth one).
 pub(crate) fn eval(eta: DVec3, k: DVec3, alpha: f64, tint: DVec3, wo: DVec3, wi: DVec3) -> DVec3 {
@@ -67,8 +67,9 @@ pub(crate) fn sample(eta: DVec3, k: DVec3, alpha: f64, tint: DVec3, wo: DVec3, u
 
 #[cfg(test)]
 mod tests {
+    use crate::material::metals::metal;
     use crate::render::bsdf::chi2::{self, Rng};
-    use crate::render::bsdf::{Bsdf, fresnel_conductor, metal};
+    use crate::render::bsdf::{Bsdf, fresnel_conductor};
     use glam::DVec3;
 
     fn gold(alpha: f64) -> Bsdf {

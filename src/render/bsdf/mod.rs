@@ -19,7 +19,6 @@ mod dielectric;
 mod diffuse;
 pub mod fresnel;
 mod metallic_roughness;
-pub mod metals;
 pub mod microfacet;
 mod plastic;
 
@@ -29,7 +28,6 @@ mod chi2;
 use glam::{DVec2, DVec3};
 
 pub use fresnel::{fresnel_conductor, fresnel_dielectric};
-pub use metals::{METAL_NAMES, metal};
 
 /// An orthonormal shading frame; local z is the shading normal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -285,6 +283,7 @@ pub(crate) fn cosine_hemisphere(u: DVec2) -> DVec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::material::metals::metal;
 
     #[test]
     fn frame_round_trip() {
@@ -355,7 +354,10 @@ mod tests {
                 }
                 for _ in 0..20 {
                     if let Some(s) = bsdf.sample(wo, rng.next(), rng.next2()) {
-                        assert!(s.wi.is_finite() && s.weight.is_finite() && s.pdf.is_finite() && s.pdf > 0.0, "{bsdf:?} wo {wo}: {s:?}");
+                        assert!(
+                            s.wi.is_finite() && s.weight.is_finite() && s.pdf.is_finite() && s.pdf > 0.0,
+                            "{bsdf:?} wo {wo}: {s:?}"
+                        );
                         assert!(s.weight.min_element() >= 0.0, "{bsdf:?} wo {wo}: {s:?}");
                     }
                 }

@@ -414,7 +414,8 @@ impl Loader<'_> {
             }
         }
         if map.intensity < 0.0 {
-            self.diagnostics.push(Diagnostic::new(at("intensity"), format!("must not be negative, got {}", map.intensity)));
+            self.diagnostics
+                .push(Diagnostic::new(at("intensity"), format!("must not be negative, got {}", map.intensity)));
             return;
         }
         let path = self.directory(index).join(&map.file);
