@@ -75,7 +75,7 @@ fn cell_of(v: DVec3) -> usize {
 }
 
 /// ∫ pdf over one cell: adaptive 2D Simpson in (cos θ, φ), each rectangle split in four
-/// until the split changes the estimate by less than 1e-7 + 1e-5 of it (a fraction of a
+/// until the split changes the estimate by less than 1e-6 + 1e-4 of it (a fraction of a
 /// sample at N = 200k), which resolves the narrow lobes of alpha 0.05 at grazing angles.
 fn integrate_cell(bsdf: &Bsdf, wo: DVec3, t: usize, p: usize) -> f64 {
     let (c0, dc) = (-1.0 + 2.0 * t as f64 / THETA_BINS as f64, 2.0 / THETA_BINS as f64);
@@ -89,7 +89,7 @@ fn adaptive(bsdf: &Bsdf, wo: DVec3, (c0, dc, p0, dp): (f64, f64, f64, f64), whol
     let quads = [(c0, p0), (c0 + hc, p0), (c0, p0 + hp), (c0 + hc, p0 + hp)];
     let parts = quads.map(|(c, p)| simpson(bsdf, wo, c, hc, p, hp));
     let split: f64 = parts.iter().sum();
-    if depth >= 7 || (split - whole).abs() <= 1e-7 + 1e-5 * split.abs() {
+    if depth >= 7 || (split - whole).abs() <= 1e-6 + 1e-4 * split.abs() {
         return split;
     }
     quads.iter().zip(parts).map(|(&(c, p), part)| adaptive(bsdf, wo, (c, hc, p, hp), part, depth + 1)).sum()
@@ -97,7 +97,15 @@ fn adaptive(bsdf: &Bsdf, wo: DVec3, (c0, dc, p0, dp): (f64, f64, f64, f64), whol
 
 /// Simpson's rule with SUBDIV x SUBDIV intervals on one rectangle of (cos θ, φ).
 fn simpson(bsdf: &Bsdf, wo: DVec3, c0: f64, dc: f64, p0: f64, dp: f64) -> f64 {
-    let weight = |i: usize| if i == 0 || i == SUBDIV { 1.0 } else if i % 2 == 1 { 4.0 } else { 2.0 };
+    let weight = |i: usize| {
+        if i == 0 || i == SUBDIV {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        }
+    };
     let mut sum = 0.0;
     for i in 0..=SUBDIV {
         let cos = c0 + dc * i as f64 / SUBDIV as f64;
@@ -271,7 +279,10 @@ pub fn check(bsdf: &Bsdf, wo: DVec3, label: &str) -> f64 {
     let p_value = chi2_p_value(statistic, dof);
     let threshold = 1.0 - (1.0 - SIGNIFICANCE).powf(1.0 / TESTS);
     eprintln!("chi2 {label}, cos wo {:.2}: statistic {statistic:.1}, dof {dof}, p {p_value:.4}", wo.z);
-    assert!(p_value >= threshold, "{label}, wo {wo}: chi-square p-value {p_value} < {threshold} (statistic {statistic}, dof {dof})");
+    assert!(
+        p_value >= threshold,
+        "{label}, wo {wo}: chi-square p-value {p_value} < {threshold} (statistic {statistic}, dof {dof})"
+    );
     p_value
 }
 
@@ -295,7 +306,7 @@ pub fn uniform_albedo(bsdf: &Bsdf, wo: DVec3, n: usize, rng: &mut Rng) -> (DVec3
     let (mut sum, mut sum2) = (DVec3::ZERO, DVec3::ZERO);
     for _ in 0..n {
         let u = rng.next2();
-        let v = direction(1.0 - 2.0 * u.x, TAU * u.y) ;
+        let v = direction(1.0 - 2.0 * u.x, TAU * u.y);
         let f = bsdf.eval(wo, v) * (4.0 * PI);
         sum += f;
         sum2 += f * f;
@@ -328,7 +339,9 @@ mod tests {
     #[test]
     fn chi2_quantiles() {
         // (statistic, dof, upper-tail p)
-        for (x, k, p) in [(3.841459, 1, 0.05), (18.307038, 10, 0.05), (6.634897, 1, 0.01), (124.342113, 100, 0.05), (0.0, 5, 1.0)] {
+        for (x, k, p) in
+            [(3.841459, 1, 0.05), (18.307038, 10, 0.05), (6.634897, 1, 0.01), (124.342113, 100, 0.05), (0.0, 5, 1.0)]
+        {
             let got = chi2_p_value(x, k);
             assert!((got - p).abs() < 1e-6, "chi2({x}, {k}) = {got}, want {p}");
         }
@@ -346,8 +359,11 @@ mod tests {
         let (s, k) = pearson(&fair).unwrap();
         assert!(chi2_p_value(s, k) > 0.01);
         // 20% too many samples in a tenth of the cells, too few elsewhere.
-        let skewed: Vec<(f64, f64)> =
-            expected.iter().enumerate().map(|(i, &e)| (if i < 10 { e * 1.2 } else { e * (1.0 - 0.2 / 9.0) }, e)).collect();
+        let skewed: Vec<(f64, f64)> = expected
+            .iter()
+            .enumerate()
+            .map(|(i, &e)| (if i < 10 { e * 1.2 } else { e * (1.0 - 0.2 / 9.0) }, e))
+            .collect();
         let (s, k) = pearson(&skewed).unwrap();
         assert!(chi2_p_value(s, k) < 1e-6);
         assert!(pearson(&[(3.0, 0.0), (100.0, 103.0)]).is_err());

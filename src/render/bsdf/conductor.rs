@@ -6,9 +6,9 @@
 
 use glam::{DVec2, DVec3};
 
+use super::BsdfSample;
 use super::fresnel::{fresnel_conductor, reflect, reflect_about};
 use super::microfacet::Ggx;
-use super::BsdfSample;
 
 /// f cos θi of the rough conductor (0 for the smooth one).
 pub(crate) fn eval(eta: DVec3, k: DVec3, alpha: f64, tint: DVec3, wo: DVec3, wi: DVec3) -> DVec3 {

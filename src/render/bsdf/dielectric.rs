@@ -135,13 +135,23 @@ pub(crate) fn sample(
 /// Mitsuba's `thindielectric`: reflectance `R = r + t r t + t r^3 t + … = 2r / (1 + r)` of a
 /// slab whose interfaces each reflect r, transmission `1 - R` straight through (no
 /// refraction offset: the slab is thin), both delta lobes.
-pub(crate) fn sample_thin(eta: f64, reflect_tint: DVec3, transmit_tint: DVec3, wo: DVec3, u_lobe: f64) -> Option<BsdfSample> {
+pub(crate) fn sample_thin(
+    eta: f64,
+    reflect_tint: DVec3,
+    transmit_tint: DVec3,
+    wo: DVec3,
+    u_lobe: f64,
+) -> Option<BsdfSample> {
     if wo.z == 0.0 {
         return None;
     }
     let r = fresnel_dielectric(wo.z.abs(), eta).0;
     let r = r * 2.0 / (1.0 + r);
-    if u_lobe < r { BsdfSample::delta(reflect(wo), reflect_tint, r) } else { BsdfSample::delta(-wo, transmit_tint, 1.0 - r) }
+    if u_lobe < r {
+        BsdfSample::delta(reflect(wo), reflect_tint, r)
+    } else {
+        BsdfSample::delta(-wo, transmit_tint, 1.0 - r)
+    }
 }
 
 #[cfg(test)]

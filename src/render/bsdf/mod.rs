@@ -241,7 +241,7 @@ impl Bsdf {
         !self.is_delta()
     }
 
-    /// A reflectance estimate for AOVs/denoising albedo (RGB in [0,1]): the diffuse colour,
+    /// A reflectance estimate for AOVs/denoising albedo (RGB in \[0,1\]): the diffuse colour,
     /// the conductor's normal-incidence Fresnel times tint, 1 for dielectrics, the base colour
     /// of plastics and glTF materials.
     pub fn albedo(&self) -> DVec3 {
@@ -355,7 +355,10 @@ mod tests {
                 }
                 for _ in 0..20 {
                     if let Some(s) = bsdf.sample(wo, rng.next(), rng.next2()) {
-                        assert!(s.wi.is_finite() && s.weight.is_finite() && s.pdf.is_finite() && s.pdf > 0.0, "{bsdf:?} wo {wo}: {s:?}");
+                        assert!(
+                            s.wi.is_finite() && s.weight.is_finite() && s.pdf.is_finite() && s.pdf > 0.0,
+                            "{bsdf:?} wo {wo}: {s:?}"
+                        );
                         assert!(s.weight.min_element() >= 0.0, "{bsdf:?} wo {wo}: {s:?}");
                     }
                 }

@@ -95,7 +95,8 @@ pub(crate) fn sample(diffuse: DVec3, eta: f64, alpha: f64, wo: DVec3, u_lobe: f6
         return BsdfSample::smooth(wi, weight, p_diffuse * wi.z * FRAC_1_PI);
     }
     let p_spec = specular_probability(diffuse, rough_tables(eta, alpha).transmittance(wo.z));
-    let wi = if u_lobe < p_spec { reflect_about(wo, Ggx::new(alpha).sample_visible(wo, u)) } else { cosine_hemisphere(u) };
+    let wi =
+        if u_lobe < p_spec { reflect_about(wo, Ggx::new(alpha).sample_visible(wo, u)) } else { cosine_hemisphere(u) };
     let pdf = pdf(diffuse, eta, alpha, wo, wi);
     if pdf <= 0.0 {
         return None;
