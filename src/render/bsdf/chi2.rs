@@ -75,7 +75,7 @@ fn cell_of(v: DVec3) -> usize {
 }
 
 /// ∫ pdf over one cell: adaptive 2D Simpson in (cos θ, φ), each rectangle split in four
-/// until the split changes the estimate by less than 1e-7 + 1e-5 of it (a fraction of a
+/// until the split changes the estimate by less than 1e-6 + 1e-4 of it (a fraction of a
 /// sample at N = 200k), which resolves the narrow lobes of alpha 0.05 at grazing angles.
 fn integrate_cell(bsdf: &Bsdf, wo: DVec3, t: usize, p: usize) -> f64 {
     let (c0, dc) = (-1.0 + 2.0 * t as f64 / THETA_BINS as f64, 2.0 / THETA_BINS as f64);
@@ -89,7 +89,7 @@ fn adaptive(bsdf: &Bsdf, wo: DVec3, (c0, dc, p0, dp): (f64, f64, f64, f64), whol
     let quads = [(c0, p0), (c0 + hc, p0), (c0, p0 + hp), (c0 + hc, p0 + hp)];
     let parts = quads.map(|(c, p)| simpson(bsdf, wo, c, hc, p, hp));
     let split: f64 = parts.iter().sum();
-    if depth >= 7 || (split - whole).abs() <= 1e-7 + 1e-5 * split.abs() {
+    if depth >= 7 || (split - whole).abs() <= 1e-6 + 1e-4 * split.abs() {
         return split;
     }
     quads.iter().zip(parts).map(|(&(c, p), part)| adaptive(bsdf, wo, (c, hc, p, hp), part, depth + 1)).sum()

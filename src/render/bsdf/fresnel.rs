@@ -119,8 +119,8 @@ mod tests {
 
     #[test]
     fn dielectric_total_internal_reflection() {
-        let eta = 1.5;
-        let critical = (1.0 / eta as f64).asin();
+        let eta: f64 = 1.5;
+        let critical = (1.0 / eta).asin();
         // From inside, beyond the critical angle: everything reflects.
         for theta in [critical + 1e-6, critical + 0.1, 1.2, 1.5] {
             let (r, cos_t, _, _) = fresnel_dielectric(-f64::cos(theta), eta);

@@ -239,7 +239,7 @@ impl Bsdf {
         !self.is_delta()
     }
 
-    /// A reflectance estimate for AOVs/denoising albedo (RGB in [0,1]): the diffuse colour,
+    /// A reflectance estimate for AOVs/denoising albedo (RGB in \[0,1\]): the diffuse colour,
     /// the conductor's normal-incidence Fresnel times tint, 1 for dielectrics, the base colour
     /// of plastics and glTF materials.
     pub fn albedo(&self) -> DVec3 {
