@@ -298,6 +298,13 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mu
                 continue;
             }
         };
+        if material.material.emission.two_sided && material.material.emission.can_emit() {
+            errors.push(Diagnostic::new(
+                at("material.emission_two_sided"),
+                "Mitsuba's area emitters shine from one side only (a flipped copy of the shape would hide the first)",
+            ));
+            continue;
+        }
         let emission = match emitter_xml(&material.material) {
             Ok(e) => e,
             Err((key, message)) => {
@@ -308,7 +315,7 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mu
         let world_from_object = transform.map_or(DAffine3::IDENTITY, |t| t.0);
         for part in parts {
             let world_from_shape = world_from_object * part.object_from_shape;
-            let needs_similarity = matches!(part.kind, MitsubaKind::Sphere | MitsubaKind::Cylinder);
+            let needs_similarity = matches!(part.kind, MitsubaKind::Sphere | MitsubaKind::Cylinder { .. });
             if needs_similarity && !is_similarity(&world_from_shape.matrix3) {
                 errors.push(Diagnostic::new(
                     at("transform"),
@@ -342,7 +349,7 @@ fn shape_xml(
         MitsubaKind::Rectangle => "rectangle",
         MitsubaKind::Disk => "disk",
         MitsubaKind::Cube => "cube",
-        MitsubaKind::Cylinder => "cylinder",
+        MitsubaKind::Cylinder { .. } => "cylinder",
         MitsubaKind::Triangles(_) => "ply",
     };
     let xml = &mut out.xml;
@@ -352,6 +359,14 @@ fn shape_xml(
         let _ = writeln!(xml, "    <string name=\"filename\" value=\"{}\"/>", escape(&name));
         let _ = writeln!(xml, "    <boolean name=\"face_normals\" value=\"{}\"/>", triangles.normals.is_empty());
         out.meshes.push((name, ply(triangles)));
+    }
+    if let MitsubaKind::Cylinder { radius, length } = part.kind {
+        let _ = writeln!(
+            xml,
+            "    <point name=\"p0\" value=\"0, 0, 0\"/>\n    <point name=\"p1\" value=\"0, 0, {}\"/>\n    <float name=\"radius\" value=\"{}\"/>",
+            number(length),
+            number(radius)
+        );
     }
     if flip_normals {
         let _ = writeln!(xml, "    <boolean name=\"flip_normals\" value=\"true\"/>");
@@ -477,7 +492,10 @@ fn lobe_xml(lobe: &Lobe, tint: DVec3) -> Result<String, Problem> {
         Lobe::PassThrough => "<bsdf type=\"null\"/>".into(),
         Lobe::Bsdf { bsdf, two_sided } => {
             let inner = bsdf_model_xml(bsdf, tint)?;
-            if *two_sided { twosided(inner) } else { inner }
+            // A thin slab is the same from both sides already, and Mitsuba's twosided refuses
+            // transmitting BSDFs.
+            let symmetric = matches!(bsdf, Bsdf::ThinDielectric { .. } | Bsdf::Dielectric { .. });
+            if *two_sided && !symmetric { twosided(inner) } else { inner }
         }
     })
 }

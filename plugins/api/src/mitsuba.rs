@@ -15,9 +15,14 @@ pub enum MitsubaKind {
     Disk,
     /// `cube`: the cube [-1, 1]^3, normals outward.
     Cube,
-    /// `cylinder`: the open tube of radius 1 from z = 0 to z = 1, normals outward
-    /// (Mitsuba needs a similarity placement).
-    Cylinder,
+    /// `cylinder`: the open tube of radius `radius` from z = 0 to z = `length`, normals
+    /// outward (Mitsuba needs a similarity placement).
+    Cylinder {
+        /// The tube's radius.
+        radius: f64,
+        /// The tube's length along +z.
+        length: f64,
+    },
     /// A triangle mesh, written as a PLY file beside the scene.
     Triangles(TriangleList),
 }

@@ -237,11 +237,9 @@ impl Shape for Cylinder {
         use prism_api::DAffine3;
         let axis = self.top - self.base;
         let frame = prism_api::mitsuba::frame_with_z(axis);
-        let tube = DAffine3::from_mat3_translation(
-            prism_api::DMat3::from_cols(frame.x_axis * self.radius, frame.y_axis * self.radius, axis),
-            self.base,
-        );
-        let mut shapes = vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Cylinder, tube)];
+        let tube = DAffine3::from_mat3_translation(frame, self.base);
+        let kind = prism_api::mitsuba::MitsubaKind::Cylinder { radius: self.radius, length: axis.length() };
+        let mut shapes = vec![prism_api::mitsuba::MitsubaShape::new(kind, tube)];
         if !self.open {
             // Caps facing out: the top along the axis, the base against it.
             let top = DAffine3::from_mat3_translation(frame * self.radius, self.top);

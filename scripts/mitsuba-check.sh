@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The live Mitsuba 3 check of the `path` integrator (called by .ci/run; runs alone too).
+#
+# Usage: scripts/mitsuba-check.sh PRISM_BIN [K] [SPP] [SCENE.toml ...]
+#
+# For every equivalence scene in scenes/mitsuba/ (or the ones named): `prism export mitsuba`
+# writes its Mitsuba 3 XML afresh (the committed scenes/mitsuba/NAME.xml must equal it),
+# Mitsuba's scalar_rgb variant renders it with K seeds and Prism renders it with K other
+# seeds, both at SPP samples per pixel and the scene's size, and scripts/mitsuba_compare.py
+# decides with a per-pixel Welch t-test (Sidak-corrected) and a whole-image bias bound.
+# A failure leaves the mean, reference, difference and p-value images in the work folder
+# and prints how to look at them. Needs python3 with mitsuba==3.9.1 (installed by .ci/run).
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+cd "$ROOT"
+bin=${1:?usage: $0 PRISM_BIN [K] [SPP] [SCENE.toml ...]}
+k=${2:-16}
+spp=${3:-32}
+shift $(( $# < 3 ? $# : 3 ))
+scenes=("$@")
+if [ ${#scenes[@]} -eq 0 ]; then
+    scenes=(scenes/mitsuba/*.toml)
+fi
+work=$(mktemp -d "${TMPDIR:-/tmp}/prism-mitsuba.XXXXXX")
+failed=()
+for scene in "${scenes[@]}"; do
+    name=$(basename "$scene" .toml)
+    dir="$work/$name"
+    mkdir -p "$dir"
+    "$bin" export mitsuba "$scene" -o "$dir/$name.xml"
+    committed="scenes/mitsuba/$name.xml"
+    if ! cmp -s "$dir/$name.xml" "$committed"; then
+        echo "error: $committed is not what the exporter writes now; regenerate it with:" >&2
+        echo "  $bin export mitsuba $scene -o $committed" >&2
+        diff -u "$committed" "$dir/$name.xml" | head -20 >&2 || true
+        failed+=("$name")
+        continue
+    fi
+    python3 scripts/mitsuba_render_seeds.py "$dir/$name.xml" --seeds "$k" --spp "$spp" --out "$dir/mitsuba" >/dev/null
+    scripts/prism_render_seeds.sh "$bin" "$scene" "$k" "$spp" "$dir/prism" >/dev/null 2>&1
+    if python3 scripts/mitsuba_compare.py --name "$name" --out "$dir/compare" \
+        --prism "$dir"/prism/prism_*.exr --mitsuba "$dir"/mitsuba/mitsuba_*.exr; then
+        :
+    else
+        echo "the images of $name are in $dir/compare (mean, reference, difference, p-values)" >&2
+        failed+=("$name")
+    fi
+done
+if [ ${#failed[@]} -gt 0 ]; then
+    echo "FAIL: ${failed[*]} (K=$k, $spp spp each; work folder $work)" >&2
+    exit 1
+fi
+echo "all ${#scenes[@]} Mitsuba equivalence scenes pass (K=$k, $spp spp each)"
+rm -rf "$work"
