@@ -4,7 +4,8 @@
 # Usage: scripts/mitsuba-check.sh PRISM_BIN [K] [SPP] [SCENE.toml ...]
 #
 # For every equivalence scene in scenes/mitsuba/ (or the ones named): `prism export mitsuba`
-# writes its Mitsuba 3 XML afresh (the committed scenes/mitsuba/NAME.xml must equal it),
+# writes its Mitsuba 3 XML afresh in place (git must see no change to the committed
+# scenes/mitsuba/NAME.xml and NAME_meshes/),
 # Mitsuba's scalar_rgb variant renders it with K seeds and Prism renders it with K other
 # seeds, both at SPP samples per pixel and the scene's size, and scripts/mitsuba_compare.py
 # decides with a per-pixel Welch t-test (Sidak-corrected) and a whole-image bias bound.
@@ -27,16 +28,20 @@ for scene in "${scenes[@]}"; do
     name=$(basename "$scene" .toml)
     dir="$work/$name"
     mkdir -p "$dir"
-    "$bin" export mitsuba "$scene" -o "$dir/$name.xml"
-    committed="scenes/mitsuba/$name.xml"
-    if ! cmp -s "$dir/$name.xml" "$committed"; then
-        echo "error: $committed is not what the exporter writes now; regenerate it with:" >&2
-        echo "  $bin export mitsuba $scene -o $committed" >&2
-        diff -u "$committed" "$dir/$name.xml" | head -20 >&2 || true
+    # Written in place (its file references are relative to it), then compared with the
+    # committed version by git.
+    folder=$(dirname "$scene")
+    committed="$folder/$name.xml"
+    "$bin" export mitsuba "$scene" -o "$committed"
+    if ! git diff --quiet -- "$committed" "$folder/${name}_meshes" ||
+        [ -n "$(git ls-files --others --exclude-standard -- "$committed" "$folder/${name}_meshes")" ]; then
+        echo "error: $committed is not what the exporter writes now (or is not committed); the fresh" >&2
+        echo "export is in the work tree: review it with git diff and commit it" >&2
+        git diff -- "$committed" | head -20 >&2 || true
         failed+=("$name")
         continue
     fi
-    python3 scripts/mitsuba_render_seeds.py "$dir/$name.xml" --seeds "$k" --spp "$spp" --out "$dir/mitsuba" >/dev/null
+    python3 scripts/mitsuba_render_seeds.py "$committed" --seeds "$k" --spp "$spp" --out "$dir/mitsuba" >/dev/null
     scripts/prism_render_seeds.sh "$bin" "$scene" "$k" "$spp" "$dir/prism" >/dev/null 2>&1
     if python3 scripts/mitsuba_compare.py --name "$name" --out "$dir/compare" \
         --prism "$dir"/prism/prism_*.exr --mitsuba "$dir"/mitsuba/mitsuba_*.exr; then

@@ -326,11 +326,7 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mu
                 ));
                 continue;
             }
-            let sides: &[bool] =
-                if material.material.emission.two_sided && emission.is_some() { &[false, true] } else { &[false] };
-            for &flip in sides {
-                shape_xml(out, &part, &world_from_shape, &bsdf, emission.as_deref(), flip, mesh_prefix);
-            }
+            shape_xml(out, &part, &world_from_shape, &bsdf, emission.as_deref(), mesh_prefix);
         }
     }
 }
@@ -341,7 +337,6 @@ fn shape_xml(
     world_from_shape: &DAffine3,
     bsdf: &str,
     emission: Option<&str>,
-    flip_normals: bool,
     mesh_prefix: &str,
 ) {
     let kind = match &part.kind {
@@ -367,9 +362,6 @@ fn shape_xml(
             number(length),
             number(radius)
         );
-    }
-    if flip_normals {
-        let _ = writeln!(xml, "    <boolean name=\"flip_normals\" value=\"true\"/>");
     }
     let _ = writeln!(
         xml,
