@@ -116,10 +116,15 @@ fn randfloat(i: u32, p: u32) -> f64 {
 
 /// Sample `s` of `n` correlated multi-jittered samples in [0, 1)^2 for pattern `p`: each
 /// sample sits in its own cell of an m x k grid and in its own row and column strata.
+///
+/// When `n` is not `m * k` the grid has more cells than samples: the samples take a random
+/// subset of the cells (the permutation runs over all `m * k`), so that every point of the
+/// square is equally likely over patterns. (Permuting over `n` alone would leave the last
+/// row's remaining cells empty in every pattern: a biased pixel integral.)
 pub fn cmj(s: u32, n: u32, p: u32) -> DVec2 {
     let m = (f64::from(n).sqrt() as u32).max(1);
     let k = n.div_ceil(m);
-    let s = permute(s, n, p.wrapping_mul(0x51633e2d));
+    let s = permute(s, m * k, p.wrapping_mul(0x51633e2d));
     let sx = permute(s % m, m, p.wrapping_mul(0x68bc21eb));
     let sy = permute(s / m, k, p.wrapping_mul(0x02e5be93));
     place(s, p, (s % m, s / m), (sx, sy), (1.0 / f64::from(m), 1.0 / f64::from(k)))
@@ -141,7 +146,8 @@ fn place(s: u32, p: u32, (col, row): (u32, u32), (sx, sy): (u32, u32), (inv_m, i
 /// once (the row and column permutations are tabulated): `sample(s)` equals
 /// `cmj(s, n, p)` bit for bit, at a fraction of the cost when a pixel takes many samples.
 pub struct CmjPattern {
-    n: u32,
+    /// Cells of the m x k grid (at least the sample count).
+    cells: u32,
     m: u32,
     p: u32,
     /// 1 / m and 1 / k.
@@ -192,13 +198,14 @@ impl CmjPattern {
             }
         };
         let table = PermutationTable::new(m + k, entry);
-        Self { n, m, p, inverse_sizes: (1.0 / f64::from(m), 1.0 / f64::from(k)), table }
+        Self { cells: m * k, m, p, inverse_sizes: (1.0 / f64::from(m), 1.0 / f64::from(k)), table }
     }
 
     /// Sample `s` (0 <= s < n) in [0, 1)^2.
     pub fn sample(&self, s: u32) -> DVec2 {
         let (m, p) = (self.m, self.p);
-        let s = permute(s, self.n, p.wrapping_mul(0x51633e2d));
+        // Over every cell of the grid, as in [`cmj`].
+        let s = permute(s, self.cells, p.wrapping_mul(0x51633e2d));
         let (col, row) = (s % m, s / m);
         place(s, p, (col, row), (self.table.get(col), self.table.get(m + row)), self.inverse_sizes)
     }
@@ -431,6 +438,27 @@ mod tests {
         // Each entry is the CMJ pattern of its key.
         let pattern = CmjPattern::new(9, PatternTable::key(5, 1));
         assert!((0..9).all(|s| a.square[5 * 9 + s as usize] == pattern.sample(s)));
+    }
+
+    /// Over patterns, a sample is equally likely anywhere in the square, for any count: the
+    /// top-right corner (where a partly filled last grid row ends) gets its share.
+    #[test]
+    fn cmj_covers_the_square_uniformly_for_any_count() {
+        for n in [7u32, 12, 30, 128] {
+            let patterns = 4000u32;
+            let inside = (0..patterns)
+                .flat_map(|p| (0..n).map(move |s| cmj(s, n, p.wrapping_mul(2_654_435_761))))
+                .filter(|u| u.x >= 0.75 && u.y >= 0.75)
+                .count() as f64;
+            let total = f64::from(patterns * n);
+            let expected = total / 16.0;
+            // Stratification only lowers the variance below the binomial one.
+            let sigma = (total * (1.0 / 16.0) * (15.0 / 16.0)).sqrt();
+            assert!(
+                (inside - expected).abs() < 5.0 * sigma,
+                "n = {n}: {inside} samples in the corner, expected {expected}"
+            );
+        }
     }
 
     #[test]
