@@ -119,6 +119,11 @@ impl Shape for Rectangle {
         let points = [c[0], c[1], c[2], c[3], c[0]].map(pov::vector).join(", ");
         Some(format!("polygon {{ 5, {points} }}"))
     }
+
+    fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
+        let place = prism_api::DAffine3::from_scale(DVec3::new(self.half_width, self.half_height, 1.0));
+        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Rectangle, place)])
+    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,194 @@
+//! The `path` integrator against committed Mitsuba 3 references, without Mitsuba installed
+//! (CI also renders fresh references and runs the full test: `scripts/mitsuba-check.sh`).
+//!
+//! For every equivalence scene `scenes/mitsuba/NAME.toml`:
+//! - the committed `NAME.xml` (and its PLY meshes) is what `prism export mitsuba` writes now;
+//! - `refs/NAME.exr` is Mitsuba's mean over 16 seeds and `refs/NAME_stderr.exr` its standard
+//!   error per pixel channel (`scripts/mitsuba-references.py`); a missing reference fails;
+//! - Prism renders the scene with [`SEEDS`] seeds at [`SAMPLES`] samples per pixel each, and
+//!   every pixel channel's mean is compared with the reference by a z-score over both
+//!   standard errors (Prism's measured over its seeds): at least [`MIN_PASS`] of the channels
+//!   must lie within [`Z_LIMIT`], and the image means must agree within [`MAX_BIAS`]. This
+//!   is the quick check; the live one (`scripts/mitsuba-check.sh`, 16 fresh seeds on each
+//!   side, Welch and Sidak) is the strict one.
+//!
+//! A failure writes the Prism image and a difference image next to the target folder and
+//! prints how to regenerate the references.
+
+use std::path::{Path, PathBuf};
+
+use prism::film::Film;
+use prism::render::{RenderOptions, render_frame};
+
+/// Prism's seeds.
+const SEEDS: u64 = 8;
+/// Prism's samples per pixel per seed.
+const SAMPLES: u32 = 32;
+/// A pixel channel passes within this many standard errors: Student's t at two-sided
+/// p = 0.001 for the 7 degrees of freedom of Prism's 8-seed error estimate (heavier-tailed
+/// pixels, caustics seen through glass, fail more often than that).
+const Z_LIMIT: f64 = 5.41;
+/// Fraction of pixel channels that must pass.
+const MIN_PASS: f64 = 0.98;
+/// Largest relative difference of the image means.
+const MAX_BIAS: f64 = 0.01;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scenes() -> Vec<PathBuf> {
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(root().join("scenes/mitsuba"))
+        .expect("scenes/mitsuba exists")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    scenes.sort();
+    scenes
+}
+
+fn load(scene: &Path) -> prism::world::Scene {
+    prism::scene::load::load_file(scene, &prism::plugins::registry())
+        .unwrap_or_else(|e| panic!("{}: {e}", scene.display()))
+}
+
+#[test]
+fn there_are_at_least_twelve_equivalence_scenes() {
+    let count = scenes().len();
+    assert!(count >= 12, "only {count} equivalence scenes in scenes/mitsuba");
+}
+
+#[test]
+fn the_committed_mitsuba_scenes_are_what_the_exporter_writes() {
+    for scene in scenes() {
+        let mut loaded = load(&scene);
+        prism::world::transforms::resolve_transforms(&mut loaded).unwrap();
+        prism::world::validate::validate(&loaded).unwrap();
+        let name = scene.file_stem().unwrap().to_string_lossy().into_owned();
+        let folder = scene.parent().unwrap();
+        let source = scene.file_name().unwrap().to_string_lossy().into_owned();
+        let exported = prism::export::mitsuba::export(&loaded, &source, &format!("{name}_meshes/"), folder)
+            .unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
+        let regenerate = format!("regenerate with: cargo run --release -- export mitsuba {0} -o {1}", scene.display(), folder.join(format!("{name}.xml")).display());
+        let committed = std::fs::read_to_string(folder.join(format!("{name}.xml")))
+            .unwrap_or_else(|e| panic!("{name}.xml: {e}; {regenerate}"));
+        assert!(committed == exported.xml, "scenes/mitsuba/{name}.xml is stale; {regenerate}");
+        for (file, bytes) in &exported.meshes {
+            let on_disk = std::fs::read(folder.join(file)).unwrap_or_else(|e| panic!("{file}: {e}; {regenerate}"));
+            assert!(&on_disk == bytes, "scenes/mitsuba/{file} is stale; {regenerate}");
+        }
+    }
+}
+
+/// The per-pixel mean of `films`.
+fn mean_film(films: &[Film]) -> Film {
+    let mut mean = films[0].clone();
+    for (i, p) in mean.pixels.iter_mut().enumerate() {
+        for c in 0..3 {
+            p[c] = (films.iter().map(|f| f64::from(f.pixels[i][c])).sum::<f64>() / films.len() as f64) as f32;
+        }
+    }
+    mean
+}
+
+/// The per-pixel standard error of the mean of `films` (whose mean is `mean`).
+fn stderr_film(films: &[Film], mean: &Film) -> Film {
+    let n = films.len() as f64;
+    let mut out = mean.clone();
+    for (i, p) in out.pixels.iter_mut().enumerate() {
+        for c in 0..3 {
+            let m = f64::from(mean.pixels[i][c]);
+            let variance = films.iter().map(|f| (f64::from(f.pixels[i][c]) - m).powi(2)).sum::<f64>() / (n - 1.0);
+            p[c] = (variance / n).sqrt() as f32;
+        }
+    }
+    out
+}
+
+fn read(path: &Path) -> Film {
+    prism::output::read_exr(path).unwrap_or_else(|e| {
+        panic!(
+            "{}: {e}\nrender the references with: python3 scripts/mitsuba-references.py (needs pip install mitsuba==3.9.1)",
+            path.display()
+        )
+    })
+}
+
+#[test]
+fn the_path_integrator_matches_mitsuba_on_every_equivalence_scene() {
+    let mut failures = Vec::new();
+    for scene in scenes() {
+        let name = scene.file_stem().unwrap().to_string_lossy().into_owned();
+        let refs = root().join("scenes/mitsuba/refs");
+        let reference = read(&refs.join(format!("{name}.exr")));
+        let stderr = read(&refs.join(format!("{name}_stderr.exr")));
+        let mut loaded = load(&scene);
+        loaded.render.samples = SAMPLES;
+        let films: Vec<Film> = (0..SEEDS)
+            .map(|seed| {
+                loaded.render.seed = 4242 + seed;
+                let mut copy = load(&scene);
+                copy.render = loaded.render.clone();
+                let prepared = prism::prepare(&mut copy).unwrap();
+                render_frame(&prepared, &RenderOptions { threads: Some(2), ..Default::default() }).unwrap().0
+            })
+            .collect();
+        let film = mean_film(&films);
+        let film_stderr = stderr_film(&films, &film);
+        assert_eq!((film.width, film.height), (reference.width, reference.height), "{name}: size");
+
+        let (mut passed, mut total) = (0usize, 0usize);
+        let (mut sum_p, mut sum_m) = (0.0, 0.0);
+        let mut worst = (0.0f64, 0u32, 0u32);
+        for y in 0..film.height {
+            for x in 0..film.width {
+                let (p, m, s, q) = (film.get(x, y), reference.get(x, y), stderr.get(x, y), film_stderr.get(x, y));
+                for c in 0..3 {
+                    let (p, m, s, q) = (f64::from(p[c]), f64::from(m[c]), f64::from(s[c]), f64::from(q[c]));
+                    sum_p += p;
+                    sum_m += m;
+                    let sigma = (s * s + q * q).sqrt();
+                    let difference = (p - m).abs();
+                    // Channels both renderers see as one constant agree to float rounding.
+                    let z = if difference <= 2e-5 * p.abs().max(m.abs()) { 0.0 } else { difference / sigma.max(1e-30) };
+                    total += 1;
+                    passed += usize::from(z <= Z_LIMIT);
+                    if z > worst.0 {
+                        worst = (z, x, y);
+                    }
+                }
+            }
+        }
+        let fraction = passed as f64 / total as f64;
+        let bias = (sum_p - sum_m) / sum_m.max(1e-30);
+        if fraction < MIN_PASS || bias.abs() > MAX_BIAS {
+            let out = root().join("target/mitsuba-failures");
+            let _ = std::fs::create_dir_all(&out);
+            let _ = prism::output::write_image(&film, &out.join(format!("{name}_prism.exr")), &Default::default());
+            let mut difference = film.clone();
+            for (d, r) in difference.pixels.iter_mut().zip(&reference.pixels) {
+                for c in 0..3 {
+                    d[c] = (d[c] - r[c]).abs();
+                }
+            }
+            let _ = prism::output::write_image(&difference, &out.join(format!("{name}_difference.exr")), &Default::default());
+            failures.push(format!(
+                "{name}: {:.3} % of pixel channels within {Z_LIMIT} sigma (need {:.1} %) \
+                 (worst z {:.1} at {}, {}), image mean {:+.3} % (limit {:.1} %); images in {}",
+                100.0 * fraction,
+                100.0 * MIN_PASS,
+                worst.0,
+                worst.1,
+                worst.2,
+                100.0 * bias,
+                100.0 * MAX_BIAS,
+                out.display()
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{}\nif the scenes changed on purpose, regenerate the references: python3 scripts/mitsuba-references.py",
+        failures.join("\n")
+    );
+}
