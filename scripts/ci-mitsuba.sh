@@ -15,4 +15,4 @@ if ! python3 -c "import mitsuba, sys; sys.exit(mitsuba.__version__ != '$MITSUBA'
 fi
 python3 -c "import mitsuba; print('Mitsuba', mitsuba.__version__)"
 cargo build --release --quiet
-bash scripts/mitsuba-check.sh target/release/prism 16 128
+bash scripts/mitsuba-check.sh target/release/prism 16 256
