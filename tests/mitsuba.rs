@@ -69,7 +69,11 @@ fn the_committed_mitsuba_scenes_are_what_the_exporter_writes() {
         let source = scene.file_name().unwrap().to_string_lossy().into_owned();
         let exported = prism::export::mitsuba::export(&loaded, &source, &format!("{name}_meshes/"), folder)
             .unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
-        let regenerate = format!("regenerate with: cargo run --release -- export mitsuba {0} -o {1}", scene.display(), folder.join(format!("{name}.xml")).display());
+        let regenerate = format!(
+            "regenerate with: cargo run --release -- export mitsuba {0} -o {1}",
+            scene.display(),
+            folder.join(format!("{name}.xml")).display()
+        );
         let committed = std::fs::read_to_string(folder.join(format!("{name}.xml")))
             .unwrap_or_else(|e| panic!("{name}.xml: {e}; {regenerate}"));
         assert!(committed == exported.xml, "scenes/mitsuba/{name}.xml is stale; {regenerate}");
@@ -84,8 +88,8 @@ fn the_committed_mitsuba_scenes_are_what_the_exporter_writes() {
 fn mean_film(films: &[Film]) -> Film {
     let mut mean = films[0].clone();
     for (i, p) in mean.pixels.iter_mut().enumerate() {
-        for c in 0..3 {
-            p[c] = (films.iter().map(|f| f64::from(f.pixels[i][c])).sum::<f64>() / films.len() as f64) as f32;
+        for (c, value) in p.iter_mut().enumerate() {
+            *value = (films.iter().map(|f| f64::from(f.pixels[i][c])).sum::<f64>() / films.len() as f64) as f32;
         }
     }
     mean
@@ -96,10 +100,10 @@ fn stderr_film(films: &[Film], mean: &Film) -> Film {
     let n = films.len() as f64;
     let mut out = mean.clone();
     for (i, p) in out.pixels.iter_mut().enumerate() {
-        for c in 0..3 {
+        for (c, value) in p.iter_mut().enumerate() {
             let m = f64::from(mean.pixels[i][c]);
             let variance = films.iter().map(|f| (f64::from(f.pixels[i][c]) - m).powi(2)).sum::<f64>() / (n - 1.0);
-            p[c] = (variance / n).sqrt() as f32;
+            *value = (variance / n).sqrt() as f32;
         }
     }
     out
@@ -171,7 +175,11 @@ fn the_path_integrator_matches_mitsuba_on_every_equivalence_scene() {
                     d[c] = (d[c] - r[c]).abs();
                 }
             }
-            let _ = prism::output::write_image(&difference, &out.join(format!("{name}_difference.exr")), &Default::default());
+            let _ = prism::output::write_image(
+                &difference,
+                &out.join(format!("{name}_difference.exr")),
+                &Default::default(),
+            );
             failures.push(format!(
                 "{name}: {:.3} % of pixel channels within {Z_LIMIT} sigma (need {:.1} %) \
                  (worst z {:.1} at {}, {}), image mean {:+.3} % (limit {:.1} %); images in {}",

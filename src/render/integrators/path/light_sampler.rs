@@ -286,7 +286,7 @@ impl LightSampler {
                 };
                 let to_light = position - point;
                 let distance = to_light.length();
-                if !(distance > 0.0) || intensity.max_element() <= 0.0 {
+                if distance.is_nan() || distance <= 0.0 || intensity.max_element() <= 0.0 {
                     return None;
                 }
                 Some(LightSample::Delta {
