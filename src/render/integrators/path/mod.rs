@@ -261,7 +261,7 @@ impl<'a> Path<'a> {
                 }
                 f * irradiance
             }
-            LightSample::Emitter { primitive, direction, distance, pdf } => {
+            LightSample::Emitter { primitive, direction, pdf, .. } => {
                 let wi = frame.to_local(direction);
                 let f = scatter.eval(wo, wi);
                 if f.max_element() <= 0.0 {
@@ -269,7 +269,12 @@ impl<'a> Path<'a> {
                 }
                 let origin = Self::offset_origin(vertex, direction);
                 let ray = Ray::new(origin, direction);
-                let Some(hit) = self.closest(&ray, distance * (1.0 + 1e-6) + RAY_EPSILON) else {
+                // Unoccluded when the nearest hit along the ray is the emitter itself. No
+                // distance limit: a mesh emitter seen at a grazing angle is hit in f32 with
+                // an error in `t` far beyond any fixed margin (the Cornell box's walls lost
+                // half their light near the lamp's plane), while anything in front of the
+                // emitter is hit first anyway.
+                let Some(hit) = self.closest(&ray, MAX_DISTANCE) else {
                     return DVec3::ZERO;
                 };
                 if hit.primitive != primitive {
