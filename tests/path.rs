@@ -133,3 +133,25 @@ fn the_image_is_the_same_for_any_thread_count() {
     let two = render_text(SCENE, 2);
     assert_eq!(one.pixels, two.pixels);
 }
+
+#[test]
+fn bad_physical_materials_are_errors_naming_the_key() {
+    let cases = [
+        ("material = { bsdf = { type = \"dielectric\", eta = 1.5 } }", "eta"),
+        ("material = { bsdf = { type = \"conductor\", metal = \"Au\", alpha = 2.0 } }", "alpha"),
+        ("material = { bsdf = { type = \"dielectric\", ior = 50.0 } }", "ior"),
+        ("material = { bsdf = { type = \"conductor\", metal = \"Unobtainium\" } }", "metal"),
+        ("material = { bsdf = { type = \"diffuse\" }, phong = 0.5 }", "phong"),
+        ("material = { bsdf = { type = \"diffuse\" }, emission = [-1, 0, 0] }", "emission"),
+    ];
+    for (material, key) in cases {
+        let text: &'static str = Box::leak(format!("[[object]]\nshape = \"sphere\"\n{material}\n").into_boxed_str());
+        let files: &'static [(&'static str, &'static str)] = Box::leak(Box::new([("scene.toml", text)]));
+        let embedded: &'static Embedded = Box::leak(Box::new(Embedded(files)));
+        let error = match load_from(embedded, Path::new("scene.toml"), &prism::plugins::registry()) {
+            Ok(mut scene) => prism::prepare(&mut scene).err().map(|e| e.to_string()).unwrap_or_default(),
+            Err(e) => e.to_string(),
+        };
+        assert!(error.contains("scene.toml:3") && error.contains(key), "{material}: {error}");
+    }
+}

@@ -268,6 +268,12 @@ impl MaterialSpec {
         if let Some(bsdf) = &self.bsdf {
             self.check_only_bsdf()?;
             bsdf.to_scattering()?.check()?;
+            if self.emission.0.min_element() < 0.0 {
+                return Err((
+                    "emission",
+                    format!("radiance must not be negative, got {:?}", self.emission.0.to_array()),
+                ));
+            }
         }
         if let Some(p) = &self.pbr {
             for (key, v) in [("pbr.metallic", p.metallic), ("pbr.roughness", p.roughness)] {
@@ -275,8 +281,8 @@ impl MaterialSpec {
                     return Err((key, format!("must be between 0 and 1, got {v}")));
                 }
             }
-            if !p.emissive.is_finite() {
-                return Err(("pbr.emissive", "must be finite".into()));
+            if !p.emissive.is_finite() || p.emissive.0.min_element() < 0.0 {
+                return Err(("pbr.emissive", "must be finite and not negative".into()));
             }
             for t in [&p.metallic_roughness_texture, &p.emissive_texture].into_iter().flatten() {
                 t.check()?;
