@@ -8,3 +8,16 @@
 
 pub mod mitsuba;
 pub mod pov;
+
+use crate::diagnostics::{Diagnostic, SceneError};
+
+/// An exporter's errors in file order, once each (the objects a model file expands to share
+/// one location).
+fn in_file_order(mut errors: Vec<Diagnostic>) -> SceneError {
+    errors.sort_by(|a, b| {
+        let key = |d: &Diagnostic| (d.location.file.clone(), d.location.line, d.location.column);
+        key(a).cmp(&key(b))
+    });
+    errors.dedup();
+    SceneError { diagnostics: errors }
+}

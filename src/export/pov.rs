@@ -58,13 +58,7 @@ pub fn export(scene: &Scene, source: &str) -> Result<String, SceneError> {
     if errors.is_empty() {
         return Ok(out);
     }
-    // In file order, once each (the objects a model file expands to share one location).
-    errors.sort_by(|a, b| {
-        let key = |d: &Diagnostic| (d.location.file.clone(), d.location.line, d.location.column);
-        key(a).cmp(&key(b))
-    });
-    errors.dedup();
-    Err(SceneError { diagnostics: errors })
+    Err(super::in_file_order(errors))
 }
 
 /// The POV-Ray options in the header line of an exported file, if it has one.

@@ -178,6 +178,31 @@ mod tests {
         assert!(pearson_of(&upper, 10, 20) < 1e-10);
     }
 
+    /// The chi-square CDF against known quantiles.
+    #[test]
+    fn chi2_quantiles() {
+        // (statistic, dof, upper-tail p)
+        for (x, k, p) in
+            [(3.841459, 1, 0.05), (18.307038, 10, 0.05), (6.634897, 1, 0.01), (124.342113, 100, 0.05), (0.0, 5, 1.0)]
+        {
+            let got = prism_api::contract::chi_square_p_value(x, k);
+            assert!((got - p).abs() < 1e-6, "chi2({x}, {k}) = {got}, want {p}");
+        }
+    }
+
+    /// A sampler that disagrees with its pdf by 20 % in a tenth of the cells fails; one within
+    /// its noise passes.
+    #[test]
+    fn pearson_rejects_a_wrong_distribution() {
+        let expected = vec![1000.0_f64; 100];
+        let mut rng = TestRng::new(1);
+        let fair: Vec<f64> = expected.iter().map(|&e| e + (rng.uniform() - 0.5) * 2.0 * e.sqrt() * 1.7).collect();
+        assert!(pearson(&fair, &expected).p_value > 0.01);
+        let skewed: Vec<f64> =
+            expected.iter().enumerate().map(|(i, &e)| if i < 10 { e * 1.2 } else { e * (1.0 - 0.2 / 9.0) }).collect();
+        assert!(pearson(&skewed, &expected).p_value < 1e-6);
+    }
+
     fn pearson_of(directions: &[DVec3], cos_bins: usize, phi_bins: usize) -> f64 {
         let expected = sphere_expected(&|_| 1.0 / (4.0 * PI), cos_bins, phi_bins, directions.len() as f64);
         let mut observed = vec![0.0; cos_bins * phi_bins];

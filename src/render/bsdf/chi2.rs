@@ -16,6 +16,7 @@ use glam::{DVec2, DVec3};
 
 use super::Bsdf;
 use crate::render::sampling::{mix64, to_unit};
+use crate::test_support::chi2::{ChiSquare, pearson};
 
 /// Cosines of the incident directions every test uses.
 pub const COS_WO: [f64; 3] = [0.9, 0.5, 0.1];
@@ -117,110 +118,6 @@ fn simpson(bsdf: &Bsdf, wo: DVec3, c0: f64, dc: f64, p0: f64, dp: f64) -> f64 {
     sum * (dc / SUBDIV as f64 / 3.0) * (dp / SUBDIV as f64 / 3.0)
 }
 
-/// ln Γ(x) for x > 0 (Lanczos, g = 7, n = 9).
-fn ln_gamma(x: f64) -> f64 {
-    const C: [f64; 9] = [
-        0.999_999_999_999_809_9,
-        676.520_368_121_885_1,
-        -1_259.139_216_722_402_8,
-        771.323_428_777_653_1,
-        -176.615_029_162_140_6,
-        12.507_343_278_686_905,
-        -0.138_571_095_265_720_12,
-        9.984_369_578_019_572e-6,
-        1.505_632_735_149_311_6e-7,
-    ];
-    if x < 0.5 {
-        return (PI / (PI * x).sin()).ln() - ln_gamma(1.0 - x);
-    }
-    let x = x - 1.0;
-    let mut a = C[0];
-    let t = x + 7.5;
-    for (i, c) in C.iter().enumerate().skip(1) {
-        a += c / (x + i as f64);
-    }
-    0.5 * TAU.ln() + (x + 0.5) * t.ln() - t + a.ln()
-}
-
-/// The regularised upper incomplete gamma function Q(a, x) = Γ(a, x) / Γ(a).
-fn gamma_q(a: f64, x: f64) -> f64 {
-    if x <= 0.0 {
-        return 1.0;
-    }
-    let prefix = (-x + a * x.ln() - ln_gamma(a)).exp();
-    if x < a + 1.0 {
-        // Series for P(a, x).
-        let (mut term, mut sum, mut n) = (1.0 / a, 1.0 / a, a);
-        for _ in 0..10_000 {
-            n += 1.0;
-            term *= x / n;
-            sum += term;
-            if term.abs() < sum.abs() * 1e-16 {
-                break;
-            }
-        }
-        1.0 - sum * prefix
-    } else {
-        // Continued fraction for Q(a, x) (modified Lentz).
-        let tiny = 1e-300;
-        let mut b = x + 1.0 - a;
-        let mut c = 1.0 / tiny;
-        let mut d = 1.0 / b;
-        let mut h = d;
-        for i in 1..10_000 {
-            let an = -(i as f64) * (i as f64 - a);
-            b += 2.0;
-            d = an * d + b;
-            if d.abs() < tiny {
-                d = tiny;
-            }
-            c = b + an / c;
-            if c.abs() < tiny {
-                c = tiny;
-            }
-            d = 1.0 / d;
-            let delta = d * c;
-            h *= delta;
-            if (delta - 1.0).abs() < 1e-16 {
-                break;
-            }
-        }
-        prefix * h
-    }
-}
-
-/// p-value of a chi-square statistic with `dof` degrees of freedom.
-pub fn chi2_p_value(statistic: f64, dof: usize) -> f64 {
-    gamma_q(dof as f64 / 2.0, statistic / 2.0)
-}
-
-/// Pearson's statistic over (observed, expected) cells after pooling those expecting fewer
-/// than 5; returns (statistic, degrees of freedom), or an error for samples in a cell whose
-/// density integrates to zero.
-fn pearson(cells: &[(f64, f64)]) -> Result<(f64, usize), String> {
-    let mut kept = Vec::new();
-    let (mut pool_o, mut pool_e) = (0.0, 0.0);
-    for &(o, e) in cells {
-        if e < 1e-9 * SAMPLES as f64 && o > 0.0 {
-            return Err(format!("{o} samples where the pdf integrates to {e}"));
-        }
-        if e < 5.0 {
-            pool_o += o;
-            pool_e += e;
-        } else {
-            kept.push((o, e));
-        }
-    }
-    if pool_e >= 5.0 {
-        kept.push((pool_o, pool_e));
-    } else if let Some(smallest) = kept.iter_mut().min_by(|a, b| a.1.total_cmp(&b.1)) {
-        smallest.0 += pool_o;
-        smallest.1 += pool_e;
-    }
-    let statistic = kept.iter().map(|&(o, e)| (o - e) * (o - e) / e).sum();
-    Ok((statistic, kept.len().saturating_sub(1).max(1)))
-}
-
 fn relative(a: f64, b: f64) -> f64 {
     (a - b).abs() / a.abs().max(b.abs()).max(1e-300)
 }
@@ -275,8 +172,8 @@ pub fn check(bsdf: &Bsdf, wo: DVec3, label: &str) -> f64 {
     }
     // Delta and rejected samples: what the cells leave.
     cells.push((n - sum_o, (n - sum_e).max(0.0)));
-    let (statistic, dof) = pearson(&cells).unwrap_or_else(|e| panic!("{label}, wo {wo}: {e}"));
-    let p_value = chi2_p_value(statistic, dof);
+    let (observed, expected): (Vec<f64>, Vec<f64>) = cells.into_iter().unzip();
+    let ChiSquare { statistic, dof, p_value } = pearson(&observed, &expected);
     let threshold = 1.0 - (1.0 - SIGNIFICANCE).powf(1.0 / TESTS);
     eprintln!("chi2 {label}, cos wo {:.2}: statistic {statistic:.1}, dof {dof}, p {p_value:.4}", wo.z);
     assert!(
@@ -328,44 +225,5 @@ pub fn check_reciprocity(bsdf: &Bsdf) {
         let f2 = bsdf.eval(wi, wo) / wo.z;
         let scale = f1.abs().max_element().max(f2.abs().max_element()).max(1e-300);
         assert!((f1 - f2).abs().max_element() / scale < 1e-9, "{bsdf:?}: wo {wo} wi {wi}: {f1} vs {f2}");
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The chi-square CDF against known quantiles.
-    #[test]
-    fn chi2_quantiles() {
-        // (statistic, dof, upper-tail p)
-        for (x, k, p) in
-            [(3.841459, 1, 0.05), (18.307038, 10, 0.05), (6.634897, 1, 0.01), (124.342113, 100, 0.05), (0.0, 5, 1.0)]
-        {
-            let got = chi2_p_value(x, k);
-            assert!((got - p).abs() < 1e-6, "chi2({x}, {k}) = {got}, want {p}");
-        }
-        assert!((ln_gamma(5.0) - 24f64.ln()).abs() < 1e-12);
-        assert!((ln_gamma(0.5) - PI.sqrt().ln()).abs() < 1e-12);
-    }
-
-    /// A sampler that disagrees with its pdf fails: the test can fail.
-    #[test]
-    fn pearson_rejects_a_wrong_distribution() {
-        let expected = vec![1000.0_f64; 100];
-        let mut rng = Rng::new(1);
-        let fair: Vec<(f64, f64)> =
-            expected.iter().map(|&e| (e + (rng.next() - 0.5) * 2.0 * e.sqrt() * 1.7, e)).collect();
-        let (s, k) = pearson(&fair).unwrap();
-        assert!(chi2_p_value(s, k) > 0.01);
-        // 20% too many samples in a tenth of the cells, too few elsewhere.
-        let skewed: Vec<(f64, f64)> = expected
-            .iter()
-            .enumerate()
-            .map(|(i, &e)| (if i < 10 { e * 1.2 } else { e * (1.0 - 0.2 / 9.0) }, e))
-            .collect();
-        let (s, k) = pearson(&skewed).unwrap();
-        assert!(chi2_p_value(s, k) < 1e-6);
-        assert!(pearson(&[(3.0, 0.0), (100.0, 103.0)]).is_err());
     }
 }
