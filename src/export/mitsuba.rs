@@ -91,12 +91,7 @@ pub fn export(scene: &Scene, source: &str, mesh_prefix: &str, xml_dir: &Path) ->
     if errors.is_empty() {
         return Ok(out);
     }
-    errors.sort_by(|a, b| {
-        let key = |d: &Diagnostic| (d.location.file.clone(), d.location.line, d.location.column);
-        key(a).cmp(&key(b))
-    });
-    errors.dedup();
-    Err(SceneError { diagnostics: errors })
+    Err(super::in_file_order(errors))
 }
 
 /// `path` relative to the folder `base` (both made absolute first), for file references that
@@ -406,20 +401,9 @@ fn ply(t: &TriangleList) -> Vec<u8> {
 
 type Problem = (&'static str, String);
 
-fn has_texture(material: &crate::material::Material) -> bool {
-    use crate::material::SurfaceModel;
-    material.emission.texture.is_some()
-        || match &material.surface {
-            SurfaceModel::Finish(f) => f.texture.is_some(),
-            SurfaceModel::MetallicRoughness(m) => m.finish.texture.is_some() || m.metallic_roughness_texture.is_some(),
-            SurfaceModel::Mtl(m) => m.map_kd.is_some(),
-            SurfaceModel::Physical(p) => p.texture.is_some(),
-        }
-}
-
 /// The `<bsdf>` of a material, indented for a shape.
 fn bsdf_xml(material: &crate::material::Material) -> Result<String, Problem> {
-    if has_texture(material) {
+    if material.is_textured() {
         return Err(("texture", "textures are not exported to Mitsuba yet".into()));
     }
     if matches!(material.surface, crate::material::SurfaceModel::MetallicRoughness(_)) {

@@ -253,6 +253,19 @@ impl Emission {
 }
 
 impl Material {
+    /// True when an image drives any of its parameters (so shading needs the surface's uv).
+    pub fn is_textured(&self) -> bool {
+        self.emission.texture.is_some()
+            || match &self.surface {
+                SurfaceModel::Finish(f) => f.texture.is_some(),
+                SurfaceModel::MetallicRoughness(m) => {
+                    m.finish.texture.is_some() || m.metallic_roughness_texture.is_some()
+                }
+                SurfaceModel::Mtl(m) => m.map_kd.is_some(),
+                SurfaceModel::Physical(p) => p.texture.is_some(),
+            }
+    }
+
     /// The first non-finite or out-of-range parameter, as (key, message); keys are the
     /// scene file's for finishes and glTF's or MTL's names for imported surfaces.
     pub fn check(&self) -> Result<(), (&'static str, String)> {

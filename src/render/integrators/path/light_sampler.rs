@@ -121,8 +121,6 @@ pub enum LightSample {
         primitive: u32,
         /// Unit direction from the shaded point.
         direction: DVec3,
-        /// Distance to the sampled point.
-        distance: f64,
         /// Solid-angle density including the selection probability.
         pdf: f64,
     },
@@ -306,7 +304,6 @@ impl LightSampler {
                 (distance > 0.0 && pdf > 0.0 && pdf.is_finite()).then_some(LightSample::Emitter {
                     primitive: index,
                     direction: to_light / distance,
-                    distance,
                     pdf,
                 })
             }

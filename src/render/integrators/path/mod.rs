@@ -77,7 +77,12 @@ impl<'a> Path<'a> {
 
     fn vertex(&self, ray: &Ray, closest: &ClosestHit) -> Vertex {
         let primitive = &self.scene.primitives[closest.primitive as usize];
-        let surface = primitive.shape.surface(&closest.object_ray, &closest.hit);
+        // The uv costs trigonometry on curved shapes; only textured materials look at it.
+        let surface = if self.materials[primitive.material as usize].is_textured() {
+            primitive.shape.surface(&closest.object_ray, &closest.hit)
+        } else {
+            primitive.shape.surface_geometry(&closest.object_ray, &closest.hit)
+        };
         let geometric_normal = primitive.world_normal(surface.normal);
         let mut shading_normal = primitive.world_normal(surface.shading_normal);
         if shading_normal.dot(geometric_normal) < 0.0 {
@@ -261,7 +266,7 @@ impl<'a> Path<'a> {
                 }
                 f * irradiance
             }
-            LightSample::Emitter { primitive, direction, pdf, .. } => {
+            LightSample::Emitter { primitive, direction, pdf } => {
                 let wi = frame.to_local(direction);
                 let f = scatter.eval(wo, wi);
                 if f.max_element() <= 0.0 {

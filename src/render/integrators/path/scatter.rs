@@ -71,14 +71,21 @@ impl Scatter {
         let mut count = 0;
         for (weight, lobe) in lobes {
             if count < MAX_LOBES && weight.max_element() > 0.0 {
-                let albedo = match &lobe {
-                    Lobe::Bsdf { bsdf, .. } => luminance(bsdf.albedo()).max(0.05),
-                    Lobe::Mirror | Lobe::PassThrough => 1.0,
-                };
-                out.probability[count] = luminance(weight).max(1e-6) * albedo;
                 out.lobes[count] = Some((weight, lobe));
                 count += 1;
             }
+        }
+        if count == 1 {
+            // Most surfaces: no choice to weigh, so no albedo to estimate.
+            out.probability[0] = 1.0;
+            return out;
+        }
+        for (probability, (weight, lobe)) in out.probability.iter_mut().zip(out.lobes.iter().flatten()) {
+            let albedo = match lobe {
+                Lobe::Bsdf { bsdf, .. } => luminance(bsdf.albedo()).max(0.05),
+                Lobe::Mirror | Lobe::PassThrough => 1.0,
+            };
+            *probability = luminance(*weight).max(1e-6) * albedo;
         }
         let total: f64 = out.probability.iter().sum();
         if total > 0.0 {
@@ -222,6 +229,11 @@ impl PathMaterial {
     /// The path integrator's view of `material`.
     pub fn new(material: &Material) -> Self {
         Self { material: material.clone() }
+    }
+
+    /// True when shading reads the surface's uv (an image drives some parameter).
+    pub fn is_textured(&self) -> bool {
+        self.material.is_textured()
     }
 
     /// True when a surface of this material may emit.
