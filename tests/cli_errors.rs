@@ -29,6 +29,31 @@ fn cases() -> Vec<Case> {
     vec![
         case("syntax error", "[render\nwidth = 10\n", &["scene.toml:1:", "syntax"]),
         case(
+            "filter with a POV-Ray method",
+            &format!("[render]\nfilter = {{ type = \"gaussian\" }}\nantialias = {{ method = \"pov1\" }}\n{SPHERE}"),
+            &["scene.toml:", "render.filter", "stratified"],
+        ),
+        case(
+            "gaussian stddev out of range",
+            &format!("[render]\nfilter = {{ type = \"gaussian\", stddev = 0 }}\n{SPHERE}"),
+            &["scene.toml:", "render.filter.stddev", "between 0.05 and 4"],
+        ),
+        case(
+            "unknown filter",
+            &format!("[render]\nfilter = {{ type = \"lanczos\" }}\n{SPHERE}"),
+            &["scene.toml:2:", "render.filter", "lanczos"],
+        ),
+        case(
+            "view_height on a perspective camera",
+            &format!("[camera]\nview_height = 2\n{SPHERE}"),
+            &["scene.toml:", "camera.view_height", "orthographic"],
+        ),
+        case(
+            "orthographic camera with a lens",
+            &format!("[camera]\nprojection = \"orthographic\"\naperture = 0.1\n{SPHERE}"),
+            &["scene.toml:", "camera.aperture", "no lens"],
+        ),
+        case(
             "unknown top-level key",
             "[rendr]\nwidth = 10\n",
             &["scene.toml:1:", "unknown top-level key `rendr`", "did you mean `render`"],

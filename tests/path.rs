@@ -155,3 +155,70 @@ fn bad_physical_materials_are_errors_naming_the_key() {
         assert!(error.contains("scene.toml:3") && error.contains(key), "{material}: {error}");
     }
 }
+
+/// An orthographic camera sees an object the same size at any distance: an emissive square
+/// of side 1 under a view 2 high covers a quarter of the image, wherever the camera stands.
+#[test]
+fn an_orthographic_camera_keeps_sizes_at_any_distance() {
+    let lit_fraction =
+        |film: &Film| film.pixels.iter().filter(|p| p[0] > 0.5).count() as f64 / film.pixels.len() as f64;
+    let near = render_text(
+        "[render]\nwidth = 64\nheight = 64\nintegrator = \"path\"\n\
+         [camera]\nprojection = \"orthographic\"\nposition = [0, 0, 2]\nview_height = 2.0\n\
+         [[object]]\nshape = \"rectangle\"\ntransform = { scale = 0.5 }\nmaterial = { emission = 1.0, bsdf = { type = \"diffuse\" } }\n",
+        2,
+    );
+    let far = render_text(
+        "[render]\nwidth = 64\nheight = 64\nintegrator = \"path\"\n\
+         [camera]\nprojection = \"orthographic\"\nposition = [0, 0, 200]\nview_height = 2.0\n\
+         [[object]]\nshape = \"rectangle\"\ntransform = { scale = 0.5 }\nmaterial = { emission = 1.0, bsdf = { type = \"diffuse\" } }\n",
+        2,
+    );
+    assert_eq!(lit_fraction(&near), 0.25, "a 32 x 32 pixel square");
+    assert_eq!(near.pixels, far.pixels, "distance does not change an orthographic image");
+}
+
+/// Filtered pixels are weighted means: under a uniform environment every pixel is exactly
+/// the environment, for every filter (the weights of Mitchell's negative lobes included).
+#[test]
+fn filters_keep_a_uniform_image_uniform() {
+    for filter in ["{ type = \"gaussian\" }", "{ type = \"gaussian\", stddev = 0.3 }", "{ type = \"mitchell\" }"] {
+        let text = format!(
+            "[render]\nwidth = 16\nheight = 12\nsamples = 16\nintegrator = \"path\"\nfilter = {filter}\n\
+             [world]\nbackground = [0.25, 0.5, 1.0]\n"
+        );
+        let film = render_text(Box::leak(text.into_boxed_str()), 2);
+        for p in &film.pixels {
+            for (c, want) in [0.25f32, 0.5, 1.0].into_iter().enumerate() {
+                assert!((p[c] - want).abs() <= 1e-6 * want, "{filter}: {p:?}");
+            }
+        }
+    }
+}
+
+/// A Gaussian filter weighs radiance beyond the pixel as its density says; the box filter
+/// keeps an edge on a pixel boundary sharp.
+#[test]
+fn a_gaussian_filter_reaches_beyond_the_pixel() {
+    let edge = |filter: &str| {
+        let text = format!(
+            "[render]\nwidth = 16\nheight = 4\nsamples = 256\nintegrator = \"path\"\nfilter = {filter}\n\
+             [camera]\nprojection = \"orthographic\"\nposition = [0, 0, 2]\nview_height = 4.0\n\
+             [[object]]\nshape = \"rectangle\"\ntransform = {{ scale = [8, 8, 1], translate = [8, 0, 0] }}\n\
+             material = {{ emission = 1.0, bsdf = {{ type = \"diffuse\" }} }}\n"
+        );
+        let film = render_text(Box::leak(text.into_boxed_str()), 1);
+        (0..16).map(|x| film.get(x, 1)[0]).collect::<Vec<f32>>()
+    };
+    // The lit half starts at x = 0, the boundary between pixels 7 and 8.
+    let sharp = edge("{ type = \"box\" }");
+    assert_eq!(&sharp[..8], &[0.0; 8]);
+    assert_eq!(&sharp[8..], &[1.0; 8]);
+    // Pixel 7's centre lies half a pixel (one stddev) from the edge: P(z > 1) = 0.159 of
+    // the Gaussian's weight is beyond it (its 4-stddev window changes that by under 1e-3).
+    let soft = edge("{ type = \"gaussian\" }");
+    assert!((soft[7] - 0.159).abs() < 0.03 && (soft[8] - 0.841).abs() < 0.03, "{soft:?}");
+    assert!(soft[6] < 0.01 && soft[9] > 0.99, "three stddevs away: {soft:?}");
+    assert_eq!(soft[0], 0.0, "beyond the radius of 2 pixels");
+    assert_eq!(soft[15], 1.0);
+}

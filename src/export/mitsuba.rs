@@ -15,7 +15,9 @@
 //! Mitsuba form (torus, blob, superellipsoid, cone, a disc with a hole), spheres and
 //! cylinders under non-uniform scales, spot cones with a soft edge (Mitsuba's falls off
 //! linearly in angle, Prism's in a smoothstep of the cosine), POV-Ray's antialiasing methods.
-//! An infinite plane is written as a square of side `MITSUBA_PLANE_SIZE`.
+//! An infinite plane is written as a square ten times the size of the rest of the scene,
+//! centred below it, framed by four strips out to `MITSUBA_PLANE_SIZE` (Mitsuba places hit
+//! points in single precision relative to a shape's size).
 
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -30,7 +32,8 @@ use crate::render::integrators::path::scatter::{Lobe, PathMaterial, SurfacePoint
 use crate::render::lights::{LightSource, RenderLight};
 use crate::world::Scene;
 use crate::world::components::{
-    Antialias, Light, MaterialComponent, Origin, PhotometricLight, ShapeComponent, WorldTransform,
+    Antialias, Light, MaterialComponent, Origin, PhotometricLight, PixelFilter, Projection, ShapeComponent,
+    WorldTransform,
 };
 
 /// A Mitsuba scene: the XML and the mesh files it refers to.
@@ -150,10 +153,17 @@ fn sensor(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
             "Mitsuba's pixels are square: a viewport aspect other than the image's cannot be exported",
         ));
     }
-    let kind = if camera.aperture > 0.0 { "thinlens" } else { "perspective" };
+    let orthographic = camera.projection == Projection::Orthographic;
+    let kind = match (orthographic, camera.aperture > 0.0) {
+        (true, _) => "orthographic",
+        (false, true) => "thinlens",
+        (false, false) => "perspective",
+    };
     let _ = writeln!(xml, "  <sensor type=\"{kind}\">");
-    let _ = writeln!(xml, "    <string name=\"fov_axis\" value=\"y\"/>");
-    let _ = writeln!(xml, "    <float name=\"fov\" value=\"{}\"/>", number(camera.vfov));
+    if !orthographic {
+        let _ = writeln!(xml, "    <string name=\"fov_axis\" value=\"y\"/>");
+        let _ = writeln!(xml, "    <float name=\"fov\" value=\"{}\"/>", number(camera.vfov));
+    }
     let _ = writeln!(
         xml,
         "    <float name=\"near_clip\" value=\"0.0001\"/>\n    <float name=\"far_clip\" value=\"10000000.0\"/>"
@@ -163,9 +173,17 @@ fn sensor(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
         let _ = writeln!(xml, "    <float name=\"focus_distance\" value=\"{}\"/>", number(frame.focal_distance));
     }
     let target = frame.position + frame.direction;
+    // Mitsuba's orthographic view spans x in [-1, 1] of its frame: scale it to the view's
+    // half width (the height follows from the image's aspect).
+    let scale = if orthographic {
+        let half_width = 0.5 * frame.height * image_aspect;
+        format!("\n      <scale x=\"{0}\" y=\"{0}\"/>", number(half_width))
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         xml,
-        "    <transform name=\"to_world\">\n      <lookat origin=\"{}\" target=\"{}\" up=\"{}\"/>\n    </transform>",
+        "    <transform name=\"to_world\">{scale}\n      <lookat origin=\"{}\" target=\"{}\" up=\"{}\"/>\n    </transform>",
         rgb(frame.position),
         rgb(target),
         rgb(frame.up)
@@ -177,9 +195,27 @@ fn sensor(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
     );
     let _ = writeln!(
         xml,
-        "    <film type=\"hdrfilm\">\n      <integer name=\"width\" value=\"{}\"/>\n      <integer name=\"height\" value=\"{}\"/>\n      <string name=\"pixel_format\" value=\"rgb\"/>\n      <string name=\"component_format\" value=\"float32\"/>\n      <rfilter type=\"box\"/>\n    </film>\n  </sensor>",
-        render.width, render.height
+        "    <film type=\"hdrfilm\">\n      <integer name=\"width\" value=\"{}\"/>\n      <integer name=\"height\" value=\"{}\"/>\n      <string name=\"pixel_format\" value=\"rgb\"/>\n      <string name=\"component_format\" value=\"float32\"/>\n{}\n    </film>\n  </sensor>",
+        render.width,
+        render.height,
+        rfilter(render.filter)
     );
+}
+
+/// The `rfilter` element of `filter`, every parameter written.
+fn rfilter(filter: PixelFilter) -> String {
+    match filter {
+        PixelFilter::Box => "      <rfilter type=\"box\"/>".into(),
+        PixelFilter::Gaussian { stddev } => format!(
+            "      <rfilter type=\"gaussian\">\n        <float name=\"stddev\" value=\"{}\"/>\n      </rfilter>",
+            number(stddev)
+        ),
+        PixelFilter::Mitchell { b, c } => format!(
+            "      <rfilter type=\"mitchell\">\n        <float name=\"B\" value=\"{}\"/>\n        <float name=\"C\" value=\"{}\"/>\n      </rfilter>",
+            number(b),
+            number(c)
+        ),
+    }
 }
 
 fn lights(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
@@ -270,6 +306,44 @@ fn is_similarity(m: &glam::DMat3) -> bool {
         && close(b.dot(c), 0.0)
 }
 
+/// The half side of the accurate centre square of an infinite plane, over the radius of the
+/// scene's bounds and the camera.
+const PLANE_CORE: f64 = 10.0;
+
+/// The squares that stand in for an infinite plane (`world_from_square`, the plugin's square
+/// of side `MITSUBA_PLANE_SIZE`): Mitsuba's single-precision rectangles place hit points
+/// with an error in proportion to their size (a square 10^5 wide puts them millimetres off,
+/// under the objects resting on it), so the plane becomes a square [`PLANE_CORE`] times the
+/// scene's radius centred below the scene, where objects touch it, framed by four strips
+/// that reach the plugin's size for the horizon. The strips overlap the centre square so that
+/// no ray slips between them.
+fn plane_squares(world_from_square: &DAffine3, extent: &prism_api::Aabb) -> Vec<DAffine3> {
+    let m = world_from_square.matrix3;
+    let (x, y, normal) = (m.x_axis.normalize(), m.y_axis.normalize(), m.z_axis.normalize());
+    let far = m.x_axis.length();
+    let centre = 0.5 * (extent.min + extent.max);
+    let core = (PLANE_CORE * (0.5 * (extent.max - extent.min).length()).max(1.0)).min(far);
+    let foot = centre - normal * normal.dot(centre - world_from_square.translation);
+    // (centre along x, along y, half width, half height) of each square, in the plane.
+    // The strips' own rounding is about 1e-7 of their size: overlap by a hundred times that.
+    let inner = (core - 1e-5 * far).max(0.5 * core);
+    let (side, band) = (0.5 * (far + inner), 0.5 * (far - inner));
+    let squares = [
+        (0.0, 0.0, core, core),
+        (side, 0.0, band, far),
+        (-side, 0.0, band, far),
+        (0.0, side, inner, band),
+        (0.0, -side, inner, band),
+    ];
+    let count = if core < far { squares.len() } else { 1 };
+    squares[..count]
+        .iter()
+        .map(|&(cx, cy, hx, hy)| {
+            DAffine3::from_mat3_translation(glam::DMat3::from_cols(x * hx, y * hy, m.z_axis), foot + x * cx + y * cy)
+        })
+        .collect()
+}
+
 fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mut Vec<Diagnostic>) {
     let mut query =
         scene
@@ -277,6 +351,13 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mu
             .query::<(hecs::Entity, &ShapeComponent, Option<&WorldTransform>, &MaterialComponent, Option<&Origin>)>();
     let mut entries: Vec<_> = query.iter().collect();
     entries.sort_by_key(|(e, ..)| e.id());
+    let extent = entries.iter().fold(
+        prism_api::Aabb::from_corners(scene.camera().position.into(), scene.camera().position.into()),
+        |extent, (_, shape, transform, ..)| {
+            let bounds = shape.geometry.bounds().transformed(&transform.map_or(DAffine3::IDENTITY, |t| t.0));
+            if bounds.is_bounded() { extent.union(bounds) } else { extent }
+        },
+    );
     for (_, shape, transform, material, origin) in entries {
         let at = |key: &str| origin.map_or_else(|| scene.render_origin.clone(), |o| o.0.child(key));
         let Some(parts) = shape.geometry.to_mitsuba() else {
@@ -286,13 +367,6 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mu
             );
             continue;
         };
-        let bsdf = match bsdf_xml(&material.material) {
-            Ok(bsdf) => bsdf,
-            Err((key, message)) => {
-                errors.push(Diagnostic::new(at(&format!("material.{key}")), message));
-                continue;
-            }
-        };
         if material.material.emission.two_sided && material.material.emission.can_emit() {
             errors.push(Diagnostic::new(
                 at("material.emission_two_sided"),
@@ -300,16 +374,24 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mu
             ));
             continue;
         }
-        let emission = match emitter_xml(&material.material) {
-            Ok(e) => e,
-            Err((key, message)) => {
-                errors.push(Diagnostic::new(at(&format!("material.{key}")), message));
-                continue;
-            }
-        };
+        let (bsdf, emission) =
+            match bsdf_xml(&material.material).and_then(|bsdf| Ok((bsdf, emitter_xml(&material.material)?))) {
+                Ok(xml) => xml,
+                Err((key, message)) => {
+                    errors.push(Diagnostic::new(at(&format!("material.{key}")), message));
+                    continue;
+                }
+            };
         let world_from_object = transform.map_or(DAffine3::IDENTITY, |t| t.0);
+        let infinite = !shape.geometry.bounds().is_bounded();
         for part in parts {
             let world_from_shape = world_from_object * part.object_from_shape;
+            if infinite && part.kind == MitsubaKind::Rectangle {
+                for square in plane_squares(&world_from_shape, &extent) {
+                    shape_xml(out, &part, &square, &bsdf, emission.as_deref(), mesh_prefix);
+                }
+                continue;
+            }
             let needs_similarity = matches!(part.kind, MitsubaKind::Sphere | MitsubaKind::Cylinder { .. });
             if needs_similarity && !is_similarity(&world_from_shape.matrix3) {
                 errors.push(Diagnostic::new(

@@ -22,13 +22,13 @@ use prism_api::pov::{number, vector};
 use crate::color::Rgb;
 use crate::diagnostics::{Diagnostic, SceneError};
 use crate::material::pov_view::{PovFinish, PovView};
-use crate::material::{Material, Reflection, SurfaceModel};
+use crate::material::{Finish, Interior, Material, Reflection, SurfaceModel};
 use crate::render::camera::CameraFrame;
 use crate::render::integrators::classic::lights::pov_equivalent;
 use crate::world::Scene;
 use crate::world::components::{
     Antialias, Camera, Environment, IntegratorKind, Light, LightKind, MaterialComponent, Name, ObjectFlags, Origin,
-    PhotometricLight, RenderSettings, ShapeComponent, WorldTransform,
+    PhotometricLight, Projection, RenderSettings, ShapeComponent, WorldTransform,
 };
 
 /// The deepest `max_trace_level` POV-Ray 3.7 accepts.
@@ -78,9 +78,16 @@ fn povray_options(scene: &Scene, errors: &mut Vec<Diagnostic>) -> String {
         seed: _,
         integrator,
         antialias,
+        filter,
         exposure: _,
         tone_map: _,
     } = &scene.render;
+    if !filter.is_box() {
+        errors.push(Diagnostic::new(
+            scene.render_origin.child("filter"),
+            "POV-Ray has no reconstruction filters: export a scene with the default box filter",
+        ));
+    }
     match integrator {
         IntegratorKind::Classic => {}
         IntegratorKind::Path => errors.push(Diagnostic::new(
@@ -138,7 +145,7 @@ fn globals(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
 }
 
 fn camera(out: &mut String, camera: &Camera, samples: u32) {
-    let Camera { position: _, look_at: _, up: _, vfov: _, aspect, aperture, focal_distance: _ } = camera;
+    let Camera { aspect, aperture, projection, .. } = camera;
     let frame = CameraFrame::new(camera);
     // Without an explicit aspect the viewport follows the image, as in Prism.
     let right = match aspect {
@@ -147,7 +154,11 @@ fn camera(out: &mut String, camera: &Camera, samples: u32) {
     };
     let _ = write!(
         out,
-        "camera {{\n  perspective\n  location {}\n  direction {}\n  up {}\n  right {right}\n",
+        "camera {{\n  {}\n  location {}\n  direction {}\n  up {}\n  right {right}\n",
+        match projection {
+            Projection::Perspective => "perspective",
+            Projection::Orthographic => "orthographic",
+        },
         vector(frame.position),
         vector(frame.direction),
         vector(frame.up * frame.height),
@@ -335,24 +346,25 @@ fn texture(out: &mut String, m: &Material) -> Result<(), Vec<(&'static str, Stri
         return Err(problems);
     }
     let PovFinish {
-        color,
-        filter,
-        transmit,
-        ambient,
+        finish:
+            Finish {
+                color,
+                filter,
+                transmit,
+                ambient,
+                diffuse,
+                brilliance,
+                phong,
+                phong_size,
+                specular,
+                roughness,
+                metallic,
+                reflection,
+                conserve_energy,
+                texture: _,
+            },
         emission,
-        diffuse,
-        brilliance,
-        phong,
-        phong_size,
-        specular,
-        roughness,
-        metallic,
-        reflection,
-        conserve_energy,
-        ior,
-        fade_distance,
-        fade_power,
-        fade_color,
+        interior: Interior { ior, fade_distance, fade_power, fade_color },
     } = &PovView::new(m).base;
     let c = color.0;
     let _ = write!(

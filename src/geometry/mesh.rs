@@ -530,36 +530,29 @@ impl Shape for MeshShape {
     fn to_pov(&self) -> Option<String> {
         use prism_api::pov::vector;
         let d = &self.data;
-        let mut s = String::from("mesh2 {\n  vertex_vectors { ");
-        s.push_str(&d.positions.len().to_string());
-        for p in &d.positions {
-            s.push_str(",\n    ");
-            s.push_str(&vector(p.as_dvec3()));
-        }
-        s.push_str("\n  }\n");
+        let mut s = String::from("mesh2 {\n");
+        push_pov_list(&mut s, "vertex_vectors", d.positions.iter().map(|p| vector(p.as_dvec3())));
         if !d.normals.is_empty() {
-            s.push_str(&format!("  normal_vectors {{ {}", d.normals.len()));
-            for n in &d.normals {
-                s.push_str(",\n    ");
-                s.push_str(&vector(n.as_dvec3()));
-            }
-            s.push_str("\n  }\n");
+            push_pov_list(&mut s, "normal_vectors", d.normals.iter().map(|n| vector(n.as_dvec3())));
         }
         if !d.uvs.is_empty() {
             // POV-Ray's v counts up from the bottom of an image map.
-            s.push_str(&format!("  uv_vectors {{ {}", d.uvs.len()));
-            for t in &d.uvs {
-                s.push_str(&format!(",\n    <{:?}, {:?}>", t.x, 1.0 - t.y));
-            }
-            s.push_str("\n  }\n");
+            push_pov_list(&mut s, "uv_vectors", d.uvs.iter().map(|t| format!("<{:?}, {:?}>", t.x, 1.0 - t.y)));
         }
-        s.push_str(&format!("  face_indices {{ {}", d.triangles.len()));
-        for t in &d.triangles {
-            s.push_str(&format!(",\n    <{}, {}, {}>", t[0], t[1], t[2]));
-        }
-        s.push_str("\n  }\n}");
+        push_pov_list(&mut s, "face_indices", d.triangles.iter().map(|t| format!("<{}, {}, {}>", t[0], t[1], t[2])));
+        s.push('}');
         Some(s)
     }
+}
+
+/// Appends one of `mesh2`'s lists: `  NAME { COUNT,` then one item per line.
+fn push_pov_list(s: &mut String, name: &str, items: impl ExactSizeIterator<Item = String>) {
+    s.push_str(&format!("  {name} {{ {}", items.len()));
+    for item in items {
+        s.push_str(",\n    ");
+        s.push_str(&item);
+    }
+    s.push_str("\n  }\n");
 }
 
 #[cfg(test)]

@@ -144,6 +144,7 @@ pub fn camera_from_node(world_from_camera: DAffine3, yfov: f64, lens: &Camera) -
         aspect: None,
         aperture: lens.aperture,
         focal_distance: lens.focal_distance,
+        ..Camera::default()
     }
 }
 

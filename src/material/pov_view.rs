@@ -8,60 +8,33 @@ use std::borrow::Cow;
 
 use glam::{DVec2, DVec3};
 
-use super::{AlphaMode, Finish, Material, MetallicRoughness, Mtl, Physical, Reflection, Scattering, SurfaceModel};
+use super::{
+    AlphaMode, Finish, Interior, Material, MetallicRoughness, Mtl, Physical, Reflection, Scattering, SurfaceModel,
+};
 use crate::color::Rgb;
 use crate::texture::TextureRef;
 
 /// A POV-Ray finish, pigment and interior at one point, every field with POV-Ray's meaning.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct PovFinish {
-    /// Pigment colour (linear RGB).
-    pub color: Rgb,
-    /// `filter`: fraction of light passing through tinted by the colour.
-    pub filter: f64,
-    /// `transmit`: fraction of light passing through untinted.
-    pub transmit: f64,
-    /// `ambient`, multiplied by the world's `ambient_light` and the colour.
-    pub ambient: Rgb,
+    /// Pigment and finish (`finish.texture` is always `None`: textures are looked up into
+    /// `finish.color` at each hit).
+    pub finish: Finish,
     /// `emission`, multiplied by the colour (like ambient).
     pub emission: Rgb,
-    /// `diffuse` coefficient.
-    pub diffuse: f64,
-    /// `brilliance`: exponent on the diffuse cosine.
-    pub brilliance: f64,
-    /// `phong` highlight strength.
-    pub phong: f64,
-    /// `phong_size` exponent.
-    pub phong_size: f64,
-    /// `specular` (Blinn) highlight strength.
-    pub specular: f64,
-    /// `roughness`: the Blinn exponent is 1 / roughness.
-    pub roughness: f64,
-    /// `metallic`: how much highlights take the pigment's colour.
-    pub metallic: f64,
-    /// `reflection { }`.
-    pub reflection: Reflection,
-    /// `conserve_energy`.
-    pub conserve_energy: bool,
-    /// The interior's `ior`.
-    pub ior: f64,
-    /// The interior's `fade_distance`.
-    pub fade_distance: f64,
-    /// The interior's `fade_power`.
-    pub fade_power: f64,
-    /// The interior's `fade_color`.
-    pub fade_color: Rgb,
+    /// The interior (`ior` and POV-Ray's fade).
+    pub interior: Interior,
 }
 
 impl PovFinish {
     /// Opacity (1 - filter - transmit), as POV-Ray scales ambient and diffuse.
     pub fn opacity(&self) -> f64 {
-        1.0 - self.filter - self.transmit
+        1.0 - self.finish.filter - self.finish.transmit
     }
 
     /// True when light passes through the surface.
     pub fn is_transparent(&self) -> bool {
-        self.filter > 0.0 || self.transmit > 0.0
+        self.finish.filter > 0.0 || self.finish.transmit > 0.0
     }
 }
 
@@ -107,24 +80,9 @@ impl PovView {
         let interior = &material.interior;
         let emission = &material.emission;
         let finish = |f: &Finish, emission: Rgb| PovFinish {
-            color: f.color,
-            filter: f.filter,
-            transmit: f.transmit,
-            ambient: f.ambient,
+            finish: Finish { texture: None, ..f.clone() },
             emission,
-            diffuse: f.diffuse,
-            brilliance: f.brilliance,
-            phong: f.phong,
-            phong_size: f.phong_size,
-            specular: f.specular,
-            roughness: f.roughness,
-            metallic: f.metallic,
-            reflection: f.reflection,
-            conserve_energy: f.conserve_energy,
-            ior: interior.ior,
-            fade_distance: interior.fade_distance,
-            fade_power: interior.fade_power,
-            fade_color: interior.fade_color,
+            interior: *interior,
         };
         let emitted = || (emission.radiance, emission.texture.clone());
         match &material.surface {
@@ -141,7 +99,7 @@ impl PovView {
                 let mut base = finish(&p.finish, emission.times_color);
                 if p.alpha_mode == AlphaMode::Blend {
                     // Whitted tracing has no partial coverage: blending becomes transmission.
-                    base.transmit = (1.0 - p.alpha).clamp(0.0, 1.0);
+                    base.finish.transmit = (1.0 - p.alpha).clamp(0.0, 1.0);
                 }
                 let varying =
                     Varying { texture: p.finish.texture.clone(), pbr: Some(pbr_params(p)), emitted: Some(emitted()) };
@@ -149,7 +107,8 @@ impl PovView {
             }
             SurfaceModel::Physical(p) => {
                 let (derived, ior) = physical_finish(p);
-                let base = PovFinish { ior, ..finish(&derived, emission.times_color) };
+                let mut base = finish(&derived, emission.times_color);
+                base.interior.ior = ior;
                 let glows = emission.radiance != Rgb::BLACK || emission.texture.is_some();
                 let varying = (p.texture.is_some() || glows).then(|| Varying {
                     texture: p.texture.clone(),
@@ -160,7 +119,8 @@ impl PovView {
             }
             SurfaceModel::Mtl(m) => {
                 let (mapped, texture) = mtl_finish(m, emission.radiance, interior.ior);
-                let base = PovFinish { ior: mapped.ior, ..finish(&mapped.finish, mapped.emission) };
+                let mut base = finish(&mapped.finish, mapped.emission);
+                base.interior.ior = mapped.ior;
                 let varying = texture.map(|t| Varying { texture: Some(t), pbr: None, emitted: None });
                 Self { base, varying }
             }
@@ -185,10 +145,10 @@ impl PovView {
         let Some(varying) = &self.varying else {
             return ShadedFinish { finish: Cow::Borrowed(&self.base), emitted: DVec3::ZERO };
         };
-        let mut m = self.base;
+        let mut m = self.base.clone();
         if let Some(t) = &varying.texture {
             let texel = t.sample(uv, footprint);
-            m.color = Rgb(m.color.0 * texel.truncate().as_dvec3());
+            m.finish.color = Rgb(m.finish.color.0 * texel.truncate().as_dvec3());
         }
         let mut emitted = DVec3::ZERO;
         if let Some(p) = &varying.pbr {
@@ -200,13 +160,13 @@ impl PovView {
             }
             let gloss = (1.0 - roughness).powi(2);
             let alpha2 = roughness.powi(4).max(1e-4);
-            m.diffuse = 0.6 * (1.0 - metallic);
-            m.specular = gloss * (0.25 + 0.75 * metallic);
-            m.roughness = (alpha2 / (2.0 - 2.0 * alpha2)).clamp(5e-4, 1.0);
-            m.metallic = metallic;
-            m.phong = 0.0;
+            m.finish.diffuse = 0.6 * (1.0 - metallic);
+            m.finish.specular = gloss * (0.25 + 0.75 * metallic);
+            m.finish.roughness = (alpha2 / (2.0 - 2.0 * alpha2)).clamp(5e-4, 1.0);
+            m.finish.metallic = metallic;
+            m.finish.phong = 0.0;
             let mirror = metallic * gloss;
-            m.reflection =
+            m.finish.reflection =
                 Reflection { min: Rgb::grey(mirror), max: Rgb::grey(mirror), metallic, ..Reflection::default() };
         }
         if let Some((radiance, texture)) = &varying.emitted {
@@ -360,24 +320,24 @@ mod tests {
             },
             Rgb::new(0.5, 1.0, 0.0),
         );
-        assert_eq!(f.color, Rgb::new(0.5, 0.0, 1.0));
-        assert_eq!((f.specular, f.roughness), (0.5, 0.01));
-        assert_eq!((f.reflection.min, f.reflection.max), (Rgb::grey(0.5), Rgb::grey(0.5)));
-        assert_eq!((f.transmit, f.ior), (1.0 - 0.2, 1.5));
+        assert_eq!(f.finish.color, Rgb::new(0.5, 0.0, 1.0));
+        assert_eq!((f.finish.specular, f.finish.roughness), (0.5, 0.01));
+        assert_eq!((f.finish.reflection.min, f.finish.reflection.max), (Rgb::grey(0.5), Rgb::grey(0.5)));
+        assert_eq!((f.finish.transmit, f.interior.ior), (1.0 - 0.2, 1.5));
         // Ke / Kd where Kd > 0, Ke itself where Kd is 0.
         assert_eq!(f.emission, Rgb::new(1.0, 1.0, 0.0));
-        assert_eq!((f.ambient, f.diffuse, f.phong), (Rgb::grey(0.1), 0.6, 0.0));
+        assert_eq!((f.finish.ambient, f.finish.diffuse, f.finish.phong), (Rgb::grey(0.1), 0.6, 0.0));
     }
 
     #[test]
     fn mtl_defaults_and_illum_2_stay_pov_ray_defaults() {
         let f = mtl(Mtl { ks: Some(Rgb::grey(0.3)), illum: Some(2), ..Mtl::default() }, Rgb::BLACK);
-        assert_eq!((f.color, f.specular, f.roughness), (Rgb::WHITE, (0.3 + 0.3 + 0.3) / 3.0, 0.1));
-        assert!(!f.reflection.is_reflective());
-        assert_eq!((f.transmit, f.ior, f.emission), (0.0, 1.0, Rgb::BLACK));
+        assert_eq!((f.finish.color, f.finish.specular, f.finish.roughness), (Rgb::WHITE, (0.3 + 0.3 + 0.3) / 3.0, 0.1));
+        assert!(!f.finish.reflection.is_reflective());
+        assert_eq!((f.finish.transmit, f.interior.ior, f.emission), (0.0, 1.0, Rgb::BLACK));
         // Opaque: Ni is ignored; Ns below 1 is 1.
         let f = mtl(Mtl { ks: Some(Rgb::grey(1.0)), ns: Some(0.5), ni: Some(2.0), ..Mtl::default() }, Rgb::BLACK);
-        assert_eq!((f.roughness, f.ior), (1.0, 1.0));
+        assert_eq!((f.finish.roughness, f.interior.ior), (1.0, 1.0));
     }
 
     fn gltf(metallic: f64, roughness: f64, alpha_mode: AlphaMode, alpha: f64) -> PovView {
@@ -398,17 +358,20 @@ mod tests {
         let view = gltf(1.0, 0.0, AlphaMode::Opaque, 1.0);
         let shaded = view.at_surface(DVec2::ZERO, 0.0);
         let f = &shaded.finish;
-        assert_eq!((f.diffuse, f.specular, f.roughness, f.metallic, f.phong), (0.0, 1.0, 5e-4, 1.0, 0.0));
-        assert_eq!((f.reflection.min, f.reflection.metallic), (Rgb::grey(1.0), 1.0));
-        assert_eq!((f.color, f.transmit), (Rgb::new(0.8, 0.4, 0.2), 0.0));
+        assert_eq!(
+            (f.finish.diffuse, f.finish.specular, f.finish.roughness, f.finish.metallic, f.finish.phong),
+            (0.0, 1.0, 5e-4, 1.0, 0.0)
+        );
+        assert_eq!((f.finish.reflection.min, f.finish.reflection.metallic), (Rgb::grey(1.0), 1.0));
+        assert_eq!((f.finish.color, f.finish.transmit), (Rgb::new(0.8, 0.4, 0.2), 0.0));
         assert_eq!(shaded.emitted, DVec3::new(1.0, 2.0, 3.0));
 
         let view = gltf(0.0, 0.5, AlphaMode::Blend, 0.25);
-        let f = *view.at_surface(DVec2::ZERO, 0.0).finish;
-        assert_eq!((f.diffuse, f.specular, f.metallic), (0.6, 0.25 * 0.25, 0.0));
-        assert_eq!(f.roughness, 0.0625 / (2.0 - 2.0 * 0.0625));
-        assert!(!f.reflection.is_reflective());
-        assert_eq!(f.transmit, 0.75);
+        let f = view.at_surface(DVec2::ZERO, 0.0).finish.into_owned();
+        assert_eq!((f.finish.diffuse, f.finish.specular, f.finish.metallic), (0.6, 0.25 * 0.25, 0.0));
+        assert_eq!(f.finish.roughness, 0.0625 / (2.0 - 2.0 * 0.0625));
+        assert!(!f.finish.reflection.is_reflective());
+        assert_eq!(f.finish.transmit, 0.75);
         assert!(view.base.is_transparent() && view.varies_over_surface());
     }
 
@@ -419,7 +382,10 @@ mod tests {
         let view = PovView::new(&spec.to_material());
         assert!(!view.varies_over_surface());
         let f = view.base;
-        assert_eq!((f.color, f.phong, f.emission), (spec.color, 0.7, Rgb::grey(0.25)));
-        assert_eq!((f.ior, f.fade_distance, f.roughness, f.ambient), (1.33, 3.0, 0.05, Rgb::grey(0.1)));
+        assert_eq!((f.finish.color, f.finish.phong, f.emission), (spec.color, 0.7, Rgb::grey(0.25)));
+        assert_eq!(
+            (f.interior.ior, f.interior.fade_distance, f.finish.roughness, f.finish.ambient),
+            (1.33, 3.0, 0.05, Rgb::grey(0.1))
+        );
     }
 }

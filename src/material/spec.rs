@@ -227,43 +227,14 @@ impl Default for MaterialSpec {
 impl MaterialSpec {
     /// The first non-finite or out-of-range parameter, as (key, message).
     pub fn check(&self) -> Result<(), (&'static str, String)> {
-        let colors = [
-            ("color", self.color),
-            ("ambient", self.ambient),
-            ("emission", self.emission),
-            ("fade_color", self.fade_color),
-            ("reflection.min", self.reflection.min),
-            ("reflection.max", self.reflection.max),
-        ];
-        let numbers = [
-            ("filter", self.filter),
-            ("transmit", self.transmit),
-            ("diffuse", self.diffuse),
-            ("brilliance", self.brilliance),
-            ("phong", self.phong),
-            ("phong_size", self.phong_size),
-            ("specular", self.specular),
-            ("roughness", self.roughness),
-            ("metallic", self.metallic),
-            ("reflection.falloff", self.reflection.falloff),
-            ("reflection.exponent", self.reflection.exponent),
-            ("reflection.metallic", self.reflection.metallic),
-            ("ior", self.ior),
-            ("fade_distance", self.fade_distance),
-            ("fade_power", self.fade_power),
-        ];
-        super::check_finite(&colors, &numbers)?;
-        if self.roughness <= 0.0 {
-            return Err(("roughness", format!("must be greater than 0, got {}", self.roughness)));
-        }
+        let finish = self.finish();
+        super::check_finish(&finish)?;
+        super::check_finite(
+            &[("emission", self.emission), ("fade_color", self.fade_color)],
+            &[("ior", self.ior), ("fade_distance", self.fade_distance), ("fade_power", self.fade_power)],
+        )?;
         if self.ior <= 0.0 {
             return Err(("ior", format!("must be greater than 0, got {}", self.ior)));
-        }
-        if self.reflection.exponent <= 0.0 {
-            return Err(("reflection.exponent", "must be greater than 0".into()));
-        }
-        if let Some(t) = &self.texture {
-            t.check()?;
         }
         if let Some(bsdf) = &self.bsdf {
             self.check_only_bsdf()?;
@@ -343,12 +314,9 @@ impl MaterialSpec {
         out
     }
 
-    /// The material Prism renders with: the POV-Ray finish as written (a metallic-roughness
-    /// surface when `pbr` is given, starting from the finish written beside it), the
-    /// interior, and the emission read in radiance units (`emission` times the colour, plus
-    /// `pbr.emissive` times its texture).
-    pub fn to_material(&self) -> Material {
-        let finish = Finish {
+    /// The POV-Ray pigment and finish the fields write.
+    fn finish(&self) -> Finish {
+        Finish {
             color: self.color,
             filter: self.filter,
             transmit: self.transmit,
@@ -363,7 +331,15 @@ impl MaterialSpec {
             reflection: self.reflection,
             conserve_energy: self.conserve_energy,
             texture: self.texture.clone(),
-        };
+        }
+    }
+
+    /// The material Prism renders with: the POV-Ray finish as written (a metallic-roughness
+    /// surface when `pbr` is given, starting from the finish written beside it), the
+    /// interior, and the emission read in radiance units (`emission` times the colour, plus
+    /// `pbr.emissive` times its texture).
+    pub fn to_material(&self) -> Material {
+        let finish = self.finish();
         let mut emission = Emission { times_color: self.emission, ..Emission::default() };
         let physical = self.bsdf.as_ref().and_then(|b| b.to_scattering().ok());
         if physical.is_some() {

@@ -140,10 +140,10 @@ pub fn render_block<I: Integrator>(
     let h = BLOCK_SIZE.min(height - top) as usize;
     let mut sampler =
         Sampler { scene, integrator, width: f64::from(width), height: f64::from(height), rays: 0, primary: 0 };
-    let (left, top) = (f64::from(left), f64::from(top));
+    let block = BlockArea { left: f64::from(left), top: f64::from(top), w, h };
     let colours = match method {
-        PovMethod::NonAdaptive { threshold, depth } => non_adaptive(&mut sampler, left, top, w, h, threshold, depth),
-        PovMethod::Adaptive { threshold, depth } => adaptive(&mut sampler, left, top, w, h, threshold, depth),
+        PovMethod::NonAdaptive { threshold, depth } => non_adaptive(&mut sampler, block, threshold, depth),
+        PovMethod::Adaptive { threshold, depth } => adaptive(&mut sampler, block, threshold, depth),
     };
     Block {
         pixels: colours.into_iter().map(|c| [c.x as f32, c.y as f32, c.z as f32]).collect(),
@@ -152,19 +152,21 @@ pub fn render_block<I: Integrator>(
     }
 }
 
-/// Method 1 (`TraceTask::NonAdaptiveSupersamplingM1`): trace each pixel centre, compare it
-/// with its left and upper neighbours (as they are at that moment) and supersample every
-/// pixel of a differing pair that was not supersampled yet. The row above the block and the
-/// pixel left of each row are traced only to compare with and are never supersampled.
-fn non_adaptive<I: Integrator>(
-    s: &mut Sampler<I>,
+/// A block's top-left pixel (image coordinates) and its size in pixels.
+#[derive(Clone, Copy)]
+struct BlockArea {
     left: f64,
     top: f64,
     w: usize,
     h: usize,
-    threshold: f64,
-    depth: u32,
-) -> Vec<DVec3> {
+}
+
+/// Method 1 (`TraceTask::NonAdaptiveSupersamplingM1`): trace each pixel centre, compare it
+/// with its left and upper neighbours (as they are at that moment) and supersample every
+/// pixel of a differing pair that was not supersampled yet. The row above the block and the
+/// pixel left of each row are traced only to compare with and are never supersampled.
+fn non_adaptive<I: Integrator>(s: &mut Sampler<I>, block: BlockArea, threshold: f64, depth: u32) -> Vec<DVec3> {
+    let BlockArea { left, top, w, h } = block;
     // Each colour is graded for comparison once, when it is traced or supersampled.
     let above: Vec<DVec3> = (0..w).map(|x| aa_graded(s.trace(left + x as f64, top - 1.0))).collect();
     let mut pixels = vec![DVec3::ZERO; w * h];
@@ -223,15 +225,8 @@ fn supersample<I: Integrator>(s: &mut Sampler<I>, x: f64, y: f64, centre: DVec3,
 
 /// Method 2 (`TraceTask::AdaptiveSupersamplingM2`): trace every pixel corner, then
 /// subdivide each pixel while any two of a square's corners differ, down to 1 / 2^(depth-1).
-fn adaptive<I: Integrator>(
-    s: &mut Sampler<I>,
-    left: f64,
-    top: f64,
-    w: usize,
-    h: usize,
-    threshold: f64,
-    depth: u32,
-) -> Vec<DVec3> {
+fn adaptive<I: Integrator>(s: &mut Sampler<I>, block: BlockArea, threshold: f64, depth: u32) -> Vec<DVec3> {
+    let BlockArea { left, top, w, h } = block;
     let mut corners = Vec::with_capacity((w + 1) * (h + 1));
     for y in 0..=h {
         for x in 0..=w {
@@ -353,21 +348,19 @@ mod tests {
         Sampler { scene, integrator, width: 40.0, height: 24.0, rays: 0, primary: 0 }
     }
 
-    #[test]
-    fn method_1_with_threshold_0_supersamples_every_pixel() {
-        let scene = scene(Antialias::Pov1 { threshold: 0.0, depth: 3 });
+    /// Renders `scene` with `antialias` and checks each of `pixels` against `expected`, the
+    /// pixel's value computed from single traces.
+    fn check_pixels(
+        antialias: Antialias,
+        pixels: &[(u32, u32)],
+        expected: impl Fn(&mut Sampler<Classic>, f64, f64) -> DVec3,
+    ) {
+        let scene = scene(antialias);
         let film = render_frame(&scene, &RenderOptions { threads: Some(2), ..Default::default() }).unwrap().0;
         let integrator = Classic::new(&scene);
         let mut s = sampler(&scene, &integrator);
-        for (x, y) in [(0u32, 0u32), (17, 9), (39, 23), (31, 5)] {
-            let (px, py) = (f64::from(x), f64::from(y));
-            let mut sum = s.trace(px, py);
-            for j in [-1.0, 0.0, 1.0] {
-                for i in [-1.0, 0.0, 1.0] {
-                    sum += s.trace(px + i / 3.0, py + j / 3.0);
-                }
-            }
-            let expected = sum / 10.0;
+        for &(x, y) in pixels {
+            let expected = expected(&mut s, f64::from(x), f64::from(y));
             let got = film.get(x, y);
             for c in 0..3 {
                 assert!((f64::from(got[c]) - expected[c]).abs() < 1e-5, "pixel ({x}, {y}): {got:?} vs {expected}");
@@ -376,27 +369,31 @@ mod tests {
     }
 
     #[test]
+    fn method_1_with_threshold_0_supersamples_every_pixel() {
+        let pixels = [(0, 0), (17, 9), (39, 23), (31, 5)];
+        check_pixels(Antialias::Pov1 { threshold: 0.0, depth: 3 }, &pixels, |s, px, py| {
+            let mut sum = s.trace(px, py);
+            for j in [-1.0, 0.0, 1.0] {
+                for i in [-1.0, 0.0, 1.0] {
+                    sum += s.trace(px + i / 3.0, py + j / 3.0);
+                }
+            }
+            sum / 10.0
+        });
+    }
+
+    #[test]
     fn method_2_with_threshold_0_is_the_trapezoid_rule() {
-        let scene = scene(Antialias::Pov2 { threshold: 0.0, depth: 2 });
-        let film = render_frame(&scene, &RenderOptions { threads: Some(2), ..Default::default() }).unwrap().0;
-        let integrator = Classic::new(&scene);
-        let mut s = sampler(&scene, &integrator);
-        for (x, y) in [(0u32, 0u32), (17, 9), (39, 23)] {
-            let (px, py) = (f64::from(x), f64::from(y));
-            let at = |s: &mut Sampler<Classic>, i: f64, j: f64| s.trace(px - 0.5 + i * 0.5, py - 0.5 + j * 0.5);
+        check_pixels(Antialias::Pov2 { threshold: 0.0, depth: 2 }, &[(0, 0), (17, 9), (39, 23)], |s, px, py| {
             let weights = [1.0, 2.0, 1.0];
             let mut sum = DVec3::ZERO;
             for (j, wj) in weights.iter().enumerate() {
                 for (i, wi) in weights.iter().enumerate() {
-                    sum += wi * wj * at(&mut s, i as f64, j as f64);
+                    sum += wi * wj * s.trace(px - 0.5 + i as f64 * 0.5, py - 0.5 + j as f64 * 0.5);
                 }
             }
-            let expected = sum / 16.0;
-            let got = film.get(x, y);
-            for c in 0..3 {
-                assert!((f64::from(got[c]) - expected[c]).abs() < 1e-5, "pixel ({x}, {y}): {got:?} vs {expected}");
-            }
-        }
+            sum / 16.0
+        });
     }
 
     #[test]

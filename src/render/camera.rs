@@ -1,11 +1,12 @@
-//! The pinhole / thin-lens camera, with POV-Ray's pixel convention: pixel (i, j) at
-//! sub-pixel position (sx, sy) maps to x0 = (i + sx)/W - 0.5, y0 = 0.5 - (j + sy)/H, and the
-//! ray direction is normalize(D + x0 R + y0 U).
+//! The pinhole / thin-lens and orthographic cameras, with POV-Ray's pixel convention: pixel
+//! (i, j) at sub-pixel position (sx, sy) maps to x0 = (i + sx)/W - 0.5, y0 = 0.5 - (j + sy)/H;
+//! a perspective ray's direction is normalize(D + x0 R + y0 U), an orthographic ray starts
+//! at E + x0 R + y0 U and runs along D (POV-Ray's `orthographic`).
 
 use glam::{DVec2, DVec3};
 use prism_api::Ray;
 
-use crate::world::components::Camera;
+use crate::world::components::{Camera, Projection};
 
 /// A camera ready to make rays.
 #[derive(Clone, Debug)]
@@ -14,10 +15,13 @@ pub struct RenderCamera {
     pub position: DVec3,
     /// Unit viewing direction (POV-Ray's `direction`, length 1).
     pub direction: DVec3,
-    /// Full viewport width vector (POV-Ray's `right`).
+    /// Full viewport width vector (POV-Ray's `right`): at distance 1 for a perspective
+    /// camera, in scene units for an orthographic one.
     pub right: DVec3,
     /// Full viewport height vector (POV-Ray's `up`).
     pub up: DVec3,
+    /// Rays run parallel to `direction` from points on the viewport.
+    pub orthographic: bool,
     /// Lens diameter (0 = pinhole).
     pub aperture: f64,
     /// Distance of the sharp plane along the view axis.
@@ -38,7 +42,8 @@ pub struct CameraFrame {
     pub right: DVec3,
     /// Unit vector toward the image's top edge.
     pub up: DVec3,
-    /// Viewport height at distance 1 (POV-Ray's `up` length).
+    /// Viewport height (POV-Ray's `up` length): at distance 1 for a perspective camera, in
+    /// scene units for an orthographic one.
     pub height: f64,
     /// Distance of the sharp plane along the view axis.
     pub focal_distance: f64,
@@ -52,13 +57,18 @@ impl CameraFrame {
         let direction = (look_at - position).normalize();
         let right = direction.cross(DVec3::from_array(camera.up)).normalize();
         let up = right.cross(direction);
+        let spread = 2.0 * (camera.vfov.to_radians() * 0.5).tan();
+        let distance = (look_at - position).length();
         Self {
             position,
             direction,
             right,
             up,
-            height: 2.0 * (camera.vfov.to_radians() * 0.5).tan(),
-            focal_distance: camera.focal_distance.unwrap_or((look_at - position).length()),
+            height: match camera.projection {
+                Projection::Perspective => spread,
+                Projection::Orthographic => camera.view_height.unwrap_or(spread * distance),
+            },
+            focal_distance: camera.focal_distance.unwrap_or(distance),
         }
     }
 }
@@ -73,22 +83,36 @@ impl RenderCamera {
             direction: frame.direction,
             right: frame.right * frame.height * aspect,
             up: frame.up * frame.height,
+            orthographic: camera.projection == Projection::Orthographic,
             aperture: camera.aperture,
             focal_distance: frame.focal_distance,
             lens_axes: (frame.right, frame.up),
         }
     }
 
-    /// A box holding every camera ray's origin: the lens disc, or the position.
+    /// A box holding every camera ray's origin: the lens disc, the orthographic viewport, or
+    /// the position.
     pub fn lens_bounds(&self) -> prism_api::Aabb {
-        let (x_axis, y_axis) = self.lens_axes;
-        let reach = 0.5 * self.aperture.max(0.0) * (x_axis.abs() + y_axis.abs());
+        let reach = if self.orthographic {
+            0.5 * (self.right.abs() + self.up.abs())
+        } else {
+            let (x_axis, y_axis) = self.lens_axes;
+            0.5 * self.aperture.max(0.0) * (x_axis.abs() + y_axis.abs())
+        };
         prism_api::Aabb::from_corners(self.position - reach, self.position + reach)
+    }
+
+    /// True when every camera ray starts at `position` (a pinhole).
+    pub fn has_single_origin(&self) -> bool {
+        !self.orthographic && self.aperture <= 0.0
     }
 
     /// The ray through image-plane coordinates (x0, y0) in [-0.5, 0.5], through lens point
     /// `lens` on the unit disc.
     pub fn ray(&self, x0: f64, y0: f64, lens: DVec2) -> Ray {
+        if self.orthographic {
+            return Ray::new(self.position + x0 * self.right + y0 * self.up, self.direction);
+        }
         let through = self.direction + x0 * self.right + y0 * self.up;
         if self.aperture <= 0.0 {
             return Ray::new(self.position, through.normalize());

@@ -3,6 +3,7 @@
 //! the camera and the acceleration structure.
 
 use super::camera::RenderCamera;
+use super::filter::FilterSampler;
 use super::lights::{RenderLight, SceneLights};
 use super::sampling::PatternTable;
 use crate::accel::primitive::Primitive;
@@ -39,6 +40,8 @@ pub struct RenderScene {
     pub has_transparency: bool,
     /// Stratified pixel and lens patterns.
     pub patterns: PatternTable,
+    /// Draws sample offsets for a non-box pixel filter.
+    pub filter: Option<FilterSampler>,
 }
 
 /// Builds the render scene. Call after `resolve_transforms` and `validate`.
@@ -94,6 +97,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
         accel,
         has_transparency,
         patterns,
+        filter: FilterSampler::new(scene.render.filter),
     }
 }
 

@@ -8,6 +8,7 @@ pub mod antialias;
 pub mod bsdf;
 pub mod camera;
 pub mod extract;
+pub mod filter;
 pub mod integrators;
 pub mod lights;
 pub mod sampling;
@@ -276,11 +277,17 @@ pub fn render_pixel<I: Integrator>(scene: &RenderScene, integrator: &I, x: u32, 
     // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels.
     let patterns = (samples > 1).then(|| scene.patterns.for_key(hash4(pixel, 0, u64::MAX, settings.seed)));
     let mut sum = DVec3::ZERO;
+    let mut weights = 0.0;
     let mut rays = 0;
     let mut first_hit = None;
     for s in 0..samples {
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
-        let offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(s));
+        let mut offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(s));
+        let mut weight = 1.0;
+        if let Some(filter) = &scene.filter {
+            let (from_centre, w) = filter.sample(offset);
+            (offset, weight) = (from_centre + 0.5, w);
+        }
         let lens = if scene.camera.aperture > 0.0 {
             patterns.as_ref().map_or_else(|| sampling::concentric_disc(stream.uniform2(2)), |p| p.lens(s))
         } else {
@@ -290,9 +297,20 @@ pub fn render_pixel<I: Integrator>(scene: &RenderScene, integrator: &I, x: u32, 
         let (x0, y0) = pov_screen(f64::from(x) + offset.x - 0.5, f64::from(y) + offset.y - 0.5, width, height);
         let ray = scene.camera.ray(x0, y0, lens);
         let sample = integrator.sample(&ray, stream);
-        sum += sample.radiance;
         rays += sample.rays;
         first_hit = first_hit.or(sample.first_hit);
+        if scene.filter.is_some() {
+            sum += weight * sample.radiance;
+            weights += weight;
+        } else {
+            sum += sample.radiance;
+        }
     }
-    PixelSample { radiance: sum / f64::from(samples), first_hit, rays }
+    let radiance = match scene.filter {
+        None => sum / f64::from(samples),
+        // A weighted mean; weights summing to 0 (negative lobes cancelling) give black.
+        Some(_) if weights != 0.0 => sum / weights,
+        Some(_) => DVec3::ZERO,
+    };
+    PixelSample { radiance, first_hit, rays }
 }

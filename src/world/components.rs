@@ -328,6 +328,33 @@ pub struct Camera {
     /// Distance of the sharp plane; the distance to `look_at` when absent.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub focal_distance: Option<f64>,
+    /// How rays leave the camera: from the eye through the viewport (`perspective`), or all
+    /// parallel to the view axis from a rectangle around the eye (`orthographic`).
+    #[serde(skip_serializing_if = "Projection::is_perspective")]
+    pub projection: Projection,
+    /// Orthographic: the height of the view in scene units; the height `vfov` spans at
+    /// `look_at` when absent, so switching projection keeps the framing there.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub view_height: Option<f64>,
+}
+
+/// A camera's projection.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Projection {
+    /// A pinhole or thin lens: rays from the eye (or the lens) through the viewport.
+    #[default]
+    Perspective,
+    /// Parallel rays along the view axis, from a `view_height`-high rectangle centred on the
+    /// eye (no depth of field).
+    Orthographic,
+}
+
+impl Projection {
+    /// True for the default, perspective projection.
+    pub fn is_perspective(&self) -> bool {
+        *self == Projection::Perspective
+    }
 }
 
 impl Default for Camera {
@@ -340,6 +367,8 @@ impl Default for Camera {
             aspect: None,
             aperture: 0.0,
             focal_distance: None,
+            projection: Projection::Perspective,
+            view_height: None,
         }
     }
 }
@@ -409,6 +438,49 @@ fn default_aa_depth() -> u32 {
     3
 }
 
+/// A pixel reconstruction filter (Mitsuba 3's `rfilter` plugins, same parameters): each
+/// pixel is the filter-weighted mean of the radiance around its centre, offsets in pixels.
+/// Written as a table: `filter = { type = "gaussian" }`, `{ type = "gaussian", stddev = 0.4 }`,
+/// `{ type = "mitchell", B = 0.3, C = 0.35 }`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum PixelFilter {
+    /// The pixel's own square, weighted equally (radius 0.5).
+    #[default]
+    Box,
+    /// A Gaussian of standard deviation `stddev` pixels, cut off at 4 `stddev` and shifted
+    /// down to reach 0 there (Mitsuba's default filter).
+    Gaussian {
+        /// Standard deviation in pixels.
+        #[serde(default = "default_gaussian_stddev")]
+        stddev: f64,
+    },
+    /// Mitchell and Netravali's cubic, radius 2 pixels (negative lobes sharpen).
+    Mitchell {
+        /// The `B` parameter of the paper.
+        #[serde(default = "one_third", rename = "B")]
+        b: f64,
+        /// The `C` parameter of the paper.
+        #[serde(default = "one_third", rename = "C")]
+        c: f64,
+    },
+}
+
+fn default_gaussian_stddev() -> f64 {
+    0.5
+}
+
+fn one_third() -> f64 {
+    1.0 / 3.0
+}
+
+impl PixelFilter {
+    /// True for the default box filter.
+    pub fn is_box(&self) -> bool {
+        *self == PixelFilter::Box
+    }
+}
+
 /// `[render]`: image size, sampling and recursion.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
@@ -434,6 +506,10 @@ pub struct RenderSettings {
     pub integrator: IntegratorKind,
     /// How pixels are sampled.
     pub antialias: Antialias,
+    /// The pixel reconstruction filter of `stratified` sampling: `{ type = "box" }` (the
+    /// default), `gaussian` or `mitchell`.
+    #[serde(skip_serializing_if = "PixelFilter::is_box")]
+    pub filter: PixelFilter,
     /// Exposure in stops applied before tone mapping (PNG only; the EXR stays linear).
     pub exposure: f64,
     /// Tone-mapping operator for 8-bit output.
@@ -452,6 +528,7 @@ impl Default for RenderSettings {
             seed: 0,
             integrator: IntegratorKind::Classic,
             antialias: Antialias::Stratified,
+            filter: PixelFilter::Box,
             exposure: 0.0,
             tone_map: ToneMap::Clamp,
         }

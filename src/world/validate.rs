@@ -4,7 +4,9 @@
 use glam::DVec3;
 
 use super::Scene;
-use super::components::{Antialias, ImportedCamera, Light, LightKind, Origin, WorldTransform};
+use super::components::{
+    Antialias, ImportedCamera, Light, LightKind, Origin, PixelFilter, Projection, RenderSettings, WorldTransform,
+};
 use crate::diagnostics::{Diagnostic, Location, SceneError};
 
 /// Largest accepted image side, and pixel count (a 64k x 64k float image is 48 GiB).
@@ -118,6 +120,38 @@ fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
     if !r.exposure.is_finite() {
         out.push(Diagnostic::new(at("exposure"), "exposure must be finite"));
     }
+    check_filter(r, &at, out);
+}
+
+/// A filter's parameters, and that it goes with `stratified` sampling.
+fn check_filter(r: &RenderSettings, at: &impl Fn(&str) -> Location, out: &mut Vec<Diagnostic>) {
+    match r.filter {
+        PixelFilter::Box => return,
+        PixelFilter::Gaussian { stddev } => {
+            if !(stddev.is_finite() && (0.05..=4.0).contains(&stddev)) {
+                out.push(Diagnostic::new(
+                    at("filter.stddev"),
+                    format!("the gaussian filter's stddev must be between 0.05 and 4 pixels, got {stddev}"),
+                ));
+            }
+        }
+        PixelFilter::Mitchell { b, c } => {
+            for (key, v) in [("filter.B", b), ("filter.C", c)] {
+                if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
+                    out.push(Diagnostic::new(
+                        at(key),
+                        format!("Mitchell's {} must be between 0 and 1, got {v}", &key[7..]),
+                    ));
+                }
+            }
+        }
+    }
+    if r.antialias != Antialias::Stratified {
+        out.push(
+            Diagnostic::new(at("filter"), "a reconstruction filter needs stratified sampling")
+                .with_help("POV-Ray's antialiasing methods weigh their own samples; remove `filter` or `antialias`"),
+        );
+    }
 }
 
 fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
@@ -163,6 +197,32 @@ fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
         && !(f.is_finite() && f > 0.0)
     {
         out.push(Diagnostic::new(origin.child("focal_distance"), "focal_distance must be positive"));
+    }
+    match camera.projection {
+        Projection::Perspective => {
+            if camera.view_height.is_some() {
+                out.push(
+                    Diagnostic::new(origin.child("view_height"), "view_height belongs to an orthographic camera")
+                        .with_help("set projection = \"orthographic\", or frame the view with vfov"),
+                );
+            }
+        }
+        Projection::Orthographic => {
+            if camera.aperture > 0.0 {
+                out.push(Diagnostic::new(
+                    origin.child("aperture"),
+                    "an orthographic camera has no lens: depth of field needs projection = \"perspective\"",
+                ));
+            }
+            if let Some(h) = camera.view_height
+                && !(h.is_finite() && h > 0.0)
+            {
+                out.push(Diagnostic::new(
+                    origin.child("view_height"),
+                    format!("view_height must be positive, got {h}"),
+                ));
+            }
+        }
     }
 }
 

@@ -871,6 +871,21 @@ fn worst_bins(observed: &[f64], expected: &[f64]) -> String {
     format!("; worst bins: {}", list.join("; "))
 }
 
+/// Checks that `intersect`'s `t` range is open at both ends on a ray from `origin` along
+/// `toward` that enters a closed shape at `t_enter` and leaves it at `t_exit` (both exact):
+/// the reversed ray misses, `t_max = t_enter` finds nothing, `t_min = t_enter` finds the exit
+/// and `t_min = t_exit` nothing. Returns the exit hit for further checks.
+pub fn check_t_range(shape: &dyn Shape, origin: DVec3, toward: DVec3, t_enter: f64, t_exit: f64) -> crate::Hit {
+    let away = Ray::new(origin, -toward);
+    assert!(shape.intersect(&away, 1e-9, f64::INFINITY).is_none(), "a ray pointing away hit");
+    let ray = Ray::new(origin, toward);
+    assert!(shape.intersect(&ray, 1e-9, t_enter).is_none(), "t_max is exclusive");
+    let exit = shape.intersect(&ray, t_enter, f64::INFINITY).expect("t_min is exclusive: the exit is hit");
+    assert!((exit.t - t_exit).abs() <= 1e-12 * t_exit.abs().max(1.0), "exit at t = {}, not {t_exit}", exit.t);
+    assert!(shape.intersect(&ray, t_exit, f64::INFINITY).is_none(), "nothing lies beyond the exit");
+    exit
+}
+
 /// Checks that each hit's `dpdu` is the derivative of the uv: for hits whose neighbours (rays
 /// moved sideways by a millionth of the shape's size) land on the same part with a
 /// well-conditioned change of uv, ∂p/∂u from the finite differences must match `dpdu` to

@@ -182,7 +182,7 @@ impl Shape for BoxShape {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::{check_dpdu, check_shape};
+    use prism_api::contract::{check_dpdu, check_shape, check_t_range};
 
     fn cube() -> BoxShape {
         BoxShape { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) }
@@ -225,13 +225,7 @@ mod tests {
     #[test]
     fn behind_grazing_and_t_range() {
         let b = cube();
-        let away = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::Z);
-        assert!(b.intersect(&away, 1e-9, f64::INFINITY).is_none());
-        let toward = Ray::new(DVec3::new(0.0, 0.0, 5.0), -DVec3::Z);
-        assert!(b.intersect(&toward, 1e-9, 4.0).is_none(), "t_max is exclusive");
-        let far = b.intersect(&toward, 4.0, f64::INFINITY).unwrap();
-        assert!((far.t - 6.0).abs() < 1e-15 && far.part == 4, "t_min is exclusive: the exit");
-        assert!(b.intersect(&toward, 6.0, f64::INFINITY).is_none());
+        assert_eq!(check_t_range(&b, DVec3::new(0.0, 0.0, 5.0), -DVec3::Z, 4.0, 6.0).part, 4, "the exit face");
         let above = Ray::new(DVec3::new(0.0, 1.0 + 1e-12, 5.0), -DVec3::Z);
         assert!(b.intersect(&above, 1e-9, f64::INFINITY).is_none());
         let skim = Ray::new(DVec3::new(0.0, 1.0 - 1e-12, 5.0), -DVec3::Z);

@@ -305,7 +305,7 @@ impl Shape for Cone {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::{ContractConfig, TestRng, check_dpdu, check_sampling_toward, check_shape};
+    use prism_api::contract::{ContractConfig, TestRng, check_dpdu, check_sampling_toward, check_shape, check_t_range};
 
     /// The default cone: radius 1 at the origin, a point at y = 1.
     fn unit() -> Cone {
@@ -416,12 +416,7 @@ mod tests {
     #[test]
     fn behind_grazing_and_t_range() {
         let c = unit();
-        let away = Ray::new(DVec3::new(5.0, 0.5, 0.0), DVec3::X);
-        assert!(c.intersect(&away, 1e-9, f64::INFINITY).is_none());
-        let toward = Ray::new(DVec3::new(5.0, 0.5, 0.0), -DVec3::X);
-        assert!(c.intersect(&toward, 1e-9, 4.5).is_none(), "t_max is exclusive");
-        let far = c.intersect(&toward, 4.5, f64::INFINITY).unwrap();
-        assert!((far.t - 5.5).abs() < 1e-15, "t_min is exclusive: the far side");
+        check_t_range(&c, DVec3::new(5.0, 0.5, 0.0), -DVec3::X, 4.5, 5.5);
         // Tangent to the side where its radius is 0.5, just outside and just inside.
         let graze = Ray::new(DVec3::new(0.5 + 1e-12, 0.5, 5.0), -DVec3::Z);
         assert!(c.intersect(&graze, 1e-9, f64::INFINITY).is_none());

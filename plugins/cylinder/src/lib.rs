@@ -255,7 +255,7 @@ impl Shape for Cylinder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape};
+    use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape, check_t_range};
 
     fn unit() -> Cylinder {
         Cylinder::new(DVec3::ZERO, DVec3::Y, 1.0, false)
@@ -346,12 +346,7 @@ mod tests {
     #[test]
     fn behind_grazing_and_t_range() {
         let c = unit();
-        let away = Ray::new(DVec3::new(5.0, 0.5, 0.0), DVec3::X);
-        assert!(c.intersect(&away, 1e-9, f64::INFINITY).is_none());
-        let toward = Ray::new(DVec3::new(5.0, 0.5, 0.0), -DVec3::X);
-        assert!(c.intersect(&toward, 1e-9, 4.0).is_none(), "t_max is exclusive");
-        let far = c.intersect(&toward, 4.0, f64::INFINITY).unwrap();
-        assert!((far.t - 6.0).abs() < 1e-15, "t_min is exclusive: the far side");
+        check_t_range(&c, DVec3::new(5.0, 0.5, 0.0), -DVec3::X, 4.0, 6.0);
         let graze = Ray::new(DVec3::new(1.0 + 1e-12, 0.5, 5.0), -DVec3::Z);
         assert!(c.intersect(&graze, 1e-9, f64::INFINITY).is_none());
         let skim = Ray::new(DVec3::new(1.0 - 1e-12, 0.5, 5.0), -DVec3::Z);

@@ -176,7 +176,7 @@ impl Shape for Sphere {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape};
+    use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape, check_t_range};
 
     fn unit() -> Sphere {
         Sphere { center: DVec3::ZERO, radius: 1.0 }
@@ -252,12 +252,7 @@ mod tests {
     #[test]
     fn behind_the_origin_and_t_range() {
         let s = unit();
-        let away = Ray::new(DVec3::new(0.0, 0.0, 5.0), DVec3::Z);
-        assert!(s.intersect(&away, 1e-6, f64::INFINITY).is_none());
-        let toward = Ray::new(DVec3::new(0.0, 0.0, 5.0), -DVec3::Z);
-        assert!(s.intersect(&toward, 1e-6, 3.9).is_none());
-        let far_only = s.intersect(&toward, 4.5, f64::INFINITY).unwrap();
-        assert!((far_only.t - 6.0).abs() < 1e-12);
+        check_t_range(&s, DVec3::new(0.0, 0.0, 5.0), -DVec3::Z, 4.0, 6.0);
     }
 
     #[test]

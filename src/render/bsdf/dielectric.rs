@@ -27,8 +27,19 @@ fn half_vector(eta: f64, wo: DVec3, wi: DVec3) -> (DVec3, bool, f64) {
     (if h.z < 0.0 { -h } else { h }, reflect, eta_o)
 }
 
+/// What tints reflected and transmitted light (Mitsuba's `specular_reflectance` and
+/// `specular_transmittance`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Tints {
+    /// Multiplies reflected light.
+    pub reflect: DVec3,
+    /// Multiplies transmitted light.
+    pub transmit: DVec3,
+}
+
 /// f cos θi of the rough interface (0 for a smooth one).
-pub(crate) fn eval(eta: f64, alpha: f64, reflect_tint: DVec3, transmit_tint: DVec3, wo: DVec3, wi: DVec3) -> DVec3 {
+pub(crate) fn eval(eta: f64, alpha: f64, tints: Tints, wo: DVec3, wi: DVec3) -> DVec3 {
+    let Tints { reflect: reflect_tint, transmit: transmit_tint } = tints;
     if is_smooth(eta, alpha) || wo.z == 0.0 || wi.z == 0.0 {
         return DVec3::ZERO;
     }
@@ -78,15 +89,8 @@ pub(crate) fn pdf(eta: f64, alpha: f64, wo: DVec3, wi: DVec3) -> f64 {
 
 /// Samples reflection with probability F and refraction otherwise, about a visible normal
 /// sampled from `wo`'s side (smooth: about the macro normal, as delta lobes).
-pub(crate) fn sample(
-    eta: f64,
-    alpha: f64,
-    reflect_tint: DVec3,
-    transmit_tint: DVec3,
-    wo: DVec3,
-    u_lobe: f64,
-    u: DVec2,
-) -> Option<BsdfSample> {
+pub(crate) fn sample(eta: f64, alpha: f64, tints: Tints, wo: DVec3, u_lobe: f64, u: DVec2) -> Option<BsdfSample> {
+    let Tints { reflect: reflect_tint, transmit: transmit_tint } = tints;
     if wo.z == 0.0 {
         return None;
     }
@@ -135,13 +139,8 @@ pub(crate) fn sample(
 /// Mitsuba's `thindielectric`: reflectance `R = r + t r t + t r^3 t + … = 2r / (1 + r)` of a
 /// slab whose interfaces each reflect r, transmission `1 - R` straight through (no
 /// refraction offset: the slab is thin), both delta lobes.
-pub(crate) fn sample_thin(
-    eta: f64,
-    reflect_tint: DVec3,
-    transmit_tint: DVec3,
-    wo: DVec3,
-    u_lobe: f64,
-) -> Option<BsdfSample> {
+pub(crate) fn sample_thin(eta: f64, tints: Tints, wo: DVec3, u_lobe: f64) -> Option<BsdfSample> {
+    let Tints { reflect: reflect_tint, transmit: transmit_tint } = tints;
     if wo.z == 0.0 {
         return None;
     }

@@ -86,6 +86,21 @@ mod tests {
     use super::*;
     use crate::render::bsdf::chi2::Rng;
 
+    /// Midpoint quadrature over the upper hemisphere with cosine spacing concentrated near
+    /// the pole (cos = 1 - x^2): calls `f(m, solid angle of m's cell)`.
+    fn hemisphere_quadrature(nt: usize, np: usize, mut f: impl FnMut(DVec3, f64)) {
+        for i in 0..nt {
+            let x = (i as f64 + 0.5) / nt as f64;
+            let cos = 1.0 - x * x;
+            let dcos = 2.0 * x / nt as f64;
+            let sin = (1.0 - cos * cos).max(0.0).sqrt();
+            for j in 0..np {
+                let phi = (j as f64 + 0.5) / np as f64 * std::f64::consts::TAU;
+                f(DVec3::new(sin * phi.cos(), sin * phi.sin(), cos), dcos * std::f64::consts::TAU / np as f64);
+            }
+        }
+    }
+
     /// ∫ D(m) cos θm dωm = 1 and ∫ pdf_visible dωm = 1 (midpoint rule in (cos θ, φ), on a grid
     /// that resolves the lobe).
     #[test]
@@ -93,22 +108,11 @@ mod tests {
         for alpha in [0.05, 0.3, 0.8] {
             let wi = DVec3::new(0.6, 0.0, 0.8);
             let ggx = Ggx::new(alpha);
-            let (nt, np) = (4000, 256);
             let (mut sum_d, mut sum_v) = (0.0, 0.0);
-            for i in 0..nt {
-                // Cosine spacing concentrated near the pole (cos = 1 - x^2).
-                let x = (i as f64 + 0.5) / nt as f64;
-                let cos = 1.0 - x * x;
-                let dcos = 2.0 * x / nt as f64;
-                let sin = (1.0 - cos * cos).max(0.0).sqrt();
-                for j in 0..np {
-                    let phi = (j as f64 + 0.5) / np as f64 * std::f64::consts::TAU;
-                    let m = DVec3::new(sin * phi.cos(), sin * phi.sin(), cos);
-                    let w = dcos * std::f64::consts::TAU / np as f64;
-                    sum_d += ggx.d(m) * cos * w;
-                    sum_v += ggx.pdf_visible(wi, m) * w;
-                }
-            }
+            hemisphere_quadrature(4000, 256, |m, w| {
+                sum_d += ggx.d(m) * m.z * w;
+                sum_v += ggx.pdf_visible(wi, m) * w;
+            });
             assert!((sum_d - 1.0).abs() < 2e-3, "alpha {alpha}: ∫D cos = {sum_d}");
             assert!((sum_v - 1.0).abs() < 2e-3, "alpha {alpha}: ∫pdf_visible = {sum_v}");
         }
@@ -131,19 +135,8 @@ mod tests {
             }
             mean /= n as f64;
             // Numerical E[m] under pdf_visible.
-            let (nt, np) = (2000, 256);
             let mut expect = DVec3::ZERO;
-            for i in 0..nt {
-                let x = (i as f64 + 0.5) / nt as f64;
-                let cos = 1.0 - x * x;
-                let dcos = 2.0 * x / nt as f64;
-                let sin = (1.0 - cos * cos).max(0.0).sqrt();
-                for j in 0..np {
-                    let phi = (j as f64 + 0.5) / np as f64 * std::f64::consts::TAU;
-                    let m = DVec3::new(sin * phi.cos(), sin * phi.sin(), cos);
-                    expect += m * ggx.pdf_visible(wi, m) * dcos * std::f64::consts::TAU / np as f64;
-                }
-            }
+            hemisphere_quadrature(2000, 256, |m, w| expect += m * ggx.pdf_visible(wi, m) * w);
             assert!((mean - expect).abs().max_element() < 5e-3, "alpha {alpha}: {mean} vs {expect}");
         }
     }

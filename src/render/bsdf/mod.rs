@@ -25,6 +25,7 @@ mod plastic;
 #[cfg(test)]
 mod chi2;
 
+use dielectric::Tints;
 use glam::{DVec2, DVec3};
 
 pub use fresnel::{fresnel_conductor, fresnel_dielectric};
@@ -187,7 +188,7 @@ impl Bsdf {
             Bsdf::Diffuse { reflectance } => diffuse::eval(reflectance, wo, wi),
             Bsdf::Conductor { eta, k, alpha, tint } => conductor::eval(eta, k, alpha, tint, wo, wi),
             Bsdf::Dielectric { eta, alpha, reflect_tint, transmit_tint } => {
-                dielectric::eval(eta, alpha, reflect_tint, transmit_tint, wo, wi)
+                dielectric::eval(eta, alpha, Tints { reflect: reflect_tint, transmit: transmit_tint }, wo, wi)
             }
             Bsdf::ThinDielectric { .. } => DVec3::ZERO,
             Bsdf::Plastic { diffuse, eta, alpha } => plastic::eval(diffuse, eta, alpha, wo, wi),
@@ -214,10 +215,10 @@ impl Bsdf {
             Bsdf::Diffuse { reflectance } => diffuse::sample(reflectance, wo, u),
             Bsdf::Conductor { eta, k, alpha, tint } => conductor::sample(eta, k, alpha, tint, wo, u),
             Bsdf::Dielectric { eta, alpha, reflect_tint, transmit_tint } => {
-                dielectric::sample(eta, alpha, reflect_tint, transmit_tint, wo, u_lobe, u)
+                dielectric::sample(eta, alpha, Tints { reflect: reflect_tint, transmit: transmit_tint }, wo, u_lobe, u)
             }
             Bsdf::ThinDielectric { eta, reflect_tint, transmit_tint } => {
-                dielectric::sample_thin(eta, reflect_tint, transmit_tint, wo, u_lobe)
+                dielectric::sample_thin(eta, Tints { reflect: reflect_tint, transmit: transmit_tint }, wo, u_lobe)
             }
             Bsdf::Plastic { diffuse, eta, alpha } => plastic::sample(diffuse, eta, alpha, wo, u_lobe, u),
             Bsdf::MetallicRoughness { .. } => self.metallic_roughness()?.sample(wo, u_lobe, u),

@@ -4,6 +4,27 @@
 use super::*;
 
 impl Loader<'_> {
+    /// Removes the string `table[field]` (`None` when absent); a diagnostic `message` at
+    /// `key.field` and `Err` when it is not a string.
+    fn optional_string(
+        &mut self,
+        table: &mut toml::Table,
+        file: usize,
+        key: &str,
+        field: &str,
+        message: &str,
+    ) -> Result<Option<String>, ()> {
+        match table.remove(field) {
+            None => Ok(None),
+            Some(toml::Value::String(s)) => Ok(Some(s)),
+            Some(_) => {
+                let at = self.files[file].locate_value(&format!("{key}.{field}"));
+                self.diagnostics.push(Diagnostic::new(at, message));
+                Err(())
+            }
+        }
+    }
+
     pub(super) fn object(
         &mut self,
         world: &mut hecs::World,
@@ -42,16 +63,8 @@ impl Loader<'_> {
             return;
         }
 
-        let name = match table.remove("name") {
-            None => None,
-            Some(toml::Value::String(s)) => Some(s),
-            Some(_) => {
-                self.diagnostics.push(Diagnostic::new(
-                    self.files[file].locate_value(&format!("{key}.name")),
-                    "`name` must be a string",
-                ));
-                return;
-            }
+        let Ok(name) = self.optional_string(&mut table, file, &key, "name", "`name` must be a string") else {
+            return;
         };
         let transform: Transform = match table.remove("transform") {
             None => Transform::default(),
@@ -108,16 +121,10 @@ impl Loader<'_> {
                 None
             }
         };
-        let parent = match table.remove("parent") {
-            None => None,
-            Some(toml::Value::String(s)) => Some(s),
-            Some(_) => {
-                self.diagnostics.push(Diagnostic::new(
-                    self.files[file].locate_value(&format!("{key}.parent")),
-                    "`parent` must be the name of another object",
-                ));
-                return;
-            }
+        let Ok(parent) =
+            self.optional_string(&mut table, file, &key, "parent", "`parent` must be the name of another object")
+        else {
+            return;
         };
         let flags = match table.remove("no_shadow") {
             None => ObjectFlags::default(),

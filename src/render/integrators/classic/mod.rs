@@ -125,7 +125,7 @@ impl<'a> Classic<'a> {
         let views = scene.materials.iter().map(PovView::new).collect();
         let lights = scene.lights.sources.iter().map(PovLight::new).collect();
         let mut integrator = Self { scene, views, pixel_spread, camera_candidates, pinhole_interiors: None, lights };
-        if scene.camera.aperture <= 0.0 {
+        if scene.camera.has_single_origin() {
             integrator.pinhole_interiors = Some(integrator.interiors_at(scene.camera.position));
         }
         integrator
@@ -159,13 +159,14 @@ impl<'a> Classic<'a> {
             return ShadedFinish { finish: std::borrow::Cow::Borrowed(&view.base), emitted: DVec3::ZERO };
         }
         let area_scale = primitive.area_scale(surface.normal);
-        let footprint =
-            crate::texture::uv_footprint(self.pixel_spread * distance, surface.uv_density, area_scale, cosine);
+        // A pixel's ray cone widens with distance; an orthographic pixel is a fixed width.
+        let width = if self.scene.camera.orthographic { self.pixel_spread } else { self.pixel_spread * distance };
+        let footprint = crate::texture::uv_footprint(width, surface.uv_density, area_scale, cosine);
         view.at_surface(surface.uv, footprint)
     }
 
     fn medium_ior(&self, interiors: &Interiors) -> f64 {
-        interiors.innermost().map_or(1.0, |p| self.material_of(p).ior)
+        interiors.innermost().map_or(1.0, |p| self.material_of(p).interior.ior)
     }
 
     fn material_of(&self, primitive: u32) -> &PovFinish {
@@ -180,8 +181,8 @@ impl<'a> Classic<'a> {
         match interiors.innermost() {
             None => ior,
             Some(_) if interiors.contains(p) && interiors.len == 1 => 1.0 / ior,
-            Some(back) if interiors.contains(p) => self.material_of(back).ior / ior,
-            Some(back) => ior / self.material_of(back).ior,
+            Some(back) if interiors.contains(p) => self.material_of(back).interior.ior / ior,
+            Some(back) => ior / self.material_of(back).interior.ior,
         }
     }
 
@@ -212,7 +213,7 @@ impl<'a> Classic<'a> {
         let material: &PovFinish = &shaded.finish;
         if level == 1 && state.first_hit.is_none() {
             state.first_hit = Some(FirstHit {
-                albedo: material.color.0,
+                albedo: material.finish.color.0,
                 normal: n,
                 position: point,
                 depth: closest.hit.t * d.length(),
@@ -228,26 +229,27 @@ impl<'a> Classic<'a> {
         let c = -d.dot(n);
         let n_from = self.medium_ior(&interiors);
         let inner = if entering { interiors.entering(closest.primitive) } else { interiors.leaving(closest.primitive) };
-        let n_to = if entering { material.ior } else { self.medium_ior(&inner) };
+        let n_to = if entering { material.interior.ior } else { self.medium_ior(&inner) };
 
-        let reflection = &material.reflection;
+        let reflection = &material.finish.reflection;
         let mut rf = DVec3::ZERO;
         if reflection.is_reflective() {
             let (min, max) = (reflection.min.0, reflection.max.0);
             rf = if reflection.fresnel {
-                min + (max - min) * fresnel(self.fresnel_eta(&interiors, closest.primitive, material.ior), c)
+                min + (max - min) * fresnel(self.fresnel_eta(&interiors, closest.primitive, material.interior.ior), c)
             } else {
                 min + (max - min) * (1.0 - c).max(0.0).powf(reflection.falloff)
             };
             if reflection.metallic != 0.0 {
-                rf *= DVec3::ONE + reflection.metallic * (1.0 - metallic_fresnel(c)) * (material.color.0 - DVec3::ONE);
+                rf *= DVec3::ONE
+                    + reflection.metallic * (1.0 - metallic_fresnel(c)) * (material.finish.color.0 - DVec3::ONE);
             }
         }
 
         let mut total_internal = false;
         if material.is_transparent() {
-            let mut filter = material.color.0 * material.filter + DVec3::splat(material.transmit);
-            if material.conserve_energy {
+            let mut filter = material.finish.color.0 * material.finish.filter + DVec3::splat(material.finish.transmit);
+            if material.finish.conserve_energy {
                 filter *= (DVec3::ONE - rf).min(DVec3::ONE);
             }
             let strength = (0.297 * filter.x + 0.589 * filter.y + 0.114 * filter.z).abs().min(1.0);
@@ -311,10 +313,10 @@ impl<'a> Classic<'a> {
         state: &mut PathState,
     ) -> DVec3 {
         let scene = self.scene;
-        let pigment = m.color.0;
+        let pigment = m.finish.color.0;
         let opacity = m.opacity();
-        let mut colour = pigment * opacity * (m.ambient.0 * scene.environment.ambient_light.0 + m.emission.0);
-        if m.diffuse == 0.0 && m.phong == 0.0 && m.specular == 0.0 {
+        let mut colour = pigment * opacity * (m.finish.ambient.0 * scene.environment.ambient_light.0 + m.emission.0);
+        if m.finish.diffuse == 0.0 && m.finish.phong == 0.0 && m.finish.specular == 0.0 {
             return colour;
         }
         let mirror = d - 2.0 * d.dot(n) * n;
@@ -344,29 +346,29 @@ impl<'a> Classic<'a> {
                     continue;
                 }
             }
-            if m.diffuse != 0.0 {
-                let cosine = if m.brilliance == 1.0 { n_dot_l } else { pow(n_dot_l, m.brilliance) };
-                colour += m.diffuse * opacity * cosine * pigment * e;
+            if m.finish.diffuse != 0.0 {
+                let cosine = if m.finish.brilliance == 1.0 { n_dot_l } else { pow(n_dot_l, m.finish.brilliance) };
+                colour += m.finish.diffuse * opacity * cosine * pigment * e;
             }
             if light.shadowless {
                 continue;
             }
-            let highlight = if m.metallic != 0.0 {
-                e * (DVec3::ONE + m.metallic * (1.0 - metallic_fresnel(n_dot_l)) * (pigment - DVec3::ONE))
+            let highlight = if m.finish.metallic != 0.0 {
+                e * (DVec3::ONE + m.finish.metallic * (1.0 - metallic_fresnel(n_dot_l)) * (pigment - DVec3::ONE))
             } else {
                 e
             };
-            if m.phong != 0.0 {
+            if m.finish.phong != 0.0 {
                 let r_dot_l = mirror.dot(l);
-                if r_dot_l > 0.0 && !(m.phong_size >= 60.0 && r_dot_l <= 0.0008) {
-                    colour += m.phong * pow(r_dot_l, m.phong_size) * highlight;
+                if r_dot_l > 0.0 && !(m.finish.phong_size >= 60.0 && r_dot_l <= 0.0008) {
+                    colour += m.finish.phong * pow(r_dot_l, m.finish.phong_size) * highlight;
                 }
             }
-            if m.specular != 0.0 {
+            if m.finish.specular != 0.0 {
                 let h = (l - d).normalize();
                 let n_dot_h = n.dot(h);
                 if n_dot_h > 0.0 {
-                    colour += m.specular * pow(n_dot_h, 1.0 / m.roughness) * highlight;
+                    colour += m.finish.specular * pow(n_dot_h, 1.0 / m.finish.roughness) * highlight;
                 }
             }
         }
@@ -418,7 +420,7 @@ impl<'a> Classic<'a> {
             if !m.is_transparent() {
                 return DVec3::ZERO;
             }
-            filter *= m.color.0 * m.filter + DVec3::splat(m.transmit);
+            filter *= m.finish.color.0 * m.finish.filter + DVec3::splat(m.finish.transmit);
             if inside.contains(hit.primitive) {
                 filter *= interior_fade(m, hit.hit.t, true);
                 inside = inside.leaving(hit.primitive);
@@ -647,15 +649,15 @@ fn fresnel(eta: f64, c: f64) -> f64 {
 /// a camera-side ray fades whenever `fade_distance` is not 0 (with `fade_power` 0 that is a
 /// constant halfway blend), a shadow ray only when `fade_power` is positive as well.
 fn interior_fade(m: &PovFinish, s: f64, shadow: bool) -> DVec3 {
-    if m.fade_distance.abs() <= IOR_EPSILON || (shadow && m.fade_power <= 0.0) {
+    if m.interior.fade_distance.abs() <= IOR_EPSILON || (shadow && m.interior.fade_power <= 0.0) {
         return DVec3::ONE;
     }
-    let fade_color = m.fade_color.0;
-    if m.fade_power >= 1000.0 {
-        let k = (DVec3::ONE - fade_color) * (s / m.fade_distance);
+    let fade_color = m.interior.fade_color.0;
+    if m.interior.fade_power >= 1000.0 {
+        let k = (DVec3::ONE - fade_color) * (s / m.interior.fade_distance);
         DVec3::new((-k.x).exp(), (-k.y).exp(), (-k.z).exp())
     } else {
-        fade_color + (DVec3::ONE - fade_color) / (1.0 + (s / m.fade_distance).powf(m.fade_power))
+        fade_color + (DVec3::ONE - fade_color) / (1.0 + (s / m.interior.fade_distance).powf(m.interior.fade_power))
     }
 }
 
@@ -746,18 +748,23 @@ mod tests {
     fn interior_fade_tests_camera_and_shadow_rays_as_pov_ray_does() {
         let grey = crate::color::Rgb::grey(0.2);
         let base = PovView::new(&crate::material::Material::default()).base;
-        let m = PovFinish { fade_distance: 2.0, fade_power: 0.0, fade_color: grey, ..base };
+        let mut m = base;
+        m.interior.fade_distance = 2.0;
+        m.interior.fade_power = 0.0;
+        m.interior.fade_color = grey;
         // fade_power 0: a constant halfway blend for camera-side rays, nothing for shadows.
         assert!((interior_fade(&m, 5.0, false) - DVec3::splat(0.6)).length() < 1e-12);
         assert_eq!(interior_fade(&m, 5.0, true), DVec3::ONE);
-        let m = PovFinish { fade_power: 2.0, ..m };
+        m.interior.fade_power = 2.0;
         let expected = 0.2 + 0.8 / (1.0 + 2.5f64 * 2.5);
         for shadow in [false, true] {
             assert!((interior_fade(&m, 5.0, shadow) - DVec3::splat(expected)).length() < 1e-12);
         }
-        let m = PovFinish { fade_power: 1000.0, ..m };
+        m.interior.fade_power = 1000.0;
         assert!((interior_fade(&m, 5.0, true) - DVec3::splat((-0.8f64 * 2.5).exp())).length() < 1e-12);
-        let none = PovFinish { fade_distance: 0.0, fade_power: 2.0, ..m };
+        let mut none = m;
+        none.interior.fade_distance = 0.0;
+        none.interior.fade_power = 2.0;
         assert_eq!(interior_fade(&none, 5.0, false), DVec3::ONE);
     }
 }

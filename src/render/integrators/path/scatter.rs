@@ -126,30 +126,26 @@ impl Scatter {
         self.lobes.iter().zip(self.probability).filter_map(|(l, p)| l.as_ref().map(|(w, lobe)| (p, *w, lobe)))
     }
 
+    /// The non-delta lobes as (selection probability, weight, BSDF, wo, wi), the directions
+    /// oriented for the lobe's sidedness.
+    fn smooth(&self, wo: DVec3, wi: DVec3) -> impl Iterator<Item = (f64, DVec3, &Bsdf, DVec3, DVec3)> {
+        self.present().filter_map(move |(p, weight, lobe)| match lobe {
+            Lobe::Bsdf { bsdf, two_sided } => {
+                let (wo, wi) = oriented(*two_sided, wo, wi);
+                Some((p, weight, bsdf, wo, wi))
+            }
+            Lobe::Mirror | Lobe::PassThrough => None,
+        })
+    }
+
     /// f * |cos wi| of the non-delta lobes, local directions.
     pub fn eval(&self, wo: DVec3, wi: DVec3) -> DVec3 {
-        self.present()
-            .map(|(_, weight, lobe)| match lobe {
-                Lobe::Bsdf { bsdf, two_sided } => {
-                    let (wo, wi) = oriented(*two_sided, wo, wi);
-                    weight * bsdf.eval(wo, wi)
-                }
-                Lobe::Mirror | Lobe::PassThrough => DVec3::ZERO,
-            })
-            .sum()
+        self.smooth(wo, wi).map(|(_, weight, bsdf, wo, wi)| weight * bsdf.eval(wo, wi)).sum()
     }
 
     /// Solid-angle pdf of `sample` producing wi through a non-delta lobe.
     pub fn pdf(&self, wo: DVec3, wi: DVec3) -> f64 {
-        self.present()
-            .map(|(p, _, lobe)| match lobe {
-                Lobe::Bsdf { bsdf, two_sided } => {
-                    let (wo, wi) = oriented(*two_sided, wo, wi);
-                    p * bsdf.pdf(wo, wi)
-                }
-                Lobe::Mirror | Lobe::PassThrough => 0.0,
-            })
-            .sum()
+        self.smooth(wo, wi).map(|(p, _, bsdf, wo, wi)| p * bsdf.pdf(wo, wi)).sum()
     }
 
     /// Samples a direction: a lobe by `u_lobe`, then a direction from it by `u_dir`.
