@@ -272,6 +272,24 @@ fn warnings_name_the_place_and_the_render_goes_on() {
 }
 
 #[test]
+fn a_path_traced_scene_without_light_renders_black_with_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let dark = "[render]\nwidth = 8\nheight = 6\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\n";
+    std::fs::write(dir.path().join("dark.toml"), dark).unwrap();
+    let run = prism().current_dir(dir.path()).args(["render", "dark.toml", "-o", "out.png"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success() && dir.path().join("out.png").is_file(), "{stderr}");
+    assert!(stderr.contains("dark.toml:1:2: warning in `render.integrator`: the scene has no light"), "{stderr}");
+    // A light anywhere (here the background) silences it, and classic never warns.
+    for scene in [format!("{dark}[world]\nbackground = 0.5\n"), dark.replace("\"path\"", "\"classic\"")] {
+        std::fs::write(dir.path().join("lit.toml"), scene).unwrap();
+        let run = prism().current_dir(dir.path()).args(["render", "lit.toml", "-o", "out.png"]).output().unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert!(run.status.success() && !stderr.contains("no light"), "{stderr}");
+    }
+}
+
+#[test]
 fn missing_scene_file_is_an_error() {
     let dir = tempfile::tempdir().unwrap();
     let run = prism().current_dir(dir.path()).args(["render", "no-such-scene.toml"]).output().unwrap();

@@ -5,7 +5,8 @@ use glam::DVec3;
 
 use super::Scene;
 use super::components::{
-    Antialias, ImportedCamera, Light, LightKind, Origin, PixelFilter, Projection, RenderSettings, WorldTransform,
+    Antialias, ImportedCamera, IntegratorKind, Light, LightKind, MaterialComponent, Origin, PhotometricLight,
+    PixelFilter, Projection, RenderSettings, WorldTransform,
 };
 use crate::diagnostics::{Diagnostic, Location, SceneError};
 
@@ -16,9 +17,10 @@ pub const MAX_PIXELS: u64 = 268_435_456;
 /// Largest accepted samples per pixel.
 pub const MAX_SAMPLES: u32 = 1 << 20;
 
-/// Warnings that depend on the final image size, so they are not among
-/// [`Scene::warnings`]: a camera imported from a file made for another aspect ratio than the
-/// image's (call it once the image size is final, after command-line overrides).
+/// Warnings that depend on the final settings, so they are not among [`Scene::warnings`]: a
+/// camera imported from a file made for another aspect ratio than the image's, and a path-
+/// traced scene without any light (call it once the settings are final, after command-line
+/// overrides).
 pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     if let Ok(imported) = scene.world.get::<&ImportedCamera>(scene.camera)
@@ -30,7 +32,28 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
         };
         out.push(Diagnostic::warning(location, format!("{}: {w}", imported.description)));
     }
+    if scene.render.integrator == IntegratorKind::Path && !has_light(scene) {
+        out.push(
+            Diagnostic::warning(
+                scene.render_origin.child("integrator"),
+                "the scene has no light: no light source, emitting material or environment, so the path \
+                 integrator renders it black",
+            )
+            .with_help("add a [[light]], a material with `emission`, or a [world] background or environment"),
+        );
+    }
     out
+}
+
+/// True when anything in the scene emits light the path integrator sees.
+fn has_light(scene: &Scene) -> bool {
+    let positive = |c: crate::color::Rgb, scale: f64| scale > 0.0 && c.0.max_element() > 0.0;
+    let env = &scene.environment;
+    env.environment.as_ref().is_some_and(|map| map.intensity > 0.0)
+        || (env.environment.is_none() && positive(env.background, 1.0))
+        || scene.world.query::<&Light>().iter().any(|l| positive(l.color, l.intensity))
+        || scene.world.query::<&PhotometricLight>().iter().any(|l| positive(l.color, l.intensity))
+        || scene.world.query::<&MaterialComponent>().iter().any(|m| m.material.emission.can_emit())
 }
 
 /// Checks the scene; `Ok` means it can be extracted and rendered.
