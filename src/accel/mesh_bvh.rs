@@ -3,8 +3,9 @@
 //!
 //! obvhs builds a binary tree (PLOC, reinsertion, one triangle per leaf); it is then
 //! collapsed into the 8-wide tree shared with the top level (`accel::wide`), whose leaves
-//! are packets of up to four triangles ([`TrianglePacket`]). A ray is tested against a
-//! node's eight boxes and a leaf's four triangles at once by the SIMD kernels
+//! are one or two packets of up to four triangles ([`TrianglePacket`]), so a subtree of up
+//! to eight triangles is one leaf. A ray is tested against a node's eight boxes and a
+//! packet's four triangles at once by the SIMD kernels
 //! (`accel::simd`: AVX2 where the CPU has it, plain loops otherwise, with the same hits);
 //! children are visited nearest first.
 
@@ -16,7 +17,7 @@ use obvhs::bvh2::builder::build_bvh2;
 
 use super::simd::{self, BoxRay, Dispatch, Kernels};
 use super::triangle::{PACKET, PacketHits, TriangleHit, TrianglePacket, WatertightRay};
-use super::wide::{EMPTY, Node, StackEntry, WideTree, with_traversal_stack};
+use super::wide::{EMPTY, LeafVisitor, Node, StackEntry, WideTree, with_traversal_stack};
 
 /// A BVH over triangles.
 #[derive(Clone)]
@@ -39,6 +40,19 @@ impl std::fmt::Debug for TriangleBvh {
             self.packets.len()
         )
     }
+}
+
+/// Most packets in one leaf: subtrees of up to eight triangles become one leaf, as in
+/// Embree, rather than a wide node over two or three small leaves (which halves the number
+/// of nodes).
+const LEAF_PACKETS: usize = 2;
+
+/// The leaf reference of packets `first..first + count` (`count` from 1 to 4): the first
+/// packet's index, shifted past two bits that hold `count - 1`.
+fn leaf_reference(first: u32, count: u32) -> u32 {
+    assert!(first < 1 << 29, "too many packets for a leaf reference");
+    debug_assert!((1..=4).contains(&count));
+    first << 2 | (count - 1)
 }
 
 /// A ray prepared for traversal: the watertight test's shear and the slab test's
@@ -73,14 +87,26 @@ impl TriangleBvh {
             })
             .collect();
         let mut build_time = Duration::default();
-        // One triangle per BVH2 leaf: the collapse below forms the leaves.
-        let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
+        // One triangle per BVH2 leaf: the collapse below forms the leaves. One pass of
+        // reinsertion, not obvhs's second pass after its own leaf collapse (which has nothing
+        // to collapse at one triangle per leaf): the second pass took a third of the build
+        // and did not make traversal measurably faster.
+        let params = BvhBuildParams {
+            max_prims_per_leaf: 1,
+            post_collapse_reinsertion_batch_ratio_multiplier: 0.0,
+            ..BvhBuildParams::medium_build()
+        };
         let bvh2 = build_bvh2(&boxes, params, &mut build_time);
-        let mut packets = Vec::new();
-        let tree = WideTree::collapse(&bvh2, PACKET, |prims| {
-            packets.push(TrianglePacket::new(triangles, prims));
-            (packets.len() - 1) as u32
+        // Leaves hold about six triangles; the spare capacity is returned below.
+        let mut packets = Vec::with_capacity(triangles.len() / 2 + 1);
+        let tree = WideTree::collapse(&bvh2, PACKET * LEAF_PACKETS, |prims| {
+            let first = packets.len() as u32;
+            for chunk in prims.chunks(PACKET) {
+                packets.push(TrianglePacket::new(triangles, chunk));
+            }
+            leaf_reference(first, packets.len() as u32 - first)
         });
+        packets.shrink_to_fit();
         TriangleBvh { nodes: tree.nodes, packets, triangles: triangles.to_vec(), stack_size: tree.stack_size }
     }
 
@@ -119,20 +145,32 @@ impl TriangleBvh {
         self.nodes.len() * std::mem::size_of::<Node>() + self.packets.len() * std::mem::size_of::<TrianglePacket>()
     }
 
-    /// Visits the triangles the ray may hit, nearest boxes first. `accept(triangle, hit)` is
-    /// called for each f32 hit below the current bound and returns the new bound (the
-    /// accepted distance, which the traversal uses to prune) or `None` to reject the hit.
+    /// Visits the triangles the ray may hit, nearest boxes first. `accept(triangle, hit,
+    /// vertices)` is called for each f32 hit below the current bound (with the triangle's
+    /// vertices, read from the leaf just tested rather than from [`Self::triangle`], which
+    /// would be a cache miss) and returns the new bound (the accepted distance, which the
+    /// traversal uses to prune) or `None` to reject the hit.
     #[inline]
-    pub fn closest(&self, ray: &WatertightRay, t_max: f32, accept: impl FnMut(usize, TriangleHit) -> Option<f32>) {
+    pub fn closest(
+        &self,
+        ray: &WatertightRay,
+        t_max: f32,
+        accept: impl FnMut(usize, TriangleHit, [Vec3; 3]) -> Option<f32>,
+    ) {
         let ray = TraversalRay::new(ray);
         with_traversal_stack(self.stack_size, |stack| {
             simd::dispatch(Query::<_, false> { bvh: self, ray: &ray, t_max, stack, acceptor: AcceptClosest(accept) })
         });
     }
 
-    /// True when `accept` takes any f32 hit with `t < t_max`.
+    /// True when `accept(triangle, hit, vertices)` takes any f32 hit with `t < t_max`.
     #[inline]
-    pub fn any(&self, ray: &WatertightRay, t_max: f32, accept: impl FnMut(usize, TriangleHit) -> bool) -> bool {
+    pub fn any(
+        &self,
+        ray: &WatertightRay,
+        t_max: f32,
+        accept: impl FnMut(usize, TriangleHit, [Vec3; 3]) -> bool,
+    ) -> bool {
         let ray = TraversalRay::new(ray);
         with_traversal_stack(self.stack_size, |stack| {
             simd::dispatch(Query::<_, true> { bvh: self, ray: &ray, t_max, stack, acceptor: AcceptAny(accept, false) })
@@ -142,18 +180,19 @@ impl TriangleBvh {
 
 /// What the traversal does with a candidate hit.
 trait Acceptor {
-    /// Offers a hit; returns the new bound on t if it was taken.
-    fn offer(&mut self, prim: usize, hit: TriangleHit) -> Option<f32>;
+    /// Offers a hit on the triangle with these vertices; returns the new bound on t if it
+    /// was taken.
+    fn offer(&mut self, prim: usize, hit: TriangleHit, vertices: [Vec3; 3]) -> Option<f32>;
     /// True when traversal can stop (any-hit queries).
     fn done(&self) -> bool;
 }
 
 struct AcceptClosest<F>(F);
 
-impl<F: FnMut(usize, TriangleHit) -> Option<f32>> Acceptor for AcceptClosest<F> {
+impl<F: FnMut(usize, TriangleHit, [Vec3; 3]) -> Option<f32>> Acceptor for AcceptClosest<F> {
     #[inline(always)]
-    fn offer(&mut self, prim: usize, hit: TriangleHit) -> Option<f32> {
-        (self.0)(prim, hit)
+    fn offer(&mut self, prim: usize, hit: TriangleHit, vertices: [Vec3; 3]) -> Option<f32> {
+        (self.0)(prim, hit, vertices)
     }
 
     #[inline(always)]
@@ -164,10 +203,10 @@ impl<F: FnMut(usize, TriangleHit) -> Option<f32>> Acceptor for AcceptClosest<F> 
 
 struct AcceptAny<F>(F, bool);
 
-impl<F: FnMut(usize, TriangleHit) -> bool> Acceptor for AcceptAny<F> {
+impl<F: FnMut(usize, TriangleHit, [Vec3; 3]) -> bool> Acceptor for AcceptAny<F> {
     #[inline(always)]
-    fn offer(&mut self, prim: usize, hit: TriangleHit) -> Option<f32> {
-        if (self.0)(prim, hit) {
+    fn offer(&mut self, prim: usize, hit: TriangleHit, vertices: [Vec3; 3]) -> Option<f32> {
+        if (self.0)(prim, hit, vertices) {
             self.1 = true;
             Some(0.0)
         } else {
@@ -199,6 +238,44 @@ impl<A: Acceptor, const ANY: bool> Dispatch for Query<'_, A, ANY> {
     }
 }
 
+/// The leaves of a mesh BVH: packets of triangles, whose hits go to the acceptor.
+struct PacketLeaves<'a, A, const ANY: bool> {
+    bvh: &'a TriangleBvh,
+    ray: &'a WatertightRay,
+    hits: PacketHits,
+    acceptor: &'a mut A,
+}
+
+impl<A: Acceptor, const ANY: bool> LeafVisitor for PacketLeaves<'_, A, ANY> {
+    #[inline(always)]
+    fn prefetch<K: Kernels>(&self, kernels: K, leaf: u32) {
+        let packet: *const TrianglePacket = self.bvh.packets.as_ptr().wrapping_add((leaf >> 2) as usize);
+        kernels.prefetch(packet.cast(), std::mem::size_of::<TrianglePacket>() * ((leaf & 3) as usize + 1));
+    }
+
+    #[inline(always)]
+    fn visit<K: Kernels>(&mut self, kernels: K, leaf: u32, t_max: &mut f32) -> bool {
+        let first = (leaf >> 2) as usize;
+        for packet in &self.bvh.packets[first..=first + (leaf & 3) as usize] {
+            let mut mask = kernels.triangles(packet, self.ray, *t_max, &mut self.hits);
+            while mask != 0 {
+                let lane = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let hit = self.hits.get(lane);
+                if hit.t < *t_max
+                    && let Some(bound) = self.acceptor.offer(packet.prim[lane] as usize, hit, packet.vertices(lane))
+                {
+                    if ANY && self.acceptor.done() {
+                        return true;
+                    }
+                    *t_max = t_max.min(bound);
+                }
+            }
+        }
+        false
+    }
+}
+
 /// The traversal with the kernels `K`; true when an any-hit query (`ANY`) found its hit.
 #[inline(always)]
 fn traverse<K: Kernels, const ANY: bool>(
@@ -209,25 +286,8 @@ fn traverse<K: Kernels, const ANY: bool>(
     stack: &mut [StackEntry],
     acceptor: &mut impl Acceptor,
 ) -> bool {
-    let mut hits = PacketHits::default();
-    super::wide::traverse::<K, true>(kernels, &bvh.nodes, &ray.boxes, t_max, stack, |leaf, t_max| {
-        let packet = &bvh.packets[leaf as usize];
-        let mut mask = kernels.triangles(packet, &ray.triangle, *t_max, &mut hits);
-        while mask != 0 {
-            let lane = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            let hit = hits.get(lane);
-            if hit.t < *t_max
-                && let Some(bound) = acceptor.offer(packet.prim[lane] as usize, hit)
-            {
-                if ANY && acceptor.done() {
-                    return true;
-                }
-                *t_max = t_max.min(bound);
-            }
-        }
-        false
-    })
+    let mut leaves = PacketLeaves::<_, ANY> { bvh, ray: &ray.triangle, hits: PacketHits::default(), acceptor };
+    super::wide::traverse::<K, true>(kernels, &bvh.nodes, &ray.boxes, t_max, stack, &mut leaves)
 }
 
 #[cfg(test)]
@@ -272,7 +332,7 @@ mod tests {
             let target = Vec3::new(rng.range(0.05, 0.95) as f32, -0.2, rng.range(0.05, 0.95) as f32);
             let r = WatertightRay::new(o, (target - o) * rng.range(0.2, 3.0) as f32).unwrap();
             let mut got: Option<(usize, f32)> = None;
-            bvh.closest(&r, f32::INFINITY, |prim, h| {
+            bvh.closest(&r, f32::INFINITY, |prim, h, _| {
                 if got.is_none_or(|g| h.t < g.1) {
                     got = Some((prim, h.t));
                 }
@@ -282,9 +342,9 @@ mod tests {
             // Every ray aimed into the grid from above hits it (no cracks).
             assert!(got.is_some(), "ray {i} slipped through");
             assert_eq!(got.map(|g| g.1), expected.map(|e| e.1), "ray {i}");
-            let any = bvh.any(&r, f32::INFINITY, |_, _| true);
+            let any = bvh.any(&r, f32::INFINITY, |_, _, _| true);
             assert!(any);
-            let short = bvh.any(&r, got.unwrap().1 * 0.999, |_, _| true);
+            let short = bvh.any(&r, got.unwrap().1 * 0.999, |_, _, _| true);
             assert!(!short || brute(&tris, &r).is_some_and(|e| e.1 < got.unwrap().1 * 0.999));
         }
     }
@@ -307,13 +367,13 @@ mod tests {
                 &ray,
                 f32::INFINITY,
                 &mut stack,
-                &mut AcceptClosest(|prim: usize, h: TriangleHit| {
+                &mut AcceptClosest(|prim: usize, h: TriangleHit, _: [Vec3; 3]| {
                     scalar = Some((prim, h.t));
                     Some(h.t)
                 }),
             );
             let mut fast = None;
-            bvh.closest(&r, f32::INFINITY, |prim, h| {
+            bvh.closest(&r, f32::INFINITY, |prim, h, _| {
                 fast = Some((prim, h.t));
                 Some(h.t)
             });
@@ -327,7 +387,7 @@ mod tests {
         let bvh = TriangleBvh::build(&one);
         let r = WatertightRay::new(Vec3::new(0.2, 0.2, 1.0), Vec3::NEG_Z).unwrap();
         let mut hit = None;
-        bvh.closest(&r, f32::INFINITY, |p, h| {
+        bvh.closest(&r, f32::INFINITY, |p, h, _| {
             hit = Some((p, h.t));
             Some(h.t)
         });

@@ -125,10 +125,36 @@ pub fn pop_within(stack: &[StackEntry], sp: &mut usize, t_max: f32) -> Option<u3
     None
 }
 
+/// What a traversal does at a leaf.
+///
+/// A trait with an `#[inline(always)]` method rather than a closure: a closure is a function
+/// of its own, compiled without the instruction set [`simd::dispatch`] enables, and when it
+/// is too large to inline, the kernels it calls are not inlined either.
+pub trait LeafVisitor {
+    /// Tests leaf `reference` with `kernels`; may lower `t_max`; returns true to stop the
+    /// traversal (an any-hit query that found one).
+    fn visit<K: Kernels>(&mut self, kernels: K, reference: u32, t_max: &mut f32) -> bool;
+
+    /// Asks the CPU to fetch leaf `reference` into the cache (a hint; by default nothing).
+    #[inline(always)]
+    fn prefetch<K: Kernels>(&self, _kernels: K, _reference: u32) {}
+}
+
+/// A closure `leaf(reference, &mut t_max) -> stop` as a [`LeafVisitor`] (for leaves that do
+/// not use the kernels).
+pub struct LeafFn<F>(pub F);
+
+impl<F: FnMut(u32, &mut f32) -> bool> LeafVisitor for LeafFn<F> {
+    #[inline(always)]
+    fn visit<K: Kernels>(&mut self, _kernels: K, reference: u32, t_max: &mut f32) -> bool {
+        (self.0)(reference, t_max)
+    }
+}
+
 /// Visits the leaves whose boxes the ray enters, nearest boxes first when `NEAREST_FIRST`,
-/// pruning boxes beyond the current `t_max`. `leaf(reference, &mut t_max)` tests one leaf,
-/// may lower `t_max`, and returns true to stop the traversal (an any-hit query that found
-/// one); `traverse` then returns true.
+/// pruning boxes beyond the current `t_max`. `leaf.visit(kernels, reference, &mut t_max)`
+/// tests one leaf, may lower `t_max`, and returns true to stop the traversal (an any-hit
+/// query that found one); `traverse` then returns true.
 #[inline(always)]
 pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
     kernels: K,
@@ -136,7 +162,7 @@ pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
     r: &BoxRay,
     t_max: f32,
     stack: &mut [StackEntry],
-    mut leaf: impl FnMut(u32, &mut f32) -> bool,
+    leaf: &mut impl LeafVisitor,
 ) -> bool {
     let mut t_max = t_max;
     let mut sp = 0usize;
@@ -146,6 +172,21 @@ pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
         if current & LEAF == 0 {
             let node = &nodes[current as usize];
             let mask = kernels.boxes(&node.bounds, r, t_max, &mut near);
+            // When the ray enters more than one child, all but the nearest wait on the stack:
+            // fetching them now hides part of the cache misses of incoherent rays.
+            if mask & mask.wrapping_sub(1) != 0 {
+                let mut m = mask;
+                while m != 0 {
+                    let child = node.child[m.trailing_zeros() as usize];
+                    m &= m - 1;
+                    if child & LEAF == 0 {
+                        let p: *const Node = nodes.as_ptr().wrapping_add(child as usize);
+                        kernels.prefetch(p.cast(), std::mem::size_of::<BoxLanes>());
+                    } else {
+                        leaf.prefetch(kernels, child & !LEAF);
+                    }
+                }
+            }
             let next = if NEAREST_FIRST {
                 order_children(node, mask, &near, stack, &mut sp)
             } else {
@@ -155,7 +196,7 @@ pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
                 current = next;
                 continue;
             }
-        } else if leaf(current & !LEAF, &mut t_max) {
+        } else if leaf.visit(kernels, current & !LEAF, &mut t_max) {
             return true;
         }
         // Pop the next node that is still nearer than the best hit.
@@ -192,7 +233,7 @@ impl<F: FnMut(u32, &mut f32) -> bool, const NEAREST_FIRST: bool> Dispatch for Tr
 
     #[inline(always)]
     fn run<K: Kernels>(self, kernels: K) -> bool {
-        traverse::<K, NEAREST_FIRST>(kernels, self.nodes, self.ray, self.t_max, self.stack, self.leaf)
+        traverse::<K, NEAREST_FIRST>(kernels, self.nodes, self.ray, self.t_max, self.stack, &mut LeafFn(self.leaf))
     }
 }
 
@@ -221,98 +262,123 @@ impl WideTree {
     /// `make_leaf(primitives)` (the primitive indices under it, in `bvh2`'s numbering). A
     /// binary leaf holding more than `leaf_size` primitives stays one leaf: build `bvh2`
     /// with at most `leaf_size` per leaf to rule that out.
-    pub fn collapse(bvh2: &obvhs::bvh2::Bvh2, leaf_size: usize, mut make_leaf: impl FnMut(&[u32]) -> u32) -> Self {
-        let mut counts = vec![0u32; bvh2.nodes.len()];
-        count_prims(bvh2, 0, &mut counts);
-        let mut tree = WideTree { nodes: vec![Node::EMPTY], stack_size: 0 };
-        let mut depth = 1;
-        if counts[0] as usize <= leaf_size || bvh2.nodes[0].prim_count > 0 {
+    pub fn collapse(bvh2: &obvhs::bvh2::Bvh2, leaf_size: usize, make_leaf: impl FnMut(&[u32]) -> u32) -> Self {
+        // About one wide node per eight leaves of `leaf_size`.
+        let estimate = bvh2.primitive_indices.len() / (WIDTH * leaf_size.max(1)) * 2 + 1;
+        let mut collapse = Collapse {
+            bvh2,
+            leaf_size,
+            make_leaf,
+            prims: Vec::with_capacity(leaf_size.max(8)),
+            nodes: Vec::with_capacity(estimate),
+            depth: 1,
+        };
+        collapse.nodes.push(Node::EMPTY);
+        if !collapse.openable(0) {
             // Small enough for one leaf: a root node holding it.
-            let reference = make_leaf(&leaf_prims(bvh2, 0));
-            tree.nodes[0].set_child(0, &bvh2.nodes[0], LEAF | reference);
+            let reference = collapse.leaf(0);
+            collapse.nodes[0].set_child(0, &bvh2.nodes[0], LEAF | reference);
         } else {
-            tree.fill(bvh2, &counts, leaf_size, &mut make_leaf, (0, 0), 1, &mut depth);
+            collapse.fill(0, 0, 1);
         }
-        tree.stack_size = depth * (WIDTH - 1) + 2;
-        tree
+        collapse.nodes.shrink_to_fit();
+        WideTree { stack_size: collapse.depth * (WIDTH - 1) + 2, nodes: collapse.nodes }
+    }
+}
+
+/// The state of one collapse: the binary tree, the leaf policy, and the wide nodes so far.
+struct Collapse<'a, F> {
+    bvh2: &'a obvhs::bvh2::Bvh2,
+    leaf_size: usize,
+    make_leaf: F,
+    /// Scratch: the primitives of the leaf being made.
+    prims: Vec<u32>,
+    nodes: Vec<Node>,
+    /// Deepest level filled.
+    depth: usize,
+}
+
+impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
+    /// True when binary node `index` is an inner node over more than `leaf_size` primitives
+    /// (a binary leaf is never opened: its `first_index` points at primitives).
+    fn openable(&self, index: usize) -> bool {
+        self.bvh2.nodes[index].prim_count == 0 && count_above(self.bvh2, index, self.leaf_size) > self.leaf_size
     }
 
-    /// Fills node `index` from the binary inner node `bvh2_index`.
-    #[allow(
-        clippy::too_many_arguments,
-        reason = "one step of the recursive collapse: the fixed source tree and leaf policy, and the walk's position and depth"
-    )]
-    fn fill(
-        &mut self,
-        bvh2: &obvhs::bvh2::Bvh2,
-        counts: &[u32],
-        leaf_size: usize,
-        make_leaf: &mut impl FnMut(&[u32]) -> u32,
-        (bvh2_index, index): (usize, usize),
-        level: usize,
-        depth: &mut usize,
-    ) {
-        *depth = (*depth).max(level);
-        let first = bvh2.nodes[bvh2_index].first_index as usize;
-        let mut children = vec![first, first + 1];
-        while children.len() < WIDTH {
-            // Subtrees small enough for one leaf stay whole.
-            let open = children
+    /// Makes the leaf of the primitives under binary node `index`.
+    fn leaf(&mut self, index: usize) -> u32 {
+        self.prims.clear();
+        gather(self.bvh2, index, &mut self.prims);
+        (self.make_leaf)(&self.prims)
+    }
+
+    /// Fills wide node `index` from the binary inner node `bvh2_index`, at `level`.
+    fn fill(&mut self, bvh2_index: usize, index: usize, level: usize) {
+        self.depth = self.depth.max(level);
+        let nodes = &self.bvh2.nodes;
+        let first = nodes[bvh2_index].first_index as usize;
+        // (binary node, openable)
+        let mut children = [(0usize, false); WIDTH];
+        children[0] = (first, self.openable(first));
+        children[1] = (first + 1, self.openable(first + 1));
+        let mut len = 2;
+        while len < WIDTH {
+            // Open the largest child; subtrees small enough for one leaf stay whole.
+            let open = children[..len]
                 .iter()
                 .enumerate()
-                .filter(|&(_, &c)| counts[c] as usize > leaf_size && bvh2.nodes[c].prim_count == 0)
-                .max_by(|a, b| half_area(&bvh2.nodes[*a.1]).total_cmp(&half_area(&bvh2.nodes[*b.1])))
+                .filter(|&(_, &(_, openable))| openable)
+                .max_by(|a, b| half_area(&nodes[a.1.0]).total_cmp(&half_area(&nodes[b.1.0])))
                 .map(|(i, _)| i);
             let Some(i) = open else { break };
-            let c = children.swap_remove(i);
-            let f = bvh2.nodes[c].first_index as usize;
-            children.push(f);
-            children.push(f + 1);
+            let c = children[i].0;
+            // As `Vec::swap_remove` then two pushes.
+            children[i] = children[len - 1];
+            let f = nodes[c].first_index as usize;
+            children[len - 1] = (f, self.openable(f));
+            children[len] = (f + 1, self.openable(f + 1));
+            len += 1;
         }
-        for (slot, &c) in children.iter().enumerate() {
-            let child = &bvh2.nodes[c];
-            // A binary leaf is never opened (its `first_index` points at primitives).
-            if counts[c] as usize <= leaf_size || child.prim_count > 0 {
-                let reference = make_leaf(&leaf_prims(bvh2, c));
-                self.nodes[index].set_child(slot, child, LEAF | reference);
-            } else {
+        for (slot, &(c, openable)) in children[..len].iter().enumerate() {
+            let child = &nodes[c];
+            if openable {
                 let inner = self.nodes.len();
                 self.nodes.push(Node::EMPTY);
                 self.nodes[index].set_child(slot, child, inner as u32);
-                self.fill(bvh2, counts, leaf_size, make_leaf, (c, inner), level + 1, depth);
+                self.fill(c, inner, level + 1);
+            } else {
+                let reference = self.leaf(c);
+                self.nodes[index].set_child(slot, child, LEAF | reference);
             }
         }
     }
 }
 
-/// Primitives under each BVH2 node.
-fn count_prims(bvh2: &obvhs::bvh2::Bvh2, index: usize, counts: &mut [u32]) -> u32 {
+/// The number of primitives under BVH2 node `index` if at most `cap`, else some number
+/// above `cap` (counting stops there, so small subtrees are cheap to test).
+fn count_above(bvh2: &obvhs::bvh2::Bvh2, index: usize, cap: usize) -> usize {
     let node = &bvh2.nodes[index];
-    let n = if node.prim_count > 0 {
-        node.prim_count
-    } else {
-        let first = node.first_index as usize;
-        count_prims(bvh2, first, counts) + count_prims(bvh2, first + 1, counts)
-    };
-    counts[index] = n;
-    n
+    if node.prim_count > 0 {
+        return node.prim_count as usize;
+    }
+    let first = node.first_index as usize;
+    let a = count_above(bvh2, first, cap);
+    if a > cap {
+        return a;
+    }
+    a + count_above(bvh2, first + 1, cap - a)
 }
 
-/// The primitives under BVH2 node `index`.
-fn leaf_prims(bvh2: &obvhs::bvh2::Bvh2, index: usize) -> Vec<u32> {
-    fn gather(bvh2: &obvhs::bvh2::Bvh2, index: usize, out: &mut Vec<u32>) {
-        let node = &bvh2.nodes[index];
-        let first = node.first_index as usize;
-        if node.prim_count > 0 {
-            out.extend_from_slice(&bvh2.primitive_indices[first..first + node.prim_count as usize]);
-        } else {
-            gather(bvh2, first, out);
-            gather(bvh2, first + 1, out);
-        }
+/// Appends the primitives under BVH2 node `index` to `out`.
+fn gather(bvh2: &obvhs::bvh2::Bvh2, index: usize, out: &mut Vec<u32>) {
+    let node = &bvh2.nodes[index];
+    let first = node.first_index as usize;
+    if node.prim_count > 0 {
+        out.extend_from_slice(&bvh2.primitive_indices[first..first + node.prim_count as usize]);
+    } else {
+        gather(bvh2, first, out);
+        gather(bvh2, first + 1, out);
     }
-    let mut out = Vec::new();
-    gather(bvh2, index, &mut out);
-    out
 }
 
 fn half_area(n: &obvhs::bvh2::node::Bvh2Node) -> f32 {

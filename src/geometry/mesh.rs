@@ -446,8 +446,7 @@ impl Shape for MeshShape {
         let mut best: Option<Hit> = None;
         let mut best_t = t_max;
         let bvh = &self.data.bvh;
-        bvh.closest(&wray, Self::f32_bound(t_max), |slot, h| {
-            let [a, b, c] = *bvh.triangle(slot);
+        bvh.closest(&wray, Self::f32_bound(t_max), |slot, h, [a, b, c]| {
             let t = plane_t(ray.origin, ray.direction, a, b, c).unwrap_or(f64::from(h.t));
             if t <= t_min || t >= best_t || !self.solid(slot, h.b1, h.b2) {
                 return None;
@@ -463,8 +462,7 @@ impl Shape for MeshShape {
     fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let Some(wray) = Self::prepare(ray) else { return false };
         let bvh = &self.data.bvh;
-        bvh.any(&wray, Self::f32_bound(t_max), |slot, h| {
-            let [a, b, c] = *bvh.triangle(slot);
+        bvh.any(&wray, Self::f32_bound(t_max), |slot, h, [a, b, c]| {
             let t = plane_t(ray.origin, ray.direction, a, b, c).unwrap_or(f64::from(h.t));
             t > t_min && t < t_max && self.solid(slot, h.b1, h.b2)
         })

@@ -43,6 +43,16 @@ fn run_enabled<D: Dispatch>(avx2: Avx2, work: D) -> D::Output {
 
 impl Kernels for Avx2 {
     #[inline(always)]
+    fn prefetch(self, address: *const u8, bytes: usize) {
+        let mut offset = 0;
+        while offset < bytes {
+            // SAFETY: a prefetch is a hint that never faults, whatever the address.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(address.wrapping_add(offset).cast()) };
+            offset += 64;
+        }
+    }
+
+    #[inline(always)]
     fn boxes(self, boxes: &BoxLanes, ray: &BoxRay, t_max: f32, near: &mut [f32; BOXES]) -> u32 {
         // SAFETY: `self` proves the CPU has AVX2 and FMA; the loads read rows of a
         // `BoxLanes`, 32 bytes each and 32-byte aligned.

@@ -96,6 +96,11 @@ pub trait Kernels: Copy {
     /// `0 < t < t_max`, and those hits in `hits` (other lanes are left as they were).
     /// Every implementation returns exactly the scalar test's hits, bit for bit.
     fn triangles(self, packet: &TrianglePacket, ray: &WatertightRay, t_max: f32, hits: &mut PacketHits) -> u32;
+
+    /// Hints the CPU to bring the `bytes` at `address` into the cache (any address is
+    /// allowed: a prefetch never faults). By default nothing.
+    #[inline(always)]
+    fn prefetch(self, _address: *const u8, _bytes: usize) {}
 }
 
 /// Work generic over the kernels, run by [`dispatch`].
