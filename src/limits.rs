@@ -15,6 +15,17 @@ pub const MAX_SCENE_FILES: usize = 10_000;
 /// Longest side of a texture, in texels.
 pub const MAX_TEXTURE_SIDE: u32 = 32_768;
 
+/// Largest magnitude of a colour component (material colours, light colours, emission):
+/// products of a few such values and the coefficients below stay finite in `f32`.
+pub const MAX_COLOR_COMPONENT: f64 = 1e6;
+
+/// Largest magnitude of a scalar material or light coefficient (intensities, fades, finish
+/// values).
+pub const MAX_COEFFICIENT: f64 = 1e9;
+
+/// Largest index of refraction (real materials stay below 5; 1e17 broke the renderer).
+pub const MAX_IOR: f64 = 100.0;
+
 /// The default memory budget when the machine's memory is known: this fraction of it.
 pub const DEFAULT_MEMORY_FRACTION: f64 = 0.75;
 

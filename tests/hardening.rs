@@ -455,3 +455,37 @@ fn the_root_sandbox_confines_every_read() {
     let out = run(c);
     assert!(out.status.success(), "{}", stderr(&out));
 }
+
+/// Extreme but finite values whose products overflow to Inf or NaN pixels (a colour of
+/// -1e308, an ior of 1e17 that broke the renderer, a huge intensity) are load errors naming
+/// the file, line and key.
+#[test]
+fn values_that_overflow_are_refused_at_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let light = "[[light]]\nkind = \"point\"\nposition = [0, 5, -5]\n";
+    let cases = [
+        (
+            format!("{SPHERE}material = {{ color = [-1e308, 0, 0] }}\n"),
+            vec!["scene.toml:3:", "object[0].material.color"],
+        ),
+        (
+            format!("{SPHERE}material = {{ transmit = 0.9, ior = 1e17 }}\n"),
+            vec!["scene.toml:3:", "object[0].material.ior"],
+        ),
+        (format!("{SPHERE}{light}color = [-1e308, 1, 1]\n"), vec!["scene.toml:", "light[0].color"]),
+        (format!("{SPHERE}{light}intensity = 1e300\n"), vec!["scene.toml:", "light[0].intensity"]),
+        (
+            format!("{SPHERE}material = {{ fade_distance = 1e-300, fade_power = 1e300 }}\n"),
+            vec!["object[0].material.fade_power"],
+        ),
+    ];
+    for (scene, expect) in cases {
+        std::fs::write(dir.path().join("scene.toml"), &scene).unwrap();
+        let mut c = render(dir.path(), "scene.toml");
+        c.args(["--exr", "out.exr"]);
+        let out = run(c);
+        let problems = failed_run_problems(&out, &expect);
+        assert!(problems.is_empty(), "{scene}: {}\n{}", problems.join("; "), stderr(&out));
+        assert!(!dir.path().join("out.exr").exists());
+    }
+}

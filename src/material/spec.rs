@@ -256,8 +256,11 @@ impl MaterialSpec {
         if self.roughness <= 0.0 {
             return Err(("roughness", format!("must be greater than 0, got {}", self.roughness)));
         }
-        if self.ior <= 0.0 {
-            return Err(("ior", format!("must be greater than 0, got {}", self.ior)));
+        if self.ior <= 0.0 || self.ior > crate::limits::MAX_IOR {
+            return Err((
+                "ior",
+                format!("must be greater than 0 and at most {}, got {}", crate::limits::MAX_IOR, self.ior),
+            ));
         }
         if self.reflection.exponent <= 0.0 {
             return Err(("reflection.exponent", "must be greater than 0".into()));

@@ -421,6 +421,48 @@ mod tests {
         assert_eq!(red.sample_data.value_by_flat_index(5).to_f32(), 5.0);
     }
 
+    /// A symlink planted at the name the temporary file used to have (`.name.prism-PID.tmp`,
+    /// predictable) is neither followed nor replaced: the temporary file's name is fresh and
+    /// it is created exclusively.
+    #[cfg(unix)]
+    #[test]
+    fn temporary_files_never_follow_planted_symlinks() {
+        let dir = tempfile::tempdir().unwrap();
+        let victim = dir.path().join("victim.txt");
+        std::fs::write(&victim, "keep me").unwrap();
+        let out = dir.path().join("out.png");
+        let planted = dir.path().join(format!(".out.png.prism-{}.tmp", std::process::id()));
+        std::os::unix::fs::symlink(&victim, &planted).unwrap();
+        write_atomically(&out, b"image").unwrap();
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
+        assert_eq!(std::fs::read(&out).unwrap(), b"image");
+        assert!(std::fs::symlink_metadata(&planted).unwrap().file_type().is_symlink());
+        let names: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names.len(), 3, "no temporary file is left: {names:?}");
+        assert!(matches!(write_atomically(Path::new("/dev/null"), b"x"), Err(OutputError::NotRegular { .. })));
+    }
+
+    /// Staged files are all renamed or none; the signal handler's cleanup removes the ones
+    /// still in flight.
+    #[test]
+    fn staged_outputs_are_all_or_none_and_cleaned_up() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.png"), dir.path().join("b.exr"));
+        std::fs::create_dir(&b).unwrap();
+        let files = [(a.as_path(), b"a".to_vec()), (b.as_path(), b"b".to_vec())];
+        assert!(write_all_atomically(&files).is_err());
+        assert!(!a.exists(), "the first output is not written when the second cannot be");
+        let staged = stage(&a, b"a").unwrap();
+        let temp = staged.temp.clone();
+        assert!(temp.exists());
+        remove_all_temps();
+        assert!(!temp.exists());
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
     #[test]
     fn srgb_curve_known_values() {
         // Linear 0.5 is 188 in 8-bit sRGB; the two pieces meet at 0.0031308.
