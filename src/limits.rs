@@ -15,9 +15,11 @@ pub const MAX_SCENE_FILES: usize = 10_000;
 /// Longest side of a texture, in texels.
 pub const MAX_TEXTURE_SIDE: u32 = 32_768;
 
-/// Largest magnitude of a colour component (material colours, light colours, emission):
-/// products of a few such values and the coefficients below stay finite in `f32`.
-pub const MAX_COLOR_COMPONENT: f64 = 1e6;
+/// Largest magnitude of a colour component (material colours, light colours, emission;
+/// emission may be enormous for tiny lamps): beyond it, products overflow even `f64`
+/// (a colour of -1e308 rendered NaN). A product that still overflows the film's `f32` is
+/// caught by the film's last line of defence.
+pub const MAX_COLOR_COMPONENT: f64 = 1e30;
 
 /// Largest magnitude of a scalar material or light coefficient (intensities, fades, finish
 /// values).

@@ -308,8 +308,9 @@ impl Material {
             }
         }
         check_finite(&colors, &numbers)?;
-        if self.interior.ior <= 0.0 {
-            return Err(("ior", format!("must be greater than 0, got {}", self.interior.ior)));
+        if self.interior.ior <= 0.0 || self.interior.ior > crate::limits::MAX_IOR {
+            let max = crate::limits::MAX_IOR;
+            return Err(("ior", format!("must be greater than 0 and at most {max}, got {}", self.interior.ior)));
         }
         for t in textures {
             t.check()?;
