@@ -15,15 +15,26 @@ pub struct SourceFile {
     pub path: String,
     /// The file's text.
     pub text: String,
+    /// Byte offset of every line's start, so a lookup costs a binary search, not a scan
+    /// of the text (a scene with 100,000 objects asks for hundreds of thousands).
+    line_starts: Vec<usize>,
 }
 
 impl SourceFile {
+    /// The file at `path` holding `text`.
+    pub fn new(path: impl Into<String>, text: String) -> Self {
+        let line_starts = std::iter::once(0).chain(text.match_indices('\n').map(|(i, _)| i + 1)).collect();
+        Self { path: path.into(), text, line_starts }
+    }
+
     /// 1-based line and column of byte `offset` (columns count characters).
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
-        let offset = offset.min(self.text.len());
-        let before = &self.text[..offset];
-        let line = before.matches('\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let mut offset = offset.min(self.text.len());
+        while !self.text.is_char_boundary(offset) {
+            offset -= 1;
+        }
+        let line = self.line_starts.partition_point(|&start| start <= offset);
+        let line_start = self.line_starts[line - 1];
         let col = self.text[line_start..offset].chars().count() + 1;
         (line, col)
     }
@@ -63,11 +74,8 @@ impl Location {
 
 impl fmt::Display for Location {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.line > 0 {
-            write!(f, "{}:{}:{}", self.file, self.line, self.column)
-        } else {
-            write!(f, "{}", self.file)
-        }
+        let file = sanitize(&crate::files::shown(&self.file));
+        if self.line > 0 { write!(f, "{file}:{}:{}", self.line, self.column) } else { write!(f, "{file}") }
     }
 }
 
@@ -133,14 +141,65 @@ impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}: {}", self.location, self.severity)?;
         if !self.location.key.is_empty() {
-            write!(f, " in `{}`", self.location.key)?;
+            write!(f, " in {}", sanitize(&format!("`{}`", self.location.key)))?;
         }
-        write!(f, ": {}", self.message)?;
+        write!(f, ": {}", sanitize(&self.message))?;
         if let Some(help) = &self.help {
-            write!(f, "\n  help: {help}")?;
+            write!(f, "\n  help: {}", sanitize(help))?;
         }
         Ok(())
     }
+}
+
+/// Longest message shown, in characters (a longer one is cut, marked with `...`).
+pub const MAX_MESSAGE_CHARS: usize = 1000;
+
+/// `text` safe to print: control characters (terminal escapes) become `?`, every quoted
+/// part (between backticks or double quotes: names, keys, string values that a parser
+/// repeats) longer than [`crate::files::MAX_SHOWN_CHARS`] is shortened to its start and
+/// end, and the whole is cut at [`MAX_MESSAGE_CHARS`]. So a message never repeats more of
+/// what a file holds than a short name.
+pub fn sanitize(text: &str) -> String {
+    let limit = crate::files::MAX_SHOWN_CHARS;
+    let mut out = String::with_capacity(text.len().min(MAX_MESSAGE_CHARS + 3));
+    let mut quoted: Option<(char, String)> = None;
+    let flush = |out: &mut String, quote: char, inner: &str, closed: bool| {
+        out.push(quote);
+        let n = inner.chars().count();
+        if n > limit {
+            let head: String = inner.chars().take(limit / 2 - 2).collect();
+            let tail: String = inner.chars().skip(n - (limit / 2 - 2)).collect();
+            out.push_str(&format!("{head}...{tail}"));
+        } else {
+            out.push_str(inner);
+        }
+        if closed {
+            out.push(quote);
+        }
+    };
+    for c in text.chars() {
+        let c = if c.is_control() && c != '\n' { '?' } else { c };
+        match &mut quoted {
+            Some((quote, inner)) if c == *quote => {
+                let (quote, inner) = (*quote, std::mem::take(inner));
+                flush(&mut out, quote, &inner, true);
+                quoted = None;
+            }
+            Some((_, inner)) => inner.push(c),
+            None if c == '`' || c == '"' => quoted = Some((c, String::new())),
+            None => out.push(c),
+        }
+        if out.chars().count() > MAX_MESSAGE_CHARS {
+            break;
+        }
+    }
+    if let Some((quote, inner)) = quoted {
+        flush(&mut out, quote, &inner, false);
+    }
+    if out.chars().count() > MAX_MESSAGE_CHARS {
+        out = out.chars().take(MAX_MESSAGE_CHARS).collect::<String>() + "...";
+    }
+    out
 }
 
 /// One or more problems that stop a scene from loading (errors, never warnings).
@@ -203,9 +262,26 @@ pub fn parse_unknown_field(message: &str) -> Option<(String, Vec<String>)> {
 mod tests {
     use super::*;
 
+    /// What a parser repeats from a file (a 10 MB string value, a long key, a terminal
+    /// escape) is shortened in the message, never echoed whole.
+    #[test]
+    fn messages_do_not_echo_file_contents() {
+        let secret = "s".repeat(10_000);
+        let shown = sanitize(&format!("invalid type: string \"{secret}\", expected u32"));
+        assert!(shown.len() < 200, "{shown}");
+        assert!(shown.starts_with("invalid type: string \"sss") && shown.ends_with("sss\", expected u32"));
+        assert_eq!(sanitize("unknown shape `sphear`"), "unknown shape `sphear`");
+        assert_eq!(sanitize("a\u{1b}[31mred"), "a?[31mred");
+        assert!(sanitize(&"x".repeat(5000)).chars().count() <= MAX_MESSAGE_CHARS + 3);
+        let d = Diagnostic::new(Location::file_only("a.toml", "k".repeat(500)), format!("unknown shape `{secret}`"));
+        assert!(d.to_string().len() < 300, "{d}");
+    }
+
     #[test]
     fn line_and_column() {
-        let s = SourceFile { path: "a.toml".into(), text: "a = 1\nbé = 2\n".into() };
+        let s = SourceFile::new("a.toml", "a = 1\nbé = 2\n".into());
+        assert_eq!(s.line_col(0), (1, 1));
+        assert_eq!(s.line_col(6), (2, 1));
         assert_eq!(s.line_col(0), (1, 1));
         assert_eq!(s.line_col(6), (2, 1));
         assert_eq!(s.line_col(9), (2, 3));

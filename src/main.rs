@@ -1,16 +1,19 @@
 //! The `prism` command line.
 
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 use prism::diagnostics::{Diagnostic, SceneError};
+use prism::files::{FileAccess, FileError};
+use prism::limits::{MAX_THREADS, MemoryBudget};
 use prism::output::OutputError;
 use prism::render::{RenderError, RenderOptions, render_frame};
-use prism::scene::load::{load_file, load_from};
+use prism::scene::load::{FileSystem, load_from, load_with};
 use prism::world::Scene;
 use prism::world::components::{IntegratorKind, ToneMap};
+use prism::world::validate::{MAX_IMAGE_SIDE, MAX_PIXELS, MAX_SAMPLES};
 use prism::{builtin, output, plugins, prepare};
 
 /// Prism renders scenes written as TOML: analytic shapes, lights and materials, to PNG and
@@ -45,7 +48,80 @@ enum Command {
         /// relative to this file when possible, absolute on standard output.
         #[arg(short, long)]
         output: Option<PathBuf>,
+        #[command(flatten)]
+        limits: LimitArgs,
     },
+}
+
+/// What a scene may read and allocate (see `docs/security.md`).
+#[derive(Args, Default, Clone)]
+struct LimitArgs {
+    /// Read only files inside DIR (the scene, includes, meshes, material libraries, textures,
+    /// glTF buffers and images, environment maps), after resolving symlinks; absolute paths
+    /// written in scene and mesh files are refused.
+    #[arg(long, value_name = "DIR")]
+    root: Option<PathBuf>,
+    /// Memory budget for the film and decoded images, in bytes or with a K, M, G or T suffix
+    /// (default: three quarters of the machine's memory).
+    #[arg(long, value_name = "SIZE", value_parser = parse_memory)]
+    max_memory: Option<u64>,
+}
+
+impl LimitArgs {
+    fn budget(&self) -> MemoryBudget {
+        self.max_memory.map_or_else(MemoryBudget::default, MemoryBudget)
+    }
+
+    fn access(&self) -> Result<FileAccess, CliError> {
+        match &self.root {
+            Some(root) => FileAccess::sandboxed(root).map_err(CliError::Root),
+            None => Ok(FileAccess::unrestricted()),
+        }
+    }
+}
+
+fn parse_memory(text: &str) -> Result<u64, String> {
+    prism::limits::parse_size(text)
+}
+
+/// A whole number in `min..=max` (the message names the range; clap names the flag).
+fn ranged<T: std::str::FromStr + PartialOrd + std::fmt::Display + Copy>(
+    text: &str,
+    min: T,
+    max: T,
+) -> Result<T, String> {
+    let value: T = text.trim().parse().map_err(|_| format!("must be a whole number from {min} to {max}"))?;
+    if value < min {
+        return Err(format!("must be at least {min}"));
+    }
+    if value > max {
+        return Err(format!("must be at most {max}"));
+    }
+    Ok(value)
+}
+
+fn parse_side(text: &str) -> Result<u32, String> {
+    ranged(text, 1, MAX_IMAGE_SIDE)
+}
+
+fn parse_samples(text: &str) -> Result<u32, String> {
+    ranged(text, 1, MAX_SAMPLES)
+}
+
+fn parse_threads(text: &str) -> Result<usize, String> {
+    ranged(text, 1, MAX_THREADS)
+}
+
+fn parse_seed(text: &str) -> Result<u64, String> {
+    ranged(text, 0, u64::MAX)
+}
+
+fn parse_exposure(text: &str) -> Result<f64, String> {
+    let value: f64 = text.trim().parse().map_err(|_| "must be a number of stops".to_string())?;
+    if !value.is_finite() || value.abs() > 64.0 {
+        return Err("must be a finite number of stops between -64 and 64".into());
+    }
+    Ok(value)
 }
 
 #[derive(Subcommand)]
@@ -58,6 +134,8 @@ enum ExportCommand {
         /// Where to write it (standard output when absent).
         #[arg(short, long)]
         output: Option<PathBuf>,
+        #[command(flatten)]
+        limits: LimitArgs,
     },
     /// Mitsuba 3 XML, rendering with Mitsuba's `path` integrator to the image of Prism's `path`
     /// integrator. Meshes are written as PLY files into `<output stem>_meshes/` beside it.
@@ -67,6 +145,8 @@ enum ExportCommand {
         /// Where to write the XML.
         #[arg(short, long)]
         output: PathBuf,
+        #[command(flatten)]
+        limits: LimitArgs,
     },
 }
 
@@ -85,22 +165,22 @@ struct RenderArgs {
     #[arg(long)]
     half: bool,
     /// Image width in pixels (overrides the scene).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
     width: Option<u32>,
     /// Image height in pixels (overrides the scene).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
     height: Option<u32>,
     /// Samples per pixel (overrides the scene).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_samples)]
     samples: Option<u32>,
-    /// Render threads (default: one per core).
-    #[arg(long)]
+    /// Render threads (default: one per core; at most 256).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_threads)]
     threads: Option<usize>,
     /// Seed of every random number (overrides the scene).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_seed)]
     seed: Option<u64>,
     /// Exposure in stops for the tone-mapped image (overrides the scene).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_exposure)]
     exposure: Option<f64>,
     /// Tone-mapping operator for the tone-mapped image (overrides the scene).
     #[arg(long, value_enum)]
@@ -108,6 +188,8 @@ struct RenderArgs {
     /// The light transport algorithm (overrides the scene's `[render] integrator`).
     #[arg(long, value_enum)]
     integrator: Option<IntegratorArg>,
+    #[command(flatten)]
+    limits: LimitArgs,
 }
 
 /// `--integrator`: the command-line names of [`IntegratorKind`].
@@ -161,9 +243,18 @@ enum CliError {
     /// The render could not run.
     #[error(transparent)]
     Render(#[from] RenderError),
-    /// `--threads 0`.
-    #[error("--threads must be at least 1")]
-    NoThreads,
+    /// `--width` and `--height` (with the scene's other side) make too many pixels.
+    #[error("--width/--height: an image of {pixels} pixels is more than the limit of {MAX_PIXELS}")]
+    TooManyPixels {
+        /// Width times height.
+        pixels: u64,
+    },
+    /// `--root` is not a directory that can be read.
+    #[error("--root: {0}")]
+    Root(FileError),
+    /// Standard output cannot be written (closed, or a full disk).
+    #[error("cannot write to standard output: {0}")]
+    Stdout(std::io::Error),
     /// `--exr` names a file of another format.
     #[error("{}: --exr needs a file ending in .exr", path.display())]
     ExrExtension {
@@ -191,39 +282,107 @@ enum CliError {
     },
 }
 
+/// A line on standard error; a closed or full standard error is ignored (there is nowhere
+/// left to report to), never a panic.
+fn report(line: &dyn std::fmt::Display) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
 /// Prints warnings to standard error, one `file:line:col: warning in `key`: ...` each.
 fn print_warnings(warnings: &[Diagnostic]) {
     for warning in warnings {
-        eprintln!("{warning}");
+        report(warning);
     }
 }
 
-/// Loads the scene file at `path` and prints what loading warns about.
-fn load_and_warn(path: &Path) -> Result<Scene, CliError> {
-    let scene = load_file(path, &plugins::registry())?;
+/// Writes `text` to standard output, flushed; a failure (a full disk, a closed pipe) is an
+/// error, not a panic.
+fn write_stdout(text: &str) -> Result<(), CliError> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes()).and_then(|()| out.flush()).map_err(CliError::Stdout)
+}
+
+/// Loads the scene file at `path` under `limits` and prints what loading warns about.
+fn load_and_warn(path: &Path, limits: &LimitArgs) -> Result<Scene, CliError> {
+    let source = FileSystem(limits.access()?);
+    let scene = load_with(&source, path, &plugins::registry(), limits.budget())?;
     print_warnings(&scene.warnings);
     Ok(scene)
 }
 
+/// Where the last panic happened, recorded by the panic hook (which prints nothing: a
+/// panic's text may quote input, and a caught one is no concern of the user's).
+static PANIC_AT: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
+
 fn main() -> ExitCode {
+    std::panic::set_hook(Box::new(|info| {
+        let at = info.location().map(|l| format!("{}:{}", l.file(), l.line()));
+        if let Ok(mut slot) = PANIC_AT.lock() {
+            *slot = at;
+        }
+    }));
+    #[cfg(unix)]
+    remove_temps_on_signals();
     let cli = Cli::parse();
-    let result = match cli.command {
+    let result = std::panic::catch_unwind(move || run(cli));
+    match result {
+        Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(error)) => {
+            report(&error);
+            ExitCode::FAILURE
+        }
+        Err(_) => {
+            prism::output::remove_all_temps();
+            let at = PANIC_AT.lock().ok().and_then(|s| s.clone()).unwrap_or_else(|| "unknown place".into());
+            report(&format!("prism: internal error (at {at}); please report it with the input that caused it"));
+            ExitCode::from(101)
+        }
+    }
+}
+
+/// SIGINT and SIGTERM are blocked in every thread and taken by one thread that removes the
+/// temporary files being written and exits (130 for SIGINT, 143 for SIGTERM). Outputs are
+/// renamed into place under the same lock, so a signal leaves all of them or none.
+#[cfg(unix)]
+fn remove_temps_on_signals() {
+    // SAFETY: plain libc calls on a zeroed, then initialised, signal set owned here; the
+    // mask is set before any other thread exists, so every later thread inherits it.
+    let set = unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        libc::sigaddset(&mut set, libc::SIGINT);
+        libc::sigaddset(&mut set, libc::SIGTERM);
+        if libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut()) != 0 {
+            return;
+        }
+        set
+    };
+    let spawned = std::thread::Builder::new().name("signals".into()).spawn(move || {
+        let mut signal: libc::c_int = 0;
+        // SAFETY: `set` is a valid initialised signal set; `signal` a valid out-pointer.
+        if unsafe { libc::sigwait(&set, &mut signal) } == 0 {
+            prism::output::remove_all_temps();
+            std::process::exit(128 + signal);
+        }
+    });
+    if spawned.is_err() {
+        // SAFETY: as above.
+        unsafe { libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut()) };
+    }
+}
+
+fn run(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
         None => render_default(),
         Some(Command::Render(args)) => render_command(&args),
-        Some(Command::Shapes) => {
-            print!("{}", prism::registry::describe(&plugins::registry()));
-            Ok(())
-        }
-        Some(Command::Save { scene, output }) => save_command(&scene, output.as_deref()),
+        Some(Command::Shapes) => write_stdout(&prism::registry::describe(&plugins::registry())),
+        Some(Command::Save { scene, output, limits }) => save_command(&scene, output.as_deref(), &limits),
         Some(Command::Schema { output }) => schema_command(output.as_deref()),
-        Some(Command::Export(ExportCommand::Pov { scene, output })) => export_pov_command(&scene, output.as_deref()),
-        Some(Command::Export(ExportCommand::Mitsuba { scene, output })) => export_mitsuba_command(&scene, &output),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(error) => {
-            eprintln!("{error}");
-            ExitCode::FAILURE
+        Some(Command::Export(ExportCommand::Pov { scene, output, limits })) => {
+            export_pov_command(&scene, output.as_deref(), &limits)
+        }
+        Some(Command::Export(ExportCommand::Mitsuba { scene, output, limits })) => {
+            export_mitsuba_command(&scene, &output, &limits)
         }
     }
 }
@@ -236,7 +395,7 @@ fn render_default() -> Result<(), CliError> {
 }
 
 fn render_command(args: &RenderArgs) -> Result<(), CliError> {
-    let scene = load_and_warn(&args.scene)?;
+    let scene = load_and_warn(&args.scene, &args.limits)?;
     render_scene(scene, args)
 }
 
@@ -263,8 +422,11 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     if let Some(i) = args.integrator {
         settings.integrator = i.into();
     }
-    if args.threads == Some(0) {
-        return Err(CliError::NoThreads);
+    if args.width.is_some() || args.height.is_some() {
+        let pixels = u64::from(settings.width) * u64::from(settings.height);
+        if pixels > MAX_PIXELS {
+            return Err(CliError::TooManyPixels { pixels });
+        }
     }
     let mut outputs: Vec<PathBuf> = args.output.iter().chain(args.exr.iter()).cloned().collect();
     if outputs.is_empty() {
@@ -282,16 +444,29 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     }
     let render_scene = prepare(&mut scene)?;
     print_warnings(&prism::world::validate::warnings(&scene));
-    let options =
-        RenderOptions { threads: args.threads, progress: std::io::stderr().is_terminal(), ..Default::default() };
+    let options = RenderOptions {
+        threads: args.threads,
+        progress: std::io::stderr().is_terminal(),
+        budget: args.limits.budget(),
+        ..Default::default()
+    };
     let (film, stats) = render_frame(&render_scene, &options)?;
+    if stats.non_finite_pixels > 0 {
+        report(&format!(
+            "warning: {} pixels had a NaN or infinite value and are written black",
+            stats.non_finite_pixels
+        ));
+    }
     let image =
         output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };
+    // Every output is encoded, then all are written at once: all of them or none.
+    let mut files = Vec::new();
     for path in &outputs {
-        output::write_image(&film, path, &image)?;
+        files.push((path.as_path(), output::encode(&film, path, &image)?));
     }
+    output::write_all_atomically(&files)?;
     let names: Vec<String> = outputs.iter().map(|p| p.display().to_string()).collect();
-    eprintln!(
+    report(&format_args!(
         "rendered {}x{} at {} spp in {:.3} s: {} primary rays, {} rays in all, {:.2} Mrays/s -> {}",
         scene.render.width,
         scene.render.height,
@@ -301,12 +476,12 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         stats.total_rays,
         stats.mrays_per_second(),
         names.join(", ")
-    );
+    ));
     Ok(())
 }
 
-fn save_command(path: &Path, output: Option<&Path>) -> Result<(), CliError> {
-    let scene = load_and_warn(path)?;
+fn save_command(path: &Path, output: Option<&Path>, limits: &LimitArgs) -> Result<(), CliError> {
+    let scene = load_and_warn(path, limits)?;
     // Written to a file, mesh and texture paths are relative to it; on standard output,
     // whose destination is unknown, they stay absolute.
     let text = match output {
@@ -316,10 +491,7 @@ fn save_command(path: &Path, output: Option<&Path>) -> Result<(), CliError> {
     let text = text.map_err(|source| CliError::Save { path: path.to_path_buf(), source })?;
     match output {
         Some(out) => Ok(output::write_atomically(out, text.as_bytes())?),
-        None => {
-            print!("{text}");
-            Ok(())
-        }
+        None => write_stdout(&text),
     }
 }
 
@@ -328,15 +500,12 @@ fn schema_command(output: Option<&Path>) -> Result<(), CliError> {
     let text = serde_json::to_string_pretty(&schema)? + "\n";
     match output {
         Some(out) => Ok(output::write_atomically(out, text.as_bytes())?),
-        None => {
-            print!("{text}");
-            Ok(())
-        }
+        None => write_stdout(&text),
     }
 }
 
-fn export_mitsuba_command(path: &Path, output: &Path) -> Result<(), CliError> {
-    let mut scene = load_and_warn(path)?;
+fn export_mitsuba_command(path: &Path, output: &Path, limits: &LimitArgs) -> Result<(), CliError> {
+    let mut scene = load_and_warn(path, limits)?;
     prism::world::transforms::resolve_transforms(&mut scene)?;
     prism::world::validate::validate(&scene)?;
     let source = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
@@ -354,17 +523,14 @@ fn export_mitsuba_command(path: &Path, output: &Path) -> Result<(), CliError> {
     Ok(output::write_atomically(output, exported.xml.as_bytes())?)
 }
 
-fn export_pov_command(path: &Path, output: Option<&Path>) -> Result<(), CliError> {
-    let mut scene = load_and_warn(path)?;
+fn export_pov_command(path: &Path, output: Option<&Path>, limits: &LimitArgs) -> Result<(), CliError> {
+    let mut scene = load_and_warn(path, limits)?;
     prism::world::transforms::resolve_transforms(&mut scene)?;
     prism::world::validate::validate(&scene)?;
     let source = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let text = prism::export::pov::export(&scene, &source)?;
     match output {
         Some(out) => Ok(output::write_atomically(out, text.as_bytes())?),
-        None => {
-            print!("{text}");
-            Ok(())
-        }
+        None => write_stdout(&text),
     }
 }

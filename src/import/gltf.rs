@@ -20,7 +20,9 @@ use super::{
     CameraProjection, ImportError, ImportErrorKind, Model, ModelCamera, ModelLight, ModelNode, ModelPart, PunctualKind,
 };
 use crate::color::Rgb;
+use crate::files::{FileAccess, FileError, FileKind};
 use crate::geometry::mesh::{AlphaMask, MeshBuilder, MeshData, MeshError, MeshShape, NormalMap, SurfaceMaps};
+use crate::limits::{MAX_GLTF_INSTANCES, MemoryBudget};
 use crate::material::{AlphaMode, Emission, Finish, Material, MetallicRoughness, SurfaceModel};
 use crate::texture::{ColorSpace, TextureRef, TextureStore, Wrap};
 
@@ -30,13 +32,25 @@ const MAX_DEPTH: usize = 256;
 /// Reads a glTF or GLB file.
 pub fn import(path: &Path, textures: &mut TextureStore) -> Result<Model, ImportError> {
     let err = |kind| ImportError::new(path, kind);
-    let bytes = std::fs::read(path).map_err(|e| err(ImportErrorKind::Read(e)))?;
+    let access = textures.access().clone();
+    let bytes = access.read(path, FileKind::Mesh).map_err(|e| err(ImportErrorKind::File(e)))?;
+    // The crate's own validation indexes arrays without checking (a POSITION naming a
+    // missing accessor panics), so the JSON is checked first, unvalidated.
+    let json = if bytes.starts_with(b"glTF") {
+        gltf::Glb::from_slice(&bytes).map_err(|e| err(ImportErrorKind::Gltf(e)))?.json
+    } else {
+        std::borrow::Cow::Borrowed(&bytes[..])
+    };
+    let root =
+        gltf::json::Root::from_slice(&json).map_err(|e| err(ImportErrorKind::Gltf(gltf::Error::Deserialize(e))))?;
+    check_json(&root).map_err(|m| err(ImportErrorKind::Invalid(m)))?;
+    drop((root, json));
     let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(&bytes).map_err(|e| err(ImportErrorKind::Gltf(e)))?;
+    drop(bytes);
     let base = path.parent().unwrap_or(Path::new(""));
-    let buffers =
-        gltf::import_buffers(&document, Some(base), blob).map_err(|e| err(ImportErrorKind::GltfBuffers(e)))?;
+    let buffers = load_buffers(&document, &access, base, blob).map_err(|e| ImportError::new(path, e))?;
     check_views_and_accessors(&document, &buffers).map_err(|m| err(ImportErrorKind::Invalid(m)))?;
-    let canonical = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    let canonical = access.resolve(path).map_err(|e| err(ImportErrorKind::File(e)))?;
 
     let scene =
         document.default_scene().or_else(|| document.scenes().next()).ok_or_else(|| err(ImportErrorKind::NoScene))?;
@@ -64,6 +78,213 @@ pub fn import(path: &Path, textures: &mut TextureStore) -> Result<Model, ImportE
         model.warnings.push("animations are ignored".into());
     }
     Ok(model)
+}
+
+/// What the JSON must satisfy before any reader of the crate touches it (the crate panics
+/// on some of these): every index names an existing object, images have a source, index
+/// accessors are unsigned scalars and POSITION is a float VEC3 (glTF 2.0, 3.7.2.1).
+fn check_json(root: &gltf::json::Root) -> Result<(), String> {
+    use gltf::json::accessor::{ComponentType, Type};
+    use gltf::json::validation::Checked;
+    let views = root.buffer_views.len();
+    let accessors = &root.accessors;
+    for (i, view) in root.buffer_views.iter().enumerate() {
+        if view.buffer.value() >= root.buffers.len() {
+            return Err(format!("buffer view {i} names buffer {}, which does not exist", view.buffer.value()));
+        }
+    }
+    for (i, a) in accessors.iter().enumerate() {
+        if let Some(v) = a.buffer_view
+            && v.value() >= views
+        {
+            return Err(format!("accessor {i} names buffer view {}, which does not exist", v.value()));
+        }
+        if !matches!(a.component_type, Checked::Valid(_)) || !matches!(a.type_, Checked::Valid(_)) {
+            return Err(format!("accessor {i} has an invalid component type or type"));
+        }
+        if let Some(sparse) = &a.sparse {
+            if sparse.count.0 == 0 || sparse.count.0 > a.count.0 {
+                return Err(format!("accessor {i}: sparse count {} is not in 1..={}", sparse.count.0, a.count.0));
+            }
+            if sparse.indices.buffer_view.value() >= views || sparse.values.buffer_view.value() >= views {
+                return Err(format!("accessor {i}: sparse data names a buffer view that does not exist"));
+            }
+            if !matches!(sparse.indices.component_type, Checked::Valid(_)) {
+                return Err(format!("accessor {i}: sparse indices have an invalid component type"));
+            }
+        }
+    }
+    let accessor = |i: usize| accessors.get(i).ok_or_else(|| format!("accessor {i} does not exist"));
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let what = format!("mesh {m} primitive {p}");
+            for (semantic, index) in &primitive.attributes {
+                let a = accessor(index.value()).map_err(|e| format!("{what}: an attribute names {e}"))?;
+                if let Checked::Valid(gltf::json::mesh::Semantic::Positions) = semantic {
+                    let float = matches!(a.component_type, Checked::Valid(c) if c.0 == ComponentType::F32);
+                    if !float || a.type_ != Checked::Valid(Type::Vec3) {
+                        return Err(format!("{what}: POSITION must be a FLOAT VEC3 accessor"));
+                    }
+                }
+            }
+            if let Some(index) = primitive.indices {
+                let a = accessor(index.value()).map_err(|e| format!("{what}: indices name {e}"))?;
+                let unsigned = matches!(
+                    a.component_type,
+                    Checked::Valid(c) if matches!(c.0, ComponentType::U8 | ComponentType::U16 | ComponentType::U32)
+                );
+                if !unsigned || a.type_ != Checked::Valid(Type::Scalar) {
+                    return Err(format!(
+                        "{what}: indices must be an UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT SCALAR accessor"
+                    ));
+                }
+            }
+        }
+    }
+    for (i, image) in root.images.iter().enumerate() {
+        match (&image.uri, image.buffer_view) {
+            (Some(_), None) => {}
+            (None, Some(v)) if v.value() < views => {}
+            (None, Some(v)) => return Err(format!("image {i} names buffer view {}, which does not exist", v.value())),
+            _ => return Err(format!("image {i} needs exactly one of `uri` and `bufferView`")),
+        }
+    }
+    for (i, texture) in root.textures.iter().enumerate() {
+        if texture.source.value() >= root.images.len() {
+            return Err(format!("texture {i} names image {}, which does not exist", texture.source.value()));
+        }
+    }
+    Ok(())
+}
+
+/// The bytes of a glTF URI: a `data:` URI decoded, or a relative path (percent-decoded)
+/// read through `access`. Other schemes (`file:`, `http:`) are refused.
+fn read_uri(uri: &str, access: &FileAccess, base: &Path, kind: FileKind) -> Result<Vec<u8>, ImportErrorKind> {
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let encoded = rest.split_once(";base64,").map_or(rest, |(_, data)| data);
+        return base64::decode(encoded).map_err(|_| ImportErrorKind::Invalid("a data: URI is not valid base64".into()));
+    }
+    if uri.contains(':') {
+        return Err(ImportErrorKind::File(FileError::Uri { uri: uri.to_string() }));
+    }
+    let decoded = percent_decode(uri).ok_or_else(|| ImportErrorKind::Invalid("a URI has a bad % escape".into()))?;
+    let path = access.join(base, &decoded).map_err(ImportErrorKind::File)?;
+    access.read(&path, kind).map_err(ImportErrorKind::File)
+}
+
+/// `%20` -> ` ` (RFC 3986); `None` when an escape is malformed or the result is not UTF-8.
+fn percent_decode(uri: &str) -> Option<String> {
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'%' {
+            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(bytes[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+/// Every buffer's bytes (the GLB blob, data URIs, files beside the glTF), padded to a
+/// multiple of four as the crate does, and at least as long as the buffer says.
+fn load_buffers(
+    document: &gltf::Document,
+    access: &FileAccess,
+    base: &Path,
+    mut blob: Option<Vec<u8>>,
+) -> Result<Vec<gltf::buffer::Data>, ImportErrorKind> {
+    let mut buffers = Vec::new();
+    for buffer in document.buffers() {
+        let mut data = match buffer.source() {
+            gltf::buffer::Source::Bin => blob.take().ok_or(ImportErrorKind::Gltf(gltf::Error::MissingBlob))?,
+            gltf::buffer::Source::Uri(uri) => read_uri(uri, access, base, FileKind::Mesh).map_err(|e| {
+                ImportErrorKind::Invalid(format!("cannot load buffers: buffer {}: {e}", buffer.index()))
+            })?,
+        };
+        while data.len() % 4 != 0 {
+            data.push(0);
+        }
+        if data.len() < buffer.length() {
+            return Err(ImportErrorKind::Invalid(format!(
+                "buffer {} holds {} bytes of the {} it declares",
+                buffer.index(),
+                data.len(),
+                buffer.length()
+            )));
+        }
+        buffers.push(gltf::buffer::Data(data));
+    }
+    Ok(buffers)
+}
+
+/// Decodes image `image` (PNG or JPEG, from a URI or a buffer view) as the crate would,
+/// reading files through `access` and checking the decoded size against `budget`.
+fn decode_gltf_image(
+    image: &gltf::Image,
+    access: &FileAccess,
+    base: &Path,
+    buffers: &[gltf::buffer::Data],
+    budget: MemoryBudget,
+) -> Result<gltf::image::Data, ImportErrorKind> {
+    use image::ImageFormat::{Jpeg, Png};
+    let index = image.index() as u32;
+    let invalid = |m: String| ImportErrorKind::Invalid(format!("image {index}: {m}"));
+    let guess = |bytes: &[u8]| match image::guess_format(bytes) {
+        Ok(Png) => Ok(Png),
+        Ok(Jpeg) => Ok(Jpeg),
+        _ => Err(invalid("not a PNG or JPEG image".into())),
+    };
+    let by_mime = |mime: Option<&str>, bytes: &[u8]| match mime {
+        Some("image/png") => Ok(Png),
+        Some("image/jpeg") => Ok(Jpeg),
+        _ => guess(bytes),
+    };
+    let (bytes, format) = match image.source() {
+        gltf::image::Source::View { view, mime_type } => {
+            let data = &buffers.get(view.buffer().index()).ok_or_else(|| invalid("missing buffer".into()))?.0;
+            let end = view.offset().checked_add(view.length()).filter(|&e| e <= data.len());
+            let bytes = data[view.offset()..end.ok_or_else(|| invalid("buffer view out of range".into()))?].to_vec();
+            let format = by_mime(Some(mime_type), &bytes)?;
+            (bytes, format)
+        }
+        gltf::image::Source::Uri { uri, mime_type } => {
+            let bytes = read_uri(uri, access, base, FileKind::Image)?;
+            let format = match (uri.strip_prefix("data:"), mime_type) {
+                (Some(rest), _) => by_mime(rest.split(';').next(), &bytes)?,
+                (None, Some(mime)) => by_mime(Some(mime), &bytes)?,
+                (None, None) => match uri.rsplit('.').next() {
+                    Some("png") => Png,
+                    Some("jpg" | "jpeg") => Jpeg,
+                    _ => guess(&bytes)?,
+                },
+            };
+            (bytes, format)
+        }
+    };
+    let name = std::path::PathBuf::from(format!("image {index}.{}", if format == Png { "png" } else { "jpg" }));
+    let decoded = crate::texture::decode_image(&name, &bytes, budget).map_err(|e| invalid(e.to_string()))?;
+    use gltf::image::Format as F;
+    use image::DynamicImage as D;
+    let format = match &decoded {
+        D::ImageLuma8(_) => F::R8,
+        D::ImageLumaA8(_) => F::R8G8,
+        D::ImageRgb8(_) => F::R8G8B8,
+        D::ImageRgba8(_) => F::R8G8B8A8,
+        D::ImageLuma16(_) => F::R16,
+        D::ImageLumaA16(_) => F::R16G16,
+        D::ImageRgb16(_) => F::R16G16B16,
+        D::ImageRgba16(_) => F::R16G16B16A16,
+        D::ImageRgb32F(_) => F::R32G32B32FLOAT,
+        D::ImageRgba32F(_) => F::R32G32B32A32FLOAT,
+        _ => return Err(invalid("unsupported pixel format".into())),
+    };
+    let (width, height) = (decoded.width(), decoded.height());
+    Ok(gltf::image::Data { pixels: decoded.into_bytes(), format, width, height })
 }
 
 /// Buffer views inside their buffers and accessors inside their views: the crate's reader
@@ -118,10 +339,34 @@ fn check_views_and_accessors(document: &gltf::Document, buffers: &[gltf::buffer:
             let n = sparse.count();
             let indices = sparse.indices();
             let values = sparse.values();
-            let index_end = indices.offset() + n * indices.index_type().size();
-            let value_end = values.offset() + n * size;
+            let overflow = || format!("accessor {}: sparse size overflows", accessor.index());
+            let index_end = n
+                .checked_mul(indices.index_type().size())
+                .and_then(|x| x.checked_add(indices.offset()))
+                .ok_or_else(overflow)?;
+            let value_end = n.checked_mul(size).and_then(|x| x.checked_add(values.offset())).ok_or_else(overflow)?;
             if n == 0 || index_end > view_len(&indices.view())? || value_end > view_len(&values.view())? {
                 return Err(format!("accessor {}: sparse data runs past its buffer view", accessor.index()));
+            }
+            // Indices strictly increasing and inside the accessor (3.6.2.3).
+            let view = indices.view();
+            let data = &buffers[view.buffer().index()].0[view.offset() + indices.offset()..];
+            let width = indices.index_type().size();
+            let mut last: Option<u64> = None;
+            for k in 0..n {
+                let b = &data[k * width..(k + 1) * width];
+                let i = match width {
+                    1 => u64::from(b[0]),
+                    2 => u64::from(u16::from_le_bytes([b[0], b[1]])),
+                    _ => u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+                };
+                if i >= count as u64 || last.is_some_and(|l| i <= l) {
+                    return Err(format!(
+                        "accessor {}: sparse index {k} is {i}; indices must increase and stay below {count}",
+                        accessor.index()
+                    ));
+                }
+                last = Some(i);
             }
         }
     }
@@ -171,6 +416,12 @@ impl Importer<'_> {
             return Ok(());
         }
         let index = self.model.nodes.len();
+        if index >= MAX_GLTF_INSTANCES {
+            return Err(self.err(format!(
+                "the node graph expands to more than {MAX_GLTF_INSTANCES} node instances (nodes reused as \
+                 children are counted each time)"
+            )));
+        }
         self.model.nodes.push(ModelNode { name: node.name().map(str::to_string), parent, local });
         if let Some(mesh) = node.mesh() {
             for primitive in mesh.primitives() {
@@ -244,6 +495,9 @@ impl Importer<'_> {
             }
         };
         let Some(data) = data else { return Ok(()) };
+        if self.model.parts.len() >= MAX_GLTF_INSTANCES {
+            return Err(self.err(format!("the node graph places more than {MAX_GLTF_INSTANCES} mesh primitives")));
+        }
         let material_key = primitive.material().index();
         if !self.materials.contains_key(&material_key) {
             let mapped = self.material(&primitive.material())?;
@@ -354,9 +608,9 @@ impl Importer<'_> {
         let index = image.index() as u32;
         let (path, buffers) = (self.path, self.buffers);
         let base = path.parent().unwrap_or(Path::new(""));
+        let (access, budget) = (self.textures.access().clone(), self.textures.budget());
         let loaded = self.textures.load_embedded(self.canonical, index, space, || {
-            let data = gltf::image::Data::from_source(image.source(), Some(base), buffers)
-                .map_err(|source| ImportErrorKind::GltfImage { index, source })?;
+            let data = decode_gltf_image(&image, &access, base, buffers, budget)?;
             rgba8(&data).ok_or(ImportErrorKind::PixelFormat { index, format: data.format })
         });
         let loaded = loaded.map_err(|kind| ImportError::new(path, kind))?;

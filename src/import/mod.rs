@@ -146,9 +146,10 @@ pub struct ImportError {
 
 /// `file` or `file:line`.
 fn place(file: &Path, line: &Option<usize>) -> String {
+    let file = crate::files::shown_path(file);
     match *line {
-        Some(line) => format!("{}:{line}", file.display()),
-        None => file.display().to_string(),
+        Some(line) => format!("{file}:{line}"),
+        None => file,
     }
 }
 
@@ -170,6 +171,10 @@ pub enum ImportErrorKind {
     /// The file cannot be read.
     #[error("cannot read: {0}")]
     Read(#[source] std::io::Error),
+    /// The file (or one it names) is not read: not a regular file, too large, or outside
+    /// the `--root` sandbox.
+    #[error("{0}")]
+    File(#[source] crate::files::FileError),
     /// The extension is not `.obj`, `.gltf` or `.glb`.
     #[error("unknown mesh format `.{extension}` (expected .obj, .gltf or .glb)")]
     UnknownFormat {
@@ -256,9 +261,15 @@ pub struct MeshStore {
 }
 
 impl MeshStore {
-    /// An empty store.
+    /// An empty store reading any file, with no memory budget.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// An empty store reading mesh and image files through `access`, each image decode
+    /// checked against `budget`.
+    pub fn with_limits(access: crate::files::FileAccess, budget: crate::limits::MemoryBudget) -> Self {
+        Self { models: HashMap::new(), textures: TextureStore::with_limits(access, budget) }
     }
 
     /// The model for `path`, imported on first use.
@@ -269,7 +280,8 @@ impl MeshStore {
     /// The model for `path`, and whether this call imported it (so its
     /// [`Model::warnings`] are reported once, not once per object using the file).
     pub fn fetch(&mut self, path: &Path, options: &ImportOptions) -> Result<Fetched, ImportError> {
-        let canonical = std::fs::canonicalize(path).map_err(|e| ImportError::new(path, ImportErrorKind::Read(e)))?;
+        let canonical =
+            self.textures.access().resolve(path).map_err(|e| ImportError::new(path, ImportErrorKind::File(e)))?;
         let key = (canonical, options.smooth_angle.map(f64::to_bits));
         if let Some(m) = self.models.get(&key) {
             return Ok(Fetched { model: m.clone(), first_use: false });

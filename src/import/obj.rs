@@ -13,13 +13,15 @@ use glam::{DAffine3, DVec3, Vec2, Vec3};
 use super::triangulate::triangulate;
 use super::{ImportError, ImportErrorKind, ImportOptions, Model, ModelNode, ModelPart};
 use crate::color::Rgb;
+use crate::files::{FileAccess, FileError, FileKind, shown_path};
 use crate::geometry::mesh::{MeshBuilder, MeshError, MeshShape, NormalMap, SurfaceMaps};
 use crate::material::{Emission, Material, Mtl, SurfaceModel};
 use crate::texture::{ColorSpace, TextureRef, TextureStore};
 
 /// Reads an OBJ file and its MTL files.
 pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore) -> Result<Model, ImportError> {
-    let bytes = std::fs::read(path).map_err(|e| ImportError::new(path, ImportErrorKind::Read(e)))?;
+    let access = textures.access().clone();
+    let bytes = access.read(path, FileKind::Mesh).map_err(|e| ImportError::new(path, ImportErrorKind::File(e)))?;
     // UTF-16 and binary files have NUL bytes; other stray bytes (Latin-1 names) are kept
     // as replacement characters, as they only ever appear in names and comments.
     if let Some(at) = bytes.iter().position(|&b| b == 0) {
@@ -34,21 +36,31 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
     let mut reader = std::io::BufReader::new(text.as_bytes());
     let mut warnings = Vec::new();
     let mtl_errors = std::cell::RefCell::new(Vec::new());
+    let denied = std::cell::RefCell::new(None);
     let (models, materials) = tobj::load_obj_buf(&mut reader, &load_options, |mtl| {
-        let full = dir.join(mtl);
-        let result = tobj::load_mtl(&full);
-        if let Err(e) = &result {
-            mtl_errors
-                .borrow_mut()
-                .push(format!("material library `{}`: {e}; using default materials", full.display()));
+        let result = load_library(&access, &dir, mtl);
+        match result {
+            Ok(library) => library,
+            Err(e) => {
+                if let LibraryError::File(f) = &e
+                    && f.is_sandbox()
+                {
+                    denied.borrow_mut().get_or_insert(e.to_string());
+                } else {
+                    mtl_errors.borrow_mut().push(format!("{e}; using default materials"));
+                }
+                // One bad library must not drop the others' materials.
+                empty_library()
+            }
         }
-        // One bad library must not drop the others' materials.
-        result.or_else(|_| empty_library())
     })
     .map_err(|e| {
         let line = error_line(text, &e);
         ImportError::new(path, ImportErrorKind::Obj(e)).at_line(line)
     })?;
+    if let Some(message) = denied.into_inner() {
+        return Err(ImportError::new(path, ImportErrorKind::Invalid(message)));
+    }
     warnings.extend(mtl_errors.into_inner());
     let materials = materials.unwrap_or_default();
 
@@ -109,6 +121,57 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
     }
     let nodes = vec![ModelNode { name: None, parent: None, local: DAffine3::IDENTITY }];
     Ok(Model { nodes, parts, warnings, ..Model::default() })
+}
+
+/// Why a material library is not used.
+#[derive(Debug, thiserror::Error)]
+enum LibraryError {
+    /// It cannot be read (or the sandbox refuses it).
+    #[error("material library: {0}")]
+    File(FileError),
+    /// A line would make tobj fail or panic.
+    #[error("material library `{}`:{line}: {message}", shown_path(.path))]
+    Line {
+        /// The library.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        message: &'static str,
+    },
+    /// tobj rejects the library.
+    #[error("material library `{}`: {source}", shown_path(.path))]
+    Parse {
+        /// The library.
+        path: PathBuf,
+        /// tobj's error.
+        source: tobj::LoadError,
+    },
+}
+
+/// Reads, checks and parses the MTL file `mtl` (as written after `mtllib`) beside the OBJ.
+fn load_library(access: &FileAccess, dir: &Path, mtl: &Path) -> Result<tobj::MTLLoadResult, LibraryError> {
+    let written = mtl.to_string_lossy();
+    let full = access.join(dir, &written).map_err(LibraryError::File)?;
+    let bytes = access.read(&full, FileKind::Mesh).map_err(LibraryError::File)?;
+    let text = String::from_utf8_lossy(&bytes);
+    check_library(&text).map_err(|(line, message)| LibraryError::Line { path: full.clone(), line, message })?;
+    match tobj::load_mtl_buf(&mut std::io::BufReader::new(text.as_bytes())) {
+        Ok(library) => Ok(Ok(library)),
+        Err(source) => Err(LibraryError::Parse { path: full, source }),
+    }
+}
+
+/// Lines tobj 4 mishandles: a colour statement (`Ka`, `Kd`, `Ks`, `Ke`) with fewer than
+/// three values panics inside the crate, so it is refused here first.
+fn check_library(text: &str) -> Result<(), (usize, &'static str)> {
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if matches!(words.next(), Some("Ka" | "Kd" | "Ks" | "Ke")) && words.count() < 3 {
+            return Err((i + 1, "a colour statement needs three numbers"));
+        }
+    }
+    Ok(())
 }
 
 fn empty_library() -> tobj::MTLLoadResult {
@@ -312,7 +375,13 @@ fn load_map(
     let dir = obj.parent().unwrap_or(Path::new(""));
     // Windows exports write backslashes.
     let relative = PathBuf::from(parsed.file.replace('\\', "/"));
-    let full = dir.join(&relative);
+    let full = match textures.access().join(dir, &relative.to_string_lossy()) {
+        Ok(full) => full,
+        Err(e) => {
+            warnings.push(format!("{e}; the map is ignored"));
+            return None;
+        }
+    };
     match textures.load_file(&full, space) {
         Ok(texture) => {
             let mut r = TextureRef::new(full.display().to_string());

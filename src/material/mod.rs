@@ -308,8 +308,9 @@ impl Material {
             }
         }
         check_finite(&colors, &numbers)?;
-        if self.interior.ior <= 0.0 {
-            return Err(("ior", format!("must be greater than 0, got {}", self.interior.ior)));
+        if self.interior.ior <= 0.0 || self.interior.ior > crate::limits::MAX_IOR {
+            let max = crate::limits::MAX_IOR;
+            return Err(("ior", format!("must be greater than 0 and at most {max}, got {}", self.interior.ior)));
         }
         for t in textures {
             t.check()?;
@@ -361,11 +362,24 @@ pub(crate) fn check_finite(
     colors: &[(&'static str, Rgb)],
     numbers: &[(&'static str, f64)],
 ) -> Result<(), (&'static str, String)> {
+    use crate::limits::{MAX_COEFFICIENT, MAX_COLOR_COMPONENT};
     if let Some((key, c)) = colors.iter().find(|(_, c)| !c.is_finite()) {
         return Err((key, format!("must be finite, got {:?}", c.0.to_array())));
     }
+    if let Some((key, c)) = colors.iter().find(|(_, c)| c.0.abs().max_element() > MAX_COLOR_COMPONENT) {
+        return Err((
+            key,
+            format!(
+                "components must lie within ±{MAX_COLOR_COMPONENT:e} (products would overflow), got {:?}",
+                c.0.to_array()
+            ),
+        ));
+    }
     if let Some((key, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
         return Err((key, format!("must be finite, got {v}")));
+    }
+    if let Some((key, v)) = numbers.iter().find(|(_, v)| v.abs() > MAX_COEFFICIENT) {
+        return Err((key, format!("must lie within ±{MAX_COEFFICIENT:e} (products would overflow), got {v}")));
     }
     Ok(())
 }

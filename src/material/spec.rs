@@ -233,8 +233,11 @@ impl MaterialSpec {
             &[("emission", self.emission), ("fade_color", self.fade_color)],
             &[("ior", self.ior), ("fade_distance", self.fade_distance), ("fade_power", self.fade_power)],
         )?;
-        if self.ior <= 0.0 {
-            return Err(("ior", format!("must be greater than 0, got {}", self.ior)));
+        if self.ior <= 0.0 || self.ior > crate::limits::MAX_IOR {
+            return Err((
+                "ior",
+                format!("must be greater than 0 and at most {}, got {}", crate::limits::MAX_IOR, self.ior),
+            ));
         }
         if let Some(bsdf) = &self.bsdf {
             self.check_only_bsdf()?;

@@ -30,6 +30,14 @@ pub enum OutputError {
         /// The cause.
         source: std::io::Error,
     },
+    /// The output names a directory, device, FIFO or socket.
+    #[error("{}: cannot write output: it is {what}, not a regular file", path.display())]
+    NotRegular {
+        /// The output path.
+        path: PathBuf,
+        /// `a directory`, `a device`...
+        what: &'static str,
+    },
     /// Encoding failed.
     #[error("{path}: cannot encode image: {message}")]
     Encode {
@@ -73,39 +81,168 @@ pub fn format_for(path: &Path) -> Result<OutputFormat, OutputError> {
     }
 }
 
-/// Fails early (before a render) when `path` has an unknown format or its directory cannot
-/// be written. Leaves nothing behind.
+/// Fails early (before a render) when `path` has an unknown format, names something other
+/// than a regular file (a directory, a device such as `/dev/null`, a FIFO), or its
+/// directory cannot be written. Leaves nothing behind.
 pub fn check_writable(path: &Path) -> Result<(), OutputError> {
     format_for(path)?;
-    let temp = temp_path(path);
-    std::fs::write(&temp, b"").map_err(|source| OutputError::Io { path: path.to_path_buf(), source })?;
-    let _ = std::fs::remove_file(&temp);
-    if path.is_dir() {
-        return Err(OutputError::Io {
-            path: path.to_path_buf(),
-            source: std::io::Error::new(std::io::ErrorKind::IsADirectory, "is a directory"),
-        });
-    }
+    check_target(path)?;
+    let (temp, file) = create_temp(path)?;
+    drop(file);
+    remove_temp(&temp);
     Ok(())
 }
 
-fn temp_path(path: &Path) -> PathBuf {
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    path.with_file_name(format!(".{name}.prism-{}.tmp", std::process::id()))
+/// Ok when `path` does not exist or is a regular file (or a symlink, which the rename
+/// replaces without touching what it points to).
+fn check_target(path: &Path) -> Result<(), OutputError> {
+    match std::fs::symlink_metadata(path) {
+        Ok(meta) if meta.file_type().is_symlink() => Ok(()),
+        Ok(meta) => match crate::files::not_regular(&meta.file_type()) {
+            None => Ok(()),
+            Some(what) => Err(OutputError::NotRegular { path: path.to_path_buf(), what }),
+        },
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(source) => Err(OutputError::Io { path: path.to_path_buf(), source }),
+    }
 }
 
-/// Writes `bytes` to `path` through a temporary file and a rename.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
-    let temp = temp_path(path);
-    let io = |source| OutputError::Io { path: path.to_path_buf(), source };
-    if let Err(e) = std::fs::write(&temp, bytes) {
-        let _ = std::fs::remove_file(&temp);
-        return Err(io(e));
+/// Temporary files being written, so that a signal handler can remove them
+/// ([`remove_all_temps`]).
+static TEMPS: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Removes `temp` and forgets it.
+fn remove_temp(temp: &Path) {
+    let _ = std::fs::remove_file(temp);
+    forget_temp(temp);
+}
+
+fn forget_temp(temp: &Path) {
+    let mut temps = TEMPS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    temps.retain(|p| p != temp);
+}
+
+/// Removes every temporary file still being written (for SIGINT and SIGTERM: the CLI calls
+/// this from its signal thread before exiting).
+pub fn remove_all_temps() {
+    let mut temps = TEMPS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    for temp in temps.drain(..) {
+        let _ = std::fs::remove_file(temp);
     }
-    std::fs::rename(&temp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&temp);
-        io(e)
-    })
+}
+
+/// A fresh temporary file beside `path`, created exclusively (`O_EXCL`: never an existing
+/// name, never through a symlink) under a name no other process can predict, and
+/// registered for [`remove_all_temps`].
+fn create_temp(path: &Path) -> Result<(PathBuf, std::fs::File), OutputError> {
+    use std::hash::{BuildHasher, Hasher};
+    static COUNTER: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let name: String = name.chars().take(64).collect();
+    let mut last = None;
+    for _ in 0..16 {
+        // RandomState is seeded from the operating system's random source.
+        let mut hasher = std::collections::hash_map::RandomState::new().build_hasher();
+        hasher.write_u64(COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed));
+        hasher.write_u128(
+            std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap_or_default().as_nanos(),
+        );
+        let temp = path.with_file_name(format!(".{name}.prism-{}-{:016x}.tmp", std::process::id(), hasher.finish()));
+        let mut options = std::fs::OpenOptions::new();
+        options.write(true).create_new(true);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::OpenOptionsExt;
+            options.mode(0o644);
+        }
+        // Created and registered under the lock, so a signal never finds it unregistered.
+        let mut temps = TEMPS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        match options.open(&temp) {
+            Ok(file) => {
+                temps.push(temp.clone());
+                return Ok((temp, file));
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
+            Err(source) => return Err(OutputError::Io { path: path.to_path_buf(), source }),
+        }
+    }
+    let source = last.unwrap_or_else(|| std::io::Error::other("no free temporary name"));
+    Err(OutputError::Io { path: path.to_path_buf(), source })
+}
+
+/// A file written under a temporary name, not yet renamed into place.
+#[derive(Debug)]
+pub struct Staged {
+    temp: PathBuf,
+    path: PathBuf,
+}
+
+impl Staged {
+    /// Renames the temporary file over the target (which must still be a regular file or
+    /// absent).
+    pub fn commit(self) -> Result<(), OutputError> {
+        commit_all(vec![self])
+    }
+
+    /// Removes the temporary file.
+    pub fn discard(self) {
+        remove_temp(&self.temp);
+    }
+}
+
+/// Renames every staged file into place, holding the registry's lock so that a signal
+/// arriving meanwhile waits until all are renamed (or, on an error, all remaining
+/// temporary files are removed).
+fn commit_all(staged: Vec<Staged>) -> Result<(), OutputError> {
+    let mut temps = TEMPS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let mut result = Ok(());
+    for s in &staged {
+        if result.is_ok() {
+            result = check_target(&s.path).and_then(|()| {
+                std::fs::rename(&s.temp, &s.path).map_err(|source| OutputError::Io { path: s.path.clone(), source })
+            });
+        }
+        if result.is_err() {
+            let _ = std::fs::remove_file(&s.temp);
+        }
+        temps.retain(|p| *p != s.temp);
+    }
+    result
+}
+
+/// Writes `bytes` to a fresh temporary file beside `path` (nothing is renamed yet).
+pub fn stage(path: &Path, bytes: &[u8]) -> Result<Staged, OutputError> {
+    use std::io::Write;
+    check_target(path)?;
+    let (temp, mut file) = create_temp(path)?;
+    let written = file.write_all(bytes);
+    drop(file);
+    if let Err(source) = written {
+        remove_temp(&temp);
+        return Err(OutputError::Io { path: path.to_path_buf(), source });
+    }
+    Ok(Staged { temp, path: path.to_path_buf() })
+}
+
+/// Writes `bytes` to `path` through an exclusive temporary file and a rename.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+    stage(path, bytes)?.commit()
+}
+
+/// Writes several files all or none: every one is staged first, and only when all are
+/// written are they renamed into place.
+pub fn write_all_atomically(files: &[(&Path, Vec<u8>)]) -> Result<(), OutputError> {
+    let mut staged = Vec::new();
+    for (path, bytes) in files {
+        match stage(path, bytes) {
+            Ok(s) => staged.push(s),
+            Err(e) => {
+                staged.into_iter().for_each(Staged::discard);
+                return Err(e);
+            }
+        }
+    }
+    commit_all(staged)
 }
 
 /// The exact sRGB encoding of a linear value in [0, 1].
@@ -282,6 +419,48 @@ mod tests {
         assert_eq!(depth.sample_data.value_by_flat_index(4).to_f32(), 7.25);
         let red = layer.channel_data.list.iter().find(|c| c.name.to_string() == "R").unwrap();
         assert_eq!(red.sample_data.value_by_flat_index(5).to_f32(), 5.0);
+    }
+
+    /// A symlink planted at the name the temporary file used to have (`.name.prism-PID.tmp`,
+    /// predictable) is neither followed nor replaced: the temporary file's name is fresh and
+    /// it is created exclusively.
+    #[cfg(unix)]
+    #[test]
+    fn temporary_files_never_follow_planted_symlinks() {
+        let dir = tempfile::tempdir().unwrap();
+        let victim = dir.path().join("victim.txt");
+        std::fs::write(&victim, "keep me").unwrap();
+        let out = dir.path().join("out.png");
+        let planted = dir.path().join(format!(".out.png.prism-{}.tmp", std::process::id()));
+        std::os::unix::fs::symlink(&victim, &planted).unwrap();
+        write_atomically(&out, b"image").unwrap();
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep me");
+        assert_eq!(std::fs::read(&out).unwrap(), b"image");
+        assert!(std::fs::symlink_metadata(&planted).unwrap().file_type().is_symlink());
+        let names: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names.len(), 3, "no temporary file is left: {names:?}");
+        assert!(matches!(write_atomically(Path::new("/dev/null"), b"x"), Err(OutputError::NotRegular { .. })));
+    }
+
+    /// Staged files are all renamed or none; the signal handler's cleanup removes the ones
+    /// still in flight.
+    #[test]
+    fn staged_outputs_are_all_or_none_and_cleaned_up() {
+        let dir = tempfile::tempdir().unwrap();
+        let (a, b) = (dir.path().join("a.png"), dir.path().join("b.exr"));
+        std::fs::create_dir(&b).unwrap();
+        let files = [(a.as_path(), b"a".to_vec()), (b.as_path(), b"b".to_vec())];
+        assert!(write_all_atomically(&files).is_err());
+        assert!(!a.exists(), "the first output is not written when the second cannot be");
+        let staged = stage(&a, b"a").unwrap();
+        let temp = staged.temp.clone();
+        assert!(temp.exists());
+        remove_all_temps();
+        assert!(!temp.exists());
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 
     #[test]

@@ -22,6 +22,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
 use crate::film::{Aov, Film, Region};
+use crate::limits::{MAX_THREADS, MemoryBudget, OverBudget};
 use crate::world::components::IntegratorKind;
 use camera::pov_screen;
 use extract::RenderScene;
@@ -45,6 +46,9 @@ pub struct RenderOptions {
     /// Set to stop the render: tiles not yet started are skipped (left black) and the
     /// stats say the render was cancelled.
     pub cancel: Option<Arc<AtomicBool>>,
+    /// The memory the film and the tiles' results may take (estimated before the render).
+    /// The default is [`MemoryBudget::default`]: a fraction of the machine's memory.
+    pub budget: MemoryBudget,
 }
 
 /// What a render did.
@@ -56,6 +60,9 @@ pub struct RenderStats {
     pub primary_rays: u64,
     /// All rays: camera, reflected, refracted and shadow rays.
     pub total_rays: u64,
+    /// Pixels whose radiance was NaN or infinite, written as black (the scene's loader
+    /// rejects the inputs known to cause them; this is the last line of defence).
+    pub non_finite_pixels: u64,
     /// True when `RenderOptions::cancel` stopped the render before every tile was done.
     pub cancelled: bool,
 }
@@ -78,6 +85,15 @@ pub enum RenderError {
         /// The cause.
         source: rayon::ThreadPoolBuildError,
     },
+    /// More threads than [`MAX_THREADS`] were asked for.
+    #[error("--threads: {threads} is more than the limit of {MAX_THREADS}")]
+    TooManyThreads {
+        /// Requested thread count.
+        threads: usize,
+    },
+    /// The film would not fit the memory budget.
+    #[error(transparent)]
+    OverBudget(#[from] OverBudget),
     /// The region is empty or leaves the frame.
     #[error("region {x0},{y0},{x1},{y1} is not a non-empty part of the {width}x{height} image", x0 = region.x0, y0 = region.y0, x1 = region.x1, y1 = region.y1)]
     Region {
@@ -118,6 +134,17 @@ pub fn render<I: Integrator>(
         return Err(RenderError::Region { region, width, height });
     }
     let threads = options.threads.unwrap_or(0);
+    if threads > MAX_THREADS {
+        return Err(RenderError::TooManyThreads { threads });
+    }
+    let channels: usize = 3 + options.aovs.iter().map(|a| a.channels().len()).sum::<usize>();
+    // The film, the tiles' pixels (a second copy until they are gathered) and, with AOVs,
+    // each pixel's first hit.
+    let per_pixel = 2 * 12
+        + 4 * channels as u64
+        + if options.aovs.is_empty() { 0 } else { std::mem::size_of::<Option<FirstHit>>() as u64 };
+    let estimate = u64::from(region.width()) * u64::from(region.height()) * per_pixel;
+    options.budget.check(|| format!("a {} x {} film", region.width(), region.height()), estimate)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -188,13 +215,19 @@ pub fn render<I: Integrator>(
     let elapsed = start.elapsed();
 
     let mut film = Film::for_region(region, (width, height), &options.aovs);
+    let mut non_finite = 0;
     for tile in tiles {
         let tile_w = tile.area.width();
         for (i, p) in tile.pixels.into_iter().enumerate() {
             let (x, y) = (tile.area.x0 + i as u32 % tile_w, tile.area.y0 + i as u32 / tile_w);
             if region.contains(x, y) {
                 let index = (y - region.y0) as usize * region.width() as usize + (x - region.x0) as usize;
-                film.pixels[index] = p;
+                film.pixels[index] = if p.iter().all(|c| c.is_finite()) {
+                    p
+                } else {
+                    non_finite += 1;
+                    [0.0; 3]
+                };
                 if want_hits {
                     write_aovs(&mut film, index, &tile.first_hits[i]);
                 }
@@ -206,6 +239,7 @@ pub fn render<I: Integrator>(
         primary_rays: primary_rays.load(Ordering::Relaxed),
         total_rays: rays.load(Ordering::Relaxed),
         cancelled: cancelled.load(Ordering::Relaxed),
+        non_finite_pixels: non_finite,
     };
     Ok((film, stats))
 }

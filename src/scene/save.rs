@@ -170,15 +170,34 @@ fn write_scene(scene: &Scene, paths: &FilePaths) -> Result<String, toml::ser::Er
         }
         doc.insert("materials".into(), table.into());
     }
-    let objects: Vec<toml::Value> = objects.into_iter().map(|(_, t)| t.into()).collect();
+    // Serialised one top-level key, and one `[[object]]` or `[[light]]`, at a time (in the
+    // order toml writes them): toml's serialiser is quadratic in the length of an array of
+    // tables.
     if !objects.is_empty() {
-        doc.insert("object".into(), objects.into());
+        doc.insert("object".into(), toml::Value::Array(Vec::new()));
     }
-    let lights: Vec<toml::Value> = lights.into_iter().map(|(_, t)| t.into()).collect();
     if !lights.is_empty() {
-        doc.insert("light".into(), lights.into());
+        doc.insert("light".into(), toml::Value::Array(Vec::new()));
     }
-    let body = toml::to_string_pretty(&doc)?;
+    let mut arrays = [("object", objects), ("light", lights)];
+    let mut pieces = Vec::new();
+    for (key, value) in doc {
+        match arrays.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, tables)) => {
+                for (_, table) in std::mem::take(tables) {
+                    let mut one = toml::Table::new();
+                    one.insert(key.clone(), toml::Value::Array(vec![table.into()]));
+                    pieces.push(toml::to_string_pretty(&one)?);
+                }
+            }
+            None => {
+                let mut one = toml::Table::new();
+                one.insert(key, value);
+                pieces.push(toml::to_string_pretty(&one)?);
+            }
+        }
+    }
+    let body = pieces.join("\n");
     Ok(format!("# Written by `prism save`: a self-contained copy of the scene (includes flattened).\n\n{body}"))
 }
 

@@ -26,7 +26,7 @@ impl ParsedFile {
     /// Parses `text`; a syntax error becomes a diagnostic with its line and column.
     pub fn parse(name: &str, text: String) -> Result<Self, Diagnostic> {
         let name: Arc<str> = Arc::from(name);
-        let source = SourceFile { path: name.to_string(), text };
+        let source = SourceFile::new(name.to_string(), text);
         let mut key_spans = HashMap::new();
         let mut value_spans = HashMap::new();
         let syntax_error = |e: toml::de::Error| {

@@ -40,17 +40,22 @@
 
 use std::f64::consts::{PI, TAU};
 use std::fmt;
-use std::fs::File;
-use std::io::{BufReader, Seek};
+use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
 
 use super::distribution::Distribution2D;
+use crate::files::{FileAccess, FileError, FileKind, shown_path};
+use crate::limits::{MemoryBudget, OverBudget};
 
 /// Images with more texels than this are refused before they are decoded (2^26: an
 /// 11585 × 5792 map; 16k × 8k is too large).
 pub const MAX_TEXELS: usize = 1 << 26;
+
+/// Bytes an environment map costs per texel while it is decoded and tabulated (the decoded
+/// image, the RGB texels and the sampling distribution).
+const ENVIRONMENT_BYTES_PER_TEXEL: u64 = 40;
 
 /// Luminance weights of linear Rec. 709 RGB, as Mitsuba's `luminance()`.
 const LUMINANCE: DVec3 = DVec3::new(0.212_671, 0.715_160, 0.072_169);
@@ -58,17 +63,15 @@ const LUMINANCE: DVec3 = DVec3::new(0.212_671, 0.715_160, 0.072_169);
 /// What can go wrong loading or building an environment map.
 #[derive(Debug, thiserror::Error)]
 pub enum EnvironmentError {
-    /// The file could not be opened or read.
-    #[error("cannot read environment map {}: {source}", path.display())]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// Why.
-        #[source]
-        source: std::io::Error,
-    },
+    /// The file could not be opened or read (or is not a regular file, too large, or
+    /// outside the `--root` sandbox).
+    #[error("environment map: {0}")]
+    File(#[from] FileError),
+    /// Decoding would exceed the memory budget.
+    #[error(transparent)]
+    OverBudget(#[from] OverBudget),
     /// The file is not a readable `.exr` or `.hdr` image.
-    #[error("cannot decode environment map {}: {message}", path.display())]
+    #[error("cannot decode environment map {}: {message}", shown_path(.path))]
     Decode {
         /// The file.
         path: PathBuf,
@@ -183,25 +186,36 @@ impl EnvironmentMap {
     /// (`.hdr`) file, chosen by the extension. The dimensions are checked from the header
     /// before the pixels are decoded.
     pub fn load(path: &Path) -> Result<Self, EnvironmentError> {
-        let io = |source| EnvironmentError::Io { path: path.to_path_buf(), source };
+        Self::load_with(path, &FileAccess::unrestricted(), MemoryBudget::UNLIMITED)
+    }
+
+    /// [`EnvironmentMap::load`] reading through `access`, the decoded size checked against
+    /// `budget` before the pixels are decoded.
+    pub fn load_with(path: &Path, access: &FileAccess, budget: MemoryBudget) -> Result<Self, EnvironmentError> {
         let decode = |message: String| EnvironmentError::Decode { path: path.to_path_buf(), message };
-        let mut reader = BufReader::new(File::open(path).map_err(io)?);
+        let bytes = access.read(path, FileKind::Image)?;
+        let mut reader = Cursor::new(&bytes[..]);
         let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        let check = |width: usize, height: usize| -> Result<(), EnvironmentError> {
+            check_size(width, height)?;
+            let estimate = (width as u64 * height as u64).saturating_mul(ENVIRONMENT_BYTES_PER_TEXEL);
+            budget.check(|| format!("environment map `{}` ({width} x {height})", shown_path(path)), estimate)?;
+            Ok(())
+        };
         let (width, height, texels) = match extension.as_deref() {
             Some("exr") => {
                 let meta =
                     exr::meta::MetaData::read_from_buffered(&mut reader, false).map_err(|e| decode(e.to_string()))?;
                 for header in &meta.headers {
-                    check_size(header.layer_size.width(), header.layer_size.height())?;
+                    check(header.layer_size.width(), header.layer_size.height())?;
                 }
-                reader.rewind().map_err(io)?;
-                read_exr(reader).map_err(|e| decode(e.to_string()))?
+                read_exr(Cursor::new(&bytes[..])).map_err(|e| decode(e.to_string()))?
             }
             Some("hdr") => {
                 use image::ImageDecoder;
                 let decoder = image::codecs::hdr::HdrDecoder::new(reader).map_err(|e| decode(e.to_string()))?;
                 let (width, height) = decoder.dimensions();
-                check_size(width as usize, height as usize)?;
+                check(width as usize, height as usize)?;
                 let image =
                     image::DynamicImage::from_decoder(decoder).map_err(|e| decode(e.to_string()))?.into_rgb32f();
                 (width as usize, height as usize, image.pixels().map(|p| p.0).collect())
@@ -339,7 +353,7 @@ fn check_size(width: usize, height: usize) -> Result<(), EnvironmentError> {
 }
 
 /// The first RGB(A) layer of an EXR file: width, height and RGB texels, top row first.
-fn read_exr(reader: BufReader<File>) -> exr::error::Result<(usize, usize, Vec<[f32; 3]>)> {
+fn read_exr(reader: Cursor<&[u8]>) -> exr::error::Result<(usize, usize, Vec<[f32; 3]>)> {
     use exr::prelude::*;
     let image = read()
         .no_deep_data()
@@ -524,7 +538,7 @@ mod tests {
         assert!(matches!(err(8, 4, vec![[1.0; 3]; 31]), EnvironmentError::TexelCount { count: 31, .. }));
         let missing = Path::new("/nonexistent/prism/sky.exr");
         match EnvironmentMap::load(missing).unwrap_err() {
-            e @ EnvironmentError::Io { .. } => assert!(e.to_string().contains("/nonexistent/prism/sky.exr"), "{e}"),
+            e @ EnvironmentError::File(_) => assert!(e.to_string().contains("/nonexistent/prism/sky.exr"), "{e}"),
             e => panic!("expected Io, got {e:?}"),
         }
     }

@@ -19,6 +19,9 @@ use schemars::JsonSchema;
 use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
+use crate::files::{FileAccess, FileError, FileKind, shown_path};
+use crate::limits::{MAX_TEXTURE_SIDE, MemoryBudget, OverBudget};
+
 /// How texture coordinates outside [0, 1] are mapped back into the image.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
@@ -248,50 +251,108 @@ fn downsample(l: &Level, space: ColorSpace) -> Level {
 /// Why an image file cannot become a texture.
 #[derive(Debug, thiserror::Error)]
 pub enum TextureError {
-    /// The file cannot be opened or read.
-    #[error("cannot read image `{}`: {source}", path.display())]
-    Read {
-        /// The image file.
-        path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
+    /// The file cannot be opened or read (or is not a regular file, too large, or outside
+    /// the `--root` sandbox).
+    #[error(transparent)]
+    File(#[from] FileError),
     /// The file is read but is not an image the `image` crate decodes.
-    #[error("cannot decode image `{}`: {source}", path.display())]
+    #[error("cannot decode image `{}`: {source}", shown_path(.path))]
     Decode {
         /// The image file.
         path: PathBuf,
         /// The cause.
         source: image::ImageError,
     },
+    /// A side is longer than [`MAX_TEXTURE_SIDE`].
+    #[error("image `{}` is {width} x {height}: a side is longer than the limit of {MAX_TEXTURE_SIDE}", shown_path(.path))]
+    TooLarge {
+        /// The image file.
+        path: PathBuf,
+        /// Width in texels.
+        width: u32,
+        /// Height in texels.
+        height: u32,
+    },
+    /// Decoding would exceed the memory budget.
+    #[error(transparent)]
+    OverBudget(#[from] OverBudget),
+}
+
+/// Bytes a `width` × `height` image costs while it becomes a texture: the decoded image
+/// (`bytes_per_pixel` each), its RGBA8 copy and the mip chain (a third more).
+pub fn decode_estimate(width: u32, height: u32, bytes_per_pixel: u64) -> u64 {
+    let texels = u64::from(width) * u64::from(height);
+    texels.saturating_mul(bytes_per_pixel + 4 + 6)
+}
+
+/// Decodes an encoded image (`path` names it in errors and hints its format by extension),
+/// checking its dimensions against [`MAX_TEXTURE_SIDE`] and the budget before decoding.
+pub fn decode_image(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<image::DynamicImage, TextureError> {
+    use image::ImageDecoder;
+    let decode_error = |source| TextureError::Decode { path: path.to_path_buf(), source };
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
+    if let Ok(format) = image::ImageFormat::from_path(path) {
+        reader.set_format(format);
+    }
+    let reader = reader.with_guessed_format().map_err(|source| FileError::Io { path: path.to_path_buf(), source })?;
+    let decoder = reader.into_decoder().map_err(decode_error)?;
+    let (width, height) = decoder.dimensions();
+    if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
+        return Err(TextureError::TooLarge { path: path.to_path_buf(), width, height });
+    }
+    let estimate = decode_estimate(width, height, u64::from(decoder.color_type().bytes_per_pixel()));
+    budget.check(|| format!("image `{}` ({width} x {height})", shown_path(path)), estimate)?;
+    image::DynamicImage::from_decoder(decoder).map_err(decode_error)
 }
 
 /// Decoded textures, keyed by (canonical file, image index inside a glTF file, colour
 /// space): an image used by many materials, meshes or instances is decoded once.
-#[derive(Default, Debug)]
+#[derive(Debug)]
 pub struct TextureStore {
     textures: HashMap<(PathBuf, Option<u32>, ColorSpace), Arc<Texture>>,
+    /// How image files (and, through the importers, mesh files) are read.
+    access: FileAccess,
+    /// What one decoded image may cost.
+    budget: MemoryBudget,
+}
+
+impl Default for TextureStore {
+    fn default() -> Self {
+        Self::with_limits(FileAccess::unrestricted(), MemoryBudget::UNLIMITED)
+    }
 }
 
 impl TextureStore {
-    /// An empty store.
+    /// An empty store reading any file, with no memory budget.
     pub fn new() -> Self {
         Self::default()
     }
 
+    /// An empty store reading files through `access`, each decode checked against `budget`.
+    pub fn with_limits(access: FileAccess, budget: MemoryBudget) -> Self {
+        Self { textures: HashMap::new(), access, budget }
+    }
+
+    /// How files are read (the importers read mesh files through it too).
+    pub fn access(&self) -> &FileAccess {
+        &self.access
+    }
+
+    /// The memory budget of one decode.
+    pub fn budget(&self) -> MemoryBudget {
+        self.budget
+    }
+
     /// The texture decoded from the image file at `path`.
     pub fn load_file(&mut self, path: &Path, space: ColorSpace) -> Result<Arc<Texture>, TextureError> {
-        let read_error = |source| TextureError::Read { path: path.to_path_buf(), source };
-        let canonical = std::fs::canonicalize(path).map_err(read_error)?;
+        let canonical = self.access.resolve(path)?;
         let key = (canonical, None, space);
         if let Some(t) = self.textures.get(&key) {
             return Ok(t.clone());
         }
-        let image = image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
-            .map_err(read_error)?
-            .decode()
-            .map_err(|source| TextureError::Decode { path: path.to_path_buf(), source })?;
+        let bytes = self.access.read(path, FileKind::Image)?;
+        let image = decode_image(path, &bytes, self.budget)?;
+        drop(bytes);
         let texture = Arc::new(Texture::from_image(image, space));
         self.textures.insert(key, texture.clone());
         Ok(texture)

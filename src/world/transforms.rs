@@ -1,6 +1,6 @@
 //! `resolve_transforms`: parent chains to world transforms.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use glam::DAffine3;
 
@@ -39,32 +39,49 @@ pub fn resolve_transforms(scene: &mut Scene) -> Result<(), SceneError> {
     for (entity, transform, parent) in world.query::<(hecs::Entity, &Transform, Option<&Parent>)>().iter() {
         local.insert(entity, (transform.parent_from_local(), parent.map(|p| p.0)));
     }
-    let mut resolved: HashMap<hecs::Entity, DAffine3> = HashMap::new();
+    // Each entity is resolved once, from its parent's resolved transform (walking up only
+    // to the nearest resolved ancestor), so the work is linear in the number of entities
+    // however deep the chains. The product is formed root first, as a walk of the whole
+    // chain would.
+    let mut resolved: HashMap<hecs::Entity, Option<DAffine3>> = HashMap::with_capacity(local.len());
     let mut diagnostics = Vec::new();
+    let mut path: Vec<hecs::Entity> = Vec::new();
+    let mut on_path: HashSet<hecs::Entity> = HashSet::new();
     for &entity in local.keys() {
-        let mut chain = vec![entity];
-        let mut cursor = local[&entity].1;
-        let mut cycle = false;
-        while let Some(p) = cursor {
-            if chain.contains(&p) {
-                cycle = true;
+        if resolved.contains_key(&entity) {
+            continue;
+        }
+        path.clear();
+        on_path.clear();
+        let mut cursor = Some(entity);
+        // The transform above the path's top, or None when the walk met a cycle.
+        let mut above = Some(DAffine3::IDENTITY);
+        while let Some(e) = cursor {
+            if let Some(known) = resolved.get(&e) {
+                above = *known;
                 break;
             }
-            chain.push(p);
-            cursor = local.get(&p).and_then(|(_, parent)| *parent);
+            if !on_path.insert(e) {
+                above = None;
+                break;
+            }
+            path.push(e);
+            cursor = local.get(&e).and_then(|(_, parent)| *parent);
         }
-        if cycle {
+        for &e in path.iter().rev() {
+            above = above.map(|m| m * local.get(&e).map_or(DAffine3::IDENTITY, |(t, _)| *t));
+            resolved.insert(e, above);
+        }
+    }
+    for (&entity, m) in &resolved {
+        if m.is_none() && local.contains_key(&entity) {
             let location =
                 world.get::<&Origin>(entity).map(|o| o.0.clone()).unwrap_or_else(|_| Location::file_only("", "parent"));
             diagnostics.push(Diagnostic::new(location.child("parent"), "parent chain forms a cycle"));
-            continue;
         }
-        let mut world_from_object = DAffine3::IDENTITY;
-        for e in chain.iter().rev() {
-            world_from_object *= local.get(e).map_or(DAffine3::IDENTITY, |(m, _)| *m);
-        }
-        resolved.insert(entity, world_from_object);
     }
+    let resolved: Vec<(hecs::Entity, DAffine3)> =
+        resolved.into_iter().filter_map(|(e, m)| Some((e, m?))).filter(|(e, _)| local.contains_key(e)).collect();
     if !diagnostics.is_empty() {
         diagnostics.sort_by_key(|d| (d.location.line, d.location.column));
         diagnostics.dedup();

@@ -249,6 +249,8 @@ fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
     }
 }
 
+use crate::limits::{MAX_COEFFICIENT, MAX_COLOR_COMPONENT};
+
 fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
     let vectors =
         [("position", light.position), ("point_at", light.point_at), ("axis1", light.axis1), ("axis2", light.axis2)];
@@ -268,10 +270,20 @@ fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
     for (key, v) in numbers {
         if !v.is_finite() {
             out.push(Diagnostic::new(origin.child(key), format!("`{key}` must be finite, got {v}")));
+        } else if v.abs() > MAX_COEFFICIENT {
+            out.push(Diagnostic::new(
+                origin.child(key),
+                format!("`{key}` must lie within ±{MAX_COEFFICIENT:e} (products would overflow), got {v}"),
+            ));
         }
     }
     if !light.color.is_finite() {
         out.push(Diagnostic::new(origin.child("color"), "`color` must be finite"));
+    } else if light.color.0.abs().max_element() > MAX_COLOR_COMPONENT {
+        out.push(Diagnostic::new(
+            origin.child("color"),
+            format!("`color` components must lie within ±{MAX_COLOR_COMPONENT:e} (products would overflow)"),
+        ));
     }
     let position = DVec3::from_array(light.position);
     let point_at = DVec3::from_array(light.point_at);

@@ -38,7 +38,14 @@ impl Loader<'_> {
         let dir = self.directory(index);
         let mut ok = true;
         for (texture, space) in material.textures_mut() {
-            let path = dir.join(&texture.file);
+            let path = match self.access.join(&dir, &texture.file) {
+                Ok(path) => path,
+                Err(e) => {
+                    self.diagnostics.push(Diagnostic::new(self.files[index].locate(key), e.to_string()));
+                    ok = false;
+                    continue;
+                }
+            };
             match self.meshes.textures.load_file(&path, space) {
                 Ok(t) => {
                     texture.file = std::fs::canonicalize(&path).unwrap_or(path).display().to_string();

@@ -168,7 +168,15 @@ impl Loader<'_> {
                 return None;
             }
         };
-        let path = self.directory(file).join(&relative);
+        let path = match self.access.join(&self.directory(file), &relative) {
+            Ok(path) => path,
+            Err(e) => {
+                let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.file")), e.to_string());
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        let relative = crate::files::shown(&relative);
         let is_gltf = path
             .extension()
             .and_then(|e| e.to_str())

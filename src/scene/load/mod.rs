@@ -10,16 +10,18 @@ mod meshes;
 use meshes::{CameraImport, LightImport, MeshObject, spawn_imported_camera, spawn_imported_lights};
 mod objects;
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use serde::de::DeserializeOwned;
 
 use super::source::{ParsedFile, deserialize_at};
 use crate::diagnostics::{Diagnostic, Location, SceneError};
+use crate::files::{FileAccess, FileError, FileKind};
 use crate::import::punctual::{self, CameraChoice};
 use crate::import::spawn::{MESH_KEYS, MESH_SHAPE};
 use crate::import::{CameraProjection, ImportOptions, Imported, MeshSource, MeshStore, Model};
+use crate::limits::{MAX_SCENE_FILES, MemoryBudget};
 use crate::material::MaterialSpec;
 use crate::registry::ShapeRegistry;
 use crate::world::Scene;
@@ -38,21 +40,31 @@ pub const OBJECT_KEYS: [&str; 6] = ["shape", "name", "material", "transform", "p
 /// Where scene files come from: the file system, or text embedded in the binary.
 pub trait SceneSource {
     /// The text of the file at `path`.
-    fn read(&self, path: &Path) -> std::io::Result<String>;
-    /// A canonical identity for include-cycle detection.
+    fn read(&self, path: &Path) -> Result<String, FileError>;
+    /// A canonical identity for include-cycle detection and de-duplication.
     fn canonical(&self, path: &Path) -> PathBuf;
+    /// How mesh, texture and environment files named by the scene are read.
+    fn access(&self) -> FileAccess {
+        FileAccess::unrestricted()
+    }
 }
 
-/// Reads scene files from disk.
-pub struct FileSystem;
+/// Reads scene files from disk through a [`FileAccess`] (regular files only, at most
+/// [`crate::files::MAX_SCENE_BYTES`] each, inside the sandbox if there is one).
+#[derive(Default)]
+pub struct FileSystem(pub FileAccess);
 
 impl SceneSource for FileSystem {
-    fn read(&self, path: &Path) -> std::io::Result<String> {
-        std::fs::read_to_string(path)
+    fn read(&self, path: &Path) -> Result<String, FileError> {
+        self.0.read_text(path, FileKind::Scene)
     }
 
     fn canonical(&self, path: &Path) -> PathBuf {
         std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
+    }
+
+    fn access(&self) -> FileAccess {
+        self.0.clone()
     }
 }
 
@@ -60,13 +72,14 @@ impl SceneSource for FileSystem {
 pub struct Embedded(pub &'static [(&'static str, &'static str)]);
 
 impl SceneSource for Embedded {
-    fn read(&self, path: &Path) -> std::io::Result<String> {
+    fn read(&self, path: &Path) -> Result<String, FileError> {
         let wanted = normalize(path);
-        self.0
-            .iter()
-            .find(|(p, _)| normalize(Path::new(p)) == wanted)
-            .map(|(_, text)| text.to_string())
-            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such built-in file"))
+        self.0.iter().find(|(p, _)| normalize(Path::new(p)) == wanted).map(|(_, text)| text.to_string()).ok_or_else(
+            || FileError::Io {
+                path: path.into(),
+                source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such built-in file"),
+            },
+        )
     }
 
     fn canonical(&self, path: &Path) -> PathBuf {
@@ -91,17 +104,31 @@ fn normalize(path: &Path) -> PathBuf {
     out
 }
 
-/// Loads the scene at `path` from disk.
+/// Loads the scene at `path` from disk, reading any file, with no memory budget.
 pub fn load_file(path: &Path, registry: &ShapeRegistry) -> Result<Scene, SceneError> {
-    load_from(&FileSystem, path, registry)
+    load_from(&FileSystem::default(), path, registry)
 }
 
-/// Loads the scene at `path` from `source`.
+/// Loads the scene at `path` from `source`, with no memory budget.
 pub fn load_from(source: &dyn SceneSource, path: &Path, registry: &ShapeRegistry) -> Result<Scene, SceneError> {
+    load_with(source, path, registry, MemoryBudget::UNLIMITED)
+}
+
+/// Loads the scene at `path` from `source`; every image decode is checked against `budget`.
+pub fn load_with(
+    source: &dyn SceneSource,
+    path: &Path,
+    registry: &ShapeRegistry,
+    budget: MemoryBudget,
+) -> Result<Scene, SceneError> {
+    let access = source.access();
     let mut loader = Loader {
         source,
         registry,
+        access: access.clone(),
+        budget,
         stack: Vec::new(),
+        seen: HashSet::new(),
         files: Vec::new(),
         diagnostics: Vec::new(),
         warnings: Vec::new(),
@@ -112,11 +139,11 @@ pub fn load_from(source: &dyn SceneSource, path: &Path, registry: &ShapeRegistry
         default_material: MaterialComponent::authored(None, std::sync::Arc::new(MaterialSpec::default())),
         objects: Vec::new(),
         lights: Vec::new(),
-        meshes: MeshStore::new(),
+        meshes: MeshStore::with_limits(access, budget),
         light_imports: Vec::new(),
         camera_import: None,
     };
-    loader.load_file(path, None);
+    loader.load_all(path);
     loader.finish()
 }
 
@@ -135,10 +162,27 @@ struct ObjectDef {
     table: toml::Table,
 }
 
+/// A scene file whose includes are being loaded (the loader's explicit stack).
+struct Frame {
+    /// Index into `Loader::files`.
+    index: usize,
+    /// Its includes: where each is written, and its path.
+    includes: Vec<(Location, PathBuf)>,
+    /// The next include to load.
+    next: usize,
+}
+
 struct Loader<'a> {
     source: &'a dyn SceneSource,
     registry: &'a ShapeRegistry,
+    /// How files named by the scene are read.
+    access: FileAccess,
+    /// The memory budget of decoded images.
+    budget: MemoryBudget,
+    /// Canonical paths of the files whose includes are being loaded, outermost first.
     stack: Vec<PathBuf>,
+    /// Canonical paths of every file read so far: each is loaded once.
+    seen: HashSet<PathBuf>,
     files: Vec<ParsedFile>,
     /// Errors found so far.
     diagnostics: Vec<Diagnostic>,
@@ -162,41 +206,80 @@ struct Loader<'a> {
 }
 
 impl Loader<'_> {
-    fn load_file(&mut self, path: &Path, included_from: Option<Location>) {
+    /// Loads `path` and its includes, depth first with an explicit stack (so an include
+    /// chain thousands deep cannot overflow the call stack), each file once: a file's
+    /// includes are merged before its own sections, so it overrides them.
+    fn load_all(&mut self, path: &Path) {
+        let mut frames: Vec<Frame> = Vec::new();
+        if let Some(frame) = self.open_file(path, None) {
+            frames.push(frame);
+        }
+        while let Some(frame) = frames.last_mut() {
+            if let Some((location, include)) = frame.includes.get(frame.next).cloned() {
+                frame.next += 1;
+                if let Some(child) = self.open_file(&include, Some(location)) {
+                    frames.push(child);
+                }
+            } else {
+                let index = frame.index;
+                frames.pop();
+                self.stack.pop();
+                self.sections(index);
+            }
+        }
+    }
+
+    /// Reads and parses one file and lists its includes; `None` when it is not loaded (an
+    /// error, or already loaded through another include).
+    fn open_file(&mut self, path: &Path, included_from: Option<Location>) -> Option<Frame> {
         let display = path.display().to_string();
         let canonical = self.source.canonical(path);
         if let Some(pos) = self.stack.iter().position(|p| *p == canonical) {
-            let chain: Vec<String> =
-                self.stack[pos..].iter().chain(std::iter::once(&canonical)).map(|p| p.display().to_string()).collect();
+            let chain: Vec<String> = self.stack[pos..]
+                .iter()
+                .chain(std::iter::once(&canonical))
+                .map(|p| crate::files::shown_path(p))
+                .collect();
             let location = included_from.unwrap_or_else(|| Location::file_only(display.as_str(), "include"));
             self.diagnostics.push(Diagnostic::new(location, format!("include cycle: {}", chain.join(" -> "))));
-            return;
+            return None;
         }
+        if self.seen.contains(&canonical) {
+            return None;
+        }
+        if self.seen.len() >= MAX_SCENE_FILES {
+            let location = included_from.unwrap_or_else(|| Location::file_only(display.as_str(), "include"));
+            self.diagnostics
+                .push(Diagnostic::new(location, format!("more than {MAX_SCENE_FILES} scene files are included")));
+            return None;
+        }
+        self.seen.insert(canonical.clone());
         let text = match self.source.read(path) {
             Ok(text) => text,
             Err(e) => {
                 let location = included_from.unwrap_or_else(|| Location::file_only(display.as_str(), ""));
                 let what = if location.key.is_empty() { "cannot read scene file" } else { "cannot read included file" };
-                self.diagnostics.push(Diagnostic::new(location, format!("{what} `{display}`: {e}")));
-                return;
+                let shown = crate::files::shown(&display);
+                self.diagnostics.push(Diagnostic::new(location, format!("{what} `{shown}`: {}", e.cause())));
+                return None;
             }
         };
         let parsed = match ParsedFile::parse(&display, text) {
             Ok(p) => p,
             Err(d) => {
                 self.diagnostics.push(d);
-                return;
+                return None;
             }
         };
         self.stack.push(canonical);
         let index = self.files.len();
-        let table = parsed.table.clone();
         self.files.push(parsed);
 
-        for key in table.keys() {
+        let keys: Vec<String> = self.files[index].table.keys().cloned().collect();
+        for key in keys {
             if !TOP_LEVEL_KEYS.contains(&key.as_str()) {
-                let d = Diagnostic::new(self.files[index].locate(key), format!("unknown top-level key `{key}`"))
-                    .suggest(key, TOP_LEVEL_KEYS);
+                let d = Diagnostic::new(self.files[index].locate(&key), format!("unknown top-level key `{key}`"))
+                    .suggest(&key, TOP_LEVEL_KEYS);
                 let d = if d.help.is_none() {
                     d.with_help(format!("valid top-level keys: {}", TOP_LEVEL_KEYS.join(", ")))
                 } else {
@@ -205,9 +288,16 @@ impl Loader<'_> {
                 self.diagnostics.push(d);
             }
         }
-        if let Some(value) = table.get("include") {
-            self.includes(index, path, value);
-        }
+        let includes = match self.files[index].table.get("include").cloned() {
+            Some(value) => self.includes(index, path, &value),
+            None => Vec::new(),
+        };
+        Some(Frame { index, includes, next: 0 })
+    }
+
+    /// File `index`'s own sections, objects, materials and lights (after its includes').
+    fn sections(&mut self, index: usize) {
+        let table = std::mem::take(&mut self.files[index].table);
         for (name, section) in [("render", 0), ("camera", 1), ("world", 2)] {
             if let Some(value) = table.get(name) {
                 self.merge_section(index, name, section, value);
@@ -230,10 +320,11 @@ impl Loader<'_> {
                 }
             }
         }
-        self.stack.pop();
+        self.files[index].table = table;
     }
 
-    fn includes(&mut self, index: usize, path: &Path, value: &toml::Value) {
+    /// The include paths of file `index` (at `path`), relative to its directory.
+    fn includes(&mut self, index: usize, path: &Path, value: &toml::Value) -> Vec<(Location, PathBuf)> {
         let entries: Vec<(String, String)> = match value {
             toml::Value::String(s) => vec![("include".into(), s.clone())],
             toml::Value::Array(items) => {
@@ -255,14 +346,19 @@ impl Loader<'_> {
                     self.files[index].locate_value("include"),
                     "`include` must be a path or an array of paths",
                 ));
-                return;
+                return Vec::new();
             }
         };
         let dir = path.parent().unwrap_or(Path::new(""));
+        let mut out = Vec::new();
         for (key, relative) in entries {
             let location = self.files[index].locate_value(&key);
-            self.load_file(&dir.join(relative), Some(location));
+            match self.access.join(dir, &relative) {
+                Ok(path) => out.push((location, path)),
+                Err(e) => self.diagnostics.push(Diagnostic::new(location, e.to_string())),
+            }
         }
+        out
     }
 
     fn merge_section(&mut self, index: usize, name: &str, which: usize, value: &toml::Value) {
@@ -418,8 +514,14 @@ impl Loader<'_> {
                 .push(Diagnostic::new(at("intensity"), format!("must not be negative, got {}", map.intensity)));
             return;
         }
-        let path = self.directory(index).join(&map.file);
-        match crate::texture::environment::EnvironmentMap::load(&path) {
+        let path = match self.access.join(&self.directory(index), &map.file) {
+            Ok(path) => path,
+            Err(e) => {
+                self.diagnostics.push(Diagnostic::new(at("file"), e.to_string()));
+                return;
+            }
+        };
+        match crate::texture::environment::EnvironmentMap::load_with(&path, &self.access, self.budget) {
             Ok(loaded) => {
                 map.file = std::fs::canonicalize(&path).unwrap_or(path).display().to_string();
                 map.map = Some(std::sync::Arc::new(loaded));
