@@ -15,9 +15,9 @@
 //! Mitsuba form (torus, blob, superellipsoid, cone, a disc with a hole), spheres and
 //! cylinders under non-uniform scales, spot cones with a soft edge (Mitsuba's falls off
 //! linearly in angle, Prism's in a smoothstep of the cosine), POV-Ray's antialiasing methods.
-//! An infinite plane is written as a square 2000 times the size of the rest of the scene
-//! (at most `MITSUBA_PLANE_SIZE`), centred below it: Mitsuba places hit points in single
-//! precision relative to a shape's size.
+//! An infinite plane is written as a square of side `MITSUBA_PLANE_SIZE` centred below the
+//! scene (under an orthographic camera, 2000 scene radii: Mitsuba places hit points in single
+//! precision relative to a shape's size, and such a camera sees no horizon).
 
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -306,23 +306,26 @@ fn is_similarity(m: &glam::DMat3) -> bool {
         && close(b.dot(c), 0.0)
 }
 
-/// The half side of the square standing in for an infinite plane, over the radius of the
-/// scene's bounds and the camera (at most the plugin's `MITSUBA_PLANE_SIZE`).
-const PLANE_REACH: f64 = 2000.0;
+/// Under an orthographic camera, the half side of the square standing in for an infinite
+/// plane, over the radius of the scene's bounds and the camera.
+const ORTHOGRAPHIC_PLANE_REACH: f64 = 2000.0;
 
 /// The square that stands in for an infinite plane (`world_from_square`, the plugin's square
-/// of side `MITSUBA_PLANE_SIZE`), resized to [`PLANE_REACH`] times the scene's radius and
-/// centred below the scene. Mitsuba's single-precision rectangles place hit points with an
-/// error in proportion to their size: a square 10^5 wide puts them millimetres off, under
-/// the objects resting on it; 2000 radii keep that error near 1e-7 of the scene's size
-/// while the sky seen below the horizon stays under a hundredth of a pixel's height for a
-/// camera near the plane. (Framing a small square with large strips was tried: Mitsuba then
-/// rendered a diffuse scene under a constant sky 1.5 % brighter than with one square.)
-fn fit_plane(world_from_square: &DAffine3, extent: &prism_api::Aabb) -> DAffine3 {
+/// of side `MITSUBA_PLANE_SIZE`), centred below the scene. Mitsuba's single-precision
+/// rectangles place hit points with an error in proportion to their size (a square 10^5
+/// wide puts them millimetres off), while a perspective camera near the plane sees sky below
+/// the horizon of a square too small: a square of 100 scene radii showed a quarter of a
+/// pixel of it, 2000 radii still a fiftieth, enough for the per-pixel test. So a perspective
+/// view keeps the plugin's size; an orthographic one, which sees no horizon but resolves
+/// contacts finely, gets [`ORTHOGRAPHIC_PLANE_REACH`] radii. (Framing a small square with
+/// large strips made Mitsuba render a diffuse scene under a constant sky 1.5 % brighter.)
+fn fit_plane(world_from_square: &DAffine3, extent: &prism_api::Aabb, orthographic: bool) -> DAffine3 {
     let m = world_from_square.matrix3;
     let normal = m.z_axis.normalize();
     let centre = 0.5 * (extent.min + extent.max);
-    let half = (PLANE_REACH * (0.5 * (extent.max - extent.min).length()).max(1.0)).min(m.x_axis.length());
+    let radius = (0.5 * (extent.max - extent.min).length()).max(1.0);
+    let far = m.x_axis.length();
+    let half = if orthographic { (ORTHOGRAPHIC_PLANE_REACH * radius).min(far) } else { far };
     let foot = centre - normal * normal.dot(centre - world_from_square.translation);
     DAffine3::from_mat3_translation(
         glam::DMat3::from_cols(m.x_axis.normalize() * half, m.y_axis.normalize() * half, m.z_axis),
@@ -344,6 +347,7 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mu
             if bounds.is_bounded() { extent.union(bounds) } else { extent }
         },
     );
+    let orthographic = scene.camera().projection == Projection::Orthographic;
     for (_, shape, transform, material, origin) in entries {
         let at = |key: &str| origin.map_or_else(|| scene.render_origin.clone(), |o| o.0.child(key));
         let Some(parts) = shape.geometry.to_mitsuba() else {
@@ -373,7 +377,7 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mu
         for part in parts {
             let mut world_from_shape = world_from_object * part.object_from_shape;
             if infinite && part.kind == MitsubaKind::Rectangle {
-                world_from_shape = fit_plane(&world_from_shape, &extent);
+                world_from_shape = fit_plane(&world_from_shape, &extent, orthographic);
             }
             let needs_similarity = matches!(part.kind, MitsubaKind::Sphere | MitsubaKind::Cylinder { .. });
             if needs_similarity && !is_similarity(&world_from_shape.matrix3) {
