@@ -333,18 +333,11 @@ pub fn render_pixel<I: Integrator>(scene: &RenderScene, integrator: &I, x: u32, 
         let sample = integrator.sample(&ray, stream);
         rays += sample.rays;
         first_hit = first_hit.or(sample.first_hit);
-        if scene.filter.is_some() {
-            sum += weight * sample.radiance;
-            weights += weight;
-        } else {
-            sum += sample.radiance;
-        }
+        // Box-filtered samples weigh 1, so their weighted mean is the plain mean, bit for bit.
+        sum += weight * sample.radiance;
+        weights += weight;
     }
-    let radiance = match scene.filter {
-        None => sum / f64::from(samples),
-        // A weighted mean; weights summing to 0 (negative lobes cancelling) give black.
-        Some(_) if weights != 0.0 => sum / weights,
-        Some(_) => DVec3::ZERO,
-    };
+    // Weights summing to 0 (a filter's negative lobes cancelling) give black.
+    let radiance = if weights != 0.0 { sum / weights } else { DVec3::ZERO };
     PixelSample { radiance, first_hit, rays }
 }
