@@ -15,7 +15,7 @@ use glam::{DAffine3, DVec3};
 
 use super::{CameraProjection, Model, ModelCamera, ModelLight, PunctualKind};
 use crate::color::Rgb;
-use crate::world::components::{Camera, PhotometricLight};
+use crate::world::components::{Camera, PhotometricLight, Projection};
 
 /// Which camera of the file `import_camera` asks for.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -82,10 +82,26 @@ pub fn camera_names(model: &Model) -> Vec<&str> {
     names
 }
 
-/// The camera `choice` picks, as its position in [`Model::cameras`], with its vertical field
-/// of view in radians; an error for a missing, orthographic or broken camera (Prism has only
-/// perspective cameras).
-pub fn select_camera(model: &Model, choice: &CameraChoice) -> Result<(usize, f64), String> {
+/// The view of an imported camera that Prism keeps (glTF units: radians, file units).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ImportedView {
+    /// A pinhole with this vertical field of view in radians.
+    Perspective {
+        /// Vertical field of view in radians.
+        yfov: f64,
+    },
+    /// A parallel projection whose viewport is `2 * ymag` file units high (in the camera
+    /// node's frame, so the node's world scale applies).
+    Orthographic {
+        /// Half the viewport's height in the camera node's units.
+        ymag: f64,
+    },
+}
+
+/// The camera `choice` picks, as its position in [`Model::cameras`], with its view; an error
+/// for a missing or broken camera (a field of view outside (0, pi), a magnification that is
+/// not positive and finite).
+pub fn select_camera(model: &Model, choice: &CameraChoice) -> Result<(usize, ImportedView), String> {
     if model.cameras.is_empty() {
         return Err("the file has no camera on a node of its default scene".into());
     }
@@ -114,37 +130,50 @@ pub fn select_camera(model: &Model, choice: &CameraChoice) -> Result<(usize, f64
     match camera.projection {
         Ok(CameraProjection::Perspective { yfov, .. }) => {
             if yfov.is_finite() && yfov > 0.0 && yfov < PI {
-                Ok((position, yfov))
+                Ok((position, ImportedView::Perspective { yfov }))
             } else {
                 Err(format!("{}: yfov {yfov} is not between 0 and pi radians", describe_camera(model, camera)))
             }
         }
-        Ok(CameraProjection::Orthographic { .. }) => Err(format!(
-            "{} is orthographic, and Prism has only perspective cameras; the file's cameras: {}",
-            describe_camera(model, camera),
-            list_cameras(model)
-        )),
+        Ok(CameraProjection::Orthographic { xmag, ymag }) => {
+            // glTF requires both magnifications to be non-zero; a viewport needs them positive.
+            if xmag.is_finite() && ymag.is_finite() && xmag > 0.0 && ymag > 0.0 {
+                Ok((position, ImportedView::Orthographic { ymag }))
+            } else {
+                Err(format!(
+                    "{}: xmag {xmag} and ymag {ymag} must be positive and finite",
+                    describe_camera(model, camera)
+                ))
+            }
+        }
         Err(ref e) => Err(format!("{}: {e}", describe_camera(model, camera))),
     }
 }
 
-/// Prism's camera for a glTF perspective camera whose node has the world transform
-/// `world_from_camera`: at the node's origin, looking down its -z with its +y up, vertical
-/// field of view `yfov` (radians). `look_at` is one world unit ahead; the lens (`aperture`,
+/// Prism's camera for a glTF camera whose node has the world transform `world_from_camera`:
+/// at the node's origin, looking down its -z with its +y up. A perspective view keeps its
+/// vertical field of view (radians in the file, degrees in Prism); an orthographic view is
+/// `2 * ymag` high in the node's frame, so `view_height` is that times the length the node's
+/// world transform gives its +y. `look_at` is one world unit ahead; the lens (`aperture`,
 /// `focal_distance`) comes from `lens`.
-pub fn camera_from_node(world_from_camera: DAffine3, yfov: f64, lens: &Camera) -> Camera {
+pub fn camera_from_node(world_from_camera: DAffine3, view: ImportedView, lens: &Camera) -> Camera {
     let position = world_from_camera.translation;
     let direction = world_from_camera.transform_vector3(DVec3::NEG_Z).normalize_or_zero();
-    let up = world_from_camera.transform_vector3(DVec3::Y).normalize_or_zero();
-    Camera {
+    let world_up = world_from_camera.transform_vector3(DVec3::Y);
+    let up = world_up.normalize_or_zero();
+    let lens_keys = Camera { aperture: lens.aperture, focal_distance: lens.focal_distance, ..Camera::default() };
+    let pose = Camera {
         position: position.to_array(),
         look_at: (position + direction).to_array(),
         up: up.to_array(),
-        vfov: yfov.to_degrees(),
         aspect: None,
-        aperture: lens.aperture,
-        focal_distance: lens.focal_distance,
-        ..Camera::default()
+        ..lens_keys
+    };
+    match view {
+        ImportedView::Perspective { yfov } => Camera { vfov: yfov.to_degrees(), ..pose },
+        ImportedView::Orthographic { ymag } => {
+            Camera { projection: Projection::Orthographic, view_height: Some(2.0 * ymag * world_up.length()), ..pose }
+        }
     }
 }
 
@@ -273,11 +302,11 @@ mod tests {
     #[test]
     fn cameras_are_chosen_by_order_index_or_name() {
         let model = model_with_cameras();
-        let first = select_camera(&model, &CameraChoice::First).unwrap_err();
-        assert!(first.contains("orthographic") && first.contains("camera 0 on node `eye` (perspective)"), "{first}");
-        assert_eq!(select_camera(&model, &CameraChoice::Index(0)).unwrap().1, 0.7);
+        let first = select_camera(&model, &CameraChoice::First).unwrap();
+        assert_eq!(first, (0, ImportedView::Orthographic { ymag: 1.0 }));
+        assert_eq!(select_camera(&model, &CameraChoice::Index(0)).unwrap().1, ImportedView::Perspective { yfov: 0.7 });
         assert_eq!(select_camera(&model, &CameraChoice::Name("eye".into())).unwrap().0, 1);
-        assert!(select_camera(&model, &CameraChoice::Name("top".into())).unwrap_err().contains("orthographic"));
+        assert_eq!(select_camera(&model, &CameraChoice::Name("top".into())).unwrap().0, 0);
         assert!(select_camera(&model, &CameraChoice::Index(7)).unwrap_err().contains("no camera 7"));
         assert!(select_camera(&Model::default(), &CameraChoice::First).unwrap_err().contains("no camera"));
         assert_eq!(camera_names(&model), vec!["top", "ortho node", "eye"]);
@@ -291,12 +320,31 @@ mod tests {
     fn cameras_look_down_minus_z_with_y_up() {
         let m = DAffine3::from_rotation_translation(DQuat::from_rotation_y(PI / 2.0), DVec3::new(1.0, 2.0, 3.0));
         let lens = Camera { aperture: 0.5, focal_distance: Some(4.0), ..Camera::default() };
-        let c = camera_from_node(m, 0.5, &lens);
+        let c = camera_from_node(m, ImportedView::Perspective { yfov: 0.5 }, &lens);
         assert_eq!(c.position, [1.0, 2.0, 3.0]);
         let view = DVec3::from_array(c.look_at) - DVec3::from_array(c.position);
         assert!((view - DVec3::NEG_X).length() < 1e-12, "{view}");
         assert!((DVec3::from_array(c.up) - DVec3::Y).length() < 1e-12);
         assert!((c.vfov - 0.5f64.to_degrees()).abs() < 1e-12);
         assert_eq!((c.aperture, c.focal_distance, c.aspect), (0.5, Some(4.0), None));
+        assert_eq!((c.projection, c.view_height), (Projection::Perspective, None));
+    }
+
+    #[test]
+    fn orthographic_cameras_keep_their_magnification_in_world_units() {
+        let m = DAffine3::from_scale_rotation_translation(
+            DVec3::splat(3.0),
+            DQuat::from_rotation_x(-PI / 2.0),
+            DVec3::new(0.0, 10.0, 0.0),
+        );
+        let c = camera_from_node(m, ImportedView::Orthographic { ymag: 2.0 }, &Camera::default());
+        assert_eq!(c.projection, Projection::Orthographic);
+        assert!((c.view_height.unwrap() - 12.0).abs() < 1e-12, "{:?}", c.view_height);
+        let view = DVec3::from_array(c.look_at) - DVec3::from_array(c.position);
+        assert!((view - DVec3::NEG_Y).length() < 1e-12, "{view}");
+        let mut model = model_with_cameras();
+        model.cameras[0].projection = Ok(CameraProjection::Orthographic { xmag: 1.0, ymag: 0.0 });
+        let zero = select_camera(&model, &CameraChoice::First).unwrap_err();
+        assert!(zero.contains("ymag 0") && zero.contains("positive"), "{zero}");
     }
 }

@@ -36,7 +36,7 @@ pub(super) fn spawn_imported_lights(
 /// world transform, with the lens (`aperture`, `focal_distance`) of `[camera]`.
 pub(super) fn spawn_imported_camera(world: &mut hecs::World, import: CameraImport, lens: &Camera) -> hecs::Entity {
     let camera = match world_from_local(world, import.node) {
-        Some(world_from_camera) => punctual::camera_from_node(world_from_camera, import.yfov, lens),
+        Some(world_from_camera) => punctual::camera_from_node(world_from_camera, import.view, lens),
         None => lens.clone(),
     };
     let marker = ImportedCamera { aspect_ratio: import.aspect_ratio, description: import.description };
@@ -59,8 +59,9 @@ pub(super) struct LightImport {
 pub(super) struct CameraImport {
     /// The entity of the node holding the camera.
     node: hecs::Entity,
-    /// Vertical field of view in radians.
-    yfov: f64,
+    /// The file's projection (field of view or magnification).
+    view: punctual::ImportedView,
+    /// Width / height of the viewport the file was made for, if it says.
     aspect_ratio: Option<f64>,
     /// `file.gltf: camera 0 ...`, for messages.
     description: String,
@@ -75,7 +76,7 @@ pub(super) struct CameraImport {
 pub(super) const LENS_KEYS: [&str; 2] = ["aperture", "focal_distance"];
 
 /// `[camera]` keys an imported camera takes from the file (a second source is an error).
-pub(super) const POSE_KEYS: [&str; 5] = ["position", "look_at", "up", "vfov", "aspect"];
+pub(super) const POSE_KEYS: [&str; 7] = ["position", "look_at", "up", "vfov", "aspect", "projection", "view_height"];
 
 /// A `shape = "mesh"` object as [`Loader::object`] has read it: the keys common to every
 /// object are taken out and checked, the mesh keys are left in `table`.
@@ -302,15 +303,16 @@ impl Loader<'_> {
                 location: lights_location,
             });
         }
-        if let Some((camera_index, yfov)) = camera {
+        if let Some((camera_index, view)) = camera {
             let camera = &model.cameras[camera_index];
             let aspect_ratio = match camera.projection {
                 Ok(CameraProjection::Perspective { aspect_ratio, .. }) => aspect_ratio,
-                _ => None,
+                Ok(CameraProjection::Orthographic { xmag, ymag }) => Some(xmag / ymag),
+                Err(_) => None,
             };
             self.camera_import = Some(CameraImport {
                 node: spawned.nodes[camera.node],
-                yfov,
+                view,
                 aspect_ratio,
                 description: format!("{relative}: {}", punctual::describe_camera(&model, camera)),
                 object_key: key.to_string(),
@@ -352,7 +354,7 @@ impl Loader<'_> {
         choice: &CameraChoice,
         relative: &str,
         location: &Location,
-    ) -> Option<(usize, f64)> {
+    ) -> Option<(usize, punctual::ImportedView)> {
         if let Some(first) = &self.camera_import {
             let d = Diagnostic::new(
                 location.clone(),
