@@ -194,8 +194,13 @@ fn cases() -> Vec<Case> {
         ),
         ply_case(
             "PLY truncated data",
+            &format!("{PLY_HEADER}0 0 0\n1 0 0\n0 1 0\n3 0 1\n"),
+            &["bad.ply:13", "element `face` item 0", "ends here"],
+        ),
+        ply_case(
+            "PLY data shorter than its counts",
             &format!("{PLY_HEADER}0 0 0\n1 0 0\n"),
-            &["bad.ply:11", "element `vertex` item 2", "ends here"],
+            &["bad.ply:3", "element `vertex`", "cannot hold them"],
         ),
         ply_case(
             "PLY count smaller than the data",

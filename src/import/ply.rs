@@ -900,7 +900,7 @@ mod tests {
             ),
             (
                 format!("{}{good_body}", header.replace("vertex 3", "vertex 4")),
-                &["t.ply:13", "`face` item 0", "ends here"],
+                &["t.ply:13", "`face` item 0", "list of 2 entries runs past the end"],
             ),
             (
                 format!("{}{good_body}", header.replace("vertex 3", "vertex 2")),
@@ -918,7 +918,13 @@ mod tests {
             ),
             (format!("{header}0 0 0\n1 0 0\n0 1 0\n300 0 1 2\n"), &["t.ply:13", "300 is out of range for uchar"]),
             (format!("{header}{good_body}3 0 1 2\n"), &["t.ply:14", "data after the last element"]),
-            (format!("{}{good_body}", header.replace("element vertex 3\n", "")), &["t.ply", "no `vertex` element"]),
+            (
+                format!(
+                    "{}{good_body}",
+                    header.replace("element vertex 3\nproperty float x\nproperty float y\nproperty float z\n", "")
+                ),
+                &["t.ply", "no `vertex` element"],
+            ),
             (format!("{}{good_body}", header.replace("property float z\n", "")), &["t.ply:3", "no property `z`"]),
             (
                 format!("{}{good_body}", header.replace("end_header", "end_headr")),
