@@ -426,10 +426,9 @@ fn main() {
         ),
     }
 
-    let assets = std::env::var_os("PRISM_ASSETS")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets"));
-    let dragon_obj = assets.join("derived/obj/stanford-dragon/dragon_vrip.obj");
+    // Fetched by scripts/fetch-assets.sh.
+    let dragon_obj =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/fetched/stanford-dragon/dragon_vrip.ply.gz");
     let mut store = prism::import::MeshStore::new();
     match store.get(&dragon_obj, &ImportOptions::default()) {
         _ if !filter.mesh("dragon") => {}

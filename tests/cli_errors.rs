@@ -14,7 +14,7 @@ struct Case {
     /// The scene text (written to `scene.toml`).
     scene: String,
     /// Extra files (relative path, text) written beside the scene.
-    extra: Vec<(&'static str, &'static str)>,
+    extra: Vec<(&'static str, String)>,
     /// Substrings the error must contain.
     expect: Vec<&'static str>,
     /// Output path override (relative to the case directory unless absolute).
@@ -90,7 +90,7 @@ fn cases() -> Vec<Case> {
             &["scene.toml:1:", "cannot read included file", "nowhere.toml"],
         ),
         Case {
-            extra: vec![("b.toml", "include = [\"scene.toml\"]\n")],
+            extra: vec![("b.toml", "include = [\"scene.toml\"]\n".into())],
             ..case("include cycle", "include = [\"b.toml\"]\n", &["include cycle", "b.toml", "scene.toml"])
         },
         Case {
@@ -172,7 +172,55 @@ fn cases() -> Vec<Case> {
         ),
         case("objects not an array", "object = 5\n", &["scene.toml:1:", "must be an array of tables"]),
         case("infinite light", "[[light]]\nposition = [inf, 0, 0]\n", &["scene.toml:", "position", "finite"]),
+        ply_case(
+            "PLY face past the vertex list",
+            &format!("{PLY_HEADER}0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
+            &["bad.ply:13", "element `face` item 0", "vertex index 7", "only 3 vertices"],
+        ),
+        ply_case(
+            "PLY without end_header",
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n",
+            &["bad.ply", "no `end_header`"],
+        ),
+        ply_case(
+            "PLY count larger than the data",
+            &PLY_HEADER.replace("vertex 3", "vertex 4000000000"),
+            &["bad.ply:3", "`vertex`", "4000000000 items"],
+        ),
+        ply_case(
+            "PLY unknown property type",
+            &PLY_HEADER.replace("float y", "vec3 y"),
+            &["bad.ply:5", "unknown property type `vec3`"],
+        ),
+        ply_case(
+            "PLY truncated data",
+            &format!("{PLY_HEADER}0 0 0\n1 0 0\n0 1 0\n3 0 1\n"),
+            &["bad.ply:13", "element `face` item 0", "ends here"],
+        ),
+        ply_case(
+            "PLY data shorter than its counts",
+            &format!("{PLY_HEADER}0 0 0\n1 0 0\n"),
+            &["bad.ply:3", "element `vertex`", "cannot hold them"],
+        ),
+        ply_case(
+            "PLY count smaller than the data",
+            &format!("{}0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", PLY_HEADER.replace("face 1", "face 0")),
+            &["bad.ply:13", "data after the last element"],
+        ),
     ]
+}
+
+/// An ASCII PLY header: three vertices, one face.
+const PLY_HEADER: &str = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+
+/// A scene importing `bad.ply` with the text `ply`.
+fn ply_case(name: &'static str, ply: &str, expect: &[&'static str]) -> Case {
+    let mut expect = expect.to_vec();
+    expect.push("scene.toml:3:");
+    Case {
+        extra: vec![("bad.ply", ply.to_string())],
+        ..case(name, "[[object]]\nshape = \"mesh\"\nfile = \"bad.ply\"\n", &expect)
+    }
 }
 
 fn prism() -> Command {

@@ -2,12 +2,12 @@
 //! (`import_camera`, `import_lights` on a mesh object): small glTF files built here (a quad in
 //! a `data:` buffer, nested nodes with TRS), their camera and lights checked after loading,
 //! a render lit by an imported spot light, `prism save` round trips (with paths relative to
-//! the saved file), errors through the CLI, and Khronos' Cameras sample when the shared
-//! assets are present.
+//! the saved file), errors through the CLI, and Khronos' Cameras sample (committed under
+//! `assets/`).
 
 mod common;
 
-use common::{failed_run_problems, repo, shared_assets};
+use common::{assets, failed_run_problems, repo};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -400,12 +400,7 @@ fn import_errors_name_the_key_and_write_nothing() {
 
 #[test]
 fn khronos_cameras_sample_gives_its_perspective_camera() {
-    let Some(assets) = shared_assets() else { return };
-    let file = assets.join("gltf/khronos-samples/Cameras/Cameras.gltf");
-    if !file.exists() {
-        eprintln!("SKIPPED: {} is missing", file.display());
-        return;
-    }
+    let file = assets().join("gltf/khronos-samples/Cameras/Cameras.gltf");
     let dir = tempfile::tempdir().unwrap();
     let scene_text = |choice: &str| {
         format!(

@@ -1,4 +1,4 @@
-//! Import: mesh files (OBJ, glTF) to a [`Model`] of neutral data, the model store that
+//! Import: mesh files (OBJ, glTF, PLY) to a [`Model`] of neutral data, the model store that
 //! imports each file once, and the spawning of a model's nodes, parts, cameras and lights
 //! as entities. This is the only module that both reads mesh files and spawns entities.
 //!
@@ -9,6 +9,7 @@
 
 pub mod gltf;
 pub mod obj;
+pub mod ply;
 pub mod punctual;
 pub mod spawn;
 pub mod triangulate;
@@ -175,8 +176,8 @@ pub enum ImportErrorKind {
     /// the `--root` sandbox.
     #[error("{0}")]
     File(#[source] crate::files::FileError),
-    /// The extension is not `.obj`, `.gltf` or `.glb`.
-    #[error("unknown mesh format `.{extension}` (expected .obj, .gltf or .glb)")]
+    /// The extension is not `.obj`, `.gltf`, `.glb`, `.ply` or `.ply.gz`.
+    #[error("unknown mesh format `.{extension}` (expected .obj, .gltf, .glb, .ply or .ply.gz)")]
     UnknownFormat {
         /// The extension, lower case.
         extension: String,
@@ -239,13 +240,19 @@ pub enum ImportErrorKind {
     Invalid(String),
 }
 
-/// Imports `path` by its extension (`.obj`, `.gltf`, `.glb`).
+/// Imports `path` by its extension (`.obj`, `.gltf`, `.glb`, `.ply`, `.ply.gz`).
 pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore) -> Result<Model, ImportError> {
-    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+    let mut ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).unwrap_or_default();
+    if ext == "gz"
+        && path.file_stem().and_then(|s| s.to_str()).is_some_and(|s| s.to_ascii_lowercase().ends_with(".ply"))
+    {
+        ext = "ply".into();
+    }
     // A panic inside a parser crate on hostile input must still end as an error.
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| match ext.as_str() {
         "obj" => obj::import(path, options, textures),
         "gltf" | "glb" => gltf::import(path, textures),
+        "ply" => ply::import(path, options, textures.access()),
         _ => Err(ImportError::new(path, ImportErrorKind::UnknownFormat { extension: ext.clone() })),
     }));
     result.unwrap_or_else(|_| Err(ImportError::new(path, ImportErrorKind::ImporterPanicked)))

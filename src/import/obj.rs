@@ -268,7 +268,12 @@ fn add_model(model: usize, mesh: &tobj::Mesh, part: &mut PartBuilder) -> Result<
 /// normals of the faces around the corner's position that meet the corner's face at less
 /// than `angle` degrees. Vertices are split where corners get different normals.
 fn smooth(part: &mut PartBuilder, angle: f64) {
-    let b = &mut part.builder;
+    smooth_normals(&mut part.builder, &part.position_id, angle);
+}
+
+/// [`smooth`] for any mesh: `position_id` gives each vertex's position identity (vertices
+/// with the same identity are one point of the surface, split only by their attributes).
+pub(super) fn smooth_normals(b: &mut MeshBuilder, position_id: &[(usize, u32)], angle: f64) {
     let cos_limit = angle.to_radians().cos();
     let face_normals: Vec<DVec3> = b
         .triangles
@@ -281,7 +286,7 @@ fn smooth(part: &mut PartBuilder, angle: f64) {
     let mut around: HashMap<(usize, u32), Vec<usize>> = HashMap::new();
     for (f, t) in b.triangles.iter().enumerate() {
         for &v in t {
-            around.entry(part.position_id[v as usize]).or_default().push(f);
+            around.entry(position_id[v as usize]).or_default().push(f);
         }
     }
     let mut positions = Vec::new();
@@ -294,7 +299,7 @@ fn smooth(part: &mut PartBuilder, angle: f64) {
         let mut out = [0u32; 3];
         for (k, &v) in t.iter().enumerate() {
             let mut sum = DVec3::ZERO;
-            for &g in &around[&part.position_id[v as usize]] {
+            for &g in &around[&position_id[v as usize]] {
                 let ng = face_normals[g];
                 if ng.normalize_or_zero().dot(nf) >= cos_limit - 1e-12 {
                     sum += ng;

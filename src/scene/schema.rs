@@ -41,7 +41,7 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
         "additionalProperties": false,
         "required": ["shape", "file"],
         "properties": {
-            "file": { "type": "string", "description": "The .obj, .gltf or .glb file, relative to the scene file." },
+            "file": { "type": "string", "description": "The .obj, .gltf, .glb, .ply or .ply.gz file, relative to the scene file." },
             "smooth_angle": {
                 "type": "number", "exclusiveMinimum": 0, "maximum": 180,
                 "description": "For files without normals: smooth across edges sharper than this angle (degrees)."

@@ -10,22 +10,28 @@ pub fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// The shared asset folder (`$PRISM_ASSETS`, then `../shared/assets`), or `None` with a
-/// `SKIPPED` message when it is not there.
-pub fn shared_assets() -> Option<PathBuf> {
-    let candidates: Vec<PathBuf> = std::env::var_os("PRISM_ASSETS")
-        .map(PathBuf::from)
-        .into_iter()
-        .chain([repo().join("../shared/assets")])
-        .collect();
-    let found = candidates.iter().find(|p| p.join("obj").is_dir() || p.join("gltf").is_dir()).cloned();
-    if found.is_none() {
-        eprintln!(
-            "SKIPPED: shared mesh assets not found (looked in {}); set PRISM_ASSETS to run the asset tests",
-            candidates.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
-        );
+/// The repository's asset folder (`assets/`): the committed assets, and the large ones
+/// `scripts/fetch-assets.sh` downloads into `assets/fetched/`.
+pub fn assets() -> PathBuf {
+    repo().join("assets")
+}
+
+/// `assets/fetched/<relative>`, a large asset that `scripts/fetch-assets.sh` downloads, or
+/// `None` when it is missing. Under `CI=true` a missing asset fails the test; locally the
+/// skip is written straight to the terminal (past the test harness's output capture) so it
+/// shows in the test run's output.
+pub fn fetched_asset(relative: &str) -> Option<PathBuf> {
+    let path = assets().join("fetched").join(relative);
+    if path.is_file() {
+        return Some(path);
     }
-    found
+    let message = format!("{} is missing: run scripts/fetch-assets.sh", path.display());
+    if std::env::var("CI").is_ok_and(|v| v == "true") {
+        panic!("{message} (CI=true: a missing asset is a failure)");
+    }
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "SKIPPED (asset missing): {message}");
+    None
 }
 
 /// What is wrong with a CLI run that should have failed cleanly: a zero exit, a panic or

@@ -162,9 +162,11 @@ impl Loader<'_> {
                 return None;
             }
             None => {
-                let d =
-                    Diagnostic::new(location.clone(), "a mesh needs `file`: the path of an .obj, .gltf or .glb file")
-                        .with_help("the path is relative to this scene file");
+                let d = Diagnostic::new(
+                    location.clone(),
+                    "a mesh needs `file`: the path of an .obj, .gltf, .glb, .ply or .ply.gz file",
+                )
+                .with_help("the path is relative to this scene file");
                 self.diagnostics.push(d);
                 return None;
             }
@@ -210,6 +212,11 @@ impl Loader<'_> {
                     self.files[file].locate_value(&format!("{key}.file")),
                     format!("cannot import mesh: {e}"),
                 );
+                let d = if is_missing_fetched_asset(&path, &e) {
+                    d.with_help("this large asset is not committed: run `scripts/fetch-assets.sh` in the repository")
+                } else {
+                    d
+                };
                 self.diagnostics.push(d);
                 return None;
             }
@@ -407,4 +414,22 @@ impl Loader<'_> {
         }
         self.diagnostics.extend(found);
     }
+}
+
+/// True when `path` is missing and lies in an `assets/fetched/` folder: the repository's large
+/// assets, which `scripts/fetch-assets.sh` downloads.
+fn is_missing_fetched_asset(path: &std::path::Path, error: &crate::import::ImportError) -> bool {
+    let missing = matches!(
+        &error.kind,
+        crate::import::ImportErrorKind::File(crate::files::FileError::Io { source, .. })
+            if source.kind() == std::io::ErrorKind::NotFound
+    );
+    let names: Vec<&std::ffi::OsStr> = path
+        .components()
+        .filter_map(|c| match c {
+            std::path::Component::Normal(n) => Some(n),
+            _ => None,
+        })
+        .collect();
+    missing && names.windows(2).any(|w| w[0] == "assets" && w[1] == "fetched")
 }
