@@ -16,14 +16,15 @@ fi
 bash scripts/fetch-assets.sh >/dev/null
 
 # scene integrator width height samples ("-": the scene's own) -- one line per image.
-# cornell.toml has no path entry: its POV-Ray spotlights leave the room nearly black under
-# physical units; scenes/mitsuba/cornell.toml is the path-traced Cornell box.
+# cornell.toml is path traced (its emitter lights nothing under classic); cornell_classic.toml
+# is POV-Ray's version with area spotlights (too dark under physical units for path).
 ENTRIES="
 room classic 480 270 -
 room_path path 480 270 32
 snowman classic 480 270 -
 snowman_path path 480 270 32
-cornell classic 480 480 -
+cornell path 480 480 32
+cornell_classic classic 480 480 -
 gltf_engine classic 480 270 -
 gltf_engine path 480 270 16
 gltf_clearcoat classic 480 480 -
