@@ -18,6 +18,7 @@ pub mod import;
 pub mod limits;
 pub mod material;
 pub mod output;
+pub mod partial;
 pub mod plugins;
 pub mod registry;
 pub mod render;
