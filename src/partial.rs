@@ -44,9 +44,8 @@ pub struct Fingerprint(pub String);
 impl Fingerprint {
     /// The fingerprint of `text` (two 64-bit FNV-1a digests with different offsets, in hex).
     pub fn of_text(text: &str) -> Self {
-        let digest = |offset: u64| {
-            text.bytes().fold(offset, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
-        };
+        let digest =
+            |offset: u64| text.bytes().fold(offset, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3));
         Self(format!("{:016x}{:016x}", digest(0xcbf2_9ce4_8422_2325), digest(0x6c62_272e_07bb_0142)))
     }
 
@@ -363,7 +362,11 @@ impl Partial {
         };
         let text = match layer.attributes.other.get(&Text::from(ATTRIBUTE)) {
             Some(AttributeValue::Text(text)) => text.to_string(),
-            _ => return Err(invalid(format!("no `{ATTRIBUTE}` header attribute (not written by `prism render --region/--tile/--sample-range`)"))),
+            _ => {
+                return Err(invalid(format!(
+                    "no `{ATTRIBUTE}` header attribute (not written by `prism render --region/--tile/--sample-range`)"
+                )));
+            }
         };
         let info = PartInfo::from_text(&text).map_err(|m| invalid(format!("header `{ATTRIBUTE}`: {m}")))?;
         let display = image.attributes.display_window;
