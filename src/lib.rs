@@ -11,6 +11,7 @@ pub mod builtin;
 pub mod color;
 pub mod diagnostics;
 pub mod export;
+pub mod farm;
 pub mod files;
 pub mod film;
 pub mod geometry;
