@@ -767,7 +767,6 @@ fn slurm_command(args: &SlurmArgs) -> Result<(), CliError> {
     let prism = std::env::current_exe().map_err(|source| CliError::Io { path: PathBuf::from("prism"), source })?;
     let scene_path =
         std::fs::canonicalize(&args.scene).map_err(|source| CliError::Io { path: args.scene.clone(), source })?;
-    let mut render_args = render_args;
     if let Some(root) = &args.limits.root {
         render_args.extend(["--root".to_string(), absolute(root)?.display().to_string()]);
     }
