@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 use prism::diagnostics::{Diagnostic, SceneError};
 use prism::files::{FileAccess, FileError};
+use prism::film::Region;
 use prism::limits::{MAX_THREADS, MemoryBudget};
 use prism::output::OutputError;
 use prism::render::{RenderError, RenderOptions, render_frame};
@@ -40,6 +41,13 @@ enum Command {
     /// Write a scene in another renderer's scene language.
     #[command(subcommand)]
     Export(ExportCommand),
+    /// Merge part files (from `render --region/--tile/--sample-range`) into the whole image:
+    /// regions are assembled, sample ranges summed. Refuses parts of other scenes or settings,
+    /// overlapping and truncated parts, and lists what is missing.
+    Merge(MergeArgs),
+    /// Render on a cluster: job scripts for a scheduler (see `docs/farm.md`).
+    #[command(subcommand)]
+    Farm(FarmCommand),
     /// Load a scene and write it back as one self-contained TOML file (includes flattened).
     Save {
         /// The scene file.
@@ -150,6 +158,83 @@ enum ExportCommand {
     },
 }
 
+/// `prism merge`.
+#[derive(Args)]
+struct MergeArgs {
+    /// Merged images (format from the extension; repeat for several, e.g. -o a.exr -o a.png).
+    #[arg(short, long, required = true)]
+    output: Vec<PathBuf>,
+    /// The part files.
+    #[arg(required = true)]
+    parts: Vec<PathBuf>,
+    /// Write EXR channels as 16-bit half floats.
+    #[arg(long)]
+    half: bool,
+    #[command(flatten)]
+    limits: LimitArgs,
+}
+
+#[derive(Subcommand)]
+enum FarmCommand {
+    /// Submit a Slurm job array (one task per tile, requeued on node failure) and a merge job
+    /// that runs when every task succeeded. Scene, assets, `prism` and the output folder must
+    /// be on a filesystem every node sees at the same path.
+    Slurm(SlurmArgs),
+}
+
+/// `prism farm slurm`.
+#[derive(Args)]
+struct SlurmArgs {
+    /// The scene file.
+    scene: PathBuf,
+    /// Tiles: one array task each.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_tiles)]
+    tiles: u32,
+    /// Slurm partition (`sbatch --partition`).
+    #[arg(long)]
+    partition: Option<String>,
+    /// Time limit per task (`sbatch --time`, e.g. 30 or 01:00:00).
+    #[arg(long)]
+    time: Option<String>,
+    /// Memory per task (`sbatch --mem`, e.g. 4G).
+    #[arg(long)]
+    mem: Option<String>,
+    /// Folder for tiles, logs, job scripts and the merged images (default: `<scene stem>-farm`).
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Print the job scripts and the sbatch commands instead of writing and submitting them.
+    #[arg(long)]
+    dry_run: bool,
+    /// Image width in pixels (overrides the scene).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
+    width: Option<u32>,
+    /// Image height in pixels (overrides the scene).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
+    height: Option<u32>,
+    /// Samples per pixel (overrides the scene).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_samples)]
+    samples: Option<u32>,
+    #[command(flatten)]
+    limits: LimitArgs,
+}
+
+fn parse_tiles(text: &str) -> Result<u32, String> {
+    ranged(text, 1, MAX_IMAGE_SIDE)
+}
+
+fn parse_region_arg(text: &str) -> Result<Region, String> {
+    prism::partial::parse_region(text)
+        .ok_or_else(|| "must be X0,Y0,X1,Y1: four whole numbers (half-open pixel bounds)".into())
+}
+
+fn parse_range_arg(text: &str) -> Result<std::ops::Range<u32>, String> {
+    prism::partial::parse_range(text).ok_or_else(|| "must be A..B: two whole numbers (samples A to B-1)".into())
+}
+
+fn parse_tile_arg(text: &str) -> Result<(u32, u32), String> {
+    prism::farm::parse_tile(text).map_err(|e| e.to_string())
+}
+
 #[derive(Args, Default)]
 struct RenderArgs {
     /// The scene file (TOML).
@@ -188,6 +273,18 @@ struct RenderArgs {
     /// The light transport algorithm (overrides the scene's `[render] integrator`).
     #[arg(long, value_enum)]
     integrator: Option<IntegratorArg>,
+    /// Render only pixels X0..X1-1 of rows Y0..Y1-1 (half-open, as pbrt's --pixelbounds) into a
+    /// part file (an EXR whose data window is the region; see `prism merge`).
+    #[arg(long, value_name = "X0,Y0,X1,Y1", value_parser = parse_region_arg, conflicts_with = "tile")]
+    region: Option<Region>,
+    /// Render tile I of N (0-based, as Slurm's SLURM_ARRAY_TASK_ID and Kubernetes'
+    /// JOB_COMPLETION_INDEX; full-width bands of rows) into a part file.
+    #[arg(long, value_name = "I/N", value_parser = parse_tile_arg)]
+    tile: Option<(u32, u32)>,
+    /// Render samples A..B-1 of each pixel (of the scene's samples, with the full render's
+    /// sample patterns) into a part file holding per-pixel sums, for `prism merge` to add.
+    #[arg(long, value_name = "A..B", value_parser = parse_range_arg)]
+    sample_range: Option<std::ops::Range<u32>>,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -272,6 +369,43 @@ enum CliError {
     /// The JSON schema cannot be written.
     #[error("cannot write the schema: {0}")]
     Schema(#[from] serde_json::Error),
+    /// Tiles of a split.
+    #[error(transparent)]
+    Tile(#[from] prism::farm::TileError),
+    /// Parts do not merge.
+    #[error(transparent)]
+    Merge(#[from] prism::farm::merge::MergeError),
+    /// A part file cannot be read.
+    #[error(transparent)]
+    Part(#[from] prism::partial::PartialError),
+    /// A part render was asked to write something other than one EXR.
+    #[error(
+        "--region/--tile/--sample-range write a part file: give one output ending in .exr (with --exr or -o), then `prism merge` the parts"
+    )]
+    PartOutput,
+    /// A region outside the frame.
+    #[error("--region {x0},{y0},{x1},{y1}: not a non-empty rectangle inside the {width}x{height} image (X0 < X1 <= {width}, Y0 < Y1 <= {height})", x0 = region.x0, y0 = region.y0, x1 = region.x1, y1 = region.y1)]
+    Region {
+        /// The region asked for.
+        region: Region,
+        /// Frame width.
+        width: u32,
+        /// Frame height.
+        height: u32,
+    },
+    /// `sbatch` is not installed.
+    #[error(
+        "sbatch not found: `prism farm slurm` submits with Slurm's sbatch. Run it on the cluster's login node, or install Slurm's client (Debian/Ubuntu: `apt-get install slurm-client`; a one-machine cluster: `apt-get install slurm-wlm munge`, see docs/farm.md); --dry-run prints the job scripts without submitting"
+    )]
+    NoSbatch,
+    /// `sbatch` refused a job.
+    #[error("sbatch {script} failed: {message}")]
+    Sbatch {
+        /// The job script.
+        script: String,
+        /// What sbatch said.
+        message: String,
+    },
     /// A folder for the output cannot be made.
     #[error("{}: cannot create the folder: {source}", path.display())]
     Io {
@@ -375,6 +509,8 @@ fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         None => render_default(),
         Some(Command::Render(args)) => render_command(&args),
+        Some(Command::Merge(args)) => merge_command(&args),
+        Some(Command::Farm(FarmCommand::Slurm(args))) => slurm_command(&args),
         Some(Command::Shapes) => write_stdout(&prism::registry::describe(&plugins::registry())),
         Some(Command::Save { scene, output, limits }) => save_command(&scene, output.as_deref(), &limits),
         Some(Command::Schema { output }) => schema_command(output.as_deref()),
@@ -428,7 +564,14 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
             return Err(CliError::TooManyPixels { pixels });
         }
     }
+    let is_part = args.region.is_some() || args.tile.is_some() || args.sample_range.is_some();
     let mut outputs: Vec<PathBuf> = args.output.iter().chain(args.exr.iter()).cloned().collect();
+    if is_part {
+        if outputs.len() != 1 || output::format_for(&outputs[0]).ok() != Some(output::OutputFormat::Exr) || args.half {
+            return Err(CliError::PartOutput);
+        }
+        return render_part(scene, args, &outputs[0]);
+    }
     if outputs.is_empty() {
         let stem = args.scene.file_stem().map_or("prism".into(), |s| s.to_string_lossy().into_owned());
         outputs.push(PathBuf::from(format!("{stem}.png")));
@@ -478,6 +621,220 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         names.join(", ")
     ));
     Ok(())
+}
+
+/// `render --region/--tile/--sample-range`: one part file.
+fn render_part(mut scene: Scene, args: &RenderArgs, path: &Path) -> Result<(), CliError> {
+    use prism::partial::{Fingerprint, PartInfo, Partial, Sampling};
+    let (width, height) = (scene.render.width, scene.render.height);
+    let pov = !matches!(scene.render.antialias, prism::world::components::Antialias::Stratified);
+    let region = match (args.region, args.tile) {
+        (Some(region), _) => {
+            if region.is_empty() || !region.fits(width, height) {
+                return Err(CliError::Region { region, width, height });
+            }
+            region
+        }
+        (None, Some((i, n))) => {
+            let align = if pov { prism::render::antialias::BLOCK_SIZE } else { prism::render::TILE_SIZE };
+            prism::farm::tile_region(width, height, i, n, align)?
+        }
+        (None, None) => Region::full(width, height),
+    };
+    let total = scene.render.samples;
+    let samples = args.sample_range.clone().unwrap_or(0..total);
+    if samples.is_empty() || samples.end > total {
+        return Err(RenderError::SampleRange { range: samples, samples: total }.into());
+    }
+    if pov && args.sample_range.is_some() {
+        return Err(RenderError::SampleRangeWithPovAntialiasing.into());
+    }
+    output::check_writable(path)?;
+    let fingerprint =
+        Fingerprint::of_scene(&scene).map_err(|source| CliError::Save { path: args.scene.clone(), source })?;
+    let render_scene = prepare(&mut scene)?;
+    print_warnings(&prism::world::validate::warnings(&scene));
+    let options = RenderOptions {
+        threads: args.threads,
+        progress: std::io::stderr().is_terminal(),
+        budget: args.limits.budget(),
+        ..Default::default()
+    };
+    let whole = samples == (0..total);
+    let (film, sums, stats) = match scene.render.integrator {
+        IntegratorKind::Classic => {
+            let integrator = prism::render::integrators::classic::Classic::new(&render_scene);
+            part_render(&render_scene, &integrator, region, samples.clone(), whole, &options)?
+        }
+        IntegratorKind::Path => {
+            let integrator = prism::render::integrators::path::Path::new(&render_scene);
+            part_render(&render_scene, &integrator, region, samples.clone(), whole, &options)?
+        }
+    };
+    let info = PartInfo {
+        fingerprint,
+        frame: (width, height),
+        region,
+        samples: samples.clone(),
+        total_samples: total,
+        tile: if args.region.is_none() { args.tile } else { None },
+        sampling: if pov { Sampling::Pov } else { Sampling::Stratified },
+        exposure: scene.render.exposure,
+        tone_map: scene.render.tone_map,
+    };
+    let part = Partial::from_film(info, &film, sums);
+    let bytes = part.encode().map_err(|e| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() })?;
+    output::write_atomically(path, &bytes)?;
+    report(&format_args!(
+        "rendered pixels {},{},{},{} of {width}x{height}, samples {}..{} of {total}, in {:.3} s -> {}",
+        region.x0,
+        region.y0,
+        region.x1,
+        region.y1,
+        samples.start,
+        samples.end,
+        stats.elapsed.as_secs_f64(),
+        path.display()
+    ));
+    Ok(())
+}
+
+/// A part's film, and its sums unless it holds all its pixels' samples.
+fn part_render<I: prism::render::integrators::Integrator>(
+    scene: &prism::render::extract::RenderScene,
+    integrator: &I,
+    region: Region,
+    samples: std::ops::Range<u32>,
+    whole: bool,
+    options: &RenderOptions,
+) -> Result<(prism::film::Film, Option<Vec<prism::partial::PixelSums>>, prism::render::RenderStats), CliError> {
+    if whole {
+        let (film, stats) = prism::render::render(scene, integrator, region, options)?;
+        Ok((film, None, stats))
+    } else {
+        let (film, sums, stats) = prism::render::render_sums(scene, integrator, region, samples, options)?;
+        Ok((film, Some(sums), stats))
+    }
+}
+
+fn merge_command(args: &MergeArgs) -> Result<(), CliError> {
+    use prism::farm::merge::{NamedPart, merge, shared_info};
+    for path in &args.output {
+        output::check_writable(path)?;
+    }
+    let access = args.limits.access()?;
+    let mut parts = Vec::new();
+    for path in &args.parts {
+        let part = prism::partial::Partial::read(&access, path)?;
+        parts.push(NamedPart { name: path.display().to_string(), part });
+    }
+    let film = merge(&parts, args.limits.budget())?;
+    let info = shared_info(&parts).ok_or(prism::farm::merge::MergeError::NoParts)?;
+    let image = output::ImageSettings { exposure: info.exposure, tone_map: info.tone_map, exr_half: args.half };
+    let mut files = Vec::new();
+    for path in &args.output {
+        files.push((path.as_path(), output::encode(&film, path, &image)?));
+    }
+    output::write_all_atomically(&files)?;
+    let names: Vec<String> = args.output.iter().map(|p| p.display().to_string()).collect();
+    report(&format_args!("merged {} parts into {}x{} -> {}", parts.len(), film.width, film.height, names.join(", ")));
+    Ok(())
+}
+
+fn slurm_command(args: &SlurmArgs) -> Result<(), CliError> {
+    use prism::farm::slurm::{FarmJob, parse_job_id};
+    let mut scene = load_and_warn(&args.scene, &args.limits)?;
+    let mut render_args = Vec::new();
+    for (flag, value) in [("--width", args.width), ("--height", args.height), ("--samples", args.samples)] {
+        if let Some(v) = value {
+            render_args.extend([flag.to_string(), v.to_string()]);
+        }
+    }
+    if let Some(h) = args.height {
+        scene.render.height = h;
+    }
+    let (width, height) = (args.width.unwrap_or(scene.render.width), scene.render.height);
+    if u64::from(width) * u64::from(height) > MAX_PIXELS {
+        return Err(CliError::TooManyPixels { pixels: u64::from(width) * u64::from(height) });
+    }
+    // Every tile must exist: the split refuses more tiles than rows.
+    prism::farm::tile_region(width, height, 0, args.tiles, 1)?;
+    let absolute = |path: &Path| -> Result<PathBuf, CliError> {
+        std::path::absolute(path).map_err(|source| CliError::Io { path: path.to_path_buf(), source })
+    };
+    let stem = args.scene.file_stem().map_or("prism".into(), |s| s.to_string_lossy().into_owned());
+    let out_dir = absolute(args.out.as_deref().unwrap_or(Path::new(&format!("{stem}-farm"))))?;
+    let prism = std::env::current_exe().map_err(|source| CliError::Io { path: PathBuf::from("prism"), source })?;
+    let scene_path =
+        std::fs::canonicalize(&args.scene).map_err(|source| CliError::Io { path: args.scene.clone(), source })?;
+    if let Some(root) = &args.limits.root {
+        render_args.extend(["--root".to_string(), absolute(root)?.display().to_string()]);
+    }
+    let job = FarmJob {
+        prism,
+        scene: scene_path,
+        tiles: args.tiles,
+        out_dir: out_dir.clone(),
+        name: stem,
+        partition: args.partition.clone(),
+        time: args.time.clone(),
+        mem: args.mem.clone(),
+        render_args,
+    };
+    let (array, merge) = (out_dir.join("render.sbatch"), out_dir.join("merge.sbatch"));
+    if args.dry_run {
+        return write_stdout(&format!(
+            "# {array}
+{}
+# {merge}
+{}
+# submit:
+sbatch --parsable {array}
+sbatch --parsable --dependency=afterok:ARRAY_JOB_ID {merge}
+",
+            job.array_script(),
+            job.merge_script(),
+            array = array.display(),
+            merge = merge.display(),
+        ));
+    }
+    let sbatch = |extra: &[String], script: &Path| -> Result<u64, CliError> {
+        let result = std::process::Command::new("sbatch").arg("--parsable").args(extra).arg(script).output();
+        let shown = script.display().to_string();
+        match result {
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Err(CliError::NoSbatch),
+            Err(e) => Err(CliError::Sbatch { script: shown, message: e.to_string() }),
+            Ok(out) if !out.status.success() => Err(CliError::Sbatch {
+                script: shown,
+                message: String::from_utf8_lossy(&out.stderr).trim().to_string(),
+            }),
+            Ok(out) => parse_job_id(&String::from_utf8_lossy(&out.stdout)).ok_or_else(|| CliError::Sbatch {
+                script: shown,
+                message: format!("no job id in its output `{}`", String::from_utf8_lossy(&out.stdout).trim()),
+            }),
+        }
+    };
+    // Fail before writing anything when sbatch is missing.
+    if which_sbatch().is_none() {
+        return Err(CliError::NoSbatch);
+    }
+    std::fs::create_dir_all(&out_dir).map_err(|source| CliError::Io { path: out_dir.clone(), source })?;
+    output::write_atomically(&array, job.array_script().as_bytes())?;
+    output::write_atomically(&merge, job.merge_script().as_bytes())?;
+    let array_id = sbatch(&[], &array)?;
+    let merge_id = sbatch(&[format!("--dependency=afterok:{array_id}")], &merge)?;
+    write_stdout(&format!(
+        "submitted job array {array_id} ({} tiles) and merge job {merge_id} -> {}
+",
+        args.tiles,
+        out_dir.join(format!("{}.exr", job.name)).display()
+    ))
+}
+
+/// `sbatch` on the PATH, if any.
+fn which_sbatch() -> Option<PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path).map(|dir| dir.join("sbatch")).find(|p| p.is_file())
 }
 
 fn save_command(path: &Path, output: Option<&Path>, limits: &LimitArgs) -> Result<(), CliError> {

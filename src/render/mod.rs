@@ -13,6 +13,7 @@ pub mod integrators;
 pub mod lights;
 pub mod sampling;
 
+use std::ops::Range;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -23,6 +24,7 @@ use rayon::prelude::*;
 
 use crate::film::{Aov, Film, Region};
 use crate::limits::{MAX_THREADS, MemoryBudget, OverBudget};
+use crate::partial::PixelSums;
 use crate::world::components::IntegratorKind;
 use camera::pov_screen;
 use extract::RenderScene;
@@ -94,6 +96,19 @@ pub enum RenderError {
     /// The film would not fit the memory budget.
     #[error(transparent)]
     OverBudget(#[from] OverBudget),
+    /// The sample range is empty or goes beyond the scene's samples.
+    #[error("--sample-range {}..{}: not a non-empty part of the scene's {samples} samples (0..{samples})", range.start, range.end)]
+    SampleRange {
+        /// The range asked for.
+        range: Range<u32>,
+        /// The scene's samples per pixel.
+        samples: u32,
+    },
+    /// A sample range was asked of POV-Ray's antialiasing.
+    #[error(
+        "--sample-range: the scene uses POV-Ray's antialiasing (pov1/pov2), which picks each pixel's samples by comparing it with its neighbours, so its samples cannot be split; split the image with --region or --tile instead"
+    )]
+    SampleRangeWithPovAntialiasing,
     /// The region is empty or leaves the frame.
     #[error("region {x0},{y0},{x1},{y1} is not a non-empty part of the {width}x{height} image", x0 = region.x0, y0 = region.y0, x1 = region.x1, y1 = region.y1)]
     Region {
@@ -120,6 +135,8 @@ struct TileResult {
     area: Region,
     pixels: Vec<[f32; 3]>,
     first_hits: Vec<Option<FirstHit>>,
+    /// Each pixel's sums, when asked for (stratified sampling only).
+    sums: Vec<PixelSums>,
 }
 
 /// Renders `region` of the frame with `integrator` into a film of that region.
@@ -129,9 +146,43 @@ pub fn render<I: Integrator>(
     region: Region,
     options: &RenderOptions,
 ) -> Result<(Film, RenderStats), RenderError> {
+    render_samples(scene, integrator, region, 0..scene.settings.samples, false, options)
+        .map(|(film, _, stats)| (film, stats))
+}
+
+/// Renders samples `range` (of the scene's `0..samples`) of every pixel of `region`: a film
+/// of their means, and each pixel's weighted sums (row-major over the region) for summing
+/// with other ranges ([`crate::partial`]). Only stratified sampling has sample ranges:
+/// POV-Ray's antialiasing decides where to sample by comparing neighbouring pixels.
+pub fn render_sums<I: Integrator>(
+    scene: &RenderScene,
+    integrator: &I,
+    region: Region,
+    range: Range<u32>,
+    options: &RenderOptions,
+) -> Result<(Film, Vec<PixelSums>, RenderStats), RenderError> {
+    render_samples(scene, integrator, region, range, true, options)
+}
+
+fn render_samples<I: Integrator>(
+    scene: &RenderScene,
+    integrator: &I,
+    region: Region,
+    range: Range<u32>,
+    want_sums: bool,
+    options: &RenderOptions,
+) -> Result<(Film, Vec<PixelSums>, RenderStats), RenderError> {
     let (width, height) = (scene.settings.width, scene.settings.height);
     if region.is_empty() || !region.fits(width, height) {
         return Err(RenderError::Region { region, width, height });
+    }
+    let samples = scene.settings.samples;
+    if range.is_empty() || range.end > samples {
+        return Err(RenderError::SampleRange { range, samples });
+    }
+    let pov_method = antialias::PovMethod::from_setting(scene.settings.antialias);
+    if pov_method.is_some() && (want_sums || range != (0..samples)) {
+        return Err(RenderError::SampleRangeWithPovAntialiasing);
     }
     let threads = options.threads.unwrap_or(0);
     if threads > MAX_THREADS {
@@ -141,6 +192,7 @@ pub fn render<I: Integrator>(
     // The film, the tiles' pixels (a second copy until they are gathered) and, with AOVs,
     // each pixel's first hit.
     let per_pixel = 2 * 12
+        + if want_sums { 2 * std::mem::size_of::<PixelSums>() as u64 } else { 0 }
         + 4 * channels as u64
         + if options.aovs.is_empty() { 0 } else { std::mem::size_of::<Option<FirstHit>>() as u64 };
     let estimate = u64::from(region.width()) * u64::from(region.height()) * per_pixel;
@@ -152,7 +204,6 @@ pub fn render<I: Integrator>(
     // POV-Ray's antialiasing works on whole 32 x 32 blocks of the frame, each one task; a
     // region renders every block it touches whole and keeps its part, so its pixels are
     // those of the full frame.
-    let pov_method = antialias::PovMethod::from_setting(scene.settings.antialias);
     let tile_size = if pov_method.is_some() { antialias::BLOCK_SIZE } else { TILE_SIZE };
     let (tx0, ty0) = (region.x0 / tile_size, region.y0 / tile_size);
     let (tx1, ty1) = (region.x1.div_ceil(tile_size), region.y1.div_ceil(tile_size));
@@ -190,7 +241,8 @@ pub fn render<I: Integrator>(
                     Some(method) => {
                         let block = antialias::render_block(scene, integrator, method, tx, ty);
                         let first_hits = if want_hits { centre_hits(scene, integrator, area) } else { Vec::new() };
-                        (TileResult { area, pixels: block.pixels, first_hits }, block.rays, block.primary_rays)
+                        let tile = TileResult { area, pixels: block.pixels, first_hits, sums: Vec::new() };
+                        (tile, block.rays, block.primary_rays)
                     }
                     None => {
                         let area = Region {
@@ -199,8 +251,8 @@ pub fn render<I: Integrator>(
                             x1: area.x1.min(region.x1),
                             y1: area.y1.min(region.y1),
                         };
-                        let (result, tile_rays) = render_tile(scene, integrator, area, want_hits);
-                        let primary = area.pixel_count() as u64 * u64::from(scene.settings.samples);
+                        let (result, tile_rays) = render_tile(scene, integrator, area, &range, want_hits, want_sums);
+                        let primary = area.pixel_count() as u64 * range.len() as u64;
                         (result, tile_rays, primary)
                     }
                 };
@@ -215,6 +267,7 @@ pub fn render<I: Integrator>(
     let elapsed = start.elapsed();
 
     let mut film = Film::for_region(region, (width, height), &options.aovs);
+    let mut sums = if want_sums { vec![PixelSums::default(); region.pixel_count()] } else { Vec::new() };
     let mut non_finite = 0;
     for tile in tiles {
         let tile_w = tile.area.width();
@@ -222,6 +275,9 @@ pub fn render<I: Integrator>(
             let (x, y) = (tile.area.x0 + i as u32 % tile_w, tile.area.y0 + i as u32 / tile_w);
             if region.contains(x, y) {
                 let index = (y - region.y0) as usize * region.width() as usize + (x - region.x0) as usize;
+                if want_sums {
+                    sums[index] = tile.sums[i];
+                }
                 film.pixels[index] = if p.iter().all(|c| c.is_finite()) {
                     p
                 } else {
@@ -241,16 +297,27 @@ pub fn render<I: Integrator>(
         cancelled: cancelled.load(Ordering::Relaxed),
         non_finite_pixels: non_finite,
     };
-    Ok((film, stats))
+    Ok((film, sums, stats))
 }
 
-fn render_tile<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region, want_hits: bool) -> (TileResult, u64) {
+fn render_tile<I: Integrator>(
+    scene: &RenderScene,
+    integrator: &I,
+    area: Region,
+    range: &Range<u32>,
+    want_hits: bool,
+    want_sums: bool,
+) -> (TileResult, u64) {
     let mut pixels = Vec::with_capacity(area.pixel_count());
     let mut first_hits = Vec::with_capacity(if want_hits { area.pixel_count() } else { 0 });
+    let mut sums = Vec::with_capacity(if want_sums { area.pixel_count() } else { 0 });
     let mut rays = 0;
     for y in area.y0..area.y1 {
         for x in area.x0..area.x1 {
-            let pixel = render_pixel(scene, integrator, x, y);
+            let (pixel, pixel_sums) = render_pixel_samples(scene, integrator, x, y, range.clone());
+            if want_sums {
+                sums.push(pixel_sums);
+            }
             rays += pixel.rays;
             let rgb = pixel.radiance;
             pixels.push([rgb.x as f32, rgb.y as f32, rgb.z as f32]);
@@ -259,7 +326,7 @@ fn render_tile<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region,
             }
         }
     }
-    (TileResult { area, pixels, first_hits }, rays)
+    (TileResult { area, pixels, first_hits, sums }, rays)
 }
 
 /// The first surfaces seen through the pixel centres of `area` (the AOVs of POV-Ray's
@@ -304,6 +371,19 @@ fn write_aovs(film: &mut Film, index: usize, hit: &Option<FirstHit>) {
 /// The mean of one pixel's samples: radiance, the first hit of its first sample that met a
 /// surface, and the rays it took.
 pub fn render_pixel<I: Integrator>(scene: &RenderScene, integrator: &I, x: u32, y: u32) -> PixelSample {
+    render_pixel_samples(scene, integrator, x, y, 0..scene.settings.samples).0
+}
+
+/// Samples `samples` (of the scene's `0..samples`, so with the full render's patterns) of one
+/// pixel: their weighted mean as [`render_pixel`] computes it, and their weighted sum and
+/// weights, accumulated in sample order from zero.
+pub fn render_pixel_samples<I: Integrator>(
+    scene: &RenderScene,
+    integrator: &I,
+    x: u32,
+    y: u32,
+    range: Range<u32>,
+) -> (PixelSample, PixelSums) {
     let settings = &scene.settings;
     let (width, height) = (f64::from(settings.width), f64::from(settings.height));
     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
@@ -314,7 +394,7 @@ pub fn render_pixel<I: Integrator>(scene: &RenderScene, integrator: &I, x: u32, 
     let mut weights = 0.0;
     let mut rays = 0;
     let mut first_hit = None;
-    for s in 0..samples {
+    for s in range {
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
         let mut offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(s));
         let mut weight = 1.0;
@@ -339,5 +419,5 @@ pub fn render_pixel<I: Integrator>(scene: &RenderScene, integrator: &I, x: u32, 
     }
     // Weights summing to 0 (a filter's negative lobes cancelling) give black.
     let radiance = if weights != 0.0 { sum / weights } else { DVec3::ZERO };
-    PixelSample { radiance, first_hit, rays }
+    (PixelSample { radiance, first_hit, rays }, PixelSums { sum: sum.to_array(), weight: weights })
 }
