@@ -285,8 +285,78 @@ struct RenderArgs {
     /// sample patterns) into a part file holding per-pixel sums, for `prism merge` to add.
     #[arg(long, value_name = "A..B", value_parser = parse_range_arg)]
     sample_range: Option<std::ops::Range<u32>>,
+    // Long renders (issue 14): AOVs, adaptive sampling, time budgets.
+    /// AOV layers for the EXR output, comma-separated (overrides `[render] aovs`): albedo,
+    /// normal, depth, position, uv, object_id, material_id, variance, samples.
+    #[arg(long, value_name = "LIST", value_parser = parse_aovs)]
+    aov: Option<AovList>,
+    /// Also write an 8-bit PNG preview of each AOV layer, named `<output stem>.<aov>.png`.
+    #[arg(long)]
+    aov_png: bool,
+    /// Adaptive sampling: stop each pixel once its estimated relative error is at most this
+    /// (between 0 and 1; overrides `[render] noise`), or at `samples`.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_noise)]
+    noise: Option<f64>,
+    /// Time budget (`90s`, `10m`, `1h30m`; a bare number is seconds): render passes of
+    /// increasing sample count (at most --samples when given) and keep the last complete one.
+    #[arg(long, value_name = "DURATION", allow_hyphen_values = true, value_parser = parse_duration)]
+    time: Option<std::time::Duration>,
     #[command(flatten)]
     limits: LimitArgs,
+}
+
+/// `--aov`: the parsed list (a newtype, so that clap takes the whole list as one value).
+#[derive(Clone, Debug)]
+struct AovList(Vec<prism::film::Aov>);
+
+fn parse_aovs(text: &str) -> Result<AovList, String> {
+    prism::film::Aov::parse_list(text.split(',')).map(AovList)
+}
+
+fn parse_noise(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v > 0.0 && v < 1.0 => Ok(v),
+        _ => Err("must be a relative error between 0 and 1 (exclusive), such as 0.01".into()),
+    }
+}
+
+/// A duration such as `90s`, `10m`, `1h30m` or `2.5m` (a bare number is seconds), more
+/// than zero and at most a year.
+fn parse_duration(text: &str) -> Result<std::time::Duration, String> {
+    let wrong =
+        || format!("`{}` is not a duration such as 90s, 10m or 1h30m", text.chars().take(40).collect::<String>());
+    let text = text.trim();
+    let mut seconds = 0.0;
+    let mut number = String::new();
+    for c in text.chars() {
+        if c.is_ascii_digit() || c == '.' {
+            number.push(c);
+            continue;
+        }
+        let unit = match c {
+            's' => 1.0,
+            'm' => 60.0,
+            'h' => 3600.0,
+            'd' => 86400.0,
+            _ => return Err(wrong()),
+        };
+        let value: f64 = number.parse().map_err(|_| wrong())?;
+        seconds += value * unit;
+        number.clear();
+    }
+    if !number.is_empty() {
+        seconds += number.parse::<f64>().map_err(|_| wrong())?;
+    }
+    if text.is_empty() || text.ends_with(|c: char| !c.is_ascii_digit() && !"smhd.".contains(c)) {
+        return Err(wrong());
+    }
+    if seconds <= 0.0 {
+        return Err("must be more than zero".into());
+    }
+    if seconds > 366.0 * 86400.0 {
+        return Err("must be at most a year".into());
+    }
+    Ok(std::time::Duration::from_secs_f64(seconds))
 }
 
 /// `--integrator`: the command-line names of [`IntegratorKind`].
@@ -383,6 +453,14 @@ enum CliError {
         "--region/--tile/--sample-range write a part file: give one output ending in .exr (with --exr or -o), then `prism merge` the parts"
     )]
     PartOutput,
+    /// A flag that a part render does not take.
+    #[error(
+        "{flag} cannot be combined with --region/--tile/--sample-range: a part file holds the beauty's sums for `prism merge`, rendered at the scene's fixed sample count"
+    )]
+    PartWith {
+        /// The flag given.
+        flag: &'static str,
+    },
     /// A region outside the frame.
     #[error("--region {x0},{y0},{x1},{y1}: not a non-empty rectangle inside the {width}x{height} image (X0 < X1 <= {width}, Y0 < Y1 <= {height})", x0 = region.x0, y0 = region.y0, x1 = region.x1, y1 = region.y1)]
     Region {
@@ -406,6 +484,9 @@ enum CliError {
         /// What sbatch said.
         message: String,
     },
+    /// `--aov` without an EXR output or `--aov-png`: the layers would go nowhere.
+    #[error("--aov: AOV layers are written into an OpenEXR output: add --exr FILE.exr (or -o FILE.exr) or --aov-png")]
+    AovsNeedExr,
     /// A folder for the output cannot be made.
     #[error("{}: cannot create the folder: {source}", path.display())]
     Io {
@@ -558,6 +639,12 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     if let Some(i) = args.integrator {
         settings.integrator = i.into();
     }
+    if let Some(n) = args.noise {
+        settings.noise = Some(n);
+    }
+    if let Some(aovs) = &args.aov {
+        settings.aovs = aovs.0.iter().map(|a| a.name().to_string()).collect();
+    }
     if args.width.is_some() || args.height.is_some() {
         let pixels = u64::from(settings.width) * u64::from(settings.height);
         if pixels > MAX_PIXELS {
@@ -567,6 +654,13 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     let is_part = args.region.is_some() || args.tile.is_some() || args.sample_range.is_some();
     let mut outputs: Vec<PathBuf> = args.output.iter().chain(args.exr.iter()).cloned().collect();
     if is_part {
+        if let Some(flag) =
+            [(args.time.is_some(), "--time"), (args.aov.is_some(), "--aov"), (args.aov_png, "--aov-png")]
+                .into_iter()
+                .find_map(|(given, flag)| given.then_some(flag))
+        {
+            return Err(CliError::PartWith { flag });
+        }
         if outputs.len() != 1 || output::format_for(&outputs[0]).ok() != Some(output::OutputFormat::Exr) || args.half {
             return Err(CliError::PartOutput);
         }
@@ -581,19 +675,48 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     {
         return Err(CliError::ExrExtension { path: exr.clone() });
     }
+    let has_exr = outputs.iter().any(|p| output::format_for(p).is_ok_and(|f| f == output::OutputFormat::Exr));
+    if args.aov.is_some() && !has_exr && !args.aov_png {
+        return Err(CliError::AovsNeedExr);
+    }
+    let mut render_scene = prepare(&mut scene)?;
+    // Validated by `prepare`, so the names are known.
+    let aovs = prism::film::Aov::parse_list(scene.render.aovs.iter().map(String::as_str)).unwrap_or_default();
+    let previews: Vec<(prism::film::Aov, PathBuf)> = if args.aov_png {
+        let first = &outputs[0];
+        let stem = first.file_stem().map_or("prism".into(), |s| s.to_string_lossy().into_owned());
+        aovs.iter().map(|&a| (a, first.with_file_name(format!("{stem}.{}.png", a.name())))).collect()
+    } else {
+        Vec::new()
+    };
     // Fail before rendering, not after: bad paths and formats are found now.
-    for path in &outputs {
+    for path in outputs.iter().chain(previews.iter().map(|(_, p)| p)) {
         output::check_writable(path)?;
     }
-    let render_scene = prepare(&mut scene)?;
     print_warnings(&prism::world::validate::warnings(&scene));
     let options = RenderOptions {
         threads: args.threads,
         progress: std::io::stderr().is_terminal(),
         budget: args.limits.budget(),
+        aovs,
         ..Default::default()
     };
-    let (film, stats) = render_frame(&render_scene, &options)?;
+    let (film, stats) = match args.time {
+        Some(budget) => {
+            let cap = args.samples.unwrap_or(MAX_SAMPLES);
+            let run = prism::render::render_within(&mut render_scene, &options, budget, cap)?;
+            scene.render.samples = render_scene.settings.samples;
+            report(&format_args!(
+                "time budget {:.1} s: {} passes in {:.3} s, kept the last complete one ({} spp)",
+                budget.as_secs_f64(),
+                run.passes,
+                run.elapsed.as_secs_f64(),
+                scene.render.samples
+            ));
+            (run.film, run.stats)
+        }
+        None => render_frame(&render_scene, &options)?,
+    };
     if stats.non_finite_pixels > 0 {
         report(&format!(
             "warning: {} pixels had a NaN or infinite value and are written black",
@@ -607,8 +730,14 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     for path in &outputs {
         files.push((path.as_path(), output::encode(&film, path, &image)?));
     }
+    for (aov, path) in &previews {
+        if let Some(img) = output::layer_preview(&film, *aov) {
+            files.push((path.as_path(), output::encode_png(&img, path)?));
+        }
+    }
     output::write_all_atomically(&files)?;
-    let names: Vec<String> = outputs.iter().map(|p| p.display().to_string()).collect();
+    let names: Vec<String> =
+        outputs.iter().chain(previews.iter().map(|(_, p)| p)).map(|p| p.display().to_string()).collect();
     report(&format_args!(
         "rendered {}x{} at {} spp in {:.3} s: {} primary rays, {} rays in all, {:.2} Mrays/s -> {}",
         scene.render.width,
@@ -620,6 +749,13 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         stats.mrays_per_second(),
         names.join(", ")
     ));
+    if scene.render.noise.is_some() || !options.aovs.is_empty() {
+        let s = stats.samples;
+        report(&format_args!(
+            "samples per pixel: min {}, median {}, 90% {}, max {}, mean {:.1}; estimated relative error (rms) {:.4}",
+            s.min, s.median, s.p90, s.max, s.mean, stats.noise
+        ));
+    }
     Ok(())
 }
 

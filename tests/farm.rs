@@ -260,6 +260,12 @@ fn cli_farm_errors() {
         (vec!["--sample-range".into(), "0..3".into()], vec!["--sample-range 0..3", "2 samples"]),
         (vec!["--sample-range".into(), "2..2".into()], vec!["--sample-range 2..2"]),
         (vec!["--sample-range".into(), "1-2".into()], vec!["--sample-range", "A..B"]),
+        (vec!["--tile".into(), "0/2".into(), "--time".into(), "5s".into()], vec!["--time cannot be combined"]),
+        (vec!["--tile".into(), "0/2".into(), "--aov".into(), "albedo".into()], vec!["--aov cannot be combined"]),
+        (
+            vec!["--sample-range".into(), "0..1".into(), "--noise".into(), "0.1".into()],
+            vec!["--sample-range", "adaptively", "--region or --tile"],
+        ),
     ];
     for (args, expect) in cases {
         let run = prism().arg("render").arg(room()).args(SIZE).args(&args).arg("--exr").arg(&out).output().unwrap();

@@ -81,7 +81,15 @@ fn povray_options(scene: &Scene, errors: &mut Vec<Diagnostic>) -> String {
         filter,
         exposure: _,
         tone_map: _,
+        noise,
+        aovs: _,
     } = &scene.render;
+    if noise.is_some() {
+        errors.push(Diagnostic::new(
+            scene.render_origin.child("noise"),
+            "POV-Ray has no adaptive sampling to match `noise`: export the scene without it",
+        ));
+    }
     if !filter.is_box() {
         errors.push(Diagnostic::new(
             scene.render_origin.child("filter"),

@@ -71,12 +71,26 @@ pub enum Aov {
     ObjectId,
     /// Index of the first visible surface's material, -1 where the ray escapes.
     MaterialId,
+    /// Estimated variance of the pixel's mean radiance per RGB channel: the variance of its
+    /// samples over their count (0 with one sample).
+    Variance,
+    /// Samples the pixel took (fewer than `samples` where adaptive sampling stopped early).
+    Samples,
 }
 
 impl Aov {
     /// Every AOV, in the order layers are written.
-    pub const ALL: [Aov; 7] =
-        [Aov::Albedo, Aov::Normal, Aov::Depth, Aov::Position, Aov::Uv, Aov::ObjectId, Aov::MaterialId];
+    pub const ALL: [Aov; 9] = [
+        Aov::Albedo,
+        Aov::Normal,
+        Aov::Depth,
+        Aov::Position,
+        Aov::Uv,
+        Aov::ObjectId,
+        Aov::MaterialId,
+        Aov::Variance,
+        Aov::Samples,
+    ];
 
     /// The layer's name (EXR channels are `name.channel`).
     pub fn name(self) -> &'static str {
@@ -88,23 +102,52 @@ impl Aov {
             Aov::Uv => "uv",
             Aov::ObjectId => "object_id",
             Aov::MaterialId => "material_id",
+            Aov::Variance => "variance",
+            Aov::Samples => "samples",
         }
     }
 
     /// The layer's channel names, as compositors expect them.
     pub fn channels(self) -> &'static [&'static str] {
         match self {
-            Aov::Albedo => &["R", "G", "B"],
+            Aov::Albedo | Aov::Variance => &["R", "G", "B"],
             Aov::Normal | Aov::Position => &["X", "Y", "Z"],
             Aov::Depth => &["Z"],
             Aov::Uv => &["U", "V"],
             Aov::ObjectId | Aov::MaterialId => &["id"],
+            Aov::Samples => &["count"],
         }
     }
 
     /// The AOV named `name`, if any.
     pub fn from_name(name: &str) -> Option<Aov> {
         Aov::ALL.into_iter().find(|a| a.name() == name)
+    }
+
+    /// True for layers made from the surface a pixel's first sample sees (not from all its
+    /// samples).
+    pub fn needs_first_hit(self) -> bool {
+        !matches!(self, Aov::Variance | Aov::Samples)
+    }
+
+    /// The AOVs `names` name, in order and without repeats; an unknown name is an error
+    /// that lists the known ones and suggests the nearest.
+    pub fn parse_list<'a>(names: impl IntoIterator<Item = &'a str>) -> Result<Vec<Aov>, String> {
+        let mut aovs = Vec::new();
+        for name in names {
+            let name = name.trim();
+            let aov = Aov::from_name(name).ok_or_else(|| {
+                let known: Vec<&str> = Aov::ALL.iter().map(|a| a.name()).collect();
+                let near = crate::diagnostics::nearest_name(name, known.iter().copied())
+                    .map_or(String::new(), |n| format!(" (did you mean `{n}`?)"));
+                let shown: String = name.chars().take(40).map(|c| if c.is_control() { '?' } else { c }).collect();
+                format!("unknown AOV `{shown}`{near}; known: {}", known.join(", "))
+            })?;
+            if !aovs.contains(&aov) {
+                aovs.push(aov);
+            }
+        }
+        Ok(aovs)
     }
 }
 
@@ -214,5 +257,13 @@ mod tests {
             assert_eq!(Aov::from_name(aov.name()), Some(aov));
         }
         assert_eq!(Aov::from_name("albedos"), None);
+    }
+
+    #[test]
+    fn aov_lists_parse_with_suggestions() {
+        assert_eq!(Aov::parse_list(["depth", " normal", "depth"]), Ok(vec![Aov::Depth, Aov::Normal]));
+        let error = Aov::parse_list(["albedo", "normals"]).unwrap_err();
+        assert!(error.contains("`normals`") && error.contains("did you mean `normal`?"), "{error}");
+        assert!(Aov::parse_list([""]).is_err());
     }
 }

@@ -273,6 +273,79 @@ pub fn to_ldr(film: &Film, exposure: f64, op: ToneMap) -> RgbImage {
     img
 }
 
+/// An 8-bit preview of one AOV layer (for `--aov-png`): albedo through the sRGB curve,
+/// normals as `0.5 + 0.5 n`, depth and position scaled to the range of their finite
+/// values (near is bright), uv clipped to [0, 1] as red and green, ids as one hashed
+/// colour each (escaped rays black), variance as the standard deviation of luminance
+/// (scaled to its 99th percentile) and samples as a count (scaled to the largest). `None` when the film has no
+/// such layer.
+pub fn layer_preview(film: &Film, aov: crate::film::Aov) -> Option<RgbImage> {
+    use crate::film::Aov;
+    let layer = film.layer(aov)?;
+    let n = layer.channel_count();
+    let pixels: Vec<&[f32]> = layer.data.chunks_exact(n).collect();
+    let range = |values: &mut dyn Iterator<Item = f32>| {
+        values.filter(|v| v.is_finite()).fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+    };
+    let scale = |v: f32, (lo, hi): (f32, f32)| if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
+    let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5).floor() as u8;
+    let srgb_byte = |v: f32| byte(srgb_encode(f64::from(v.clamp(0.0, 1.0))) as f32);
+    let luminance = |p: &[f32]| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    let colours: Vec<[u8; 3]> = match aov {
+        Aov::Albedo => pixels.iter().map(|p| [srgb_byte(p[0]), srgb_byte(p[1]), srgb_byte(p[2])]).collect(),
+        Aov::Normal => pixels.iter().map(|p| [0, 1, 2].map(|c| byte(0.5 + 0.5 * p[c]))).collect(),
+        Aov::Depth => {
+            let r = range(&mut pixels.iter().map(|p| p[0]));
+            pixels.iter().map(|p| [byte(if p[0].is_finite() { 1.0 - scale(p[0], r) } else { 0.0 }); 3]).collect()
+        }
+        Aov::Position => {
+            let ranges = [0, 1, 2].map(|c| range(&mut pixels.iter().map(|p| p[c])));
+            pixels.iter().map(|p| [0, 1, 2].map(|c| byte(scale(p[c], ranges[c])))).collect()
+        }
+        Aov::Uv => pixels.iter().map(|p| [byte(p[0]), byte(p[1]), 0]).collect(),
+        Aov::ObjectId | Aov::MaterialId => pixels
+            .iter()
+            .map(|p| {
+                if p[0] < 0.0 {
+                    return [0; 3];
+                }
+                // A multiplicative hash spreads neighbouring ids over distinct colours.
+                let h = (p[0] as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+                let h = h ^ (h >> 29);
+                [(h & 0xff) as u8 | 0x30, ((h >> 8) & 0xff) as u8 | 0x30, ((h >> 16) & 0xff) as u8 | 0x30]
+            })
+            .collect(),
+        Aov::Variance => {
+            let deviations: Vec<f32> = pixels.iter().map(|p| luminance(p).max(0.0).sqrt()).collect();
+            // Scaled to the 99th percentile: a few edge pixels of a light would leave the
+            // rest black.
+            let mut sorted: Vec<f32> = deviations.iter().copied().filter(|d| d.is_finite()).collect();
+            sorted.sort_unstable_by(f32::total_cmp);
+            let top = sorted.get((sorted.len() as f64 * 0.99) as usize).or(sorted.last()).copied().unwrap_or(0.0);
+            let r = (0.0, top);
+            deviations.iter().map(|&d| [byte(scale(d, r)); 3]).collect()
+        }
+        Aov::Samples => {
+            let r = (0.0, range(&mut pixels.iter().map(|p| p[0])).1);
+            pixels.iter().map(|p| [byte(scale(p[0], r)); 3]).collect()
+        }
+    };
+    let mut img = RgbImage::new(film.width, film.height);
+    for (dst, src) in img.pixels_mut().zip(colours) {
+        dst.0 = src;
+    }
+    Some(img)
+}
+
+/// Encodes an 8-bit image as PNG.
+pub fn encode_png(img: &RgbImage, path: &Path) -> Result<Vec<u8>, OutputError> {
+    let mut bytes = Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgb8(img.clone())
+        .write_to(&mut bytes, ImageFormat::Png)
+        .map_err(|e| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() })?;
+    Ok(bytes.into_inner())
+}
+
 /// How the film becomes an image file.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ImageSettings {

@@ -44,6 +44,20 @@ pub struct RenderScene {
     pub filter: Option<FilterSampler>,
 }
 
+impl RenderScene {
+    /// Sets the samples per pixel and remakes the stratified patterns for that count: the
+    /// scene then renders exactly as one extracted with that count.
+    pub fn set_samples(&mut self, samples: u32) {
+        self.settings.samples = samples;
+        self.patterns = patterns_for(samples, self.settings.seed, self.camera.aperture);
+    }
+}
+
+/// The pixel and lens patterns of `samples` points per pixel.
+fn patterns_for(samples: u32, seed: u64, aperture: f64) -> PatternTable {
+    if samples > 1 || aperture > 0.0 { PatternTable::new(samples, seed) } else { PatternTable::untabulated(samples) }
+}
+
 /// Builds the render scene. Call after `resolve_transforms` and `validate`.
 pub fn extract(scene: &Scene) -> RenderScene {
     let mut entries: Vec<(hecs::Entity, Primitive, Arc<Material>)> = Vec::new();
@@ -81,12 +95,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
     let accel = Accel::build(&primitives);
     let has_transparency = materials.iter().any(|m| PovView::new(m).base.is_transparent());
     let camera = RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height);
-    let (samples, seed) = (scene.render.samples, scene.render.seed);
-    let patterns = if samples > 1 || camera.aperture > 0.0 {
-        PatternTable::new(samples, seed)
-    } else {
-        PatternTable::untabulated(samples)
-    };
+    let patterns = patterns_for(scene.render.samples, scene.render.seed, camera.aperture);
     RenderScene {
         camera,
         primitives,

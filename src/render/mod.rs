@@ -36,6 +36,17 @@ use sampling::{SampleStream, hash4};
 /// Side of a square render tile in pixels.
 pub const TILE_SIZE: u32 = 16;
 
+/// Samples per batch: adaptive sampling decides after each whole batch whether a pixel
+/// stops.
+pub const SAMPLE_BATCH: u32 = 8;
+
+/// Batches a pixel takes before adaptive sampling may stop it.
+pub const MIN_BATCHES: u32 = 4;
+
+/// Luminance under which relative error is measured against this value instead (dark
+/// pixels would otherwise sample forever to reach a relative error nobody can see).
+pub const NOISE_FLOOR: f64 = 0.01;
+
 /// How to run a render.
 #[derive(Clone, Debug, Default)]
 pub struct RenderOptions {
@@ -51,6 +62,11 @@ pub struct RenderOptions {
     /// The memory the film and the tiles' results may take (estimated before the render).
     /// The default is [`MemoryBudget::default`]: a fraction of the machine's memory.
     pub budget: MemoryBudget,
+    /// Text before the progress bar (for example the pass of a time-budgeted render).
+    pub progress_prefix: String,
+    /// Tiles not started by then are skipped (left black) and the stats say the render was
+    /// cancelled, as with `cancel`.
+    pub deadline: Option<Instant>,
 }
 
 /// What a render did.
@@ -67,6 +83,42 @@ pub struct RenderStats {
     pub non_finite_pixels: u64,
     /// True when `RenderOptions::cancel` stopped the render before every tile was done.
     pub cancelled: bool,
+    /// Samples per pixel over the rendered pixels: fewest, median, 90th percentile, most
+    /// and mean (all equal to `samples` without adaptive sampling; 0 under POV-Ray's
+    /// antialiasing methods, which count their own).
+    pub samples: SampleSpread,
+    /// Root mean square over the pixels of each pixel's estimated relative error (the
+    /// standard deviation of its mean luminance over the larger of that luminance and
+    /// [`NOISE_FLOOR`]); 0 when pixels took one sample each.
+    pub noise: f64,
+}
+
+/// How many samples the pixels of a render took.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SampleSpread {
+    /// Fewest.
+    pub min: u32,
+    /// Median.
+    pub median: u32,
+    /// 90th percentile.
+    pub p90: u32,
+    /// Most.
+    pub max: u32,
+    /// Mean.
+    pub mean: f64,
+}
+
+impl SampleSpread {
+    /// The spread of `counts` (sorted in place).
+    fn of(counts: &mut [u32]) -> Self {
+        if counts.is_empty() {
+            return Self::default();
+        }
+        counts.sort_unstable();
+        let at = |q: f64| counts[((counts.len() - 1) as f64 * q).round() as usize];
+        let total: u64 = counts.iter().map(|&c| u64::from(c)).sum();
+        Self { min: counts[0], median: at(0.5), p90: at(0.9), max: at(1.0), mean: total as f64 / counts.len() as f64 }
+    }
 }
 
 impl RenderStats {
@@ -109,6 +161,11 @@ pub enum RenderError {
         "--sample-range: the scene uses POV-Ray's antialiasing (pov1/pov2), which picks each pixel's samples by comparing it with its neighbours, so its samples cannot be split; split the image with --region or --tile instead"
     )]
     SampleRangeWithPovAntialiasing,
+    /// A sample range was asked of an adaptively sampled render.
+    #[error(
+        "--sample-range: the scene samples adaptively (`noise`), so each pixel decides from all its samples when to stop and its samples cannot be split; split the image with --region or --tile instead, or drop `noise`"
+    )]
+    SampleRangeWithNoise,
     /// The region is empty or leaves the frame.
     #[error("region {x0},{y0},{x1},{y1} is not a non-empty part of the {width}x{height} image", x0 = region.x0, y0 = region.y0, x1 = region.x1, y1 = region.y1)]
     Region {
@@ -130,6 +187,68 @@ pub fn render_frame(scene: &RenderScene, options: &RenderOptions) -> Result<(Fil
     }
 }
 
+/// A render that fits a time budget: what it made and how.
+#[derive(Debug)]
+pub struct BudgetedRender {
+    /// The last complete pass's image: the image a render with its sample count gives.
+    pub film: Film,
+    /// That pass's stats.
+    pub stats: RenderStats,
+    /// Passes started (the last one may have been cut off by the budget and discarded).
+    pub passes: u32,
+    /// Wall time of all passes.
+    pub elapsed: Duration,
+}
+
+/// Share of the remaining budget a pass is planned to fill (the rest absorbs the error of
+/// predicting its time from the previous pass's).
+const BUDGET_FILL: f64 = 0.9;
+
+/// Renders the whole frame in passes of increasing sample count until `budget` runs out,
+/// and returns the last pass that completed: exactly the image a render with that pass's
+/// sample count gives. The first pass takes one sample per pixel and always completes;
+/// each later pass takes as many samples as the previous pass's time per sample predicts
+/// will fill [`BUDGET_FILL`] of the remaining time, at most `max_samples`. A pass the budget
+/// cuts off is discarded. `scene`'s sample count is left at the returned pass's.
+pub fn render_within(
+    scene: &mut RenderScene,
+    options: &RenderOptions,
+    budget: Duration,
+    max_samples: u32,
+) -> Result<BudgetedRender, RenderError> {
+    let start = Instant::now();
+    let deadline = start + budget;
+    let max_samples = max_samples.max(1);
+    let pass = |scene: &mut RenderScene, samples: u32, passes: u32, deadline: Option<Instant>| {
+        scene.set_samples(samples);
+        let pass_options =
+            RenderOptions { progress_prefix: format!("pass {passes} ({samples} spp) "), deadline, ..options.clone() };
+        render_frame(scene, &pass_options)
+    };
+    // The first pass has no deadline, so there is an image (only `options.cancel` stops it).
+    let (mut film, mut stats) = pass(scene, 1, 1, None)?;
+    let (mut samples, mut passes) = (1, 1);
+    let mut pass_time = start.elapsed().as_secs_f64();
+    while !stats.cancelled && !options.cancel.as_ref().is_some_and(|c| c.load(Ordering::Relaxed)) {
+        let remaining = deadline.saturating_duration_since(Instant::now()).as_secs_f64();
+        let per_sample = pass_time / f64::from(samples);
+        let next = (remaining * BUDGET_FILL / per_sample.max(1e-9)).floor().min(f64::from(max_samples)) as u32;
+        if next <= samples {
+            break;
+        }
+        let pass_start = Instant::now();
+        passes += 1;
+        let (next_film, next_stats) = pass(scene, next, passes, Some(deadline))?;
+        if next_stats.cancelled {
+            break;
+        }
+        (film, stats, samples) = (next_film, next_stats, next);
+        pass_time = pass_start.elapsed().as_secs_f64();
+    }
+    scene.set_samples(samples);
+    Ok(BudgetedRender { film, stats, passes, elapsed: start.elapsed() })
+}
+
 /// One tile's results: where it lies (full-frame pixels) and its pixels row by row.
 struct TileResult {
     area: Region,
@@ -137,6 +256,19 @@ struct TileResult {
     first_hits: Vec<Option<FirstHit>>,
     /// Each pixel's sums, when asked for (stratified sampling only).
     sums: Vec<PixelSums>,
+    /// Per pixel (empty under POV-Ray's antialiasing methods).
+    estimates: Vec<PixelStats>,
+}
+
+/// What a pixel's samples say about its error.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PixelStats {
+    /// Samples taken.
+    pub samples: u32,
+    /// Estimated variance of the mean radiance per channel (0 with one sample).
+    pub variance: [f32; 3],
+    /// Estimated relative error of the mean luminance (0 with one sample).
+    pub relative_error: f32,
 }
 
 /// Renders `region` of the frame with `integrator` into a film of that region.
@@ -184,17 +316,23 @@ fn render_samples<I: Integrator>(
     if pov_method.is_some() && (want_sums || range != (0..samples)) {
         return Err(RenderError::SampleRangeWithPovAntialiasing);
     }
+    if scene.settings.noise.is_some() && range != (0..samples) {
+        return Err(RenderError::SampleRangeWithNoise);
+    }
     let threads = options.threads.unwrap_or(0);
     if threads > MAX_THREADS {
         return Err(RenderError::TooManyThreads { threads });
     }
     let channels: usize = 3 + options.aovs.iter().map(|a| a.channels().len()).sum::<usize>();
-    // The film, the tiles' pixels (a second copy until they are gathered) and, with AOVs,
-    // each pixel's first hit.
+    let want_hits = options.aovs.iter().any(|a| a.needs_first_hit());
+    // The film, the tiles' pixels (a second copy until they are gathered), their error
+    // estimates and, with first-hit AOVs, each pixel's first hit.
     let per_pixel = 2 * 12
         + if want_sums { 2 * std::mem::size_of::<PixelSums>() as u64 } else { 0 }
         + 4 * channels as u64
-        + if options.aovs.is_empty() { 0 } else { std::mem::size_of::<Option<FirstHit>>() as u64 };
+        + std::mem::size_of::<PixelStats>() as u64
+        + 4
+        + if want_hits { std::mem::size_of::<Option<FirstHit>>() as u64 } else { 0 };
     let estimate = u64::from(region.width()) * u64::from(region.height()) * per_pixel;
     options.budget.check(|| format!("a {} x {} film", region.width(), region.height()), estimate)?;
     let pool = rayon::ThreadPoolBuilder::new()
@@ -209,18 +347,22 @@ fn render_samples<I: Integrator>(
     let (tx1, ty1) = (region.x1.div_ceil(tile_size), region.y1.div_ceil(tile_size));
     let tiles_x = tx1 - tx0;
     let tile_count = u64::from(tiles_x) * u64::from(ty1 - ty0);
-    let want_hits = !options.aovs.is_empty();
 
     let progress = if options.progress {
         let bar = ProgressBar::with_draw_target(Some(tile_count), ProgressDrawTarget::stderr());
         bar.set_style(
-            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta}")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            ProgressStyle::with_template(
+                "{prefix}{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}% ETA {eta} {msg}",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
         );
+        bar.set_prefix(options.progress_prefix.clone());
         bar
     } else {
         ProgressBar::hidden()
     };
+    // Running totals for the bar's message: pixels, samples and squared relative errors.
+    let running = std::sync::Mutex::new((0u64, 0u64, 0.0f64));
 
     let rays = AtomicU64::new(0);
     let primary_rays = AtomicU64::new(0);
@@ -230,7 +372,9 @@ fn render_samples<I: Integrator>(
         (0..tile_count)
             .into_par_iter()
             .filter_map(|tile| {
-                if options.cancel.as_ref().is_some_and(|c| c.load(Ordering::Relaxed)) {
+                if options.cancel.as_ref().is_some_and(|c| c.load(Ordering::Relaxed))
+                    || options.deadline.is_some_and(|d| Instant::now() >= d)
+                {
                     cancelled.store(true, Ordering::Relaxed);
                     return None;
                 }
@@ -241,7 +385,13 @@ fn render_samples<I: Integrator>(
                     Some(method) => {
                         let block = antialias::render_block(scene, integrator, method, tx, ty);
                         let first_hits = if want_hits { centre_hits(scene, integrator, area) } else { Vec::new() };
-                        let tile = TileResult { area, pixels: block.pixels, first_hits, sums: Vec::new() };
+                        let tile = TileResult {
+                            area,
+                            pixels: block.pixels,
+                            first_hits,
+                            sums: Vec::new(),
+                            estimates: Vec::new(),
+                        };
                         (tile, block.rays, block.primary_rays)
                     }
                     None => {
@@ -252,12 +402,26 @@ fn render_samples<I: Integrator>(
                             y1: area.y1.min(region.y1),
                         };
                         let (result, tile_rays) = render_tile(scene, integrator, area, &range, want_hits, want_sums);
-                        let primary = area.pixel_count() as u64 * range.len() as u64;
+                        let primary = result.estimates.iter().map(|e| u64::from(e.samples)).sum();
                         (result, tile_rays, primary)
                     }
                 };
                 rays.fetch_add(tile_rays, Ordering::Relaxed);
                 primary_rays.fetch_add(tile_primary, Ordering::Relaxed);
+                if options.progress && !result.estimates.is_empty() {
+                    let mut totals = running.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                    totals.0 += result.estimates.len() as u64;
+                    totals.1 += tile_primary;
+                    totals.2 += result.estimates.iter().map(|e| f64::from(e.relative_error).powi(2)).sum::<f64>();
+                    let (pixels, samples, squares) = *totals;
+                    drop(totals);
+                    let pixels = pixels.max(1) as f64;
+                    progress.set_message(format!(
+                        "{:.1} spp, noise {:.4}",
+                        samples as f64 / pixels,
+                        (squares / pixels).sqrt()
+                    ));
+                }
                 progress.inc(1);
                 Some(result)
             })
@@ -269,6 +433,8 @@ fn render_samples<I: Integrator>(
     let mut film = Film::for_region(region, (width, height), &options.aovs);
     let mut sums = if want_sums { vec![PixelSums::default(); region.pixel_count()] } else { Vec::new() };
     let mut non_finite = 0;
+    let mut counts = Vec::new();
+    let mut squared_errors = 0.0;
     for tile in tiles {
         let tile_w = tile.area.width();
         for (i, p) in tile.pixels.into_iter().enumerate() {
@@ -284,18 +450,24 @@ fn render_samples<I: Integrator>(
                     non_finite += 1;
                     [0.0; 3]
                 };
-                if want_hits {
-                    write_aovs(&mut film, index, &tile.first_hits[i]);
+                let estimate = tile.estimates.get(i).copied().unwrap_or_default();
+                if !tile.estimates.is_empty() {
+                    counts.push(estimate.samples);
+                    squared_errors += f64::from(estimate.relative_error).powi(2);
                 }
+                write_aovs(&mut film, index, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
             }
         }
     }
+    let noise = if counts.is_empty() { 0.0 } else { (squared_errors / counts.len() as f64).sqrt() };
     let stats = RenderStats {
         elapsed,
         primary_rays: primary_rays.load(Ordering::Relaxed),
         total_rays: rays.load(Ordering::Relaxed),
         cancelled: cancelled.load(Ordering::Relaxed),
         non_finite_pixels: non_finite,
+        samples: SampleSpread::of(&mut counts),
+        noise,
     };
     Ok((film, sums, stats))
 }
@@ -311,10 +483,11 @@ fn render_tile<I: Integrator>(
     let mut pixels = Vec::with_capacity(area.pixel_count());
     let mut first_hits = Vec::with_capacity(if want_hits { area.pixel_count() } else { 0 });
     let mut sums = Vec::with_capacity(if want_sums { area.pixel_count() } else { 0 });
+    let mut estimates = Vec::with_capacity(area.pixel_count());
     let mut rays = 0;
     for y in area.y0..area.y1 {
         for x in area.x0..area.x1 {
-            let (pixel, pixel_sums) = render_pixel_samples(scene, integrator, x, y, range.clone());
+            let (pixel, pixel_sums, stats) = render_pixel_samples(scene, integrator, x, y, range.clone());
             if want_sums {
                 sums.push(pixel_sums);
             }
@@ -324,9 +497,10 @@ fn render_tile<I: Integrator>(
             if want_hits {
                 first_hits.push(pixel.first_hit);
             }
+            estimates.push(stats);
         }
     }
-    (TileResult { area, pixels, first_hits, sums }, rays)
+    (TileResult { area, pixels, first_hits, sums, estimates }, rays)
 }
 
 /// The first surfaces seen through the pixel centres of `area` (the AOVs of POV-Ray's
@@ -345,8 +519,8 @@ fn centre_hits<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region)
     hits
 }
 
-/// Writes a pixel's first-hit data into the film's AOV layers.
-fn write_aovs(film: &mut Film, index: usize, hit: &Option<FirstHit>) {
+/// Writes a pixel's first-hit data and error estimate into the film's AOV layers.
+fn write_aovs(film: &mut Film, index: usize, hit: Option<&FirstHit>, estimate: &PixelStats) {
     for layer in &mut film.layers {
         let n = layer.aov.channels().len();
         let out = &mut layer.data[index * n..(index + 1) * n];
@@ -361,6 +535,8 @@ fn write_aovs(film: &mut Film, index: usize, hit: &Option<FirstHit>) {
             (Aov::MaterialId, Some(h)) => [f64::from(h.material), 0.0, 0.0],
             (Aov::ObjectId | Aov::MaterialId, None) => [-1.0, 0.0, 0.0],
             (Aov::Albedo | Aov::Normal | Aov::Position | Aov::Uv, None) => [0.0; 3],
+            (Aov::Variance, _) => estimate.variance.map(f64::from),
+            (Aov::Samples, _) => [f64::from(estimate.samples), 0.0, 0.0],
         };
         for (o, v) in out.iter_mut().zip(values) {
             *o = v as f32;
@@ -374,16 +550,70 @@ pub fn render_pixel<I: Integrator>(scene: &RenderScene, integrator: &I, x: u32, 
     render_pixel_samples(scene, integrator, x, y, 0..scene.settings.samples).0
 }
 
-/// Samples `samples` (of the scene's `0..samples`, so with the full render's patterns) of one
-/// pixel: their weighted mean as [`render_pixel`] computes it, and their weighted sum and
-/// weights, accumulated in sample order from zero.
+/// Luminance of linear Rec. 709 RGB.
+fn luminance(c: DVec3) -> f64 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// The spread of a pixel's samples (Welford's running mean and sum of squared deviations,
+/// per channel and of luminance). The variance of the mean is the samples' variance over
+/// their count: this ignores the gain of stratification, so it overestimates the error
+/// where stratification helps (the pixel then takes more samples than it needs), but with
+/// one degree of freedom per sample it is reliable from a few dozen samples on. (The
+/// spread of the means of a few batches credits stratification but, with so few degrees
+/// of freedom, often underestimates: pixels on a light's edge stopped at 32 samples with
+/// an error of 18 %.)
+#[derive(Default)]
+struct PixelSpread {
+    count: u32,
+    mean: DVec3,
+    squares: DVec3,
+    mean_y: f64,
+    squares_y: f64,
+}
+
+impl PixelSpread {
+    fn add(&mut self, radiance: DVec3) {
+        self.count += 1;
+        let n = f64::from(self.count);
+        let delta = radiance - self.mean;
+        self.mean += delta / n;
+        self.squares += delta * (radiance - self.mean);
+        let y = luminance(radiance);
+        let delta_y = y - self.mean_y;
+        self.mean_y += delta_y / n;
+        self.squares_y += delta_y * (y - self.mean_y);
+    }
+
+    /// Variance of the mean, per channel and of luminance (0 with fewer than two samples).
+    fn variance_of_mean(&self) -> (DVec3, f64) {
+        if self.count < 2 {
+            return (DVec3::ZERO, 0.0);
+        }
+        let n = f64::from(self.count);
+        (self.squares / (n * (n - 1.0)), self.squares_y / (n * (n - 1.0)))
+    }
+
+    /// Standard deviation of the mean luminance over the larger of it and [`NOISE_FLOOR`].
+    fn relative_error(&self) -> f64 {
+        self.variance_of_mean().1.max(0.0).sqrt() / self.mean_y.abs().max(NOISE_FLOOR)
+    }
+}
+
+/// Samples `range` (of the scene's `0..samples`, so with the full render's patterns) of one
+/// pixel: their weighted mean as [`render_pixel`] computes it, their weighted sum and
+/// weights, accumulated in sample order from zero, and what they say about the pixel's
+/// error. With `[render] noise` set and the whole range asked for, the pixel stops after the
+/// first whole batch, from [`MIN_BATCHES`] on, whose estimated relative error is at most
+/// `noise`; the decision depends on the pixel's own samples only, so the image is the same
+/// for any thread count or tiling. (Sample ranges with `noise` are refused before this.)
 pub fn render_pixel_samples<I: Integrator>(
     scene: &RenderScene,
     integrator: &I,
     x: u32,
     y: u32,
     range: Range<u32>,
-) -> (PixelSample, PixelSums) {
+) -> (PixelSample, PixelSums, PixelStats) {
     let settings = &scene.settings;
     let (width, height) = (f64::from(settings.width), f64::from(settings.height));
     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
@@ -394,6 +624,9 @@ pub fn render_pixel_samples<I: Integrator>(
     let mut weights = 0.0;
     let mut rays = 0;
     let mut first_hit = None;
+    let mut spread = PixelSpread::default();
+    let adaptive = settings.noise.filter(|_| range == (0..samples));
+    let mut taken = range.len() as u32;
     for s in range {
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
         let mut offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(s));
@@ -416,8 +649,24 @@ pub fn render_pixel_samples<I: Integrator>(
         // Box-filtered samples weigh 1, so their weighted mean is the plain mean, bit for bit.
         sum += weight * sample.radiance;
         weights += weight;
+        spread.add(sample.radiance);
+        if let Some(noise) = adaptive
+            && (s + 1) % SAMPLE_BATCH == 0
+            && s + 1 >= SAMPLE_BATCH * MIN_BATCHES
+            && s + 1 < samples
+            && spread.relative_error() <= noise
+        {
+            taken = s + 1;
+            break;
+        }
     }
     // Weights summing to 0 (a filter's negative lobes cancelling) give black.
     let radiance = if weights != 0.0 { sum / weights } else { DVec3::ZERO };
-    (PixelSample { radiance, first_hit, rays }, PixelSums { sum: sum.to_array(), weight: weights })
+    let variance = spread.variance_of_mean().0;
+    let stats = PixelStats {
+        samples: taken,
+        variance: [variance.x as f32, variance.y as f32, variance.z as f32],
+        relative_error: spread.relative_error() as f32,
+    };
+    (PixelSample { radiance, first_hit, rays }, PixelSums { sum: sum.to_array(), weight: weights }, stats)
 }

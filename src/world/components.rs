@@ -514,6 +514,16 @@ pub struct RenderSettings {
     pub exposure: f64,
     /// Tone-mapping operator for 8-bit output.
     pub tone_map: ToneMap,
+    /// Adaptive sampling: each pixel stops sampling once the estimated relative error of
+    /// its mean luminance is at most this (in (0, 1)), or at `samples`. Stratified sampling
+    /// only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub noise: Option<f64>,
+    /// AOV layers written into the OpenEXR output besides the beauty image (`albedo`,
+    /// `normal`, `depth`, `position`, `uv`, `object_id`, `material_id`, `variance`,
+    /// `samples`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub aovs: Vec<String>,
 }
 
 impl Default for RenderSettings {
@@ -531,6 +541,8 @@ impl Default for RenderSettings {
             filter: PixelFilter::Box,
             exposure: 0.0,
             tone_map: ToneMap::Clamp,
+            noise: None,
+            aovs: Vec::new(),
         }
     }
 }

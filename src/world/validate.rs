@@ -114,6 +114,19 @@ fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
             format!("samples must be between 1 and {MAX_SAMPLES}, got {}", r.samples),
         ));
     }
+    if let Some(noise) = r.noise {
+        if !(noise > 0.0 && noise < 1.0) {
+            out.push(Diagnostic::new(at("noise"), format!("noise must be between 0 and 1 (exclusive), got {noise}")));
+        } else if !matches!(r.antialias, Antialias::Stratified) {
+            out.push(Diagnostic::new(
+                at("noise"),
+                "adaptive sampling (`noise`) works with stratified sampling only, not POV-Ray's antialiasing methods",
+            ));
+        }
+    }
+    if let Err(message) = crate::film::Aov::parse_list(r.aovs.iter().map(String::as_str)) {
+        out.push(Diagnostic::new(at("aovs"), message));
+    }
     if r.max_depth == 0 || r.max_depth > 1000 {
         out.push(Diagnostic::new(
             at("max_depth"),
