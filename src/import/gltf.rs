@@ -582,7 +582,7 @@ impl Importer<'_> {
             return Ok(None);
         }
         let builder = MeshBuilder { positions, normals, uvs, tangents, triangles };
-        match builder.build() {
+        match builder.build_within(self.textures.budget()) {
             Ok(d) => Ok(Some(Arc::new(d))),
             Err(e @ MeshError::NoTriangles) => {
                 self.model.warnings.push(format!("{what}: {e}; skipped"));
