@@ -11,10 +11,15 @@
 //! after symlinks, inside the root, and a path written in a scene or mesh file
 //! ([`FileAccess::join`]) may not be absolute.
 //!
+//! A [`FileAccess::in_memory`] access reads from a map of paths to bytes instead of the
+//! disk, under the same size caps: the fuzz targets (`fuzz/`) drive every loader through it.
+//!
 //! Messages name files, never their contents, and long names are shortened ([`shown`]).
 
+use std::collections::HashMap;
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
+use std::sync::Arc;
 
 /// Largest scene file (TOML, each include counted alone): 64 MiB.
 pub const MAX_SCENE_BYTES: u64 = 64 << 20;
@@ -141,11 +146,13 @@ pub fn shown_path(path: &Path) -> String {
     shown(&path.display().to_string())
 }
 
-/// How files are read: anywhere, or only inside a root directory.
+/// How files are read: anywhere, only inside a root directory, or from memory.
 #[derive(Clone, Debug, Default)]
 pub struct FileAccess {
     /// The canonical root, under `--root`.
     root: Option<PathBuf>,
+    /// Files held in memory by [`normalize`]d path; when set, the disk is never touched.
+    memory: Option<Arc<HashMap<PathBuf, Vec<u8>>>>,
 }
 
 impl FileAccess {
@@ -160,7 +167,14 @@ impl FileAccess {
         if !canonical.is_dir() {
             return Err(FileError::NotRegular { path: root.into(), what: "not a directory" });
         }
-        Ok(Self { root: Some(canonical) })
+        Ok(Self { root: Some(canonical), memory: None })
+    }
+
+    /// Reads only the given files (path, bytes), never the disk; paths are compared after
+    /// [`normalize`], and each file's kind cap still applies. For fuzzing and tests.
+    pub fn in_memory(files: impl IntoIterator<Item = (PathBuf, Vec<u8>)>) -> Self {
+        let files = files.into_iter().map(|(path, bytes)| (normalize(&path), bytes)).collect();
+        Self { root: None, memory: Some(Arc::new(files)) }
     }
 
     /// The sandbox's root, if any.
@@ -180,6 +194,13 @@ impl FileAccess {
 
     /// The canonical form of `path` (symlinks resolved), checked to lie inside the root.
     pub fn resolve(&self, path: &Path) -> Result<PathBuf, FileError> {
+        if let Some(files) = &self.memory {
+            let key = normalize(path);
+            return match files.contains_key(&key) {
+                true => Ok(key),
+                false => Err(FileError::Io { path: path.into(), source: std::io::ErrorKind::NotFound.into() }),
+            };
+        }
         let canonical = std::fs::canonicalize(path).map_err(|source| FileError::Io { path: path.into(), source })?;
         match &self.root {
             Some(root) if !canonical.starts_with(root) => Err(FileError::OutsideRoot { path: path.into() }),
@@ -190,14 +211,18 @@ impl FileAccess {
     /// The bytes of the regular file at `path`, at most `kind.cap()` of them.
     pub fn read(&self, path: &Path, kind: FileKind) -> Result<Vec<u8>, FileError> {
         let canonical = self.resolve(path)?;
+        let cap = kind.cap();
+        let too_large = || FileError::TooLarge { path: path.into(), noun: kind.noun(), cap };
+        if let Some(files) = &self.memory {
+            let bytes = &files[&canonical];
+            return if bytes.len() as u64 > cap { Err(too_large()) } else { Ok(bytes.clone()) };
+        }
         let io = |source| FileError::Io { path: path.into(), source };
         let file = open_nonblocking(&canonical).map_err(io)?;
         let metadata = file.metadata().map_err(io)?;
         if let Some(what) = not_regular(&metadata.file_type()) {
             return Err(FileError::NotRegular { path: path.into(), what });
         }
-        let cap = kind.cap();
-        let too_large = || FileError::TooLarge { path: path.into(), noun: kind.noun(), cap };
         if metadata.len() > cap {
             return Err(too_large());
         }
@@ -217,6 +242,23 @@ impl FileAccess {
             source: std::io::Error::new(std::io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"),
         })
     }
+}
+
+/// `a/./b/../c` -> `a/c`, without touching the file system (a leading `..` is kept).
+pub fn normalize(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::ParentDir => {
+                if !out.pop() {
+                    out.push("..");
+                }
+            }
+            Component::CurDir => {}
+            other => out.push(other),
+        }
+    }
+    out
 }
 
 /// Opens for reading without blocking on a FIFO (the flag matters only for the open: the
@@ -317,6 +359,23 @@ mod tests {
             ));
         }
         assert!(FileAccess::unrestricted().join(&root, "/etc/passwd").is_ok());
+    }
+
+    #[test]
+    fn in_memory_files_are_read_by_normalized_path_under_the_caps() {
+        let access = FileAccess::in_memory([
+            (PathBuf::from("scene/a.toml"), b"x = 1\n".to_vec()),
+            (PathBuf::from("big.toml"), vec![b' '; MAX_SCENE_BYTES as usize + 1]),
+        ]);
+        let joined = access.join(Path::new("scene/sub"), "../a.toml").unwrap();
+        assert_eq!(access.read_text(&joined, FileKind::Scene).unwrap(), "x = 1\n");
+        assert_eq!(access.resolve(&joined).unwrap(), Path::new("scene/a.toml"));
+        let e = access.read(Path::new("scene/missing.toml"), FileKind::Scene).unwrap_err();
+        assert!(matches!(&e, FileError::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound), "{e}");
+        assert!(matches!(access.read(Path::new("big.toml"), FileKind::Scene), Err(FileError::TooLarge { .. })));
+        assert!(access.read(Path::new("big.toml"), FileKind::Mesh).is_ok());
+        // Never the disk, even for a file that exists there.
+        assert!(access.read(Path::new("/proc/self/status"), FileKind::Scene).is_err());
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! `limits`: the caps on what one scene may ask for, and the memory budget that large
-//! allocations (the film and its layers, decoded textures) are estimated against before
-//! they are made. `docs/security.md` lists them all.
+//! allocations (the film and its layers, decoded textures, meshes with their BVHs, imported
+//! instances) are estimated against before they are made. `docs/security.md` lists them all.
 
 /// Most render threads (`--threads`); more is an error.
 pub const MAX_THREADS: usize = 256;
@@ -37,6 +37,11 @@ pub const FALLBACK_MEMORY_BUDGET: u64 = 4 << 30;
 /// Bytes of film per pixel and per channel of output (beauty and layers are `f32`; the
 /// encoders make one more copy of each channel, and 8-bit formats one byte more).
 const FILM_BYTES_PER_CHANNEL: u64 = 8;
+
+/// Bytes one imported entity (a mesh file's node, or one placement of a mesh part) costs
+/// from loading to rendering, about: the entity and its components, its world transform,
+/// its render primitive and its share of the scene BVH.
+pub const BYTES_PER_INSTANCE: u64 = 1024;
 
 /// An estimate over the memory budget.
 #[derive(Debug, Clone, thiserror::Error, PartialEq, Eq)]

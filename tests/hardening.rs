@@ -489,3 +489,151 @@ fn values_that_overflow_are_refused_at_load() {
         assert!(!dir.path().join("out.exr").exists());
     }
 }
+
+/// SIGINT delivered to `prism render` while it writes its outputs (a temporary file is
+/// already there): the temporaries are removed, and `-o` and `--exr` are both written or
+/// neither. Tried until one signal lands mid-write (the window is a few milliseconds).
+#[cfg(unix)]
+#[test]
+fn sigint_mid_write_leaves_no_temporary_and_all_outputs_or_none() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.toml"), SPHERE).unwrap();
+    let temps = |dir: &Path| -> Vec<String> {
+        std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".tmp"))
+            .collect()
+    };
+    let mut interrupted_mid_write = 0;
+    for attempt in 0..40 {
+        let (png, exr) = (dir.path().join("out.png"), dir.path().join("out.exr"));
+        let _ = std::fs::remove_file(&png);
+        let _ = std::fs::remove_file(&exr);
+        let mut child = prism()
+            .current_dir(dir.path())
+            .args(["render", "scene.toml", "-o", "out.png", "--exr", "out.exr", "--width", "1600", "--height"])
+            .arg("1200")
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let start = Instant::now();
+        let mut signalled_mid_write = false;
+        while child.try_wait().unwrap().is_none() {
+            if !temps(dir.path()).is_empty() {
+                // SAFETY: sending a signal to our own child process.
+                assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) }, 0);
+                signalled_mid_write = true;
+                break;
+            }
+            assert!(start.elapsed() < Duration::from_secs(60), "render did not finish");
+            std::thread::yield_now();
+        }
+        let out = child.wait_with_output().unwrap();
+        assert!(temps(dir.path()).is_empty(), "attempt {attempt}: temporaries left: {:?}", temps(dir.path()));
+        assert_eq!(png.exists(), exr.exists(), "attempt {attempt}: one output without the other");
+        assert!(!stderr(&out).contains("internal error"), "{}", stderr(&out));
+        match out.status.code() {
+            // The signal arrived before or during the writes: nothing is left.
+            Some(130) => {
+                assert!(!png.exists(), "attempt {attempt}: exit 130 but outputs written");
+                interrupted_mid_write += usize::from(signalled_mid_write);
+            }
+            // The renames were under way (the signal waits for them): both are complete.
+            Some(0) => {
+                assert!(std::fs::metadata(&png).unwrap().len() > 0 && std::fs::metadata(&exr).unwrap().len() > 0)
+            }
+            other => panic!("attempt {attempt}: exit {other:?}: {}", stderr(&out)),
+        }
+        if interrupted_mid_write >= 1 {
+            return;
+        }
+    }
+    panic!("no SIGINT landed while a temporary file existed in 40 attempts");
+}
+
+/// A mesh whose triangles and BVH would not fit `--max-memory` is refused before they are
+/// built, naming the setting and the estimate; so are more imported instances than fit.
+#[test]
+fn meshes_and_instances_are_checked_against_the_memory_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    // A 300 x 300 grid of quads: 180,000 triangles, about 86 MiB with their BVH.
+    let n = 300;
+    let mut obj = String::new();
+    for y in 0..=n {
+        for x in 0..=n {
+            obj.push_str(&format!("v {x} {y} 0\n"));
+        }
+    }
+    for y in 0..n {
+        for x in 0..n {
+            let i = y * (n + 1) + x + 1;
+            obj.push_str(&format!("f {i} {} {} {}\n", i + 1, i + n + 2, i + n + 1));
+        }
+    }
+    std::fs::write(dir.path().join("grid.obj"), obj).unwrap();
+    std::fs::write(dir.path().join("grid.toml"), "[[object]]\nshape = \"mesh\"\nfile = \"grid.obj\"\n").unwrap();
+    let mut c = render(dir.path(), "grid.toml");
+    c.args(["--max-memory", "32M"]);
+    assert_fails(&run(c), &["grid.obj", "180000 triangles with their BVH", "MiB", "--max-memory"]);
+    let mut c = render(dir.path(), "grid.toml");
+    c.args(["--max-memory", "256M"]);
+    let out = run(c);
+    assert!(out.status.success(), "{}", stderr(&out));
+
+    // 2,000 objects naming one small mesh: 6,000 imported entities, about 6 MiB.
+    std::fs::write(dir.path().join("tri.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let scene: String = (0..2000)
+        .map(|i| {
+            format!("[[object]]\nshape = \"mesh\"\nfile = \"tri.obj\"\ntransform = {{ translate = [{i}, 0, 0] }}\n")
+        })
+        .collect();
+    std::fs::write(dir.path().join("many.toml"), scene).unwrap();
+    let mut c = render(dir.path(), "many.toml");
+    c.args(["--max-memory", "4M"]);
+    let out = run(c);
+    assert_fails(&out, &["many.toml:", "imported nodes and mesh instances", "MiB", "--max-memory"]);
+    assert_eq!(stderr(&out).matches("imported nodes").count(), 1, "reported once: {}", stderr(&out));
+    let mut c = render(dir.path(), "many.toml");
+    c.args(["--max-memory", "64M"]);
+    let out = run(c);
+    assert!(out.status.success(), "{}", stderr(&out));
+}
+
+/// An OBJ face with a million vertices ends within 20 s (rendered, or refused naming the
+/// polygon cap); a concave face larger than the cap is an error naming the file and the cap.
+#[test]
+fn huge_obj_faces_are_triangulated_quickly_or_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let face = |n: usize, spiky: bool| {
+        let mut obj = String::with_capacity(n * 40);
+        for i in 0..n {
+            let a = i as f64 * std::f64::consts::TAU / n as f64;
+            let r = if spiky && i % 2 == 1 { 0.5 } else { 1.0 };
+            obj.push_str(&format!("v {} {} 0\n", r * a.cos(), r * a.sin()));
+        }
+        obj.push('f');
+        for i in 1..=n {
+            obj.push_str(&format!(" {i}"));
+        }
+        obj.push('\n');
+        obj
+    };
+    std::fs::write(dir.path().join("round.obj"), face(1_000_000, false)).unwrap();
+    std::fs::write(dir.path().join("spiky.obj"), face(100_000, true)).unwrap();
+    let camera = "[camera]\nposition = [0, 0, -3]\nlook_at = [0, 0, 0]\n";
+    for name in ["round", "spiky"] {
+        let scene = format!("{camera}[[object]]\nshape = \"mesh\"\nfile = \"{name}.obj\"\nsmooth_angle = 30\n");
+        std::fs::write(dir.path().join(format!("{name}.toml")), scene).unwrap();
+    }
+    // In f32 a million points on a circle are not strictly convex (rounding makes some
+    // corners reflex): the face is refused at once, naming the cap, instead of clipped for hours.
+    let out = run_within(render(dir.path(), "round.toml"), Duration::from_secs(20));
+    if !out.status.success() {
+        assert_fails(&out, &["round.obj", "1000000 vertices", "16384"]);
+    }
+    let out = run_within(render(dir.path(), "spiky.toml"), Duration::from_secs(20));
+    assert_fails(&out, &["spiky.obj", "100000 vertices", "16384"]);
+}

@@ -37,6 +37,12 @@ pub fn import(path: &Path, textures: &mut TextureStore) -> Result<Model, ImportE
     // The crate's own validation indexes arrays without checking (a POSITION naming a
     // missing accessor panics), so the JSON is checked first, unvalidated.
     let json = if bytes.starts_with(b"glTF") {
+        // The crate subtracts the header's size from its length field unchecked (found by
+        // fuzzing: a length below 12 overflowed).
+        let length = bytes.get(8..12).map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+        if !matches!(length, Some(n) if n >= 12) {
+            return Err(err(ImportErrorKind::Invalid("the GLB header's length is shorter than the header".into())));
+        }
         gltf::Glb::from_slice(&bytes).map_err(|e| err(ImportErrorKind::Gltf(e)))?.json
     } else {
         std::borrow::Cow::Borrowed(&bytes[..])
@@ -582,7 +588,7 @@ impl Importer<'_> {
             return Ok(None);
         }
         let builder = MeshBuilder { positions, normals, uvs, tangents, triangles };
-        match builder.build() {
+        match builder.build_within(self.textures.budget()) {
             Ok(d) => Ok(Some(Arc::new(d))),
             Err(e @ MeshError::NoTriangles) => {
                 self.model.warnings.push(format!("{what}: {e}; skipped"));

@@ -91,7 +91,7 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
         let material = key.and_then(|i| materials.get(i));
         let part_name =
             material.map_or_else(|| "faces without a material".into(), |m| format!("material `{}`", m.name));
-        let data = match part.builder.build() {
+        let data = match part.builder.build_within(textures.budget()) {
             Ok(d) => Arc::new(d),
             Err(MeshError::NoTriangles) => {
                 warnings.push(format!("{part_name}: only zero-area faces; skipped"));
@@ -248,7 +248,7 @@ fn add_model(model: usize, mesh: &tobj::Mesh, part: &mut PartBuilder) -> Result<
             corner_vertices.push(vertex);
             corner_points.push(p.as_dvec3());
         }
-        for [a, b, c] in triangulate(&corner_points) {
+        for [a, b, c] in triangulate(&corner_points).map_err(|e| e.to_string())? {
             part.builder.triangles.push([corner_vertices[a], corner_vertices[b], corner_vertices[c]]);
         }
         start += arity;

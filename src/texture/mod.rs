@@ -273,6 +273,16 @@ pub enum TextureError {
         /// Height in texels.
         height: u32,
     },
+    /// The image has no texels (a width or height of 0).
+    #[error("image `{}` is empty ({width} x {height})", shown_path(.path))]
+    Empty {
+        /// The image file.
+        path: PathBuf,
+        /// Width in texels.
+        width: u32,
+        /// Height in texels.
+        height: u32,
+    },
     /// Decoding would exceed the memory budget.
     #[error(transparent)]
     OverBudget(#[from] OverBudget),
@@ -299,6 +309,10 @@ pub fn decode_image(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<i
     let (width, height) = decoder.dimensions();
     if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
         return Err(TextureError::TooLarge { path: path.to_path_buf(), width, height });
+    }
+    // A PGM of height 0 decodes to no texels (found by fuzzing: Texture::from_rgba8 asserted).
+    if width == 0 || height == 0 {
+        return Err(TextureError::Empty { path: path.to_path_buf(), width, height });
     }
     let estimate = decode_estimate(width, height, u64::from(decoder.color_type().bytes_per_pixel()));
     budget.check(|| format!("image `{}` ({width} x {height})", shown_path(path)), estimate)?;

@@ -298,6 +298,18 @@ impl Loader<'_> {
         }
         // Absolute, so the path does not depend on where the scene is loaded from; `save`
         // writes it relative to the saved file when it can.
+        let entities = (1 + model.nodes.len() + model.parts.len()) as u64;
+        self.imported_entities = self.imported_entities.saturating_add(entities);
+        let total = self.imported_entities;
+        let estimate = total.saturating_mul(crate::limits::BYTES_PER_INSTANCE);
+        if let Err(e) = self.budget.check(|| format!("{total} imported nodes and mesh instances"), estimate) {
+            // Reported at the object that crossed the budget, not at every one after it.
+            let before = (total - entities).saturating_mul(crate::limits::BYTES_PER_INSTANCE);
+            if self.budget.check(String::new, before).is_ok() {
+                self.diagnostics.push(Diagnostic::new(location.clone(), e.to_string()));
+            }
+            return None;
+        }
         let absolute = std::fs::canonicalize(&path).unwrap_or(path).display().to_string();
         let source = MeshSource { file: absolute, material, material_map, params: table, model: model.clone() };
         let spawned = crate::import::spawn::spawn_model(world, source, transform, flags, location);

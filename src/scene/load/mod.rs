@@ -17,7 +17,7 @@ use serde::de::DeserializeOwned;
 
 use super::source::{ParsedFile, deserialize_at};
 use crate::diagnostics::{Diagnostic, Location, SceneError};
-use crate::files::{FileAccess, FileError, FileKind};
+use crate::files::{FileAccess, FileError, FileKind, normalize};
 use crate::import::punctual::{self, CameraChoice};
 use crate::import::spawn::{MESH_KEYS, MESH_SHAPE};
 use crate::import::{CameraProjection, ImportOptions, Imported, MeshSource, MeshStore, Model};
@@ -60,7 +60,7 @@ impl SceneSource for FileSystem {
     }
 
     fn canonical(&self, path: &Path) -> PathBuf {
-        std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
+        self.0.resolve(path).unwrap_or_else(|_| path.to_path_buf())
     }
 
     fn access(&self) -> FileAccess {
@@ -85,23 +85,6 @@ impl SceneSource for Embedded {
     fn canonical(&self, path: &Path) -> PathBuf {
         normalize(path)
     }
-}
-
-/// `a/b/../c` -> `a/c` without touching the file system.
-fn normalize(path: &Path) -> PathBuf {
-    let mut out = PathBuf::new();
-    for c in path.components() {
-        match c {
-            std::path::Component::ParentDir => {
-                if !out.pop() {
-                    out.push("..");
-                }
-            }
-            std::path::Component::CurDir => {}
-            other => out.push(other),
-        }
-    }
-    out
 }
 
 /// Loads the scene at `path` from disk, reading any file, with no memory budget.
@@ -142,6 +125,7 @@ pub fn load_with(
         meshes: MeshStore::with_limits(access, budget),
         light_imports: Vec::new(),
         camera_import: None,
+        imported_entities: 0,
     };
     loader.load_all(path);
     loader.finish()
@@ -177,8 +161,10 @@ struct Loader<'a> {
     registry: &'a ShapeRegistry,
     /// How files named by the scene are read.
     access: FileAccess,
-    /// The memory budget of decoded images.
+    /// The memory budget of decoded images, meshes and imported instances.
     budget: MemoryBudget,
+    /// Entities spawned for mesh files' nodes and parts so far (checked against `budget`).
+    imported_entities: u64,
     /// Canonical paths of the files whose includes are being loaded, outermost first.
     stack: Vec<PathBuf>,
     /// Canonical paths of every file read so far: each is loaded once.
