@@ -734,13 +734,16 @@ pub fn model(data: &PlyData, options: &ImportOptions, name: &Path) -> Result<Mod
         ..MeshBuilder::default()
     };
     let mut short = 0usize;
-    for polygon in data.polygons() {
+    for (face, polygon) in data.polygons().enumerate() {
         match polygon.len() {
             0..=2 => short += 1,
             3 => builder.triangles.push([polygon[0], polygon[1], polygon[2]]),
             _ => {
                 let points: Vec<DVec3> = polygon.iter().map(|&i| data.positions[i as usize].as_dvec3()).collect();
-                builder.triangles.extend(triangulate(&points).into_iter().map(|t| t.map(|k| polygon[k])));
+                let triangles = triangulate(&points).map_err(|e| {
+                    ImportError::new(name, ImportErrorKind::Invalid(format!("element `face` {face}: {e}")))
+                })?;
+                builder.triangles.extend(triangles.into_iter().map(|t| t.map(|k| polygon[k])));
             }
         }
     }
