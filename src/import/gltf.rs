@@ -86,9 +86,48 @@ pub fn import(path: &Path, textures: &mut TextureStore) -> Result<Model, ImportE
     Ok(model)
 }
 
+/// The accessor types, component types and their description that glTF 2.0 (3.7.2.1)
+/// allows for a vertex attribute; `None` for application-specific attributes (`_NAME`).
+fn attribute_types(
+    semantic: &gltf::json::mesh::Semantic,
+) -> Option<(&'static [gltf::json::accessor::Type], &'static [gltf::json::accessor::ComponentType], &'static str)> {
+    use gltf::json::accessor::{ComponentType as C, Type as T};
+    use gltf::json::mesh::Semantic as S;
+    Some(match semantic {
+        S::Positions => (&[T::Vec3], &[C::F32], "FLOAT VEC3"),
+        S::Normals => (&[T::Vec3], &[C::F32], "FLOAT VEC3"),
+        S::Tangents => (&[T::Vec4], &[C::F32], "FLOAT VEC4"),
+        S::TexCoords(_) => (&[T::Vec2], &[C::F32, C::U8, C::U16], "FLOAT, UNSIGNED_BYTE or UNSIGNED_SHORT VEC2"),
+        S::Colors(_) => {
+            (&[T::Vec3, T::Vec4], &[C::F32, C::U8, C::U16], "FLOAT, UNSIGNED_BYTE or UNSIGNED_SHORT VEC3 or VEC4")
+        }
+        S::Joints(_) => (&[T::Vec4], &[C::U8, C::U16], "UNSIGNED_BYTE or UNSIGNED_SHORT VEC4"),
+        S::Weights(_) => (&[T::Vec4], &[C::F32, C::U8, C::U16], "FLOAT, UNSIGNED_BYTE or UNSIGNED_SHORT VEC4"),
+        #[allow(unreachable_patterns, reason = "`Extras` exists only with the crate's `extras` feature")]
+        _ => return None,
+    })
+}
+
+/// An attribute's name as glTF writes it (`TEXCOORD_0`).
+fn semantic_name(semantic: &gltf::json::mesh::Semantic) -> String {
+    use gltf::json::mesh::Semantic as S;
+    match semantic {
+        S::Positions => "POSITION".into(),
+        S::Normals => "NORMAL".into(),
+        S::Tangents => "TANGENT".into(),
+        S::TexCoords(n) => format!("TEXCOORD_{n}"),
+        S::Colors(n) => format!("COLOR_{n}"),
+        S::Joints(n) => format!("JOINTS_{n}"),
+        S::Weights(n) => format!("WEIGHTS_{n}"),
+        #[allow(unreachable_patterns, reason = "`Extras` exists only with the crate's `extras` feature")]
+        _ => "an application-specific attribute".into(),
+    }
+}
+
 /// What the JSON must satisfy before any reader of the crate touches it (the crate panics
 /// on some of these): every index names an existing object, images have a source, index
-/// accessors are unsigned scalars and POSITION is a float VEC3 (glTF 2.0, 3.7.2.1).
+/// accessors are unsigned scalars and every vertex attribute has the accessor type the
+/// specification gives it (glTF 2.0, 3.7.2.1).
 fn check_json(root: &gltf::json::Root) -> Result<(), String> {
     use gltf::json::accessor::{ComponentType, Type};
     use gltf::json::validation::Checked;
@@ -126,11 +165,14 @@ fn check_json(root: &gltf::json::Root) -> Result<(), String> {
             let what = format!("mesh {m} primitive {p}");
             for (semantic, index) in &primitive.attributes {
                 let a = accessor(index.value()).map_err(|e| format!("{what}: an attribute names {e}"))?;
-                if let Checked::Valid(gltf::json::mesh::Semantic::Positions) = semantic {
-                    let float = matches!(a.component_type, Checked::Valid(c) if c.0 == ComponentType::F32);
-                    if !float || a.type_ != Checked::Valid(Type::Vec3) {
-                        return Err(format!("{what}: POSITION must be a FLOAT VEC3 accessor"));
-                    }
+                let Checked::Valid(semantic) = semantic else { continue };
+                // The accessor types the specification allows per attribute (3.7.2.1); the
+                // crate's readers assume them (a VEC3 TEXCOORD_0 trips its assertions).
+                let Some((types, components, allowed)) = attribute_types(semantic) else { continue };
+                let type_ok = matches!(a.type_, Checked::Valid(t) if types.contains(&t));
+                let component_ok = matches!(a.component_type, Checked::Valid(c) if components.contains(&c.0));
+                if !type_ok || !component_ok {
+                    return Err(format!("{what}: {} must be a {allowed} accessor", semantic_name(semantic)));
                 }
             }
             if let Some(index) = primitive.indices {
