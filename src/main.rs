@@ -61,6 +61,20 @@ enum Command {
     },
 }
 
+/// The image's size and sample count, overriding the scene's (`render` and `farm slurm`).
+#[derive(Args, Default, Clone, Copy)]
+struct FrameArgs {
+    /// Image width in pixels (overrides the scene).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
+    width: Option<u32>,
+    /// Image height in pixels (overrides the scene).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
+    height: Option<u32>,
+    /// Samples per pixel (overrides the scene).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_samples)]
+    samples: Option<u32>,
+}
+
 /// What a scene may read and allocate (see `docs/security.md`).
 #[derive(Args, Default, Clone)]
 struct LimitArgs {
@@ -205,15 +219,8 @@ struct SlurmArgs {
     /// Print the job scripts and the sbatch commands instead of writing and submitting them.
     #[arg(long)]
     dry_run: bool,
-    /// Image width in pixels (overrides the scene).
-    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
-    width: Option<u32>,
-    /// Image height in pixels (overrides the scene).
-    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
-    height: Option<u32>,
-    /// Samples per pixel (overrides the scene).
-    #[arg(long, allow_hyphen_values = true, value_parser = parse_samples)]
-    samples: Option<u32>,
+    #[command(flatten)]
+    frame: FrameArgs,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -249,15 +256,8 @@ struct RenderArgs {
     /// Write EXR channels as 16-bit half floats (as POV-Ray does) instead of 32-bit floats.
     #[arg(long)]
     half: bool,
-    /// Image width in pixels (overrides the scene).
-    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
-    width: Option<u32>,
-    /// Image height in pixels (overrides the scene).
-    #[arg(long, allow_hyphen_values = true, value_parser = parse_side)]
-    height: Option<u32>,
-    /// Samples per pixel (overrides the scene).
-    #[arg(long, allow_hyphen_values = true, value_parser = parse_samples)]
-    samples: Option<u32>,
+    #[command(flatten)]
+    frame: FrameArgs,
     /// Render threads (default: one per core; at most 256).
     #[arg(long, allow_hyphen_values = true, value_parser = parse_threads)]
     threads: Option<usize>,
@@ -618,13 +618,13 @@ fn render_command(args: &RenderArgs) -> Result<(), CliError> {
 
 fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     let settings = &mut scene.render;
-    if let Some(w) = args.width {
+    if let Some(w) = args.frame.width {
         settings.width = w;
     }
-    if let Some(h) = args.height {
+    if let Some(h) = args.frame.height {
         settings.height = h;
     }
-    if let Some(s) = args.samples {
+    if let Some(s) = args.frame.samples {
         settings.samples = s;
     }
     if let Some(s) = args.seed {
@@ -645,7 +645,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     if let Some(aovs) = &args.aov {
         settings.aovs = aovs.0.iter().map(|a| a.name().to_string()).collect();
     }
-    if args.width.is_some() || args.height.is_some() {
+    if args.frame.width.is_some() || args.frame.height.is_some() {
         let pixels = u64::from(settings.width) * u64::from(settings.height);
         if pixels > MAX_PIXELS {
             return Err(CliError::TooManyPixels { pixels });
@@ -703,7 +703,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     };
     let (film, stats) = match args.time {
         Some(budget) => {
-            let cap = args.samples.unwrap_or(MAX_SAMPLES);
+            let cap = args.frame.samples.unwrap_or(MAX_SAMPLES);
             let run = prism::render::render_within(&mut render_scene, &options, budget, cap)?;
             scene.render.samples = render_scene.settings.samples;
             report(&format_args!(
@@ -879,17 +879,17 @@ fn merge_command(args: &MergeArgs) -> Result<(), CliError> {
 
 fn slurm_command(args: &SlurmArgs) -> Result<(), CliError> {
     use prism::farm::slurm::{FarmJob, parse_job_id};
-    let mut scene = load_and_warn(&args.scene, &args.limits)?;
+    let scene = load_and_warn(&args.scene, &args.limits)?;
     let mut render_args = Vec::new();
-    for (flag, value) in [("--width", args.width), ("--height", args.height), ("--samples", args.samples)] {
+    for (flag, value) in
+        [("--width", args.frame.width), ("--height", args.frame.height), ("--samples", args.frame.samples)]
+    {
         if let Some(v) = value {
             render_args.extend([flag.to_string(), v.to_string()]);
         }
     }
-    if let Some(h) = args.height {
-        scene.render.height = h;
-    }
-    let (width, height) = (args.width.unwrap_or(scene.render.width), scene.render.height);
+    let width = args.frame.width.unwrap_or(scene.render.width);
+    let height = args.frame.height.unwrap_or(scene.render.height);
     if u64::from(width) * u64::from(height) > MAX_PIXELS {
         return Err(CliError::TooManyPixels { pixels: u64::from(width) * u64::from(height) });
     }
