@@ -400,6 +400,49 @@ mod tests {
         assert!(gathers > 200, "most frusta gather few enough primitives ({gathers})");
     }
 
+    /// Rays whose slab distances are NaN in f32 (a NaN origin or direction, an origin so far
+    /// away that origin / direction overflows) enter the tree's empty lanes; the traversal
+    /// must skip them instead of reading a primitive that does not exist (the panic of an
+    /// `ior` of 1e17, whose refracted rays left for 1e30 and beyond), and still find what a
+    /// brute-force loop finds.
+    #[test]
+    fn non_finite_and_far_rays_never_reach_an_empty_lane() {
+        // 13 spheres: nodes with empty lanes.
+        let primitives: Vec<Primitive> = (0..13)
+            .map(|i| primitive(Arc::new(Sphere { center: DVec3::new(f64::from(i) * 2.0, 0.0, 0.0), radius: 0.5 })))
+            .collect();
+        let accel = Accel::build(&primitives);
+        let brute = |ray: &Ray| {
+            let hits = primitives.iter().enumerate();
+            let hits = hits.filter_map(|(i, p)| p.shape.intersect(ray, 1e-6, f64::INFINITY).map(|h| (i as u32, h.t)));
+            hits.min_by(|a, b| a.1.total_cmp(&b.1))
+        };
+        let non_finite = [
+            Ray { origin: DVec3::NAN, direction: DVec3::X },
+            Ray { origin: DVec3::ZERO, direction: DVec3::NAN },
+            Ray { origin: DVec3::new(f64::INFINITY, 0.0, 0.0), direction: -DVec3::X },
+        ];
+        for ray in non_finite {
+            assert_eq!(brute(&ray), None);
+            assert!(accel.closest(&primitives, &ray, 1e-6, f64::INFINITY, |_| true).is_none(), "{ray:?}");
+            assert!(!accel.occluded(&primitives, &ray, 1e-6, f64::INFINITY, |_| true), "{ray:?}");
+        }
+        // So far away that f32 cannot tell the spheres apart: whatever is found is a real
+        // primitive (at 1e30 the f64 hit itself is luck).
+        let far = 1e30;
+        let far_rays = [
+            Ray { origin: DVec3::new(-far, 0.0, 0.0), direction: DVec3::X },
+            Ray { origin: DVec3::new(far, far, far), direction: DVec3::new(-1.0, -1.0, -1.0).normalize() },
+            Ray { origin: DVec3::new(-far, 1e-3, 0.0), direction: DVec3::new(1.0, 1e-31, 0.0).normalize() },
+        ];
+        for ray in far_rays {
+            if let Some(hit) = accel.closest(&primitives, &ray, 1e-6, f64::INFINITY, |_| true) {
+                assert!((hit.primitive as usize) < primitives.len(), "{ray:?}");
+            }
+            accel.occluded(&primitives, &ray, 1e-6, f64::INFINITY, |_| true);
+        }
+    }
+
     /// Random shadow frusta: every shadow segment (from `skip` along the ray to the light
     /// sample) lies inside every face, and a plane with all vertices on one side never
     /// separates two of its points.

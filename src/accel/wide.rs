@@ -182,7 +182,7 @@ pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
                     if child & LEAF == 0 {
                         let p: *const Node = nodes.as_ptr().wrapping_add(child as usize);
                         kernels.prefetch(p.cast(), std::mem::size_of::<BoxLanes>());
-                    } else {
+                    } else if child != EMPTY {
                         leaf.prefetch(kernels, child & !LEAF);
                     }
                 }
@@ -196,6 +196,10 @@ pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
                 current = next;
                 continue;
             }
+        } else if current == EMPTY {
+            // An empty lane is never entered by a ray the slab test can judge, but a ray whose
+            // slab distances are NaN (a non-finite origin or direction, or an origin so far
+            // away that origin / direction overflows f32) enters every lane: nothing is here.
         } else if leaf.visit(kernels, current & !LEAF, &mut t_max) {
             return true;
         }
