@@ -45,7 +45,7 @@ pub const BYTES_PER_INSTANCE: u64 = 1024;
 
 /// An estimate over the memory budget.
 #[derive(Debug, Clone, thiserror::Error, PartialEq, Eq)]
-#[error("{what} needs about {} MiB, over the memory budget of {} MiB (--max-memory)", mib(*.estimate), mib(*.budget))]
+#[error("{what} needs about {} MiB{}, over the memory budget of {} MiB (--max-memory)", mib(*.estimate), spent_before(*.spent), mib(*.budget))]
 pub struct OverBudget {
     /// What would be allocated (`a 16384 x 16384 film`, `texture `wood.png``).
     pub what: String,
@@ -53,6 +53,17 @@ pub struct OverBudget {
     pub estimate: u64,
     /// The budget in bytes.
     pub budget: u64,
+    /// Bytes already taken out of the same budget by what was loaded before (meshes and
+    /// images of one load share one budget; 0 for a single allocation's check).
+    pub spent: u64,
+}
+
+fn spent_before(spent: u64) -> String {
+    if spent == 0 {
+        String::new()
+    } else {
+        format!(" on top of {} MiB for the meshes and images loaded before it", mib(spent))
+    }
 }
 
 fn mib(bytes: u64) -> u64 {
@@ -80,7 +91,7 @@ impl MemoryBudget {
 
     /// Ok when `estimate` bytes fit the budget.
     pub fn check(self, what: impl FnOnce() -> String, estimate: u64) -> Result<(), OverBudget> {
-        if estimate > self.0 { Err(OverBudget { what: what(), estimate, budget: self.0 }) } else { Ok(()) }
+        if estimate > self.0 { Err(OverBudget { what: what(), estimate, budget: self.0, spent: 0 }) } else { Ok(()) }
     }
 
     /// The estimated bytes of a `width` × `height` film with `channels` channels in all

@@ -79,9 +79,13 @@ const BYTES_PER_TRIANGLE: u64 = 450;
 impl MeshBuilder {
     /// The memory building this mesh and its BVH takes, in bytes (an upper estimate).
     pub fn estimate_bytes(&self) -> u64 {
-        (self.positions.len() as u64)
-            .saturating_mul(BYTES_PER_VERTEX)
-            .saturating_add((self.triangles.len() as u64).saturating_mul(BYTES_PER_TRIANGLE))
+        Self::estimate_for(self.positions.len() as u64, self.triangles.len() as u64)
+    }
+
+    /// The memory building a mesh of `vertices` and `triangles` takes, in bytes (an upper
+    /// estimate), before its builder exists.
+    pub fn estimate_for(vertices: u64, triangles: u64) -> u64 {
+        vertices.saturating_mul(BYTES_PER_VERTEX).saturating_add(triangles.saturating_mul(BYTES_PER_TRIANGLE))
     }
 
     /// Checks indices and values: every index in range, every position finite, attribute

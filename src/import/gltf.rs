@@ -630,7 +630,11 @@ impl Importer<'_> {
             return Ok(None);
         }
         let builder = MeshBuilder { positions, normals, uvs, tangents, triangles };
-        match builder.build_within(self.textures.budget()) {
+        let count = builder.triangles.len();
+        self.textures
+            .reserve(|| format!("{what}: {count} triangles with their BVH"), builder.estimate_bytes())
+            .map_err(|e| ImportError::new(self.path, ImportErrorKind::OverBudget(e)))?;
+        match builder.build_within(MemoryBudget::UNLIMITED) {
             Ok(d) => Ok(Some(Arc::new(d))),
             Err(e @ MeshError::NoTriangles) => {
                 self.model.warnings.push(format!("{what}: {e}; skipped"));

@@ -238,6 +238,9 @@ pub enum ImportErrorKind {
     /// values, faces that do not fit their data): the sentence names what and where.
     #[error("{0}")]
     Invalid(String),
+    /// A mesh or image would exceed the memory budget the load's meshes and images share.
+    #[error("{0}")]
+    OverBudget(#[from] crate::limits::OverBudget),
 }
 
 /// Imports `path` by its extension (`.obj`, `.gltf`, `.glb`, `.ply`, `.ply.gz`).
@@ -252,7 +255,7 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| match ext.as_str() {
         "obj" => obj::import(path, options, textures),
         "gltf" | "glb" => gltf::import(path, textures),
-        "ply" => ply::import(path, options, textures.access()),
+        "ply" => ply::import(path, options, textures),
         _ => Err(ImportError::new(path, ImportErrorKind::UnknownFormat { extension: ext.clone() })),
     }));
     result.unwrap_or_else(|_| Err(ImportError::new(path, ImportErrorKind::ImporterPanicked)))

@@ -15,6 +15,7 @@ use super::{ImportError, ImportErrorKind, ImportOptions, Model, ModelNode, Model
 use crate::color::Rgb;
 use crate::files::{FileAccess, FileError, FileKind, shown_path};
 use crate::geometry::mesh::{MeshBuilder, MeshError, MeshShape, NormalMap, SurfaceMaps};
+use crate::limits::MemoryBudget;
 use crate::material::{Emission, Material, Mtl, SurfaceModel};
 use crate::texture::{ColorSpace, TextureRef, TextureStore};
 
@@ -91,7 +92,11 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
         let material = key.and_then(|i| materials.get(i));
         let part_name =
             material.map_or_else(|| "faces without a material".into(), |m| format!("material `{}`", m.name));
-        let data = match part.builder.build_within(textures.budget()) {
+        let count = part.builder.triangles.len();
+        textures
+            .reserve(|| format!("{part_name}: {count} triangles with their BVH"), part.builder.estimate_bytes())
+            .map_err(|e| ImportError::new(path, ImportErrorKind::OverBudget(e)))?;
+        let data = match part.builder.build_within(MemoryBudget::UNLIMITED) {
             Ok(d) => Arc::new(d),
             Err(MeshError::NoTriangles) => {
                 warnings.push(format!("{part_name}: only zero-area faces; skipped"));

@@ -17,9 +17,10 @@ use glam::{DAffine3, DVec3, Vec2, Vec3};
 
 use super::triangulate::triangulate;
 use super::{ImportError, ImportErrorKind, ImportOptions, Model, ModelNode, ModelPart};
-use crate::files::{FileAccess, FileKind, MAX_MESH_BYTES};
+use crate::files::{FileKind, MAX_MESH_BYTES};
 use crate::geometry::mesh::{MeshBuilder, MeshError, MeshShape};
 use crate::material::Material;
+use crate::texture::TextureStore;
 
 /// How the data after the header is encoded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -170,10 +171,18 @@ impl PlyData {
     }
 }
 
-/// Reads a PLY file (`.ply` or `.ply.gz`) through `access`.
-pub fn import(path: &Path, options: &ImportOptions, access: &FileAccess) -> Result<Model, ImportError> {
-    let bytes = access.read(path, FileKind::Mesh).map_err(|e| ImportError::new(path, ImportErrorKind::File(e)))?;
+/// Reads a PLY file (`.ply` or `.ply.gz`) through `textures`' file access, reserving its
+/// mesh's memory out of the load's budget before building it.
+pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore) -> Result<Model, ImportError> {
+    let bytes =
+        textures.access().read(path, FileKind::Mesh).map_err(|e| ImportError::new(path, ImportErrorKind::File(e)))?;
     let data = parse(&bytes, path)?;
+    drop(bytes);
+    let triangles: u64 = data.polygons().map(|p| p.len().saturating_sub(2) as u64).sum();
+    let estimate = MeshBuilder::estimate_for(data.positions.len() as u64, triangles);
+    textures
+        .reserve(|| format!("{triangles} triangles with their BVH"), estimate)
+        .map_err(|e| ImportError::new(path, ImportErrorKind::OverBudget(e)))?;
     model(&data, options, path)
 }
 

@@ -326,8 +326,10 @@ pub struct TextureStore {
     textures: HashMap<(PathBuf, Option<u32>, ColorSpace), Arc<Texture>>,
     /// How image files (and, through the importers, mesh files) are read.
     access: FileAccess,
-    /// What one decoded image may cost.
+    /// What all decoded images and built meshes of one load may cost together.
     budget: MemoryBudget,
+    /// Bytes reserved so far (estimates) by decoded images and built meshes.
+    spent: u64,
 }
 
 impl Default for TextureStore {
@@ -342,9 +344,10 @@ impl TextureStore {
         Self::default()
     }
 
-    /// An empty store reading files through `access`, each decode checked against `budget`.
+    /// An empty store reading files through `access`; all decodes and mesh builds (see
+    /// [`TextureStore::reserve`]) share `budget`.
     pub fn with_limits(access: FileAccess, budget: MemoryBudget) -> Self {
-        Self { textures: HashMap::new(), access, budget }
+        Self { textures: HashMap::new(), access, budget, spent: 0 }
     }
 
     /// How files are read (the importers read mesh files through it too).
@@ -352,9 +355,29 @@ impl TextureStore {
         &self.access
     }
 
-    /// The memory budget of one decode.
+    /// What remains of the memory budget after the images and meshes reserved so far.
     pub fn budget(&self) -> MemoryBudget {
-        self.budget
+        MemoryBudget(self.budget.0.saturating_sub(self.spent))
+    }
+
+    /// Takes `estimate` bytes for `what` (a decoded image, a mesh with its BVH) out of the
+    /// budget that every image and mesh of the load shares, so that many files that each fit
+    /// cannot together exceed it. Nothing is taken when it does not fit.
+    pub fn reserve(&mut self, what: impl FnOnce() -> String, estimate: u64) -> Result<(), OverBudget> {
+        let total = self.spent.saturating_add(estimate);
+        if total > self.budget.0 {
+            return Err(OverBudget { what: what(), estimate, budget: self.budget.0, spent: self.spent });
+        }
+        self.spent = total;
+        Ok(())
+    }
+
+    /// An error from a check against [`TextureStore::budget`] (what remains), restated
+    /// against the whole budget and what was spent before.
+    pub fn restate(&self, mut error: OverBudget) -> OverBudget {
+        error.budget = self.budget.0;
+        error.spent = self.spent;
+        error
     }
 
     /// The texture decoded from the image file at `path`.
@@ -365,8 +388,13 @@ impl TextureStore {
             return Ok(t.clone());
         }
         let bytes = self.access.read(path, FileKind::Image)?;
-        let image = decode_image(path, &bytes, self.budget)?;
+        let image = match decode_image(path, &bytes, self.budget()) {
+            Err(TextureError::OverBudget(e)) => return Err(TextureError::OverBudget(self.restate(e))),
+            other => other?,
+        };
         drop(bytes);
+        let estimate = decode_estimate(image.width(), image.height(), u64::from(image.color().bytes_per_pixel()));
+        self.reserve(|| format!("image `{}` ({} x {})", shown_path(path), image.width(), image.height()), estimate)?;
         let texture = Arc::new(Texture::from_image(image, space));
         self.textures.insert(key, texture.clone());
         Ok(texture)
@@ -374,19 +402,24 @@ impl TextureStore {
 
     /// The texture for image `index` of the glTF file at `canonical`, decoding it with
     /// `decode` (width, height, RGBA8 texels) the first time; `decode`'s error is returned
-    /// as is.
+    /// as is, and an image over the memory budget left (see [`TextureStore::reserve`]) as `E::from`.
     pub fn load_embedded<E>(
         &mut self,
         canonical: &Path,
         index: u32,
         space: ColorSpace,
         decode: impl FnOnce() -> Result<(usize, usize, Vec<[u8; 4]>), E>,
-    ) -> Result<Arc<Texture>, E> {
+    ) -> Result<Arc<Texture>, E>
+    where
+        E: From<OverBudget>,
+    {
         let key = (canonical.to_path_buf(), Some(index), space);
         if let Some(t) = self.textures.get(&key) {
             return Ok(t.clone());
         }
         let (width, height, texels) = decode()?;
+        let estimate = decode_estimate(width as u32, height as u32, 4);
+        self.reserve(|| format!("image {index} of `{}` ({width} x {height})", shown_path(canonical)), estimate)?;
         let texture = Arc::new(Texture::from_rgba8(width, height, texels, space));
         self.textures.insert(key, texture.clone());
         Ok(texture)
@@ -586,6 +619,25 @@ pub fn uv_footprint(width: f64, uv_density: f64, area_scale: f64, cosine: f64) -
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Images and meshes of one load share one budget: a reservation that fits alone but not
+    /// after the others is refused, naming the whole budget and what was spent before.
+    #[test]
+    fn reservations_share_one_budget() {
+        let mut store = TextureStore::with_limits(FileAccess::unrestricted(), MemoryBudget(100 << 20));
+        store.reserve(|| "a".into(), 60 << 20).unwrap();
+        assert_eq!(store.budget(), MemoryBudget(40 << 20));
+        let e = store.reserve(|| "b".into(), 50 << 20).unwrap_err();
+        assert_eq!((e.estimate, e.budget, e.spent), (50 << 20, 100 << 20, 60 << 20));
+        assert_eq!(
+            e.to_string(),
+            "b needs about 50 MiB on top of 60 MiB for the meshes and images loaded before it, \
+             over the memory budget of 100 MiB (--max-memory)"
+        );
+        assert_eq!(store.budget(), MemoryBudget(40 << 20), "a refused reservation takes nothing");
+        store.reserve(|| "c".into(), 40 << 20).unwrap();
+        assert_eq!(store.budget(), MemoryBudget(0));
+    }
 
     fn checker(space: ColorSpace) -> Texture {
         // 4x4: black and white 1-texel checks.
