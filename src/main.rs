@@ -503,6 +503,18 @@ fn report(line: &dyn std::fmt::Display) {
     let _ = writeln!(std::io::stderr().lock(), "{line}");
 }
 
+/// Warns when a half-float EXR saturates values beyond half's range (`--half`).
+fn warn_beyond_half(film: &prism::film::Film, half: bool) {
+    let count = if half { output::values_beyond_half(film) } else { 0 };
+    if count > 0 {
+        report(&format!(
+            "warning: --half: {count} values exceed the largest half float ({}) and are written as {0}; \
+             write a float EXR (without --half) to keep them",
+            output::HALF_MAX
+        ));
+    }
+}
+
 /// Prints warnings to standard error, one `file:line:col: warning in `key`: ...` each.
 fn print_warnings(warnings: &[Diagnostic]) {
     for warning in warnings {
@@ -717,12 +729,20 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         }
         None => render_frame(&render_scene, &options)?,
     };
+    if stats.non_finite_samples > 0 {
+        report(&format!(
+            "warning: {} samples had a NaN or infinite radiance (products of extreme light, colour or \
+             emission values overflowed) and count as black",
+            stats.non_finite_samples
+        ));
+    }
     if stats.non_finite_pixels > 0 {
         report(&format!(
             "warning: {} pixels had a NaN or infinite value and are written black",
             stats.non_finite_pixels
         ));
     }
+    warn_beyond_half(&film, args.half);
     let image =
         output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };
     // Every output is encoded, then all are written at once: all of them or none.
@@ -866,6 +886,7 @@ fn merge_command(args: &MergeArgs) -> Result<(), CliError> {
     }
     let film = merge(&parts, args.limits.budget())?;
     let info = shared_info(&parts).ok_or(prism::farm::merge::MergeError::NoParts)?;
+    warn_beyond_half(&film, args.half);
     let image = output::ImageSettings { exposure: info.exposure, tone_map: info.tone_map, exr_half: args.half };
     let mut files = Vec::new();
     for path in &args.output {

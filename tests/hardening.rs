@@ -490,6 +490,76 @@ fn values_that_overflow_are_refused_at_load() {
     }
 }
 
+/// Every value of every channel of an EXR (beauty and all layers, float or half).
+fn exr_values(path: &Path) -> Vec<(String, f32)> {
+    use exr::prelude::{FlatSamples, read_all_flat_layers_from_file};
+    let image = read_all_flat_layers_from_file(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut values = Vec::new();
+    for layer in &image.layer_data {
+        for channel in &layer.channel_data.list {
+            let name = channel.name.to_string();
+            let samples: Vec<f32> = match &channel.sample_data {
+                FlatSamples::F16(v) => v.iter().map(|h| h.to_f32()).collect(),
+                FlatSamples::F32(v) => v.clone(),
+                FlatSamples::U32(v) => v.iter().map(|&u| u as f32).collect(),
+            };
+            values.extend(samples.into_iter().map(|v| (name.clone(), v)));
+        }
+    }
+    values
+}
+
+/// Extreme but accepted values (colours at 1e30, intensities at 1e9, several lights, an
+/// emitter at 1e30) give radiance beyond f32's range: no value of any channel of the EXR,
+/// float or half, beauty or layer, is infinite or NaN, under both integrators, and a warning
+/// names what happened to the pixels that overflowed.
+#[test]
+fn extreme_accepted_values_never_write_inf_or_nan() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut scene = String::from(
+        "[camera]\nposition = [0, 0, -6]\n[render]\nsamples = 4\n\
+         [[object]]\nshape = \"sphere\"\nmaterial = { color = [1e30, 1e30, 1e30] }\n\
+         [[object]]\nshape = \"sphere\"\ncenter = [2, 0, 0]\nradius = 0.5\n\
+         material = { color = [1, 1, 1], emission = [1e30, 1e30, 1e30] }\n",
+    );
+    for i in 0..6 {
+        scene.push_str(&format!(
+            "[[light]]\nkind = \"point\"\nposition = [{}, 0.3, -1.5]\ncolor = [1e30, 1e30, 1e30]\nintensity = 1e9\n",
+            f64::from(i - 3) * 0.3
+        ));
+    }
+    std::fs::write(dir.path().join("scene.toml"), &scene).unwrap();
+    let all = "albedo,normal,depth,position,uv,object_id,material_id,variance,samples";
+    for integrator in ["classic", "path"] {
+        for half in [false, true] {
+            let exr = dir.path().join(format!("{integrator}-{half}.exr"));
+            let mut c = prism();
+            c.current_dir(dir.path()).args([
+                "render",
+                "scene.toml",
+                "-o",
+                "out.png",
+                "--width",
+                "48",
+                "--height",
+                "36",
+            ]);
+            c.args(["--integrator", integrator, "--aov", all, "--exr"]).arg(&exr);
+            if half {
+                c.arg("--half");
+            }
+            let out = run(c);
+            assert!(out.status.success(), "{integrator} half={half}: {}", stderr(&out));
+            let values = exr_values(&exr);
+            assert!(values.len() > 48 * 36 * 3, "{integrator}: {} values", values.len());
+            let bad: Vec<_> = values.iter().filter(|(_, v)| !v.is_finite()).take(5).collect();
+            assert!(bad.is_empty(), "{integrator} half={half}: non-finite values {bad:?}");
+            let err = stderr(&out);
+            assert!(err.contains("warning"), "{integrator} half={half}: no warning for overflowing pixels:\n{err}");
+        }
+    }
+}
+
 /// SIGINT delivered to `prism render` while it writes its outputs (a temporary file is
 /// already there): the temporaries are removed, and `-o` and `--exr` are both written or
 /// neither. Tried until one signal lands mid-write (the window is a few milliseconds).
@@ -587,6 +657,48 @@ fn meshes_and_instances_are_checked_against_the_memory_budget() {
     assert_fails(&run(c), &["grid.obj", "180000 triangles with their BVH", "MiB", "--max-memory"]);
     let mut c = render(dir.path(), "grid.toml");
     c.args(["--max-memory", "256M"]);
+    let out = run(c);
+    assert!(out.status.success(), "{}", stderr(&out));
+
+    // The same grid as PLY is checked the same way.
+    let mut ply = format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n\
+         element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        (n + 1) * (n + 1),
+        n * n
+    );
+    for y in 0..=n {
+        for x in 0..=n {
+            ply.push_str(&format!("{x} {y} 0\n"));
+        }
+    }
+    for y in 0..n {
+        for x in 0..n {
+            let i = y * (n + 1) + x;
+            ply.push_str(&format!("4 {i} {} {} {}\n", i + 1, i + n + 2, i + n + 1));
+        }
+    }
+    std::fs::write(dir.path().join("grid.ply"), ply).unwrap();
+    std::fs::write(dir.path().join("ply.toml"), "[[object]]\nshape = \"mesh\"\nfile = \"grid.ply\"\n").unwrap();
+    let mut c = render(dir.path(), "ply.toml");
+    c.args(["--max-memory", "32M"]);
+    assert_fails(&run(c), &["grid.ply", "180000 triangles with their BVH", "MiB", "--max-memory"]);
+
+    // Three files of that grid: each fits 200 MiB, all three together do not. The third is
+    // refused, with what the first two took.
+    let mut three = String::new();
+    for name in ["a", "b", "c"] {
+        std::fs::copy(dir.path().join("grid.obj"), dir.path().join(format!("grid_{name}.obj"))).unwrap();
+        three.push_str(&format!("[[object]]\nshape = \"mesh\"\nfile = \"grid_{name}.obj\"\n"));
+    }
+    std::fs::write(dir.path().join("three.toml"), three).unwrap();
+    let mut c = render(dir.path(), "three.toml");
+    c.args(["--max-memory", "200M"]);
+    let out = run(c);
+    assert_fails(&out, &["grid_c.obj", "180000 triangles", "on top of", "loaded before it", "--max-memory"]);
+    assert!(!stderr(&out).contains("grid_a.obj") && !stderr(&out).contains("grid_b.obj"), "{}", stderr(&out));
+    let mut c = render(dir.path(), "three.toml");
+    c.args(["--max-memory", "300M"]);
     let out = run(c);
     assert!(out.status.success(), "{}", stderr(&out));
 

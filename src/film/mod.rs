@@ -61,7 +61,7 @@ pub enum Aov {
     /// World-space unit shading normal of the first visible surface, facing the camera.
     Normal,
     /// Distance from the camera to the first visible surface along the camera ray (scene
-    /// units; infinite where the ray escapes).
+    /// units; the largest finite f32 where the ray escapes).
     Depth,
     /// World-space position of the first visible surface.
     Position,

@@ -373,7 +373,7 @@ pub fn encode(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Vec<
             let pixel = |p: Vec2<usize>| film.pixels[p.y() * w + p.x()];
             let attributes = LayerAttributes::named("beauty");
             let written = if settings.exr_half {
-                let channels = SpecificChannels::rgb(|p| pixel(p).map(f16::from_f32).into());
+                let channels = SpecificChannels::rgb(|p| pixel(p).map(half_float).into());
                 let layer = Layer::new((w, h), attributes, Encoding::SMALL_LOSSLESS, channels);
                 Image::from_layer(layer).write().to_buffered(&mut bytes)
             } else {
@@ -412,7 +412,7 @@ pub fn encode(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Vec<
 fn encode_layered_exr(film: &Film, half: bool, bytes: &mut Cursor<Vec<u8>>) -> exr::error::UnitResult {
     use exr::prelude::*;
     let samples = |values: Vec<f32>| {
-        if half { FlatSamples::F16(values.into_iter().map(f16::from_f32).collect()) } else { FlatSamples::F32(values) }
+        if half { FlatSamples::F16(values.into_iter().map(half_float).collect()) } else { FlatSamples::F32(values) }
     };
     let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
     for (c, name) in ["R", "G", "B"].into_iter().enumerate() {
@@ -432,6 +432,23 @@ fn encode_layered_exr(film: &Film, half: bool, bytes: &mut Cursor<Vec<u8>>) -> e
     let layer = Layer::new(size, attributes, Encoding::SMALL_LOSSLESS, AnyChannels::sort(channels));
     let frame = IntegerBounds::new((0, 0), (film.frame.0 as usize, film.frame.1 as usize));
     Image::new(ImageAttributes::new(frame), layer).write().to_buffered(bytes)
+}
+
+/// The largest finite half float.
+pub const HALF_MAX: f32 = 65504.0;
+
+/// `value` as a half float, saturating at `±HALF_MAX`: a value beyond half's range would
+/// otherwise be written as an infinity (the caller warns, see [`values_beyond_half`]).
+fn half_float(value: f32) -> exr::prelude::f16 {
+    exr::prelude::f16::from_f32(value.clamp(-HALF_MAX, HALF_MAX))
+}
+
+/// How many of the film's values (beauty and layers) lie beyond half's range and are written
+/// as `±HALF_MAX` in a half-float EXR.
+pub fn values_beyond_half(film: &Film) -> usize {
+    let beyond = |v: &f32| v.abs() > HALF_MAX;
+    film.pixels.iter().flatten().filter(|v| beyond(v)).count()
+        + film.layers.iter().map(|l| l.data.iter().filter(|v| beyond(v)).count()).sum::<usize>()
 }
 
 /// Writes the film to `path` (format from the extension), atomically.

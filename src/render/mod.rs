@@ -81,6 +81,9 @@ pub struct RenderStats {
     /// Pixels whose radiance was NaN or infinite, written as black (the scene's loader
     /// rejects the inputs known to cause them; this is the last line of defence).
     pub non_finite_pixels: u64,
+    /// Samples whose radiance was NaN or infinite, counted as black (see
+    /// [`PixelStats::non_finite_samples`]).
+    pub non_finite_samples: u64,
     /// True when `RenderOptions::cancel` stopped the render before every tile was done.
     pub cancelled: bool,
     /// Samples per pixel over the rendered pixels: fewest, median, 90th percentile, most
@@ -269,6 +272,9 @@ pub struct PixelStats {
     pub variance: [f32; 3],
     /// Estimated relative error of the mean luminance (0 with one sample).
     pub relative_error: f32,
+    /// Samples whose radiance was NaN or infinite (overflow of extreme but accepted values),
+    /// counted as black.
+    pub non_finite_samples: u32,
 }
 
 /// Renders `region` of the frame with `integrator` into a film of that region.
@@ -433,6 +439,7 @@ fn render_samples<I: Integrator>(
     let mut film = Film::for_region(region, (width, height), &options.aovs);
     let mut sums = if want_sums { vec![PixelSums::default(); region.pixel_count()] } else { Vec::new() };
     let mut non_finite = 0;
+    let mut non_finite_samples = 0;
     let mut counts = Vec::new();
     let mut squared_errors = 0.0;
     for tile in tiles {
@@ -451,6 +458,7 @@ fn render_samples<I: Integrator>(
                     [0.0; 3]
                 };
                 let estimate = tile.estimates.get(i).copied().unwrap_or_default();
+                non_finite_samples += u64::from(estimate.non_finite_samples);
                 if !tile.estimates.is_empty() {
                     counts.push(estimate.samples);
                     squared_errors += f64::from(estimate.relative_error).powi(2);
@@ -466,6 +474,7 @@ fn render_samples<I: Integrator>(
         total_rays: rays.load(Ordering::Relaxed),
         cancelled: cancelled.load(Ordering::Relaxed),
         non_finite_pixels: non_finite,
+        non_finite_samples,
         samples: SampleSpread::of(&mut counts),
         noise,
     };
@@ -529,7 +538,7 @@ fn write_aovs(film: &mut Film, index: usize, hit: Option<&FirstHit>, estimate: &
             (Aov::Normal, Some(h)) => h.normal.to_array(),
             (Aov::Position, Some(h)) => h.position.to_array(),
             (Aov::Depth, Some(h)) => [h.depth, 0.0, 0.0],
-            (Aov::Depth, None) => [f64::INFINITY, 0.0, 0.0],
+            (Aov::Depth, None) => [f64::from(f32::MAX), 0.0, 0.0],
             (Aov::Uv, Some(h)) => [h.uv.x, h.uv.y, 0.0],
             (Aov::ObjectId, Some(h)) => [f64::from(h.primitive), 0.0, 0.0],
             (Aov::MaterialId, Some(h)) => [f64::from(h.material), 0.0, 0.0],
@@ -539,9 +548,16 @@ fn write_aovs(film: &mut Film, index: usize, hit: Option<&FirstHit>, estimate: &
             (Aov::Samples, _) => [f64::from(estimate.samples), 0.0, 0.0],
         };
         for (o, v) in out.iter_mut().zip(values) {
-            *o = v as f32;
+            *o = finite_f32(v);
         }
     }
+}
+
+/// `value` as the nearest finite f32: beyond f32's range it saturates at `±f32::MAX` (a
+/// variance of 1e60 from extreme but accepted radiance, for example); NaN becomes 0. No
+/// infinity or NaN ever reaches a layer of a written file.
+fn finite_f32(value: f64) -> f32 {
+    if value.is_nan() { 0.0 } else { value.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32 }
 }
 
 /// The mean of one pixel's samples: radiance, the first hit of its first sample that met a
@@ -625,6 +641,7 @@ pub fn render_pixel_samples<I: Integrator>(
     let mut rays = 0;
     let mut first_hit = None;
     let mut spread = PixelSpread::default();
+    let mut non_finite_samples = 0;
     let adaptive = settings.noise.filter(|_| range == (0..samples));
     let mut taken = range.len() as u32;
     for s in range {
@@ -646,10 +663,16 @@ pub fn render_pixel_samples<I: Integrator>(
         let sample = integrator.sample(&ray, stream);
         rays += sample.rays;
         first_hit = first_hit.or(sample.first_hit);
+        let radiance = if sample.radiance.is_finite() {
+            sample.radiance
+        } else {
+            non_finite_samples += 1;
+            DVec3::ZERO
+        };
         // Box-filtered samples weigh 1, so their weighted mean is the plain mean, bit for bit.
-        sum += weight * sample.radiance;
+        sum += weight * radiance;
         weights += weight;
-        spread.add(sample.radiance);
+        spread.add(radiance);
         if let Some(noise) = adaptive
             && (s + 1) % SAMPLE_BATCH == 0
             && s + 1 >= SAMPLE_BATCH * MIN_BATCHES
@@ -667,6 +690,7 @@ pub fn render_pixel_samples<I: Integrator>(
         samples: taken,
         variance: [variance.x as f32, variance.y as f32, variance.z as f32],
         relative_error: spread.relative_error() as f32,
+        non_finite_samples,
     };
     (PixelSample { radiance, first_hit, rays }, PixelSums { sum: sum.to_array(), weight: weights }, stats)
 }

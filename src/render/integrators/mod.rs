@@ -32,7 +32,8 @@ pub struct FirstHit {
 /// What an integrator returns for one camera ray.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PixelSample {
-    /// Radiance arriving along the ray (linear RGB; never NaN or infinite).
+    /// Radiance arriving along the ray (linear RGB). NaN or infinite only when extreme but
+    /// accepted inputs overflow; the scheduler counts such samples and drops them as black.
     pub radiance: DVec3,
     /// The first surface the ray met, `None` when it escaped.
     pub first_hit: Option<FirstHit>,

@@ -236,7 +236,9 @@ impl<'a> Path<'a> {
                 throughput /= survival;
             }
         }
-        let radiance = if radiance.is_finite() { radiance.max(DVec3::ZERO) } else { DVec3::ZERO };
+        // A non-finite estimate passes through for the scheduler to count and drop (with a
+        // warning naming the cause), not to vanish here in silence.
+        let radiance = if radiance.is_finite() { radiance.max(DVec3::ZERO) } else { radiance };
         PixelSample { radiance, first_hit, rays }
     }
 
