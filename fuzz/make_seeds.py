@@ -7,6 +7,7 @@ scene: every scenes/**/*.toml, with mesh, texture and include paths rewritten to
        the in-memory file system of fuzz/src/lib.rs holds.
 obj:   OBJ files joined to their first MTL library by the separator of fuzz/src/lib.rs.
 gltf:  small glTF/GLB files, external buffers and images inlined as data: URIs.
+ply:   small PLY files in every encoding (ASCII, binary LE/BE, gzip).
 image: a selector byte (index into IMAGE_EXTENSIONS) then a small image of each format.
 """
 import base64, json, os, re, shutil, struct, subprocess, sys, zlib
@@ -96,6 +97,35 @@ def gltfs():
             data = p.read_bytes()  # deliberately broken JSON: a seed as it is
         if len(data) < 64_000:
             put("gltf", name, data)
+
+
+def plys():
+    """Small PLY files in each encoding: ASCII, binary both byte orders, gzip; with normals,
+    uvs, colours, a quad, a pentagon and an unused element."""
+    import gzip
+    verts = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 1.5, 0.2)]
+    faces = [(0, 1, 2, 3), (3, 2, 4), (0, 1, 4, 2, 3)]
+    head = lambda fmt, extra="": (
+        f"ply\nformat {fmt} 1.0\ncomment fuzz seed\nelement vertex {len(verts)}\n"
+        "property float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
+        "property float nz\nproperty float s\nproperty float t\nproperty uchar red\nproperty uchar green\n"
+        f"property uchar blue\nelement face {len(faces)}\nproperty list uchar int vertex_indices\n{extra}end_header\n"
+    ).encode()
+    rows = [(*v, 0.0, 0.0, 1.0, v[0], v[1], 200, 100, 50) for v in verts]
+    ascii_body = "".join(" ".join(str(x) for x in r) + "\n" for r in rows)
+    ascii_body += "".join(f"{len(f)} " + " ".join(map(str, f)) + "\n" for f in faces)
+    ascii_ply = head("ascii") + ascii_body.encode()
+    put("ply", "quad_ascii.ply", ascii_ply)
+    for order, fmt in (("<", "binary_little_endian"), (">", "binary_big_endian")):
+        body = b"".join(struct.pack(order + "8f3B", *r) for r in rows)
+        body += b"".join(struct.pack(order + "B%di" % len(f), len(f), *f) for f in faces)
+        put("ply", f"quad_{fmt}.ply", head(fmt) + body)
+    put("ply", "quad_ascii.ply.gz", gzip.compress(ascii_ply, mtime=0))
+    extra = "element material 1\nproperty uchar alpha\n"
+    put("ply", "extra_element.ply", head("ascii", extra) + ascii_body.encode() + b"7\n")
+    for p in sorted((ROOT / "assets" / "ply").rglob("*.ply*")):
+        if p.stat().st_size < 64_000:
+            put("ply", p.name, p.read_bytes())
 
 
 def png(w, h, rgba):
@@ -191,7 +221,7 @@ def licences():
 if __name__ == "__main__":
     if OUT.exists():
         shutil.rmtree(OUT)
-    scenes(); scene_dictionary(); objs(); gltfs(); images(); licences()
+    scenes(); scene_dictionary(); objs(); gltfs(); plys(); images(); licences()
     for t in sorted(p for p in OUT.iterdir() if p.is_dir()):
         files = list(t.iterdir())
         print(t.name, len(files), "files", sum(f.stat().st_size for f in files), "bytes")

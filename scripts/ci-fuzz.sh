@@ -17,7 +17,7 @@ export CARGO_TERM_COLOR=never
 
 seconds=${FUZZ_SECONDS:-60}
 timeout=${FUZZ_TIMEOUT:-20}
-targets=(${FUZZ_TARGETS:-scene obj gltf image})
+targets=(${FUZZ_TARGETS:-scene obj gltf ply image})
 
 if ! command -v cargo-fuzz >/dev/null; then
     cargo install cargo-fuzz --locked

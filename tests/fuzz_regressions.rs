@@ -23,8 +23,13 @@ fn stored_fuzz_inputs_replay_without_a_panic() {
         PANICS.fetch_add(1, Ordering::SeqCst);
         previous(info);
     }));
-    let targets: [(&str, Body); 4] =
-        [("scene", harness::scene), ("obj", harness::obj), ("gltf", harness::gltf), ("image", harness::image)];
+    let targets: [(&str, Body); 5] = [
+        ("scene", harness::scene),
+        ("obj", harness::obj),
+        ("gltf", harness::gltf),
+        ("ply", harness::ply),
+        ("image", harness::image),
+    ];
     let fuzz = common::repo().join("fuzz");
     let mut failures = Vec::new();
     let mut replayed = 0;

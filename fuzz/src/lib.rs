@@ -112,6 +112,14 @@ pub fn gltf(data: &[u8]) {
     let _ = import(Path::new(name), &ImportOptions::default(), &mut textures);
 }
 
+/// PLY target: the bytes as `m.ply` (gzip-compressed when they start with gzip's magic
+/// bytes, as the importer decides), imported with smoothing through [`import`].
+pub fn ply(data: &[u8]) {
+    let access = FileAccess::in_memory([(PathBuf::from("m.ply"), data.to_vec())]);
+    let mut textures = TextureStore::with_limits(access, FUZZ_BUDGET);
+    let _ = import(Path::new("m.ply"), &ImportOptions { smooth_angle: Some(60.0) }, &mut textures);
+}
+
 /// The file extensions the image target chooses from (its first byte, modulo the count).
 pub const IMAGE_EXTENSIONS: [&str; 9] = ["png", "jpg", "hdr", "exr", "bmp", "tga", "tif", "pnm", "qoi"];
 
