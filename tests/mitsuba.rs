@@ -200,3 +200,50 @@ fn the_path_integrator_matches_mitsuba_on_every_equivalence_scene() {
         failures.join("\n")
     );
 }
+
+/// A textured material is exported only as a diffuse `bsdf` whose colour is the image
+/// itself; every other textured case is an error naming the key, and nothing is written.
+#[test]
+fn textured_materials_mitsuba_cannot_express_are_errors_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(root().join("assets/textures/tiles16.png"), dir.path().join("t.png")).unwrap();
+    let cases = [
+        ("color = 1.0, texture = \"t.png\", bsdf = { type = \"diffuse\" }", None),
+        ("color = 0.5, texture = \"t.png\", bsdf = { type = \"diffuse\" }", Some("material.color")),
+        ("color = 1.0, texture = \"t.png\", bsdf = { type = \"conductor\", metal = \"Au\" }", Some("material.texture")),
+        (
+            "color = 1.0, texture = { file = \"t.png\", scale = [2, 2] }, bsdf = { type = \"diffuse\" }",
+            Some("material.texture"),
+        ),
+        (
+            "color = 1.0, texture = { file = \"t.png\", wrap = [\"repeat\", \"clamp\"] }, bsdf = { type = \"diffuse\" }",
+            Some("material.texture.wrap"),
+        ),
+    ];
+    for (material, error) in cases {
+        let scene =
+            format!("[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = {{ {material} }}\n");
+        std::fs::write(dir.path().join("s.toml"), scene).unwrap();
+        let xml = dir.path().join("s.xml");
+        let _ = std::fs::remove_file(&xml);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_prism"))
+            .current_dir(dir.path())
+            .args(["export", "mitsuba", "s.toml", "-o", "s.xml"])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        match error {
+            None => {
+                assert!(out.status.success(), "{material}: {stderr}");
+                let text = std::fs::read_to_string(&xml).unwrap();
+                assert!(text.contains("<texture type=\"bitmap\" name=\"reflectance\">"), "{text}");
+                assert!(text.contains("value=\"t.png\""), "{text}");
+            }
+            Some(key) => {
+                assert!(!out.status.success(), "{material}: exported");
+                assert!(stderr.contains("s.toml:") && stderr.contains(key), "{material}: {stderr}");
+                assert!(!xml.exists(), "{material}: wrote {}", xml.display());
+            }
+        }
+    }
+}

@@ -10,8 +10,8 @@
 //! are a `blendbsdf` tree with the same weights. Meshes become binary PLY files beside the
 //! XML. Lights keep their physical units (W/sr, W/m^2, W/(m^2 sr)).
 //!
-//! What Mitsuba cannot express is an error naming the object, material or light: textures,
-//! glTF metallic-roughness (Mitsuba's `principled` is a different model), shapes without a
+//! What Mitsuba cannot express is an error naming the object, material or light: textures
+//! other than a diffuse colour image, glTF metallic-roughness (Mitsuba's `principled` is a different model), shapes without a
 //! Mitsuba form (torus, blob, superellipsoid, cone, a disc with a hole), spheres and
 //! cylinders under non-uniform scales, spot cones with a soft edge (Mitsuba's falls off
 //! linearly in angle, Prism's in a smoothstep of the cosine), POV-Ray's antialiasing methods.
@@ -89,7 +89,7 @@ pub fn export(scene: &Scene, source: &str, mesh_prefix: &str, xml_dir: &Path) ->
         );
     }
     lights(xml, scene, &mut errors);
-    objects(&mut out, scene, mesh_prefix, &mut errors);
+    objects(&mut out, scene, mesh_prefix, xml_dir, &mut errors);
     out.xml.push_str("</scene>\n");
     if errors.is_empty() {
         return Ok(out);
@@ -333,7 +333,7 @@ fn fit_plane(world_from_square: &DAffine3, extent: &prism_api::Aabb, orthographi
     )
 }
 
-fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mut Vec<Diagnostic>) {
+fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &Path, errors: &mut Vec<Diagnostic>) {
     let mut query =
         scene
             .world
@@ -365,7 +365,7 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, errors: &mu
             continue;
         }
         let (bsdf, emission) =
-            match bsdf_xml(&material.material).and_then(|bsdf| Ok((bsdf, emitter_xml(&material.material)?))) {
+            match bsdf_xml(&material.material, xml_dir).and_then(|bsdf| Ok((bsdf, emitter_xml(&material.material)?))) {
                 Ok(xml) => xml,
                 Err((key, message)) => {
                     errors.push(Diagnostic::new(at(&format!("material.{key}")), message));
@@ -470,10 +470,11 @@ fn ply(t: &TriangleList) -> Vec<u8> {
 
 type Problem = (&'static str, String);
 
-/// The `<bsdf>` of a material, indented for a shape.
-fn bsdf_xml(material: &crate::material::Material) -> Result<String, Problem> {
+/// The `<bsdf>` of a material, indented for a shape; image files are referred to relative to
+/// `xml_dir`.
+fn bsdf_xml(material: &crate::material::Material, xml_dir: &Path) -> Result<String, Problem> {
     if material.is_textured() {
-        return Err(("texture", "textures are not exported to Mitsuba yet".into()));
+        return textured_diffuse_xml(material, xml_dir).map(|bsdf| format!("    {bsdf}\n"));
     }
     if matches!(material.surface, crate::material::SurfaceModel::MetallicRoughness(_)) {
         return Err((
@@ -506,6 +507,50 @@ fn bsdf_xml(material: &crate::material::Material) -> Result<String, Problem> {
         parts.push((1.0 - total, "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0, 0, 0\"/></bsdf>".into()));
     }
     Ok(format!("    {}\n", blend(&parts)))
+}
+
+/// A diffuse `bsdf` material whose colour is an image file: Mitsuba's `diffuse` with a
+/// `bitmap` reflectance (sRGB decoded to linear, bilinear, the same wrap), as Prism's `path`
+/// integrator reads it (full resolution, bilinear, texel centres at half-integers, v down
+/// from the image's top row, as Mitsuba's bitmap). Other textured materials are errors
+/// naming the key: Mitsuba 3 has no texture product for a colour times an image, nor uv
+/// transforms that match KHR_texture_transform's order without a matrix.
+fn textured_diffuse_xml(material: &crate::material::Material, xml_dir: &Path) -> Result<String, Problem> {
+    use crate::material::{Scattering, SurfaceModel};
+    use crate::texture::Wrap;
+    if material.emission.texture.is_some() {
+        return Err(("emission_texture", "textured emission is not exported to Mitsuba".into()));
+    }
+    let SurfaceModel::Physical(physical) = &material.surface else {
+        return Err(("texture", "only a diffuse `bsdf` material's colour texture is exported to Mitsuba".into()));
+    };
+    let (Scattering::Diffuse, Some(texture)) = (&physical.scattering, &physical.texture) else {
+        return Err(("texture", "only a diffuse `bsdf` material's colour texture is exported to Mitsuba".into()));
+    };
+    if physical.color.0 != DVec3::ONE {
+        return Err((
+            "color",
+            "a textured colour is exported only as the image itself (`color` 1): Mitsuba 3 has no product of a colour and a bitmap".into(),
+        ));
+    }
+    if texture.image.is_some() {
+        return Err(("texture", "an image inside a glTF file is not exported to Mitsuba".into()));
+    }
+    if texture.offset != [0.0; 2] || texture.scale != [1.0; 2] || texture.rotation != 0.0 {
+        return Err(("texture", "a texture's offset, scale or rotation is not exported to Mitsuba".into()));
+    }
+    let wrap = match texture.wrap {
+        [Wrap::Repeat, Wrap::Repeat] => "repeat",
+        [Wrap::Clamp, Wrap::Clamp] => "clamp",
+        [Wrap::Mirror, Wrap::Mirror] => "mirror",
+        _ => return Err(("texture.wrap", "Mitsuba's bitmap has one wrap mode for both axes".into())),
+    };
+    let file = relative_path(Path::new(&texture.file), xml_dir).display().to_string();
+    // Diffuse reflection scatters alike on both sides under Prism's path integrator.
+    Ok(format!(
+        "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"{}\"/><string name=\"filter_type\" value=\"bilinear\"/><string name=\"wrap_mode\" value=\"{wrap}\"/><boolean name=\"raw\" value=\"false\"/></texture></bsdf></bsdf>",
+        escape(&file)
+    ))
 }
 
 /// `parts` (weights summing to 1) as a `blendbsdf` tree.
