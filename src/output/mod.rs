@@ -275,7 +275,7 @@ pub fn to_ldr(film: &Film, exposure: f64, op: ToneMap) -> RgbImage {
 
 /// An 8-bit preview of one AOV layer (for `--aov-png`): albedo through the sRGB curve,
 /// normals as `0.5 + 0.5 n`, depth and position scaled to the range of their finite
-/// values (near is bright), uv clipped to [0, 1] as red and green, ids as one hashed
+/// values (near is bright; escaped rays black), uv clipped to [0, 1] as red and green, ids as one hashed
 /// colour each (escaped rays black), variance as the standard deviation of luminance
 /// (scaled to its 99th percentile) and samples as a count (scaled to the largest). `None` when the film has no
 /// such layer.
@@ -284,8 +284,10 @@ pub fn layer_preview(film: &Film, aov: crate::film::Aov) -> Option<RgbImage> {
     let layer = film.layer(aov)?;
     let n = layer.channel_count();
     let pixels: Vec<&[f32]> = layer.data.chunks_exact(n).collect();
+    // Escaped rays' depth is f32::MAX (no file holds an infinity): not part of the range.
+    let seen = |v: f32| v.abs() < f32::MAX;
     let range = |values: &mut dyn Iterator<Item = f32>| {
-        values.filter(|v| v.is_finite()).fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+        values.filter(|&v| seen(v)).fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
     };
     let scale = |v: f32, (lo, hi): (f32, f32)| if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
     let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5).floor() as u8;
@@ -296,7 +298,7 @@ pub fn layer_preview(film: &Film, aov: crate::film::Aov) -> Option<RgbImage> {
         Aov::Normal => pixels.iter().map(|p| [0, 1, 2].map(|c| byte(0.5 + 0.5 * p[c]))).collect(),
         Aov::Depth => {
             let r = range(&mut pixels.iter().map(|p| p[0]));
-            pixels.iter().map(|p| [byte(if p[0].is_finite() { 1.0 - scale(p[0], r) } else { 0.0 }); 3]).collect()
+            pixels.iter().map(|p| [byte(if seen(p[0]) { 1.0 - scale(p[0], r) } else { 0.0 }); 3]).collect()
         }
         Aov::Position => {
             let ranges = [0, 1, 2].map(|c| range(&mut pixels.iter().map(|p| p[c])));
@@ -476,6 +478,17 @@ pub fn read_exr(path: &Path) -> Result<Film, OutputError> {
 mod tests {
     use super::*;
     use crate::film::{Aov, Region};
+
+    /// The depth preview spans the depths of surfaces seen (near bright, far dark); escaped
+    /// rays (depth f32::MAX) are black and do not stretch the range.
+    #[test]
+    fn depth_preview_ignores_escaped_rays() {
+        let mut film = Film::for_region(Region::full(3, 1), (3, 1), &[Aov::Depth]);
+        film.layers[0].data.copy_from_slice(&[1.0, 2.0, f32::MAX]);
+        let preview = layer_preview(&film, Aov::Depth).unwrap();
+        let shades: Vec<u8> = preview.pixels().map(|p| p.0[0]).collect();
+        assert_eq!(shades, [255, 0, 0]);
+    }
 
     /// A film of a region with AOV layers reads back with every channel named as
     /// compositors expect and its data window inside the full frame.
