@@ -8,6 +8,7 @@
 
 pub mod accel;
 pub mod builtin;
+pub mod checkpoint;
 pub mod color;
 pub mod diagnostics;
 pub mod export;

@@ -301,6 +301,19 @@ struct RenderArgs {
     /// increasing sample count (at most --samples when given) and keep the last complete one.
     #[arg(long, value_name = "DURATION", allow_hyphen_values = true, value_parser = parse_duration)]
     time: Option<std::time::Duration>,
+    /// Save the render's state every DURATION (`60s`, `10m`...) to the checkpoint file, at
+    /// the next tile; Ctrl-C then stops at the next tile and writes the checkpoint and the
+    /// image so far (a second Ctrl-C quits at once, writing nothing).
+    #[arg(long, value_name = "DURATION", allow_hyphen_values = true, value_parser = parse_duration)]
+    checkpoint: Option<std::time::Duration>,
+    /// The checkpoint file (an EXR; default: the --resume file, else
+    /// `<output stem>.checkpoint.exr`).
+    #[arg(long, value_name = "FILE")]
+    checkpoint_file: Option<PathBuf>,
+    /// Continue the render saved in this checkpoint (same scene and options, same --samples):
+    /// only the unfinished tiles are rendered, and the image is the uninterrupted render's.
+    #[arg(long, value_name = "FILE")]
+    resume: Option<PathBuf>,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -487,6 +500,23 @@ enum CliError {
     /// `--aov` without an EXR output or `--aov-png`: the layers would go nowhere.
     #[error("--aov: AOV layers are written into an OpenEXR output: add --exr FILE.exr (or -o FILE.exr) or --aov-png")]
     AovsNeedExr,
+    /// A checkpoint cannot be resumed or written.
+    #[error(transparent)]
+    Checkpoint(#[from] prism::checkpoint::CheckpointError),
+    /// `--time` with checkpoints.
+    #[error(
+        "--time cannot be combined with --checkpoint/--checkpoint-file/--resume: a time budget renders passes of different sample counts, whose sample patterns differ, so there is no one render to save and resume"
+    )]
+    CheckpointWithTime,
+    /// The checkpoint file is also an image output.
+    #[error("{}: the checkpoint file is also an image output; give another --checkpoint-file", path.display())]
+    CheckpointIsOutput {
+        /// The path given twice.
+        path: PathBuf,
+    },
+    /// Ctrl-C stopped a render with checkpoints: what was written and how to resume.
+    #[error("{0}")]
+    Interrupted(String),
     /// A folder for the output cannot be made.
     #[error("{}: cannot create the folder: {source}", path.display())]
     Io {
@@ -554,6 +584,10 @@ fn main() -> ExitCode {
     let result = std::panic::catch_unwind(move || run(cli));
     match result {
         Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(error @ CliError::Interrupted(_))) => {
+            report(&error);
+            ExitCode::from(130)
+        }
         Ok(Err(error)) => {
             report(&error);
             ExitCode::FAILURE
@@ -567,9 +601,16 @@ fn main() -> ExitCode {
     }
 }
 
+/// Set by a render with checkpoints: the first SIGINT sets this flag (the render stops at
+/// the next tile and saves) instead of exiting; it is taken, so a second SIGINT exits.
+static STOP_AT_NEXT_TILE: std::sync::Mutex<Option<std::sync::Arc<std::sync::atomic::AtomicBool>>> =
+    std::sync::Mutex::new(None);
+
 /// SIGINT and SIGTERM are blocked in every thread and taken by one thread that removes the
 /// temporary files being written and exits (130 for SIGINT, 143 for SIGTERM). Outputs are
-/// renamed into place under the same lock, so a signal leaves all of them or none.
+/// renamed into place under the same lock, so a signal leaves all of them or none. During a
+/// render with checkpoints the first SIGINT only asks the render to stop
+/// ([`STOP_AT_NEXT_TILE`]).
 #[cfg(unix)]
 fn remove_temps_on_signals() {
     // SAFETY: plain libc calls on a zeroed, then initialised, signal set owned here; the
@@ -587,7 +628,13 @@ fn remove_temps_on_signals() {
     let spawned = std::thread::Builder::new().name("signals".into()).spawn(move || {
         let mut signal: libc::c_int = 0;
         // SAFETY: `set` is a valid initialised signal set; `signal` a valid out-pointer.
-        if unsafe { libc::sigwait(&set, &mut signal) } == 0 {
+        while unsafe { libc::sigwait(&set, &mut signal) } == 0 {
+            let stop = STOP_AT_NEXT_TILE.lock().unwrap_or_else(std::sync::PoisonError::into_inner).take();
+            if let (libc::SIGINT, Some(stop)) = (signal, stop) {
+                stop.store(true, std::sync::atomic::Ordering::Relaxed);
+                report(&"\ninterrupted: finishing the tiles under way, then writing the checkpoint and the image so far (Ctrl-C again quits at once, writing nothing)");
+                continue;
+            }
             prism::output::remove_all_temps();
             std::process::exit(128 + signal);
         }
@@ -666,10 +713,16 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     let is_part = args.region.is_some() || args.tile.is_some() || args.sample_range.is_some();
     let mut outputs: Vec<PathBuf> = args.output.iter().chain(args.exr.iter()).cloned().collect();
     if is_part {
-        if let Some(flag) =
-            [(args.time.is_some(), "--time"), (args.aov.is_some(), "--aov"), (args.aov_png, "--aov-png")]
-                .into_iter()
-                .find_map(|(given, flag)| given.then_some(flag))
+        if let Some(flag) = [
+            (args.time.is_some(), "--time"),
+            (args.aov.is_some(), "--aov"),
+            (args.aov_png, "--aov-png"),
+            (args.checkpoint.is_some(), "--checkpoint"),
+            (args.checkpoint_file.is_some(), "--checkpoint-file"),
+            (args.resume.is_some(), "--resume"),
+        ]
+        .into_iter()
+        .find_map(|(given, flag)| given.then_some(flag))
         {
             return Err(CliError::PartWith { flag });
         }
@@ -691,6 +744,30 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     if args.aov.is_some() && !has_exr && !args.aov_png {
         return Err(CliError::AovsNeedExr);
     }
+    let checkpoint_path = if args.checkpoint.is_some() || args.checkpoint_file.is_some() || args.resume.is_some() {
+        if args.time.is_some() {
+            return Err(CliError::CheckpointWithTime);
+        }
+        let path = args.checkpoint_file.clone().or_else(|| args.resume.clone()).unwrap_or_else(|| {
+            let stem = outputs[0].file_stem().map_or("prism".into(), |s| s.to_string_lossy().into_owned());
+            outputs[0].with_file_name(format!("{stem}.checkpoint.exr"))
+        });
+        if outputs.contains(&path) {
+            return Err(CliError::CheckpointIsOutput { path });
+        }
+        output::check_writable(&path)?;
+        Some(path)
+    } else {
+        None
+    };
+    // The fingerprint is of the scene as loaded and overridden, before `prepare`.
+    let fresh_state = match checkpoint_path {
+        Some(_) => {
+            let aovs = prism::film::Aov::parse_list(scene.render.aovs.iter().map(String::as_str)).unwrap_or_default();
+            Some(prism::checkpoint::Checkpoint::new(&scene, &aovs)?)
+        }
+        None => None,
+    };
     let mut render_scene = prepare(&mut scene)?;
     // Validated by `prepare`, so the names are known.
     let aovs = prism::film::Aov::parse_list(scene.render.aovs.iter().map(String::as_str)).unwrap_or_default();
@@ -713,21 +790,40 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         aovs,
         ..Default::default()
     };
-    let (film, stats) = match args.time {
-        Some(budget) => {
-            let cap = args.frame.samples.unwrap_or(MAX_SAMPLES);
-            let run = prism::render::render_within(&mut render_scene, &options, budget, cap)?;
-            scene.render.samples = render_scene.settings.samples;
-            report(&format_args!(
-                "time budget {:.1} s: {} passes in {:.3} s, kept the last complete one ({} spp)",
-                budget.as_secs_f64(),
-                run.passes,
-                run.elapsed.as_secs_f64(),
-                scene.render.samples
-            ));
-            (run.film, run.stats)
+    let image =
+        output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };
+    let mut checkpoint_bytes = None;
+    let (film, stats) = match (fresh_state, &checkpoint_path) {
+        (Some(mut state), Some(path)) => {
+            if let Some(resume) = &args.resume {
+                state.resume_from(&args.limits.access()?, resume)?;
+                report(&format_args!(
+                    "resuming {}: {} of {} pixels are finished",
+                    resume.display(),
+                    state.pixels_done(),
+                    state.done.len()
+                ));
+            }
+            let run = render_with_checkpoints(&render_scene, &mut state, &options, args, path, &outputs, &image)?;
+            checkpoint_bytes = Some(encode_checkpoint(&state, path)?);
+            (state.film, run.stats)
         }
-        None => render_frame(&render_scene, &options)?,
+        _ => match args.time {
+            Some(budget) => {
+                let cap = args.frame.samples.unwrap_or(MAX_SAMPLES);
+                let run = prism::render::render_within(&mut render_scene, &options, budget, cap)?;
+                scene.render.samples = render_scene.settings.samples;
+                report(&format_args!(
+                    "time budget {:.1} s: {} passes in {:.3} s, kept the last complete one ({} spp)",
+                    budget.as_secs_f64(),
+                    run.passes,
+                    run.elapsed.as_secs_f64(),
+                    scene.render.samples
+                ));
+                (run.film, run.stats)
+            }
+            None => render_frame(&render_scene, &options)?,
+        },
     };
     if stats.non_finite_samples > 0 {
         report(&format!(
@@ -743,8 +839,6 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         ));
     }
     warn_beyond_half(&film, args.half);
-    let image =
-        output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };
     // Every output is encoded, then all are written at once: all of them or none.
     let mut files = Vec::new();
     for path in &outputs {
@@ -755,9 +849,16 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
             files.push((path.as_path(), output::encode_png(&img, path)?));
         }
     }
+    if let (Some(path), Some(bytes)) = (&checkpoint_path, checkpoint_bytes) {
+        files.push((path.as_path(), bytes));
+    }
     output::write_all_atomically(&files)?;
-    let names: Vec<String> =
-        outputs.iter().chain(previews.iter().map(|(_, p)| p)).map(|p| p.display().to_string()).collect();
+    let names: Vec<String> = outputs
+        .iter()
+        .chain(previews.iter().map(|(_, p)| p))
+        .chain(&checkpoint_path)
+        .map(|p| p.display().to_string())
+        .collect();
     report(&format_args!(
         "rendered {}x{} at {} spp in {:.3} s: {} primary rays, {} rays in all, {:.2} Mrays/s -> {}",
         scene.render.width,
@@ -777,6 +878,84 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         ));
     }
     Ok(())
+}
+
+/// The checkpoint file's bytes.
+fn encode_checkpoint(state: &prism::checkpoint::Checkpoint, path: &Path) -> Result<Vec<u8>, CliError> {
+    state.encode().map_err(|e| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() }.into())
+}
+
+/// Renders the unfinished tiles of `state`, saving it to `path` every `--checkpoint`
+/// interval. The first Ctrl-C stops the render at the next tile; the checkpoint and the
+/// image so far are then written (all or none) and the error says what was written and how
+/// to resume (exit 130).
+fn render_with_checkpoints(
+    scene: &prism::render::extract::RenderScene,
+    state: &mut prism::checkpoint::Checkpoint,
+    options: &RenderOptions,
+    args: &RenderArgs,
+    path: &Path,
+    outputs: &[PathBuf],
+    image: &output::ImageSettings,
+) -> Result<prism::checkpoint::ResumableRun, CliError> {
+    use prism::checkpoint::{Outcome, render_resumable};
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    *STOP_AT_NEXT_TILE.lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(stop.clone());
+    let options = RenderOptions { cancel: Some(stop), ..options.clone() };
+    let save = |state: &prism::checkpoint::Checkpoint| -> Result<(), CliError> {
+        output::write_atomically(path, &encode_checkpoint(state, path)?)?;
+        report(&format_args!(
+            "checkpoint: {} of {} pixels finished -> {}",
+            state.pixels_done(),
+            state.done.len(),
+            path.display()
+        ));
+        Ok(())
+    };
+    let run = render_resumable(scene, state, &options, args.checkpoint, save);
+    // From here on a SIGINT exits at once (removing temporary files).
+    STOP_AT_NEXT_TILE.lock().unwrap_or_else(std::sync::PoisonError::into_inner).take();
+    let run = run?;
+    if run.outcome == Outcome::Complete {
+        return Ok(run);
+    }
+    warn_beyond_half(&state.film, args.half);
+    let mut files = vec![(path, encode_checkpoint(state, path)?)];
+    for out in outputs {
+        files.push((out.as_path(), output::encode(&state.film, out, image)?));
+    }
+    output::write_all_atomically(&files)?;
+    let written: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    Err(CliError::Interrupted(format!(
+        "interrupted: {} of {} pixels finished; wrote {} (the unfinished tiles are black)\nto resume: {}",
+        state.pixels_done(),
+        state.done.len(),
+        written.join(", "),
+        resume_command(path)
+    )))
+}
+
+/// This process's command line with `--resume PATH` in place of any `--resume`, quoted for a
+/// POSIX shell.
+fn resume_command(path: &Path) -> String {
+    let quote = |arg: &str| {
+        if !arg.is_empty() && arg.chars().all(|c| c.is_ascii_alphanumeric() || "_./:=,+-@%".contains(c)) {
+            arg.to_string()
+        } else {
+            format!("'{}'", arg.replace('\'', "'\\''"))
+        }
+    };
+    let mut words = vec!["prism".to_string()];
+    let mut args = std::env::args_os().skip(1).map(|a| a.to_string_lossy().into_owned());
+    while let Some(arg) = args.next() {
+        if arg == "--resume" {
+            args.next();
+        } else if !arg.starts_with("--resume=") {
+            words.push(quote(&arg));
+        }
+    }
+    words.extend(["--resume".to_string(), quote(&path.to_string_lossy())]);
+    words.join(" ")
 }
 
 /// `render --region/--tile/--sample-range`: one part file.
@@ -837,6 +1016,7 @@ fn render_part(mut scene: Scene, args: &RenderArgs, path: &Path) -> Result<(), C
         sampling: if pov { Sampling::Pov } else { Sampling::Stratified },
         exposure: scene.render.exposure,
         tone_map: scene.render.tone_map,
+        scene: None,
     };
     let part = Partial::from_film(info, &film, sums);
     let bytes = part.encode().map_err(|e| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() })?;

@@ -12,18 +12,21 @@
 //! - when the part has [`Partial::sums`]: `sum.R.hi`, `sum.R.lo`, ... `weight.hi`, `weight.lo`
 //!   (u32): the f64 weighted sum of each channel's samples and the f64 sum of their filter
 //!   weights, as the high and low 32 bits of each f64, so they round-trip exactly.
+//! - AOV layers, when the part keeps them (checkpoints do): `albedo.R`, `depth.Z`, ... (f32).
 //!
 //! One header attribute, `prismPart` (text, `key=value` lines), says what the part is: the
 //! [`Fingerprint`] of the scene and its settings, the frame size, the sample range, the
 //! scene's total samples, the tile (if any), the antialiasing family, and the exposure and
-//! tone map for 8-bit images of the merged result. (One attribute, because the EXR writer
-//! stores several in hash order, which would make part files differ from run to run.)
+//! tone map for 8-bit images of the merged result, and for checkpoints
+//! ([`crate::checkpoint`]) the scene itself as `prism save` writes it, escaped onto one
+//! line. (One attribute, because the EXR writer stores several in hash order, which would
+//! make part files differ from run to run.)
 
 use std::io::Cursor;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use crate::film::{Film, Region};
+use crate::film::{Aov, Film, Layer, Region};
 use crate::world::Scene;
 use crate::world::components::ToneMap;
 
@@ -98,6 +101,9 @@ pub struct PartInfo {
     pub exposure: f64,
     /// Tone map for 8-bit images of the merged result.
     pub tone_map: ToneMap,
+    /// The scene with its settings as [`crate::scene::save`] writes it, when the part keeps
+    /// it (checkpoints do, to name the setting that differs from a later render's).
+    pub scene: Option<String>,
 }
 
 impl PartInfo {
@@ -126,6 +132,9 @@ impl PartInfo {
         );
         if let Some((i, n)) = self.tile {
             text += &format!("tile={i}/{n}\n");
+        }
+        if let Some(scene) = &self.scene {
+            text += &format!("scene={}\n", escape(scene));
         }
         text
     }
@@ -164,7 +173,12 @@ impl PartInfo {
             None => None,
             Some(value) => Some(parse_pair(value, '/').ok_or_else(|| bad("tile", value))?),
         };
-        let info = PartInfo { fingerprint, frame, region, samples, total_samples, tile, sampling, exposure, tone_map };
+        let scene = match fields.get("scene") {
+            None => None,
+            Some(value) => Some(unescape(value).ok_or_else(|| bad("scene", "(its escapes)"))?),
+        };
+        let info =
+            PartInfo { fingerprint, frame, region, samples, total_samples, tile, sampling, exposure, tone_map, scene };
         info.check()?;
         Ok(info)
     }
@@ -193,6 +207,47 @@ impl PartInfo {
         }
         Ok(())
     }
+}
+
+/// `text` on one line of printable ASCII (EXR text attributes hold bytes, and the header
+/// is `key=value` lines): `\\`, `\n` and `\u{HEX}` stand for a backslash, a line break and
+/// any other character outside printable ASCII.
+fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            ' '..='~' => out.push(c),
+            _ => out.push_str(&format!("\\u{{{:x}}}", u32::from(c))),
+        }
+    }
+    out
+}
+
+/// The text [`escape`] made (`None` for a broken escape).
+fn unescape(text: &str) -> Option<String> {
+    let mut out = String::with_capacity(text.len());
+    let mut chars = text.chars();
+    while let Some(c) = chars.next() {
+        if c != '\\' {
+            out.push(c);
+            continue;
+        }
+        match chars.next()? {
+            '\\' => out.push('\\'),
+            'n' => out.push('\n'),
+            'u' => {
+                if chars.next()? != '{' {
+                    return None;
+                }
+                let hex: String = chars.by_ref().take_while(|&c| c != '}').collect();
+                out.push(char::from_u32(u32::from_str_radix(&hex, 16).ok()?)?);
+            }
+            _ => return None,
+        }
+    }
+    Some(out)
 }
 
 fn tone_map_name(t: ToneMap) -> &'static str {
@@ -270,6 +325,9 @@ pub struct Partial {
     /// Weighted sums and weights per pixel; `None` when the part is only to be assembled
     /// (it holds all of its pixels' samples), and always `None` for POV-Ray's antialiasing.
     pub sums: Option<Vec<PixelSums>>,
+    /// AOV layers over the region (checkpoints keep them; channels `layer.channel`, f32), in
+    /// the order of [`Aov::ALL`] when read from a file.
+    pub layers: Vec<Layer>,
 }
 
 /// Why a part file cannot be read.
@@ -302,7 +360,13 @@ impl Partial {
     /// A part holding `film`'s pixels, each with `info.samples.len()` samples.
     pub fn from_film(info: PartInfo, film: &Film, sums: Option<Vec<PixelSums>>) -> Self {
         let count = info.samples.len() as u32;
-        Self { radiance: film.pixels.clone(), sample_counts: vec![count; film.pixels.len()], sums, info }
+        Self {
+            radiance: film.pixels.clone(),
+            sample_counts: vec![count; film.pixels.len()],
+            sums,
+            layers: film.layers.clone(),
+            info,
+        }
     }
 
     /// The part as the bytes of an EXR file (deterministic: equal parts give equal bytes).
@@ -324,6 +388,14 @@ impl Partial {
                 push_f64(name, sums.iter().map(|s| s.sum[c]).collect());
             }
             push_f64("weight", sums.iter().map(|s| s.weight).collect());
+        }
+        for layer in &self.layers {
+            let names = layer.aov.channels();
+            for (c, channel) in names.iter().enumerate() {
+                let values = layer.data.iter().skip(c).step_by(names.len()).copied().collect();
+                let name = format!("{}.{channel}", layer.aov.name());
+                channels.push(AnyChannel::new(name.as_str(), FlatSamples::F32(values)));
+            }
         }
         let r = self.info.region;
         let mut attributes =
@@ -418,7 +490,22 @@ impl Partial {
         } else {
             None
         };
-        Ok(Self { info, radiance, sample_counts, sums })
+        let mut layers = Vec::new();
+        for aov in Aov::ALL {
+            let names = aov.channels();
+            let channel_names: Vec<String> = names.iter().map(|c| format!("{}.{c}", aov.name())).collect();
+            if !channel_names.iter().any(|name| channel(name).is_ok()) {
+                continue;
+            }
+            let mut data = vec![0.0; n * names.len()];
+            for (c, name) in channel_names.iter().enumerate() {
+                for (i, &v) in f32s(name)?.iter().enumerate() {
+                    data[i * names.len() + c] = v;
+                }
+            }
+            layers.push(crate::film::Layer { aov, data });
+        }
+        Ok(Self { info, radiance, sample_counts, sums, layers })
     }
 }
 
@@ -437,6 +524,7 @@ mod tests {
             sampling: Sampling::Stratified,
             exposure: 0.5,
             tone_map: ToneMap::Aces,
+            scene: None,
         }
     }
 
@@ -451,6 +539,7 @@ mod tests {
             radiance: sums.iter().map(PixelSums::mean).collect(),
             sample_counts: (0..n as u32).map(|i| i % 5).collect(),
             sums: with_sums.then_some(sums),
+            layers: Vec::new(),
         }
     }
 
@@ -465,6 +554,24 @@ mod tests {
             let back = Partial::decode(&bytes, Path::new("p.exr")).unwrap();
             assert_eq!(back, original);
         }
+    }
+
+    /// A checkpoint's extras: the scene text (any characters, escaped onto one header line)
+    /// and AOV layers read back exactly.
+    #[test]
+    fn scene_text_and_layers_round_trip() {
+        let mut original = part(false);
+        original.info.scene = Some("[render]\nsamples = 4 # café \\ 東京\n\tend\r\n".into());
+        let n = original.info.region.pixel_count();
+        original.layers = vec![
+            Layer { aov: Aov::Normal, data: (0..3 * n).map(|i| i as f32 * 0.25 - 1.0).collect() },
+            Layer { aov: Aov::Depth, data: (0..n).map(|i| if i == 2 { f32::INFINITY } else { i as f32 }).collect() },
+        ];
+        let back = Partial::decode(&original.encode().unwrap(), Path::new("c.exr")).unwrap();
+        // Read back in the order of `Aov::ALL`.
+        assert_eq!(back, original);
+        assert_eq!(unescape("\\q"), None);
+        assert_eq!(unescape("\\u{110000}"), None);
     }
 
     #[test]

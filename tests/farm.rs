@@ -55,6 +55,7 @@ fn info(scene: &RenderScene, fingerprint: &Fingerprint, region: Region, samples:
         sampling: if s.antialias == Antialias::Stratified { Sampling::Stratified } else { Sampling::Pov },
         exposure: s.exposure,
         tone_map: s.tone_map,
+        scene: None,
     }
 }
 

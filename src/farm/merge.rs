@@ -308,6 +308,7 @@ mod tests {
             sampling: Sampling::Stratified,
             exposure: 0.0,
             tone_map: ToneMap::Clamp,
+            scene: None,
         }
     }
 
@@ -324,8 +325,13 @@ mod tests {
         let radiance = sums.iter().map(PixelSums::mean).collect();
         let whole = info.has_all_samples();
         let n = region.pixel_count();
-        let part =
-            Partial { info, radiance, sample_counts: vec![samples.len() as u32; n], sums: (!whole).then_some(sums) };
+        let part = Partial {
+            info,
+            radiance,
+            sample_counts: vec![samples.len() as u32; n],
+            sums: (!whole).then_some(sums),
+            layers: Vec::new(),
+        };
         NamedPart { name: name.into(), part }
     }
 

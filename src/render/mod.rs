@@ -113,7 +113,7 @@ pub struct SampleSpread {
 
 impl SampleSpread {
     /// The spread of `counts` (sorted in place).
-    fn of(counts: &mut [u32]) -> Self {
+    pub fn of(counts: &mut [u32]) -> Self {
         if counts.is_empty() {
             return Self::default();
         }
@@ -284,8 +284,43 @@ pub fn render<I: Integrator>(
     region: Region,
     options: &RenderOptions,
 ) -> Result<(Film, RenderStats), RenderError> {
-    render_samples(scene, integrator, region, 0..scene.settings.samples, false, options)
-        .map(|(film, _, stats)| (film, stats))
+    render_samples(scene, integrator, region, 0..scene.settings.samples, false, None, options)
+        .map(|done| (done.film, done.stats))
+}
+
+/// What [`render_remaining`] rendered: a film of the whole frame in which only `tiles` were
+/// rendered (the rest is black), and each rendered pixel's sample count (in no order).
+#[derive(Debug)]
+pub struct RemainingRender {
+    /// The frame, black outside `tiles`.
+    pub film: Film,
+    /// The tiles rendered (full-frame pixels), each complete.
+    pub tiles: Vec<Region>,
+    /// Samples each rendered pixel took (empty under POV-Ray's antialiasing methods).
+    pub sample_counts: Vec<u32>,
+    /// What the render did.
+    pub stats: RenderStats,
+}
+
+/// Renders every tile of the whole frame that has a pixel not yet `done` (one flag per
+/// pixel, row-major), with the integrator the scene's settings name; tiles whose pixels are
+/// all done are skipped, and `options.cancel` or `options.deadline` stop the render at the
+/// next tile. Every rendered pixel is the pixel a full render gives (a pure function of
+/// pixel, sample and seed): the scheduler of resumable renders ([`crate::checkpoint`]).
+pub fn render_remaining(
+    scene: &RenderScene,
+    done: &[bool],
+    options: &RenderOptions,
+) -> Result<RemainingRender, RenderError> {
+    let region = Region::full(scene.settings.width, scene.settings.height);
+    let range = 0..scene.settings.samples;
+    match scene.settings.integrator {
+        IntegratorKind::Classic => {
+            render_samples(scene, &Classic::new(scene), region, range, false, Some(done), options)
+        }
+        IntegratorKind::Path => render_samples(scene, &Path::new(scene), region, range, false, Some(done), options),
+    }
+    .map(|r| RemainingRender { film: r.film, tiles: r.tiles, sample_counts: r.sample_counts, stats: r.stats })
 }
 
 /// Renders samples `range` (of the scene's `0..samples`) of every pixel of `region`: a film
@@ -299,17 +334,31 @@ pub fn render_sums<I: Integrator>(
     range: Range<u32>,
     options: &RenderOptions,
 ) -> Result<(Film, Vec<PixelSums>, RenderStats), RenderError> {
-    render_samples(scene, integrator, region, range, true, options)
+    render_samples(scene, integrator, region, range, true, None, options).map(|r| (r.film, r.sums, r.stats))
 }
 
+/// What [`render_samples`] made.
+struct SampledRegion {
+    film: Film,
+    sums: Vec<PixelSums>,
+    /// The tiles rendered (clipped to the region).
+    tiles: Vec<Region>,
+    /// Samples each rendered pixel took, in no order.
+    sample_counts: Vec<u32>,
+    stats: RenderStats,
+}
+
+/// Renders samples `range` of `region`, skipping tiles whose pixels are all `done` (flags
+/// per pixel of the region, row-major).
 fn render_samples<I: Integrator>(
     scene: &RenderScene,
     integrator: &I,
     region: Region,
     range: Range<u32>,
     want_sums: bool,
+    done: Option<&[bool]>,
     options: &RenderOptions,
-) -> Result<(Film, Vec<PixelSums>, RenderStats), RenderError> {
+) -> Result<SampledRegion, RenderError> {
     let (width, height) = (scene.settings.width, scene.settings.height);
     if region.is_empty() || !region.fits(width, height) {
         return Err(RenderError::Region { region, width, height });
@@ -387,6 +436,12 @@ fn render_samples<I: Integrator>(
                 let tx = (tx0 + (tile % u64::from(tiles_x)) as u32) * tile_size;
                 let ty = (ty0 + (tile / u64::from(tiles_x)) as u32) * tile_size;
                 let area = Region { x0: tx, y0: ty, x1: (tx + tile_size).min(width), y1: (ty + tile_size).min(height) };
+                if let Some(done) = done
+                    && all_done(done, region, area)
+                {
+                    progress.inc(1);
+                    return None;
+                }
                 let (result, tile_rays, tile_primary) = match pov_method {
                     Some(method) => {
                         let block = antialias::render_block(scene, integrator, method, tx, ty);
@@ -437,6 +492,7 @@ fn render_samples<I: Integrator>(
     let elapsed = start.elapsed();
 
     let mut film = Film::for_region(region, (width, height), &options.aovs);
+    let rendered_tiles = tiles.iter().map(|t| intersect(t.area, region)).collect();
     let mut sums = if want_sums { vec![PixelSums::default(); region.pixel_count()] } else { Vec::new() };
     let mut non_finite = 0;
     let mut non_finite_samples = 0;
@@ -468,6 +524,7 @@ fn render_samples<I: Integrator>(
         }
     }
     let noise = if counts.is_empty() { 0.0 } else { (squared_errors / counts.len() as f64).sqrt() };
+    let sample_counts = if done.is_some() { counts.clone() } else { Vec::new() };
     let stats = RenderStats {
         elapsed,
         primary_rays: primary_rays.load(Ordering::Relaxed),
@@ -478,7 +535,22 @@ fn render_samples<I: Integrator>(
         samples: SampleSpread::of(&mut counts),
         noise,
     };
-    Ok((film, sums, stats))
+    Ok(SampledRegion { film, sums, tiles: rendered_tiles, sample_counts, stats })
+}
+
+/// The pixels both rectangles cover.
+fn intersect(a: Region, b: Region) -> Region {
+    Region { x0: a.x0.max(b.x0), y0: a.y0.max(b.y0), x1: a.x1.min(b.x1), y1: a.y1.min(b.y1) }
+}
+
+/// True when every pixel of `area` inside `region` is flagged in `done` (row-major over
+/// `region`).
+fn all_done(done: &[bool], region: Region, area: Region) -> bool {
+    let area = intersect(area, region);
+    (area.y0..area.y1).all(|y| {
+        let row = (y - region.y0) as usize * region.width() as usize;
+        done[row + (area.x0 - region.x0) as usize..row + (area.x1 - region.x0) as usize].iter().all(|&d| d)
+    })
 }
 
 fn render_tile<I: Integrator>(
