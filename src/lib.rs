@@ -9,6 +9,7 @@
 pub mod accel;
 pub mod builtin;
 pub mod color;
+pub mod denoise;
 pub mod diagnostics;
 pub mod export;
 pub mod farm;

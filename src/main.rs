@@ -293,14 +293,20 @@ struct RenderArgs {
     /// Also write an 8-bit PNG preview of each AOV layer, named `<output stem>.<aov>.png`.
     #[arg(long)]
     aov_png: bool,
-    /// Adaptive sampling: stop each pixel once its estimated relative error is at most this
-    /// (between 0 and 1; overrides `[render] noise`), or at `samples`.
+    /// Adaptive sampling: stop each pixel once the estimated error of its displayed value,
+    /// relative to that value but at least 0.1 of white, is at most this (between 0 and 1;
+    /// overrides `[render] noise`), or at `samples`.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_noise)]
     noise: Option<f64>,
     /// Time budget (`90s`, `10m`, `1h30m`; a bare number is seconds): render passes of
     /// increasing sample count (at most --samples when given) and keep the last complete one.
     #[arg(long, value_name = "DURATION", allow_hyphen_values = true, value_parser = parse_duration)]
     time: Option<std::time::Duration>,
+    /// Denoise the image with Intel Open Image Denoise (loaded at run time from OIDN_DIR or
+    /// the library path), guided by the albedo and normal layers it adds; the EXR keeps the
+    /// beauty as rendered as the `raw` layer.
+    #[arg(long)]
+    denoise: bool,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -316,7 +322,7 @@ fn parse_aovs(text: &str) -> Result<AovList, String> {
 fn parse_noise(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(v) if v > 0.0 && v < 1.0 => Ok(v),
-        _ => Err("must be a relative error between 0 and 1 (exclusive), such as 0.01".into()),
+        _ => Err("must be an error between 0 and 1 (exclusive), such as 0.02".into()),
     }
 }
 
@@ -484,6 +490,9 @@ enum CliError {
         /// What sbatch said.
         message: String,
     },
+    /// `--denoise` failed: no library, or the library reported an error.
+    #[error(transparent)]
+    Denoise(#[from] prism::denoise::DenoiseError),
     /// `--aov` without an EXR output or `--aov-png`: the layers would go nowhere.
     #[error("--aov: AOV layers are written into an OpenEXR output: add --exr FILE.exr (or -o FILE.exr) or --aov-png")]
     AovsNeedExr,
@@ -654,10 +663,14 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     let is_part = args.region.is_some() || args.tile.is_some() || args.sample_range.is_some();
     let mut outputs: Vec<PathBuf> = args.output.iter().chain(args.exr.iter()).cloned().collect();
     if is_part {
-        if let Some(flag) =
-            [(args.time.is_some(), "--time"), (args.aov.is_some(), "--aov"), (args.aov_png, "--aov-png")]
-                .into_iter()
-                .find_map(|(given, flag)| given.then_some(flag))
+        if let Some(flag) = [
+            (args.time.is_some(), "--time"),
+            (args.aov.is_some(), "--aov"),
+            (args.aov_png, "--aov-png"),
+            (args.denoise, "--denoise"),
+        ]
+        .into_iter()
+        .find_map(|(given, flag)| given.then_some(flag))
         {
             return Err(CliError::PartWith { flag });
         }
@@ -694,14 +707,24 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         output::check_writable(path)?;
     }
     print_warnings(&prism::world::validate::warnings(&scene));
+    // The library is loaded before rendering: without it nothing is rendered or written.
+    let denoiser = if args.denoise { Some(prism::denoise::Denoiser::load()?) } else { None };
+    let mut render_aovs = aovs.clone();
+    if denoiser.is_some() {
+        for guide in [prism::film::Aov::Albedo, prism::film::Aov::Normal] {
+            if !render_aovs.contains(&guide) {
+                render_aovs.push(guide);
+            }
+        }
+    }
     let options = RenderOptions {
         threads: args.threads,
         progress: std::io::stderr().is_terminal(),
         budget: args.limits.budget(),
-        aovs,
+        aovs: render_aovs,
         ..Default::default()
     };
-    let (film, stats) = match args.time {
+    let (mut film, stats) = match args.time {
         Some(budget) => {
             let cap = args.frame.samples.unwrap_or(MAX_SAMPLES);
             let run = prism::render::render_within(&mut render_scene, &options, budget, cap)?;
@@ -722,6 +745,21 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
             "warning: {} pixels had a NaN or infinite value and are written black",
             stats.non_finite_pixels
         ));
+    }
+    if let Some(denoiser) = &denoiser {
+        let done = denoiser.denoise(&mut film, args.threads, args.limits.budget())?;
+        report(&format_args!(
+            "denoised with Open Image Denoise {} ({}) in {:.3} s",
+            done.version,
+            denoiser.library,
+            done.elapsed.as_secs_f64()
+        ));
+        if done.non_finite_pixels > 0 {
+            report(&format!(
+                "warning: the denoiser gave {} pixels a NaN or infinite value; they are written black",
+                done.non_finite_pixels
+            ));
+        }
     }
     let image =
         output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };
@@ -752,7 +790,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     if scene.render.noise.is_some() || !options.aovs.is_empty() {
         let s = stats.samples;
         report(&format_args!(
-            "samples per pixel: min {}, median {}, 90% {}, max {}, mean {:.1}; estimated relative error (rms) {:.4}",
+            "samples per pixel: min {}, median {}, 90% {}, max {}, mean {:.1}; estimated display error (rms) {:.4}",
             s.min, s.median, s.p90, s.max, s.mean, stats.noise
         ));
     }

@@ -25,7 +25,7 @@ use rayon::prelude::*;
 use crate::film::{Aov, Film, Region};
 use crate::limits::{MAX_THREADS, MemoryBudget, OverBudget};
 use crate::partial::PixelSums;
-use crate::world::components::IntegratorKind;
+use crate::world::components::{IntegratorKind, ToneMap};
 use camera::pov_screen;
 use extract::RenderScene;
 use integrators::classic::Classic;
@@ -43,9 +43,11 @@ pub const SAMPLE_BATCH: u32 = 8;
 /// Batches a pixel takes before adaptive sampling may stop it.
 pub const MIN_BATCHES: u32 = 4;
 
-/// Luminance under which relative error is measured against this value instead (dark
-/// pixels would otherwise sample forever to reach a relative error nobody can see).
-pub const NOISE_FLOOR: f64 = 0.01;
+/// Displayed value under which adaptive sampling's error is measured against this value
+/// instead of the pixel's own: a pixel's error counts relative to its brightness on screen,
+/// but never to less than this share of display white (dark pixels would otherwise sample
+/// forever to reach a relative error nobody can see).
+pub const NOISE_FLOOR: f64 = 0.1;
 
 /// How to run a render.
 #[derive(Clone, Debug, Default)]
@@ -87,9 +89,8 @@ pub struct RenderStats {
     /// and mean (all equal to `samples` without adaptive sampling; 0 under POV-Ray's
     /// antialiasing methods, which count their own).
     pub samples: SampleSpread,
-    /// Root mean square over the pixels of each pixel's estimated relative error (the
-    /// standard deviation of its mean luminance over the larger of that luminance and
-    /// [`NOISE_FLOOR`]); 0 when pixels took one sample each.
+    /// Root mean square over the pixels of each pixel's estimated display error (see
+    /// [`PixelStats::display_error`]); 0 when pixels took one sample each.
     pub noise: f64,
 }
 
@@ -267,8 +268,11 @@ pub struct PixelStats {
     pub samples: u32,
     /// Estimated variance of the mean radiance per channel (0 with one sample).
     pub variance: [f32; 3],
-    /// Estimated relative error of the mean luminance (0 with one sample).
-    pub relative_error: f32,
+    /// Estimated error of the pixel as displayed: the standard deviation of the mean of its
+    /// samples' displayed luminance (exposure, tone map, clipped to [0, 1]) over the larger
+    /// of that mean and [`NOISE_FLOOR`] (0 with one sample). Adaptive sampling stops a pixel
+    /// when this is at most `noise`.
+    pub display_error: f32,
 }
 
 /// Renders `region` of the frame with `integrator` into a film of that region.
@@ -361,7 +365,7 @@ fn render_samples<I: Integrator>(
     } else {
         ProgressBar::hidden()
     };
-    // Running totals for the bar's message: pixels, samples and squared relative errors.
+    // Running totals for the bar's message: pixels, samples and squared display errors.
     let running = std::sync::Mutex::new((0u64, 0u64, 0.0f64));
 
     let rays = AtomicU64::new(0);
@@ -412,7 +416,7 @@ fn render_samples<I: Integrator>(
                     let mut totals = running.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
                     totals.0 += result.estimates.len() as u64;
                     totals.1 += tile_primary;
-                    totals.2 += result.estimates.iter().map(|e| f64::from(e.relative_error).powi(2)).sum::<f64>();
+                    totals.2 += result.estimates.iter().map(|e| f64::from(e.display_error).powi(2)).sum::<f64>();
                     let (pixels, samples, squares) = *totals;
                     drop(totals);
                     let pixels = pixels.max(1) as f64;
@@ -453,9 +457,10 @@ fn render_samples<I: Integrator>(
                 let estimate = tile.estimates.get(i).copied().unwrap_or_default();
                 if !tile.estimates.is_empty() {
                     counts.push(estimate.samples);
-                    squared_errors += f64::from(estimate.relative_error).powi(2);
+                    squared_errors += f64::from(estimate.display_error).powi(2);
                 }
-                write_aovs(&mut film, index, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
+                let pixel = film.pixels[index];
+                write_aovs(&mut film, index, pixel, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
             }
         }
     }
@@ -519,8 +524,8 @@ fn centre_hits<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region)
     hits
 }
 
-/// Writes a pixel's first-hit data and error estimate into the film's AOV layers.
-fn write_aovs(film: &mut Film, index: usize, hit: Option<&FirstHit>, estimate: &PixelStats) {
+/// Writes a pixel's beauty, first-hit data and error estimate into the film's AOV layers.
+fn write_aovs(film: &mut Film, index: usize, beauty: [f32; 3], hit: Option<&FirstHit>, estimate: &PixelStats) {
     for layer in &mut film.layers {
         let n = layer.aov.channels().len();
         let out = &mut layer.data[index * n..(index + 1) * n];
@@ -537,6 +542,7 @@ fn write_aovs(film: &mut Film, index: usize, hit: Option<&FirstHit>, estimate: &
             (Aov::Albedo | Aov::Normal | Aov::Position | Aov::Uv, None) => [0.0; 3],
             (Aov::Variance, _) => estimate.variance.map(f64::from),
             (Aov::Samples, _) => [f64::from(estimate.samples), 0.0, 0.0],
+            (Aov::Raw, _) => beauty.map(f64::from),
         };
         for (o, v) in out.iter_mut().zip(values) {
             *o = v as f32;
@@ -563,40 +569,60 @@ fn luminance(c: DVec3) -> f64 {
 /// spread of the means of a few batches credits stratification but, with so few degrees
 /// of freedom, often underestimates: pixels on a light's edge stopped at 32 samples with
 /// an error of 18 %.)
-#[derive(Default)]
+///
+/// The error adaptive sampling reads is that of the displayed value, the luminance after
+/// exposure and tone map clipped to [0, 1]: a light's pixels, all of whose samples are
+/// brighter than white, are done at once, however large their variance in radiance.
 struct PixelSpread {
     count: u32,
     mean: DVec3,
     squares: DVec3,
-    mean_y: f64,
-    squares_y: f64,
+    mean_shown: f64,
+    squares_shown: f64,
+    /// Exposure as a factor on radiance.
+    exposure: f64,
+    tone_map: ToneMap,
 }
 
 impl PixelSpread {
+    fn new(settings: &crate::world::components::RenderSettings) -> Self {
+        Self {
+            count: 0,
+            mean: DVec3::ZERO,
+            squares: DVec3::ZERO,
+            mean_shown: 0.0,
+            squares_shown: 0.0,
+            exposure: settings.exposure.exp2(),
+            tone_map: settings.tone_map,
+        }
+    }
+
     fn add(&mut self, radiance: DVec3) {
         self.count += 1;
         let n = f64::from(self.count);
         let delta = radiance - self.mean;
         self.mean += delta / n;
         self.squares += delta * (radiance - self.mean);
-        let y = luminance(radiance);
-        let delta_y = y - self.mean_y;
-        self.mean_y += delta_y / n;
-        self.squares_y += delta_y * (y - self.mean_y);
+        let shown = crate::output::tone_map(luminance(radiance) * self.exposure, self.tone_map).clamp(0.0, 1.0);
+        let delta_shown = shown - self.mean_shown;
+        self.mean_shown += delta_shown / n;
+        self.squares_shown += delta_shown * (shown - self.mean_shown);
     }
 
-    /// Variance of the mean, per channel and of luminance (0 with fewer than two samples).
+    /// Variance of the mean, per channel and of the displayed luminance (0 with fewer than
+    /// two samples).
     fn variance_of_mean(&self) -> (DVec3, f64) {
         if self.count < 2 {
             return (DVec3::ZERO, 0.0);
         }
         let n = f64::from(self.count);
-        (self.squares / (n * (n - 1.0)), self.squares_y / (n * (n - 1.0)))
+        (self.squares / (n * (n - 1.0)), self.squares_shown / (n * (n - 1.0)))
     }
 
-    /// Standard deviation of the mean luminance over the larger of it and [`NOISE_FLOOR`].
-    fn relative_error(&self) -> f64 {
-        self.variance_of_mean().1.max(0.0).sqrt() / self.mean_y.abs().max(NOISE_FLOOR)
+    /// Standard deviation of the mean displayed luminance over the larger of that mean and
+    /// [`NOISE_FLOOR`].
+    fn display_error(&self) -> f64 {
+        self.variance_of_mean().1.max(0.0).sqrt() / self.mean_shown.max(NOISE_FLOOR)
     }
 }
 
@@ -604,8 +630,8 @@ impl PixelSpread {
 /// pixel: their weighted mean as [`render_pixel`] computes it, their weighted sum and
 /// weights, accumulated in sample order from zero, and what they say about the pixel's
 /// error. With `[render] noise` set and the whole range asked for, the pixel stops after the
-/// first whole batch, from [`MIN_BATCHES`] on, whose estimated relative error is at most
-/// `noise`; the decision depends on the pixel's own samples only, so the image is the same
+/// first whole batch, from [`MIN_BATCHES`] on, whose estimated display error
+/// ([`PixelStats::display_error`]) is at most `noise`; the decision depends on the pixel's own samples only, so the image is the same
 /// for any thread count or tiling. (Sample ranges with `noise` are refused before this.)
 pub fn render_pixel_samples<I: Integrator>(
     scene: &RenderScene,
@@ -624,7 +650,7 @@ pub fn render_pixel_samples<I: Integrator>(
     let mut weights = 0.0;
     let mut rays = 0;
     let mut first_hit = None;
-    let mut spread = PixelSpread::default();
+    let mut spread = PixelSpread::new(settings);
     let adaptive = settings.noise.filter(|_| range == (0..samples));
     let mut taken = range.len() as u32;
     for s in range {
@@ -654,7 +680,7 @@ pub fn render_pixel_samples<I: Integrator>(
             && (s + 1) % SAMPLE_BATCH == 0
             && s + 1 >= SAMPLE_BATCH * MIN_BATCHES
             && s + 1 < samples
-            && spread.relative_error() <= noise
+            && spread.display_error() <= noise
         {
             taken = s + 1;
             break;
@@ -666,7 +692,7 @@ pub fn render_pixel_samples<I: Integrator>(
     let stats = PixelStats {
         samples: taken,
         variance: [variance.x as f32, variance.y as f32, variance.z as f32],
-        relative_error: spread.relative_error() as f32,
+        display_error: spread.display_error() as f32,
     };
     (PixelSample { radiance, first_hit, rays }, PixelSums { sum: sum.to_array(), weight: weights }, stats)
 }
