@@ -43,6 +43,12 @@ pub const SAMPLE_BATCH: u32 = 8;
 /// Batches a pixel takes before adaptive sampling may stop it.
 pub const MIN_BATCHES: u32 = 4;
 
+/// Under adaptive sampling a pixel's samples come in blocks of this many, each block a whole
+/// stratified pattern of its own: a pixel stopped after k blocks holds k stratified
+/// patterns. (Drawn in order from one pattern of `samples` points, the first few dozen would
+/// be a scattered subset of it, hardly better than random points.)
+pub const ADAPTIVE_BLOCK: u32 = SAMPLE_BATCH * MIN_BATCHES;
+
 /// Displayed value under which adaptive sampling's error is measured against this value
 /// instead of the pixel's own: a pixel's error counts relative to its brightness on screen,
 /// but never to less than this share of display white (dark pixels would otherwise sample
@@ -644,8 +650,11 @@ pub fn render_pixel_samples<I: Integrator>(
     let (width, height) = (f64::from(settings.width), f64::from(settings.height));
     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
     let samples = settings.samples;
-    // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels.
-    let patterns = (samples > 1).then(|| scene.patterns.for_key(hash4(pixel, 0, u64::MAX, settings.seed)));
+    // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels;
+    // under adaptive sampling each block of samples has its own pattern (and key).
+    let block = if settings.noise.is_some() { ADAPTIVE_BLOCK.min(samples) } else { samples };
+    let patterns_of = |b: u32| scene.patterns.for_key(hash4(pixel, u64::from(b), u64::MAX, settings.seed));
+    let mut patterns = (samples > 1).then(|| patterns_of(0));
     let mut sum = DVec3::ZERO;
     let mut weights = 0.0;
     let mut rays = 0;
@@ -654,15 +663,19 @@ pub fn render_pixel_samples<I: Integrator>(
     let adaptive = settings.noise.filter(|_| range == (0..samples));
     let mut taken = range.len() as u32;
     for s in range {
+        if s % block == 0 && s > 0 && samples > 1 {
+            patterns = Some(patterns_of(s / block));
+        }
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
-        let mut offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(s));
+        let in_block = s % block;
+        let mut offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(in_block));
         let mut weight = 1.0;
         if let Some(filter) = &scene.filter {
             let (from_centre, w) = filter.sample(offset);
             (offset, weight) = (from_centre + 0.5, w);
         }
         let lens = if scene.camera.aperture > 0.0 {
-            patterns.as_ref().map_or_else(|| sampling::concentric_disc(stream.uniform2(2)), |p| p.lens(s))
+            patterns.as_ref().map_or_else(|| sampling::concentric_disc(stream.uniform2(2)), |p| p.lens(in_block))
         } else {
             DVec2::ZERO
         };
