@@ -1,32 +1,50 @@
 #!/usr/bin/env python3
 """Time saved by adaptive sampling (`--noise`) at equal RMSE.
 
-Usage: scripts/measure-adaptive.py PRISM SCENE SIZE_X SIZE_Y REF_SPP [extra prism args...]
+Usage: scripts/measure-adaptive.py [options] PRISM SCENE [extra prism args...]
 
-Renders a reference at REF_SPP, fixed-count renders at 16..256 spp and adaptive renders at
-several noise targets (at most 1024 spp), measures each one's RMSE against the reference
-and render time (the summary line's), and for each adaptive render prints the time a
-fixed-count render of the same RMSE takes, interpolated log-log between the fixed renders
-around it. RMSE both of linear RGB (where the few pixels of a light, 15 times brighter
-than a wall, dominate) and of the displayed image (clipped to [0, 1]). Needs numpy and OpenEXR's Python bindings (pip install OpenEXR).
+Renders (or reads) a converged reference, fixed-count renders at 16..256 spp and adaptive
+renders at several noise targets (at most --max-spp), measures each one's RMSE against the
+reference and cost, and for each adaptive render prints the cost of a fixed-count render of
+the same RMSE, interpolated log-log between the fixed renders around it (ratio < 1: adaptive
+sampling saves time). RMSE both of the displayed image (linear values clipped to [0, 1]) and
+of linear RGB (where the few pixels of a light, 15 times brighter than a wall, dominate).
+
+Cost is the CPU time (user + system) of the prism process, not the wall time its summary
+line prints: on a shared machine the wall time says more about the neighbours than about
+the render. Every render in one run uses the same thread count (--threads, default 2).
+
+Options: --size W H (default: the scene's), --reference FILE.exr (a converged image, e.g.
+scenes/mitsuba/refs/cornell.exr) or --ref-spp N (rendered with another seed, default 4096),
+--noise LIST (comma-separated targets, default 0.2,0.1,0.05,0.03), --max-spp N (default
+1024), --prism-adaptive BINARY (another build for the adaptive renders, to compare rules).
+
+Needs numpy and OpenEXR's Python bindings (pip install OpenEXR).
+
+Example (the measurements in docs/long-renders.md):
+  scripts/measure-adaptive.py target/release/prism scenes/mitsuba/cornell.toml \\
+      --reference scenes/mitsuba/refs/cornell.exr --noise 0.1,0.05,0.03,0.02
 """
 
+import argparse
 import math
 import re
+import resource
 import subprocess
-import sys
 import tempfile
 
 import numpy as np
 import OpenEXR
 
 
-def render(prism, scene, size, args, exr):
-    cmd = [prism, "render", scene, "--width", size[0], "--height", size[1], "--exr", exr, *args]
+def render(prism, scene, args, exr):
+    cmd = [prism, "render", scene, "--exr", exr, *args]
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     out = subprocess.run(cmd, capture_output=True, text=True, check=True)
-    seconds = float(re.search(r" in ([0-9.]+) s:", out.stderr).group(1))
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     spread = re.search(r"samples per pixel: .*", out.stderr)
-    return seconds, spread.group(0) if spread else ""
+    return cpu, spread.group(0) if spread else ""
 
 
 def load(exr):
@@ -35,22 +53,38 @@ def load(exr):
 
 
 def main():
-    prism, scene, w, h, ref_spp, *extra = sys.argv[1:]
-    size = (w, h)
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("prism")
+    ap.add_argument("scene")
+    ap.add_argument("--size", nargs=2, metavar=("W", "H"))
+    ap.add_argument("--reference")
+    ap.add_argument("--ref-spp", default="4096")
+    ap.add_argument("--noise", default="0.2,0.1,0.05,0.03")
+    ap.add_argument("--max-spp", default="1024")
+    ap.add_argument("--threads", default="2")
+    ap.add_argument("--prism-adaptive")
+    args, extra = ap.parse_known_args()
+    extra = [*extra, "--threads", args.threads]
+    if args.size:
+        extra = [*extra, "--width", args.size[0], "--height", args.size[1]]
     with tempfile.TemporaryDirectory() as tmp:
-        ref_path = f"{tmp}/ref.exr"
-        ref_time, _ = render(prism, scene, size, ["--samples", ref_spp, "--seed", "7", *extra], ref_path)
-        ref = load(ref_path)
-        print(f"reference: {ref_spp} spp in {ref_time:.1f} s")
+        if args.reference:
+            ref = load(args.reference)
+            print(f"reference: {args.reference}")
+        else:
+            ref_path = f"{tmp}/ref.exr"
+            cpu, _ = render(args.prism, args.scene, ["--samples", args.ref_spp, "--seed", "7", *extra], ref_path)
+            ref = load(ref_path)
+            print(f"reference: {args.ref_spp} spp in {cpu:.1f} CPU s")
 
         def rmse(path):
             image = load(path)
-            linear = math.sqrt(float(np.mean((image - ref) ** 2)))
             shown = math.sqrt(float(np.mean((np.clip(image, 0, 1) - np.clip(ref, 0, 1)) ** 2)))
+            linear = math.sqrt(float(np.mean((image - ref) ** 2)))
             return shown, linear
 
-        def fixed_time(e, which):
-            # Fixed renders' time at RMSE e, log-log between the neighbours (or extrapolated
+        def fixed_cost(e, which):
+            # Fixed renders' cost at RMSE e, log-log between the neighbours (or extrapolated
             # from the nearest two).
             pts = sorted(((f[which], f[2]) for f in fixed), reverse=True)
             i = next((k for k in range(len(pts) - 1) if pts[k + 1][0] <= e), len(pts) - 2)
@@ -61,17 +95,17 @@ def main():
         fixed = []
         for spp in [16, 32, 64, 128, 256]:
             path = f"{tmp}/fixed{spp}.exr"
-            t, _ = render(prism, scene, size, ["--samples", str(spp), *extra], path)
+            t, _ = render(args.prism, args.scene, ["--samples", str(spp), *extra], path)
             fixed.append((*rmse(path), t))
-            print(f"fixed {spp:4d} spp: RMSE shown {fixed[-1][0]:.5f}, linear {fixed[-1][1]:.5f}, {t:.2f} s")
-        for noise in ["0.2", "0.1", "0.05", "0.03"]:
+            print(f"fixed {spp:4d} spp: RMSE shown {fixed[-1][0]:.5f}, linear {fixed[-1][1]:.5f}, {t:.2f} CPU s")
+        for noise in args.noise.split(","):
             path = f"{tmp}/adaptive{noise}.exr"
-            args = ["--samples", "1024", "--noise", noise, "--aov", "samples", *extra]
-            t, spread = render(prism, scene, size, args, path)
+            adaptive_args = ["--samples", args.max_spp, "--noise", noise, "--aov", "samples", *extra]
+            t, spread = render(args.prism_adaptive or args.prism, args.scene, adaptive_args, path)
             shown, linear = rmse(path)
-            ts, tl = fixed_time(shown, 0), fixed_time(linear, 1)
+            ts, tl = fixed_cost(shown, 0), fixed_cost(linear, 1)
             print(
-                f"adaptive noise {noise}: {t:.2f} s, RMSE shown {shown:.5f} (fixed: {ts:.2f} s, ratio {t / ts:.2f}), "
+                f"adaptive noise {noise}: {t:.2f} CPU s, RMSE shown {shown:.5f} (fixed: {ts:.2f} s, ratio {t / ts:.2f}), "
                 f"linear {linear:.5f} (fixed: {tl:.2f} s, ratio {t / tl:.2f}); {spread}"
             )
 

@@ -10,6 +10,7 @@ pub mod accel;
 pub mod builtin;
 pub mod checkpoint;
 pub mod color;
+pub mod denoise;
 pub mod diagnostics;
 pub mod export;
 pub mod farm;

@@ -293,8 +293,9 @@ struct RenderArgs {
     /// Also write an 8-bit PNG preview of each AOV layer, named `<output stem>.<aov>.png`.
     #[arg(long)]
     aov_png: bool,
-    /// Adaptive sampling: stop each pixel once its estimated relative error is at most this
-    /// (between 0 and 1; overrides `[render] noise`), or at `samples`.
+    /// Adaptive sampling: stop each pixel once the estimated error of its displayed value,
+    /// relative to that value but at least 0.1 of white, is at most this (between 0 and 1;
+    /// overrides `[render] noise`), or at `samples`.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_noise)]
     noise: Option<f64>,
     /// Time budget (`90s`, `10m`, `1h30m`; a bare number is seconds): render passes of
@@ -314,6 +315,11 @@ struct RenderArgs {
     /// only the unfinished tiles are rendered, and the image is the uninterrupted render's.
     #[arg(long, value_name = "FILE")]
     resume: Option<PathBuf>,
+    /// Denoise the image with Intel Open Image Denoise (loaded at run time from OIDN_DIR or
+    /// the library path), guided by the albedo and normal layers it adds; the EXR keeps the
+    /// beauty as rendered as the `raw` layer.
+    #[arg(long)]
+    denoise: bool,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -329,7 +335,7 @@ fn parse_aovs(text: &str) -> Result<AovList, String> {
 fn parse_noise(text: &str) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(v) if v > 0.0 && v < 1.0 => Ok(v),
-        _ => Err("must be a relative error between 0 and 1 (exclusive), such as 0.01".into()),
+        _ => Err("must be an error between 0 and 1 (exclusive), such as 0.02".into()),
     }
 }
 
@@ -497,6 +503,9 @@ enum CliError {
         /// What sbatch said.
         message: String,
     },
+    /// `--denoise` failed: no library, or the library reported an error.
+    #[error(transparent)]
+    Denoise(#[from] prism::denoise::DenoiseError),
     /// `--aov` without an EXR output or `--aov-png`: the layers would go nowhere.
     #[error("--aov: AOV layers are written into an OpenEXR output: add --exr FILE.exr (or -o FILE.exr) or --aov-png")]
     AovsNeedExr,
@@ -531,6 +540,15 @@ enum CliError {
 /// left to report to), never a panic.
 fn report(line: &dyn std::fmt::Display) {
     let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
+/// Adds the layers Open Image Denoise is guided by (albedo, normal) to `aovs`.
+fn add_denoise_guides(aovs: &mut Vec<prism::film::Aov>) {
+    for guide in [prism::film::Aov::Albedo, prism::film::Aov::Normal] {
+        if !aovs.contains(&guide) {
+            aovs.push(guide);
+        }
+    }
 }
 
 /// Warns when a half-float EXR saturates values beyond half's range (`--half`).
@@ -720,6 +738,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
             (args.checkpoint.is_some(), "--checkpoint"),
             (args.checkpoint_file.is_some(), "--checkpoint-file"),
             (args.resume.is_some(), "--resume"),
+            (args.denoise, "--denoise"),
         ]
         .into_iter()
         .find_map(|(given, flag)| given.then_some(flag))
@@ -763,7 +782,11 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     // The fingerprint is of the scene as loaded and overridden, before `prepare`.
     let fresh_state = match checkpoint_path {
         Some(_) => {
-            let aovs = prism::film::Aov::parse_list(scene.render.aovs.iter().map(String::as_str)).unwrap_or_default();
+            let mut aovs =
+                prism::film::Aov::parse_list(scene.render.aovs.iter().map(String::as_str)).unwrap_or_default();
+            if args.denoise {
+                add_denoise_guides(&mut aovs);
+            }
             Some(prism::checkpoint::Checkpoint::new(&scene, &aovs)?)
         }
         None => None,
@@ -783,17 +806,23 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         output::check_writable(path)?;
     }
     print_warnings(&prism::world::validate::warnings(&scene));
+    // The library is loaded before rendering: without it nothing is rendered or written.
+    let denoiser = if args.denoise { Some(prism::denoise::Denoiser::load()?) } else { None };
+    let mut render_aovs = aovs.clone();
+    if denoiser.is_some() {
+        add_denoise_guides(&mut render_aovs);
+    }
     let options = RenderOptions {
         threads: args.threads,
         progress: std::io::stderr().is_terminal(),
         budget: args.limits.budget(),
-        aovs,
+        aovs: render_aovs,
         ..Default::default()
     };
     let image =
         output::ImageSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map, exr_half: args.half };
     let mut checkpoint_bytes = None;
-    let (film, stats) = match (fresh_state, &checkpoint_path) {
+    let (mut film, stats) = match (fresh_state, &checkpoint_path) {
         (Some(mut state), Some(path)) => {
             if let Some(resume) = &args.resume {
                 state.resume_from(&args.limits.access()?, resume)?;
@@ -838,6 +867,21 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
             stats.non_finite_pixels
         ));
     }
+    if let Some(denoiser) = &denoiser {
+        let done = denoiser.denoise(&mut film, args.threads, args.limits.budget())?;
+        report(&format_args!(
+            "denoised with Open Image Denoise {} ({}) in {:.3} s",
+            done.version,
+            denoiser.library,
+            done.elapsed.as_secs_f64()
+        ));
+        if done.non_finite_pixels > 0 {
+            report(&format!(
+                "warning: the denoiser gave {} pixels a NaN or infinite value; they are written black",
+                done.non_finite_pixels
+            ));
+        }
+    }
     warn_beyond_half(&film, args.half);
     // Every output is encoded, then all are written at once: all of them or none.
     let mut files = Vec::new();
@@ -873,7 +917,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     if scene.render.noise.is_some() || !options.aovs.is_empty() {
         let s = stats.samples;
         report(&format_args!(
-            "samples per pixel: min {}, median {}, 90% {}, max {}, mean {:.1}; estimated relative error (rms) {:.4}",
+            "samples per pixel: min {}, median {}, 90% {}, max {}, mean {:.1}; estimated display error (rms) {:.4}",
             s.min, s.median, s.p90, s.max, s.mean, stats.noise
         ));
     }

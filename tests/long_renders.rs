@@ -60,7 +60,7 @@ fn adaptive_sampling_is_deterministic_and_spends_samples_where_the_noise_is() {
     assert_eq!(max, 128.0);
     assert!(stats.samples.mean < 120.0 && stats.samples.mean > 32.0, "{:?}", stats.samples);
     assert_eq!(stats.primary_rays, counts.iter().map(|&c| c as u64).sum::<u64>());
-    // Stopped pixels met the target: their estimated relative error is at most 5 %.
+    // Stopped pixels met the target: their estimated display error is at most 5 %.
     assert!(stats.noise > 0.0);
 }
 

@@ -76,6 +76,10 @@ pub enum Aov {
     Variance,
     /// Samples the pixel took (fewer than `samples` where adaptive sampling stopped early).
     Samples,
+    /// The beauty as rendered, before denoising: `--denoise` keeps it as this layer and
+    /// writes the denoised image as the beauty. Not in [`Aov::ALL`]: nobody asks for it by
+    /// name.
+    Raw,
 }
 
 impl Aov {
@@ -104,13 +108,14 @@ impl Aov {
             Aov::MaterialId => "material_id",
             Aov::Variance => "variance",
             Aov::Samples => "samples",
+            Aov::Raw => "raw",
         }
     }
 
     /// The layer's channel names, as compositors expect them.
     pub fn channels(self) -> &'static [&'static str] {
         match self {
-            Aov::Albedo | Aov::Variance => &["R", "G", "B"],
+            Aov::Albedo | Aov::Variance | Aov::Raw => &["R", "G", "B"],
             Aov::Normal | Aov::Position => &["X", "Y", "Z"],
             Aov::Depth => &["Z"],
             Aov::Uv => &["U", "V"],
@@ -127,7 +132,7 @@ impl Aov {
     /// True for layers made from the surface a pixel's first sample sees (not from all its
     /// samples).
     pub fn needs_first_hit(self) -> bool {
-        !matches!(self, Aov::Variance | Aov::Samples)
+        !matches!(self, Aov::Variance | Aov::Samples | Aov::Raw)
     }
 
     /// The AOVs `names` name, in order and without repeats; an unknown name is an error
@@ -257,6 +262,7 @@ mod tests {
             assert_eq!(Aov::from_name(aov.name()), Some(aov));
         }
         assert_eq!(Aov::from_name("albedos"), None);
+        assert_eq!(Aov::from_name("raw"), None, "the raw beauty is kept by --denoise, not asked for");
     }
 
     #[test]

@@ -275,8 +275,9 @@ pub fn to_ldr(film: &Film, exposure: f64, op: ToneMap) -> RgbImage {
 
 /// An 8-bit preview of one AOV layer (for `--aov-png`): albedo through the sRGB curve,
 /// normals as `0.5 + 0.5 n`, depth and position scaled to the range of their finite
-/// values (near is bright; escaped rays black), uv clipped to [0, 1] as red and green, ids as one hashed
-/// colour each (escaped rays black), variance as the standard deviation of luminance
+/// values (near is bright; escaped rays black), uv clipped to [0, 1] as red and green, ids
+/// as one hashed colour each (escaped rays black), the raw beauty clipped through the sRGB
+/// curve, variance as the standard deviation of luminance
 /// (scaled to its 99th percentile) and samples as a count (scaled to the largest). `None` when the film has no
 /// such layer.
 pub fn layer_preview(film: &Film, aov: crate::film::Aov) -> Option<RgbImage> {
@@ -294,7 +295,7 @@ pub fn layer_preview(film: &Film, aov: crate::film::Aov) -> Option<RgbImage> {
     let srgb_byte = |v: f32| byte(srgb_encode(f64::from(v.clamp(0.0, 1.0))) as f32);
     let luminance = |p: &[f32]| 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
     let colours: Vec<[u8; 3]> = match aov {
-        Aov::Albedo => pixels.iter().map(|p| [srgb_byte(p[0]), srgb_byte(p[1]), srgb_byte(p[2])]).collect(),
+        Aov::Albedo | Aov::Raw => pixels.iter().map(|p| [srgb_byte(p[0]), srgb_byte(p[1]), srgb_byte(p[2])]).collect(),
         Aov::Normal => pixels.iter().map(|p| [0, 1, 2].map(|c| byte(0.5 + 0.5 * p[c]))).collect(),
         Aov::Depth => {
             let r = range(&mut pixels.iter().map(|p| p[0]));

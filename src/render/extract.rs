@@ -49,13 +49,20 @@ impl RenderScene {
     /// scene then renders exactly as one extracted with that count.
     pub fn set_samples(&mut self, samples: u32) {
         self.settings.samples = samples;
-        self.patterns = patterns_for(samples, self.settings.seed, self.camera.aperture);
+        self.patterns = patterns_for(&self.settings, self.camera.aperture);
     }
 }
 
-/// The pixel and lens patterns of `samples` points per pixel.
-fn patterns_for(samples: u32, seed: u64, aperture: f64) -> PatternTable {
-    if samples > 1 || aperture > 0.0 { PatternTable::new(samples, seed) } else { PatternTable::untabulated(samples) }
+/// The pixel and lens patterns of `settings.samples` points per pixel, or under adaptive
+/// sampling of blocks of [`super::ADAPTIVE_BLOCK`] points.
+fn patterns_for(settings: &RenderSettings, aperture: f64) -> PatternTable {
+    let samples = settings.samples;
+    let points = if settings.noise.is_some() { samples.min(super::ADAPTIVE_BLOCK) } else { samples };
+    if samples > 1 || aperture > 0.0 {
+        PatternTable::new(points, settings.seed)
+    } else {
+        PatternTable::untabulated(samples)
+    }
 }
 
 /// Builds the render scene. Call after `resolve_transforms` and `validate`.
@@ -95,7 +102,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
     let accel = Accel::build(&primitives);
     let has_transparency = materials.iter().any(|m| PovView::new(m).base.is_transparent());
     let camera = RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height);
-    let patterns = patterns_for(scene.render.samples, scene.render.seed, camera.aperture);
+    let patterns = patterns_for(&scene.render, camera.aperture);
     RenderScene {
         camera,
         primitives,

@@ -25,7 +25,7 @@ use rayon::prelude::*;
 use crate::film::{Aov, Film, Region};
 use crate::limits::{MAX_THREADS, MemoryBudget, OverBudget};
 use crate::partial::PixelSums;
-use crate::world::components::IntegratorKind;
+use crate::world::components::{IntegratorKind, ToneMap};
 use camera::pov_screen;
 use extract::RenderScene;
 use integrators::classic::Classic;
@@ -43,9 +43,17 @@ pub const SAMPLE_BATCH: u32 = 8;
 /// Batches a pixel takes before adaptive sampling may stop it.
 pub const MIN_BATCHES: u32 = 4;
 
-/// Luminance under which relative error is measured against this value instead (dark
-/// pixels would otherwise sample forever to reach a relative error nobody can see).
-pub const NOISE_FLOOR: f64 = 0.01;
+/// Under adaptive sampling a pixel's samples come in blocks of this many, each block a whole
+/// stratified pattern of its own: a pixel stopped after k blocks holds k stratified
+/// patterns. (Drawn in order from one pattern of `samples` points, the first few dozen would
+/// be a scattered subset of it, hardly better than random points.)
+pub const ADAPTIVE_BLOCK: u32 = SAMPLE_BATCH * MIN_BATCHES;
+
+/// Displayed value under which adaptive sampling's error is measured against this value
+/// instead of the pixel's own: a pixel's error counts relative to its brightness on screen,
+/// but never to less than this share of display white (dark pixels would otherwise sample
+/// forever to reach a relative error nobody can see).
+pub const NOISE_FLOOR: f64 = 0.1;
 
 /// How to run a render.
 #[derive(Clone, Debug, Default)]
@@ -90,9 +98,8 @@ pub struct RenderStats {
     /// and mean (all equal to `samples` without adaptive sampling; 0 under POV-Ray's
     /// antialiasing methods, which count their own).
     pub samples: SampleSpread,
-    /// Root mean square over the pixels of each pixel's estimated relative error (the
-    /// standard deviation of its mean luminance over the larger of that luminance and
-    /// [`NOISE_FLOOR`]); 0 when pixels took one sample each.
+    /// Root mean square over the pixels of each pixel's estimated display error (see
+    /// [`PixelStats::display_error`]); 0 when pixels took one sample each.
     pub noise: f64,
 }
 
@@ -270,8 +277,11 @@ pub struct PixelStats {
     pub samples: u32,
     /// Estimated variance of the mean radiance per channel (0 with one sample).
     pub variance: [f32; 3],
-    /// Estimated relative error of the mean luminance (0 with one sample).
-    pub relative_error: f32,
+    /// Estimated error of the pixel as displayed: the standard deviation of the mean of its
+    /// samples' displayed luminance (exposure, tone map, clipped to [0, 1]) over the larger
+    /// of that mean and [`NOISE_FLOOR`] (0 with one sample). Adaptive sampling stops a pixel
+    /// when this is at most `noise`.
+    pub display_error: f32,
     /// Samples whose radiance was NaN or infinite (overflow of extreme but accepted values),
     /// counted as black.
     pub non_finite_samples: u32,
@@ -416,7 +426,7 @@ fn render_samples<I: Integrator>(
     } else {
         ProgressBar::hidden()
     };
-    // Running totals for the bar's message: pixels, samples and squared relative errors.
+    // Running totals for the bar's message: pixels, samples and squared display errors.
     let running = std::sync::Mutex::new((0u64, 0u64, 0.0f64));
 
     let rays = AtomicU64::new(0);
@@ -473,7 +483,7 @@ fn render_samples<I: Integrator>(
                     let mut totals = running.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
                     totals.0 += result.estimates.len() as u64;
                     totals.1 += tile_primary;
-                    totals.2 += result.estimates.iter().map(|e| f64::from(e.relative_error).powi(2)).sum::<f64>();
+                    totals.2 += result.estimates.iter().map(|e| f64::from(e.display_error).powi(2)).sum::<f64>();
                     let (pixels, samples, squares) = *totals;
                     drop(totals);
                     let pixels = pixels.max(1) as f64;
@@ -517,9 +527,10 @@ fn render_samples<I: Integrator>(
                 non_finite_samples += u64::from(estimate.non_finite_samples);
                 if !tile.estimates.is_empty() {
                     counts.push(estimate.samples);
-                    squared_errors += f64::from(estimate.relative_error).powi(2);
+                    squared_errors += f64::from(estimate.display_error).powi(2);
                 }
-                write_aovs(&mut film, index, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
+                let pixel = film.pixels[index];
+                write_aovs(&mut film, index, pixel, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
             }
         }
     }
@@ -600,8 +611,8 @@ fn centre_hits<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region)
     hits
 }
 
-/// Writes a pixel's first-hit data and error estimate into the film's AOV layers.
-fn write_aovs(film: &mut Film, index: usize, hit: Option<&FirstHit>, estimate: &PixelStats) {
+/// Writes a pixel's beauty, first-hit data and error estimate into the film's AOV layers.
+fn write_aovs(film: &mut Film, index: usize, beauty: [f32; 3], hit: Option<&FirstHit>, estimate: &PixelStats) {
     for layer in &mut film.layers {
         let n = layer.aov.channels().len();
         let out = &mut layer.data[index * n..(index + 1) * n];
@@ -618,6 +629,7 @@ fn write_aovs(film: &mut Film, index: usize, hit: Option<&FirstHit>, estimate: &
             (Aov::Albedo | Aov::Normal | Aov::Position | Aov::Uv, None) => [0.0; 3],
             (Aov::Variance, _) => estimate.variance.map(f64::from),
             (Aov::Samples, _) => [f64::from(estimate.samples), 0.0, 0.0],
+            (Aov::Raw, _) => beauty.map(f64::from),
         };
         for (o, v) in out.iter_mut().zip(values) {
             *o = finite_f32(v);
@@ -651,40 +663,60 @@ fn luminance(c: DVec3) -> f64 {
 /// spread of the means of a few batches credits stratification but, with so few degrees
 /// of freedom, often underestimates: pixels on a light's edge stopped at 32 samples with
 /// an error of 18 %.)
-#[derive(Default)]
+///
+/// The error adaptive sampling reads is that of the displayed value, the luminance after
+/// exposure and tone map clipped to [0, 1]: a light's pixels, all of whose samples are
+/// brighter than white, are done at once, however large their variance in radiance.
 struct PixelSpread {
     count: u32,
     mean: DVec3,
     squares: DVec3,
-    mean_y: f64,
-    squares_y: f64,
+    mean_shown: f64,
+    squares_shown: f64,
+    /// Exposure as a factor on radiance.
+    exposure: f64,
+    tone_map: ToneMap,
 }
 
 impl PixelSpread {
+    fn new(settings: &crate::world::components::RenderSettings) -> Self {
+        Self {
+            count: 0,
+            mean: DVec3::ZERO,
+            squares: DVec3::ZERO,
+            mean_shown: 0.0,
+            squares_shown: 0.0,
+            exposure: settings.exposure.exp2(),
+            tone_map: settings.tone_map,
+        }
+    }
+
     fn add(&mut self, radiance: DVec3) {
         self.count += 1;
         let n = f64::from(self.count);
         let delta = radiance - self.mean;
         self.mean += delta / n;
         self.squares += delta * (radiance - self.mean);
-        let y = luminance(radiance);
-        let delta_y = y - self.mean_y;
-        self.mean_y += delta_y / n;
-        self.squares_y += delta_y * (y - self.mean_y);
+        let shown = crate::output::tone_map(luminance(radiance) * self.exposure, self.tone_map).clamp(0.0, 1.0);
+        let delta_shown = shown - self.mean_shown;
+        self.mean_shown += delta_shown / n;
+        self.squares_shown += delta_shown * (shown - self.mean_shown);
     }
 
-    /// Variance of the mean, per channel and of luminance (0 with fewer than two samples).
+    /// Variance of the mean, per channel and of the displayed luminance (0 with fewer than
+    /// two samples).
     fn variance_of_mean(&self) -> (DVec3, f64) {
         if self.count < 2 {
             return (DVec3::ZERO, 0.0);
         }
         let n = f64::from(self.count);
-        (self.squares / (n * (n - 1.0)), self.squares_y / (n * (n - 1.0)))
+        (self.squares / (n * (n - 1.0)), self.squares_shown / (n * (n - 1.0)))
     }
 
-    /// Standard deviation of the mean luminance over the larger of it and [`NOISE_FLOOR`].
-    fn relative_error(&self) -> f64 {
-        self.variance_of_mean().1.max(0.0).sqrt() / self.mean_y.abs().max(NOISE_FLOOR)
+    /// Standard deviation of the mean displayed luminance over the larger of that mean and
+    /// [`NOISE_FLOOR`].
+    fn display_error(&self) -> f64 {
+        self.variance_of_mean().1.max(0.0).sqrt() / self.mean_shown.max(NOISE_FLOOR)
     }
 }
 
@@ -692,8 +724,8 @@ impl PixelSpread {
 /// pixel: their weighted mean as [`render_pixel`] computes it, their weighted sum and
 /// weights, accumulated in sample order from zero, and what they say about the pixel's
 /// error. With `[render] noise` set and the whole range asked for, the pixel stops after the
-/// first whole batch, from [`MIN_BATCHES`] on, whose estimated relative error is at most
-/// `noise`; the decision depends on the pixel's own samples only, so the image is the same
+/// first whole batch, from [`MIN_BATCHES`] on, whose estimated display error
+/// ([`PixelStats::display_error`]) is at most `noise`; the decision depends on the pixel's own samples only, so the image is the same
 /// for any thread count or tiling. (Sample ranges with `noise` are refused before this.)
 pub fn render_pixel_samples<I: Integrator>(
     scene: &RenderScene,
@@ -706,26 +738,33 @@ pub fn render_pixel_samples<I: Integrator>(
     let (width, height) = (f64::from(settings.width), f64::from(settings.height));
     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
     let samples = settings.samples;
-    // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels.
-    let patterns = (samples > 1).then(|| scene.patterns.for_key(hash4(pixel, 0, u64::MAX, settings.seed)));
+    // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels;
+    // under adaptive sampling each block of samples has its own pattern (and key).
+    let block = if settings.noise.is_some() { ADAPTIVE_BLOCK.min(samples) } else { samples };
+    let patterns_of = |b: u32| scene.patterns.for_key(hash4(pixel, u64::from(b), u64::MAX, settings.seed));
+    let mut patterns = (samples > 1).then(|| patterns_of(0));
     let mut sum = DVec3::ZERO;
     let mut weights = 0.0;
     let mut rays = 0;
     let mut first_hit = None;
-    let mut spread = PixelSpread::default();
+    let mut spread = PixelSpread::new(settings);
     let mut non_finite_samples = 0;
     let adaptive = settings.noise.filter(|_| range == (0..samples));
     let mut taken = range.len() as u32;
     for s in range {
+        if s % block == 0 && s > 0 && samples > 1 {
+            patterns = Some(patterns_of(s / block));
+        }
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
-        let mut offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(s));
+        let in_block = s % block;
+        let mut offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(in_block));
         let mut weight = 1.0;
         if let Some(filter) = &scene.filter {
             let (from_centre, w) = filter.sample(offset);
             (offset, weight) = (from_centre + 0.5, w);
         }
         let lens = if scene.camera.aperture > 0.0 {
-            patterns.as_ref().map_or_else(|| sampling::concentric_disc(stream.uniform2(2)), |p| p.lens(s))
+            patterns.as_ref().map_or_else(|| sampling::concentric_disc(stream.uniform2(2)), |p| p.lens(in_block))
         } else {
             DVec2::ZERO
         };
@@ -749,7 +788,7 @@ pub fn render_pixel_samples<I: Integrator>(
             && (s + 1) % SAMPLE_BATCH == 0
             && s + 1 >= SAMPLE_BATCH * MIN_BATCHES
             && s + 1 < samples
-            && spread.relative_error() <= noise
+            && spread.display_error() <= noise
         {
             taken = s + 1;
             break;
@@ -761,7 +800,7 @@ pub fn render_pixel_samples<I: Integrator>(
     let stats = PixelStats {
         samples: taken,
         variance: [variance.x as f32, variance.y as f32, variance.z as f32],
-        relative_error: spread.relative_error() as f32,
+        display_error: spread.display_error() as f32,
         non_finite_samples,
     };
     (PixelSample { radiance, first_hit, rays }, PixelSums { sum: sum.to_array(), weight: weights }, stats)

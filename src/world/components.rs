@@ -514,9 +514,10 @@ pub struct RenderSettings {
     pub exposure: f64,
     /// Tone-mapping operator for 8-bit output.
     pub tone_map: ToneMap,
-    /// Adaptive sampling: each pixel stops sampling once the estimated relative error of
-    /// its mean luminance is at most this (in (0, 1)), or at `samples`. Stratified sampling
-    /// only.
+    /// Adaptive sampling: each pixel stops sampling once the estimated error of its
+    /// displayed luminance (after exposure and tone map, clipped to [0, 1]), relative to
+    /// that luminance but at least `render::NOISE_FLOOR` of white, is at most this (in
+    /// (0, 1)), or at `samples`. Stratified sampling only.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub noise: Option<f64>,
     /// AOV layers written into the OpenEXR output besides the beauty image (`albedo`,
