@@ -30,6 +30,10 @@ struct Cli {
 enum Command {
     /// Render a scene file to an image.
     Render(RenderArgs),
+    /// Render a scene file, then again whenever it or a file it reads (includes, meshes,
+    /// textures) changes, until Ctrl-C. Takes `render`'s options; a broken edit is reported
+    /// and the last good image stays.
+    Watch(RenderArgs),
     /// List the registered shape types and their parameters.
     Shapes,
     /// Write a JSON Schema of the scene format (for editors such as taplo / Even Better TOML).
@@ -301,6 +305,10 @@ struct RenderArgs {
     /// increasing sample count (at most --samples when given) and keep the last complete one.
     #[arg(long, value_name = "DURATION", allow_hyphen_values = true, value_parser = parse_duration)]
     time: Option<std::time::Duration>,
+    /// Show the image in a window while it renders (needs an X11 or Wayland display); the
+    /// window closes when the render ends.
+    #[arg(long)]
+    preview: bool,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -484,6 +492,9 @@ enum CliError {
         /// What sbatch said.
         message: String,
     },
+    /// The `--preview` window cannot be opened.
+    #[error(transparent)]
+    Preview(#[from] prism::preview::PreviewError),
     /// `--aov` without an EXR output or `--aov-png`: the layers would go nowhere.
     #[error("--aov: AOV layers are written into an OpenEXR output: add --exr FILE.exr (or -o FILE.exr) or --aov-png")]
     AovsNeedExr,
@@ -590,6 +601,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         None => render_default(),
         Some(Command::Render(args)) => render_command(&args),
+        Some(Command::Watch(args)) => watch_command(&args),
         Some(Command::Merge(args)) => merge_command(&args),
         Some(Command::Farm(FarmCommand::Slurm(args))) => slurm_command(&args),
         Some(Command::Shapes) => write_stdout(&prism::registry::describe(&plugins::registry())),
@@ -615,6 +627,61 @@ fn render_command(args: &RenderArgs) -> Result<(), CliError> {
     let scene = load_and_warn(&args.scene, &args.limits)?;
     render_scene(scene, args)
 }
+
+/// Opens the `--preview` window for the scene's image, showing it as the outputs will.
+fn open_preview(scene: &Scene, path: &Path) -> Result<prism::preview::Preview, CliError> {
+    use prism::preview::{Preview, PreviewSettings};
+    let settings = PreviewSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map };
+    let title = path.file_name().map_or_else(|| "prism".into(), |n| n.to_string_lossy().into_owned());
+    let preview = Preview::open((scene.render.width, scene.render.height), &title, settings)?;
+    let layout = preview.layout();
+    let (w, h) = layout.window();
+    let how = match (layout.zoom, layout.picture == layout.image) {
+        (1, true) => "pixel for pixel".to_string(),
+        (1, false) => format!("shrunk to {}x{} to fit the screen", layout.picture.0, layout.picture.1),
+        (zoom, _) => format!("enlarged {zoom}x"),
+    };
+    report(&format_args!("preview: a {w}x{h} window, the image {how}"));
+    Ok(preview)
+}
+
+/// `prism watch`: renders, then waits for a change to any file the scene read and renders
+/// again; errors are printed and the watch goes on. Ends with Ctrl-C (the signal thread).
+fn watch_command(args: &RenderArgs) -> Result<(), CliError> {
+    use prism::watch::FileStamps;
+    let access = args.limits.access()?;
+    loop {
+        let (logged, log) = access.clone().logged();
+        let loaded = load_with(&FileSystem(logged), &args.scene, &plugins::registry(), args.limits.budget());
+        let mut paths = log.paths();
+        let scene_path = std::path::absolute(&args.scene).unwrap_or_else(|_| args.scene.clone());
+        if !paths.contains(&scene_path) {
+            paths.insert(0, scene_path);
+        }
+        // Stamped before the render, so that an edit made while it runs starts the next one.
+        let stamps = FileStamps::of(&paths);
+        let result = loaded.map_err(CliError::from).and_then(|scene| {
+            print_warnings(&scene.warnings);
+            render_scene(scene, args)
+        });
+        if let Err(error) = result {
+            report(&error);
+        }
+        report(&format_args!(
+            "watching {} file{} for changes (Ctrl-C to stop)",
+            paths.len(),
+            if paths.len() == 1 { "" } else { "s" }
+        ));
+        stamps.wait_for_change(WATCH_POLL, WATCH_SETTLE);
+    }
+}
+
+/// How often `prism watch` looks at the files' modification times.
+const WATCH_POLL: std::time::Duration = std::time::Duration::from_millis(200);
+
+/// How long the files must stay unchanged after a change before `prism watch` renders
+/// (an editor's save may take several writes).
+const WATCH_SETTLE: std::time::Duration = std::time::Duration::from_millis(300);
 
 fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     let settings = &mut scene.render;
@@ -654,10 +721,14 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     let is_part = args.region.is_some() || args.tile.is_some() || args.sample_range.is_some();
     let mut outputs: Vec<PathBuf> = args.output.iter().chain(args.exr.iter()).cloned().collect();
     if is_part {
-        if let Some(flag) =
-            [(args.time.is_some(), "--time"), (args.aov.is_some(), "--aov"), (args.aov_png, "--aov-png")]
-                .into_iter()
-                .find_map(|(given, flag)| given.then_some(flag))
+        if let Some(flag) = [
+            (args.time.is_some(), "--time"),
+            (args.aov.is_some(), "--aov"),
+            (args.aov_png, "--aov-png"),
+            (args.preview, "--preview"),
+        ]
+        .into_iter()
+        .find_map(|(given, flag)| given.then_some(flag))
         {
             return Err(CliError::PartWith { flag });
         }
@@ -694,11 +765,13 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         output::check_writable(path)?;
     }
     print_warnings(&prism::world::validate::warnings(&scene));
+    let preview = if args.preview { Some(open_preview(&scene, &args.scene)?) } else { None };
     let options = RenderOptions {
         threads: args.threads,
         progress: std::io::stderr().is_terminal(),
         budget: args.limits.budget(),
         aovs,
+        observer: preview.as_ref().map(prism::preview::Preview::hook),
         ..Default::default()
     };
     let (film, stats) = match args.time {
@@ -717,6 +790,9 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         }
         None => render_frame(&render_scene, &options)?,
     };
+    if let Some(preview) = preview {
+        preview.close();
+    }
     if stats.non_finite_pixels > 0 {
         report(&format!(
             "warning: {} pixels had a NaN or infinite value and are written black",
