@@ -381,8 +381,9 @@ fn show(mut canvas: Canvas, title: String, inbox: Receiver<Message>, opened: Syn
             window.set_title(&progress_title);
             shown_title = progress_title;
         }
-        let drawn = if dirty { window.update_with_buffer(canvas.pixels(), pw, ph) } else { Ok(window.update()) };
-        if drawn.is_err() {
+        if !dirty {
+            window.update();
+        } else if window.update_with_buffer(canvas.pixels(), pw, ph).is_err() {
             return;
         }
         dirty = false;
