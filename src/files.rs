@@ -15,11 +15,14 @@
 //! disk, under the same size caps: the fuzz targets (`fuzz/`) drive every loader through it.
 //!
 //! Messages name files, never their contents, and long names are shortened ([`shown`]).
+//!
+//! [`FileAccess::logged`] also notes every path asked for (read or not: a missing include
+//! may appear later), which is how `prism watch` knows the files a scene depends on.
 
 use std::collections::HashMap;
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 /// Largest scene file (TOML, each include counted alone): 64 MiB.
 pub const MAX_SCENE_BYTES: u64 = 64 << 20;
@@ -153,6 +156,28 @@ pub struct FileAccess {
     root: Option<PathBuf>,
     /// Files held in memory by [`normalize`]d path; when set, the disk is never touched.
     memory: Option<Arc<HashMap<PathBuf, Vec<u8>>>>,
+    /// Where the paths asked for are noted, when they are.
+    log: Option<ReadLog>,
+}
+
+/// The paths a [`FileAccess`] (and every clone of it) was asked to read, in order, each
+/// once, made absolute against the working directory.
+#[derive(Clone, Debug, Default)]
+pub struct ReadLog(Arc<Mutex<Vec<PathBuf>>>);
+
+impl ReadLog {
+    /// The paths noted so far.
+    pub fn paths(&self) -> Vec<PathBuf> {
+        self.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner).clone()
+    }
+
+    fn note(&self, path: &Path) {
+        let path = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+        let mut paths = self.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if !paths.contains(&path) {
+            paths.push(path);
+        }
+    }
 }
 
 impl FileAccess {
@@ -167,14 +192,20 @@ impl FileAccess {
         if !canonical.is_dir() {
             return Err(FileError::NotRegular { path: root.into(), what: "not a directory" });
         }
-        Ok(Self { root: Some(canonical), memory: None })
+        Ok(Self { root: Some(canonical), memory: None, log: None })
     }
 
     /// Reads only the given files (path, bytes), never the disk; paths are compared after
     /// [`normalize`], and each file's kind cap still applies. For fuzzing and tests.
     pub fn in_memory(files: impl IntoIterator<Item = (PathBuf, Vec<u8>)>) -> Self {
         let files = files.into_iter().map(|(path, bytes)| (normalize(&path), bytes)).collect();
-        Self { root: None, memory: Some(Arc::new(files)) }
+        Self { root: None, memory: Some(Arc::new(files)), log: None }
+    }
+
+    /// This access, noting in the returned log every path it (or a clone) is asked to read.
+    pub fn logged(self) -> (Self, ReadLog) {
+        let log = ReadLog::default();
+        (Self { log: Some(log.clone()), ..self }, log)
     }
 
     /// The sandbox's root, if any.
@@ -210,6 +241,9 @@ impl FileAccess {
 
     /// The bytes of the regular file at `path`, at most `kind.cap()` of them.
     pub fn read(&self, path: &Path, kind: FileKind) -> Result<Vec<u8>, FileError> {
+        if let Some(log) = &self.log {
+            log.note(path);
+        }
         let canonical = self.resolve(path)?;
         let cap = kind.cap();
         let too_large = || FileError::TooLarge { path: path.into(), noun: kind.noun(), cap };
@@ -301,6 +335,22 @@ pub fn not_regular(file_type: &std::fs::FileType) -> Option<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_logged_access_notes_every_path_asked_for_once_through_its_clones() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("a.toml");
+        std::fs::write(&file, "x = 1\n").unwrap();
+        let missing = dir.path().join("later.toml");
+        let (access, log) = FileAccess::unrestricted().logged();
+        access.read(&file, FileKind::Scene).unwrap();
+        access.clone().read(&missing, FileKind::Scene).unwrap_err();
+        access.read(&file, FileKind::Scene).unwrap();
+        assert_eq!(log.paths(), vec![file, missing]);
+        // An access that is not logged notes nothing anywhere.
+        FileAccess::unrestricted().read(dir.path(), FileKind::Scene).unwrap_err();
+        assert_eq!(log.paths().len(), 2);
+    }
 
     #[test]
     fn regular_files_are_read_and_others_refused() {

@@ -23,10 +23,12 @@ pub mod material;
 pub mod output;
 pub mod partial;
 pub mod plugins;
+pub mod preview;
 pub mod registry;
 pub mod render;
 pub mod scene;
 pub mod texture;
+pub mod watch;
 pub mod world;
 
 use diagnostics::SceneError;

@@ -30,6 +30,10 @@ struct Cli {
 enum Command {
     /// Render a scene file to an image.
     Render(RenderArgs),
+    /// Render a scene file, then again whenever it or a file it reads (includes, meshes,
+    /// textures) changes, until Ctrl-C. Takes `render`'s options; a broken edit is reported
+    /// and the last good image stays.
+    Watch(RenderArgs),
     /// List the registered shape types and their parameters.
     Shapes,
     /// Write a JSON Schema of the scene format (for editors such as taplo / Even Better TOML).
@@ -320,6 +324,10 @@ struct RenderArgs {
     /// beauty as rendered as the `raw` layer.
     #[arg(long)]
     denoise: bool,
+    /// Show the image in a window while it renders (needs an X11 or Wayland display); the
+    /// window closes when the render ends.
+    #[arg(long)]
+    preview: bool,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -506,6 +514,9 @@ enum CliError {
     /// `--denoise` failed: no library, or the library reported an error.
     #[error(transparent)]
     Denoise(#[from] prism::denoise::DenoiseError),
+    /// The `--preview` window cannot be opened.
+    #[error(transparent)]
+    Preview(#[from] prism::preview::PreviewError),
     /// `--aov` without an EXR output or `--aov-png`: the layers would go nowhere.
     #[error("--aov: AOV layers are written into an OpenEXR output: add --exr FILE.exr (or -o FILE.exr) or --aov-png")]
     AovsNeedExr,
@@ -667,6 +678,7 @@ fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         None => render_default(),
         Some(Command::Render(args)) => render_command(&args),
+        Some(Command::Watch(args)) => watch_command(&args),
         Some(Command::Merge(args)) => merge_command(&args),
         Some(Command::Farm(FarmCommand::Slurm(args))) => slurm_command(&args),
         Some(Command::Shapes) => write_stdout(&prism::registry::describe(&plugins::registry())),
@@ -692,6 +704,61 @@ fn render_command(args: &RenderArgs) -> Result<(), CliError> {
     let scene = load_and_warn(&args.scene, &args.limits)?;
     render_scene(scene, args)
 }
+
+/// Opens the `--preview` window for the scene's image, showing it as the outputs will.
+fn open_preview(scene: &Scene, path: &Path) -> Result<prism::preview::Preview, CliError> {
+    use prism::preview::{Preview, PreviewSettings};
+    let settings = PreviewSettings { exposure: scene.render.exposure, tone_map: scene.render.tone_map };
+    let title = path.file_name().map_or_else(|| "prism".into(), |n| n.to_string_lossy().into_owned());
+    let preview = Preview::open((scene.render.width, scene.render.height), &title, settings)?;
+    let layout = preview.layout();
+    let (w, h) = layout.window();
+    let how = match (layout.zoom, layout.picture == layout.image) {
+        (1, true) => "pixel for pixel".to_string(),
+        (1, false) => format!("shrunk to {}x{} to fit the screen", layout.picture.0, layout.picture.1),
+        (zoom, _) => format!("enlarged {zoom}x"),
+    };
+    report(&format_args!("preview: a {w}x{h} window, the image {how}"));
+    Ok(preview)
+}
+
+/// `prism watch`: renders, then waits for a change to any file the scene read and renders
+/// again; errors are printed and the watch goes on. Ends with Ctrl-C (the signal thread).
+fn watch_command(args: &RenderArgs) -> Result<(), CliError> {
+    use prism::watch::FileStamps;
+    let access = args.limits.access()?;
+    loop {
+        let (logged, log) = access.clone().logged();
+        let loaded = load_with(&FileSystem(logged), &args.scene, &plugins::registry(), args.limits.budget());
+        let mut paths = log.paths();
+        let scene_path = std::path::absolute(&args.scene).unwrap_or_else(|_| args.scene.clone());
+        if !paths.contains(&scene_path) {
+            paths.insert(0, scene_path);
+        }
+        // Stamped before the render, so that an edit made while it runs starts the next one.
+        let stamps = FileStamps::of(&paths);
+        let result = loaded.map_err(CliError::from).and_then(|scene| {
+            print_warnings(&scene.warnings);
+            render_scene(scene, args)
+        });
+        if let Err(error) = result {
+            report(&error);
+        }
+        report(&format_args!(
+            "watching {} file{} for changes (Ctrl-C to stop)",
+            paths.len(),
+            if paths.len() == 1 { "" } else { "s" }
+        ));
+        stamps.wait_for_change(WATCH_POLL, WATCH_SETTLE);
+    }
+}
+
+/// How often `prism watch` looks at the files' modification times.
+const WATCH_POLL: std::time::Duration = std::time::Duration::from_millis(200);
+
+/// How long the files must stay unchanged after a change before `prism watch` renders
+/// (an editor's save may take several writes).
+const WATCH_SETTLE: std::time::Duration = std::time::Duration::from_millis(300);
 
 fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     let settings = &mut scene.render;
@@ -739,6 +806,7 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
             (args.checkpoint_file.is_some(), "--checkpoint-file"),
             (args.resume.is_some(), "--resume"),
             (args.denoise, "--denoise"),
+            (args.preview, "--preview"),
         ]
         .into_iter()
         .find_map(|(given, flag)| given.then_some(flag))
@@ -812,11 +880,13 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     if denoiser.is_some() {
         add_denoise_guides(&mut render_aovs);
     }
+    let preview = if args.preview { Some(open_preview(&scene, &args.scene)?) } else { None };
     let options = RenderOptions {
         threads: args.threads,
         progress: std::io::stderr().is_terminal(),
         budget: args.limits.budget(),
         aovs: render_aovs,
+        observer: preview.as_ref().map(prism::preview::Preview::hook),
         ..Default::default()
     };
     let image =
@@ -854,6 +924,9 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
             None => render_frame(&render_scene, &options)?,
         },
     };
+    if let Some(preview) = preview {
+        preview.close();
+    }
     if stats.non_finite_samples > 0 {
         report(&format!(
             "warning: {} samples had a NaN or infinite radiance (products of extreme light, colour or \

@@ -266,11 +266,17 @@ pub fn to_ldr(film: &Film, exposure: f64, op: ToneMap) -> RgbImage {
     let mut img = RgbImage::new(film.width, film.height);
     for (dst, src) in img.pixels_mut().zip(&film.pixels) {
         for (out, &linear) in dst.0.iter_mut().zip(src) {
-            let v = tone_map(f64::from(linear) * scale, op).clamp(0.0, 1.0);
-            *out = (srgb_encode(v) * 255.0 + 0.5).floor() as u8;
+            *out = ldr_channel(f64::from(linear), scale, op);
         }
     }
     img
+}
+
+/// One linear channel as an 8-bit sRGB value, as [`to_ldr`] makes it: times `scale` (the
+/// exposure as a factor, `2^stops`), tone map, clip, sRGB curve, round.
+pub fn ldr_channel(linear: f64, scale: f64, op: ToneMap) -> u8 {
+    let v = tone_map(linear * scale, op).clamp(0.0, 1.0);
+    (srgb_encode(v) * 255.0 + 0.5).floor() as u8
 }
 
 /// An 8-bit preview of one AOV layer (for `--aov-png`): albedo through the sRGB curve,

@@ -75,6 +75,31 @@ pub struct RenderOptions {
     /// Tiles not started by then are skipped (left black) and the stats say the render was
     /// cancelled, as with `cancel`.
     pub deadline: Option<Instant>,
+    /// Told when the render starts and handed each finished tile's pixels (a preview
+    /// window); it only reads them, so the image is the same with or without it.
+    pub observer: Option<TileHook>,
+}
+
+/// Watches a render as it goes: where it starts, then each finished tile. Called from the
+/// render threads, in no particular tile order.
+pub trait TileObserver: Send + Sync {
+    /// A render (or a pass of a time-budgeted one) of `region` of a `frame` (width, height)
+    /// begins; the tiles that follow replace those of earlier renders.
+    fn begin(&self, region: Region, frame: (u32, u32));
+    /// A tile is done: `pixels` are the linear radiance of `area` (full-frame coordinates),
+    /// row by row, before non-finite values are blackened. Under POV-Ray's antialiasing
+    /// `area` is a whole block of the frame, which may reach outside the region.
+    fn tile(&self, area: Region, pixels: &[[f32; 3]]);
+}
+
+/// A shared [`TileObserver`] (a newtype so that [`RenderOptions`] stays `Debug`).
+#[derive(Clone)]
+pub struct TileHook(pub Arc<dyn TileObserver>);
+
+impl std::fmt::Debug for TileHook {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("TileHook")
+    }
 }
 
 /// What a render did.
@@ -426,6 +451,9 @@ fn render_samples<I: Integrator>(
     } else {
         ProgressBar::hidden()
     };
+    if let Some(hook) = &options.observer {
+        hook.0.begin(region, (width, height));
+    }
     // Running totals for the bar's message: pixels, samples and squared display errors.
     let running = std::sync::Mutex::new((0u64, 0u64, 0.0f64));
 
@@ -479,6 +507,9 @@ fn render_samples<I: Integrator>(
                 };
                 rays.fetch_add(tile_rays, Ordering::Relaxed);
                 primary_rays.fetch_add(tile_primary, Ordering::Relaxed);
+                if let Some(hook) = &options.observer {
+                    hook.0.tile(result.area, &result.pixels);
+                }
                 if options.progress && !result.estimates.is_empty() {
                     let mut totals = running.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
                     totals.0 += result.estimates.len() as u64;
