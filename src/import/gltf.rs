@@ -192,6 +192,13 @@ fn check_json(root: &gltf::json::Root) -> Result<(), String> {
     for (i, image) in root.images.iter().enumerate() {
         match (&image.uri, image.buffer_view) {
             (Some(_), None) => {}
+            // glTF 2.0, 5.17: `mimeType` is required when `bufferView` is defined (the
+            // crate unwraps it; found by fuzzing).
+            (None, Some(_)) if image.mime_type.is_none() => {
+                return Err(format!(
+                    "image {i} has a `bufferView` but no `mimeType`, which the specification requires"
+                ));
+            }
             (None, Some(v)) if v.value() < views => {}
             (None, Some(v)) => return Err(format!("image {i} names buffer view {}, which does not exist", v.value())),
             _ => return Err(format!("image {i} needs exactly one of `uri` and `bufferView`")),

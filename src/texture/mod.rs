@@ -440,7 +440,7 @@ impl TextureStore {
 /// coordinates wrap, and a uv transform (KHR_texture_transform: scale, then rotate, then
 /// offset). Written in a scene as a path string or a table
 /// `{ file, wrap, offset, scale, rotation }`. The decoded image rides along, not saved.
-#[derive(Clone, Serialize, JsonSchema)]
+#[derive(Clone, Serialize)]
 pub struct TextureRef {
     /// The image file (relative to the scene file when written; absolute once loaded), or
     /// the glTF file holding the image.
@@ -459,7 +459,6 @@ pub struct TextureRef {
     pub rotation: f64,
     /// The decoded image (set by the loader; not part of the scene text).
     #[serde(skip)]
-    #[schemars(skip)]
     pub texture: Option<Arc<Texture>>,
 }
 
@@ -537,24 +536,47 @@ impl TextureRef {
     }
 }
 
-#[derive(Deserialize)]
+/// The table form of a texture.
+#[derive(Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct TextureTable {
+    /// The image file, relative to the scene file (or the glTF file holding the image).
     file: String,
+    /// Index of the image inside the glTF file `file`.
     #[serde(default)]
     image: Option<u32>,
+    /// Wrap mode for both axes, or `[u, v]` (default `repeat`).
     #[serde(default)]
     wrap: Option<WrapSpec>,
+    /// Added to the coordinates last (default `[0, 0]`).
     #[serde(default)]
     offset: Option<[f64; 2]>,
+    /// Multiplies the coordinates first (default `[1, 1]`).
     #[serde(default)]
     scale: Option<[f64; 2]>,
+    /// Rotation in degrees between scale and offset (default 0).
     #[serde(default)]
     rotation: Option<f64>,
 }
 
+/// A texture is written as an image path or as a [`TextureTable`], as the deserializer
+/// reads it.
+impl JsonSchema for TextureRef {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "TextureRef".into()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let table = generator.subschema_for::<TextureTable>();
+        schemars::json_schema!({
+            "description": "A texture: an image path relative to the scene file, or a table { file, wrap, offset, scale, rotation }.",
+            "anyOf": [{ "type": "string" }, table]
+        })
+    }
+}
+
 /// One wrap mode for both axes, or one per axis.
-#[derive(Deserialize)]
+#[derive(Deserialize, JsonSchema)]
 #[serde(untagged)]
 enum WrapSpec {
     Both(Wrap),
