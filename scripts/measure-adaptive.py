@@ -10,9 +10,14 @@ the same RMSE, interpolated log-log between the fixed renders around it (ratio <
 sampling saves time). RMSE both of the displayed image (linear values clipped to [0, 1]) and
 of linear RGB (where the few pixels of a light, 15 times brighter than a wall, dominate).
 
-Cost is the CPU time (user + system) of the prism process, not the wall time its summary
-line prints: on a shared machine the wall time says more about the neighbours than about
-the render. Every render in one run uses the same thread count (--threads, default 2).
+Cost is measured twice: the CPU time (user + system) of the prism process (not the wall
+time its summary line prints: on a shared machine the wall time says more about the
+neighbours than about the render), and the number of rays the render traced, which its
+summary line prints: a deterministic cost, free of the machine's noise (CPU time varied by
+30 % between identical runs on a shared machine), that counts a cheap background sample
+as cheap. Every render in one run uses the same thread count (--threads, default 2).
+--repeat N renders everything N times, interleaved, and keeps each render's smallest CPU
+time.
 
 Options: --size W H (default: the scene's), --reference FILE.exr (a converged image, e.g.
 scenes/mitsuba/refs/cornell.exr) or --ref-spp N (rendered with another seed, default 4096),
@@ -44,7 +49,8 @@ def render(prism, scene, args, exr):
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     spread = re.search(r"samples per pixel: .*", out.stderr)
-    return cpu, spread.group(0) if spread else ""
+    rays = re.search(r"(\d+) rays in all", out.stderr)
+    return cpu, int(rays.group(1)), spread.group(0) if spread else ""
 
 
 def load(exr):
@@ -63,6 +69,7 @@ def main():
     ap.add_argument("--max-spp", default="1024")
     ap.add_argument("--threads", default="2")
     ap.add_argument("--prism-adaptive")
+    ap.add_argument("--repeat", type=int, default=1)
     args, extra = ap.parse_known_args()
     extra = [*extra, "--threads", args.threads]
     if args.size:
@@ -73,7 +80,7 @@ def main():
             print(f"reference: {args.reference}")
         else:
             ref_path = f"{tmp}/ref.exr"
-            cpu, _ = render(args.prism, args.scene, ["--samples", args.ref_spp, "--seed", "7", *extra], ref_path)
+            cpu, _, _ = render(args.prism, args.scene, ["--samples", args.ref_spp, "--seed", "7", *extra], ref_path)
             ref = load(ref_path)
             print(f"reference: {args.ref_spp} spp in {cpu:.1f} CPU s")
 
@@ -83,30 +90,40 @@ def main():
             linear = math.sqrt(float(np.mean((image - ref) ** 2)))
             return shown, linear
 
-        def fixed_cost(e, which):
+        def fixed_cost(e, which, cost):
             # Fixed renders' cost at RMSE e, log-log between the neighbours (or extrapolated
             # from the nearest two).
-            pts = sorted(((f[which], f[2]) for f in fixed), reverse=True)
+            pts = sorted(((f[which], f[cost]) for f in fixed), reverse=True)
             i = next((k for k in range(len(pts) - 1) if pts[k + 1][0] <= e), len(pts) - 2)
             (e0, t0), (e1, t1) = pts[i], pts[i + 1]
             slope = (math.log(t1) - math.log(t0)) / (math.log(e1) - math.log(e0))
             return math.exp(math.log(t0) + slope * (math.log(e) - math.log(e0)))
 
+        # Each render's (RMSE shown, RMSE linear, smallest CPU time, rays, spread).
+        runs = {}
+        jobs = [(f"fixed{spp}", args.prism, ["--samples", str(spp), *extra]) for spp in [16, 32, 64, 128, 256]]
+        for noise in args.noise.split(","):
+            adaptive_args = ["--samples", args.max_spp, "--noise", noise, "--aov", "samples", *extra]
+            jobs.append((f"adaptive{noise}", args.prism_adaptive or args.prism, adaptive_args))
+        for _ in range(args.repeat):
+            for name, binary, job_args in jobs:
+                path = f"{tmp}/{name}.exr"
+                t, rays, spread = render(binary, args.scene, job_args, path)
+                previous = runs.get(name)
+                runs[name] = (*rmse(path), min(t, previous[2]) if previous else t, rays, spread)
         fixed = []
         for spp in [16, 32, 64, 128, 256]:
-            path = f"{tmp}/fixed{spp}.exr"
-            t, _ = render(args.prism, args.scene, ["--samples", str(spp), *extra], path)
-            fixed.append((*rmse(path), t))
-            print(f"fixed {spp:4d} spp: RMSE shown {fixed[-1][0]:.5f}, linear {fixed[-1][1]:.5f}, {t:.2f} CPU s")
+            fixed.append(runs[f"fixed{spp}"])
+            shown, linear, t, rays, _ = fixed[-1]
+            print(f"fixed {spp:4d} spp: RMSE shown {shown:.5f}, linear {linear:.5f}, {t:.2f} CPU s, {rays / 1e6:.2f} Mrays")
         for noise in args.noise.split(","):
-            path = f"{tmp}/adaptive{noise}.exr"
-            adaptive_args = ["--samples", args.max_spp, "--noise", noise, "--aov", "samples", *extra]
-            t, spread = render(args.prism_adaptive or args.prism, args.scene, adaptive_args, path)
-            shown, linear = rmse(path)
-            ts, tl = fixed_cost(shown, 0), fixed_cost(linear, 1)
+            shown, linear, t, rays, spread = runs[f"adaptive{noise}"]
+            ts, tl = fixed_cost(shown, 0, 2), fixed_cost(linear, 1, 2)
+            rs, rl = fixed_cost(shown, 0, 3), fixed_cost(linear, 1, 3)
             print(
-                f"adaptive noise {noise}: {t:.2f} CPU s, RMSE shown {shown:.5f} (fixed: {ts:.2f} s, ratio {t / ts:.2f}), "
-                f"linear {linear:.5f} (fixed: {tl:.2f} s, ratio {t / tl:.2f}); {spread}"
+                f"adaptive noise {noise}: RMSE shown {shown:.5f}: CPU {t:.2f} s vs fixed {ts:.2f} s (ratio {t / ts:.2f}), "
+                f"rays {rays / 1e6:.2f} M vs {rs / 1e6:.2f} M (ratio {rays / rs:.2f}); "
+                f"linear {linear:.5f}: CPU ratio {t / tl:.2f}, rays ratio {rays / rl:.2f}; {spread}"
             )
 
 

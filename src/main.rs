@@ -297,9 +297,10 @@ struct RenderArgs {
     /// Also write an 8-bit PNG preview of each AOV layer, named `<output stem>.<aov>.png`.
     #[arg(long)]
     aov_png: bool,
-    /// Adaptive sampling: stop each pixel once the estimated error of its displayed value,
-    /// relative to that value but at least 0.1 of white, is at most this (between 0 and 1;
-    /// overrides `[render] noise`), or at `samples`.
+    /// Adaptive sampling: the largest estimated error a pixel's displayed value may keep
+    /// (between 0 and 1, in units of display white; overrides `[render] noise`). Each pixel
+    /// takes samples in proportion to their spread, the allocation with the lowest RMSE for
+    /// the time, up to `samples`.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_noise)]
     noise: Option<f64>,
     /// Time budget (`90s`, `10m`, `1h30m`; a bare number is seconds): render passes of

@@ -48,7 +48,7 @@ fn files_in(dir: &Path) -> Vec<String> {
 
 #[test]
 fn adaptive_sampling_is_deterministic_and_spends_samples_where_the_noise_is() {
-    let scene = cornell(24, 128, Some(0.05));
+    let scene = cornell(24, 128, Some(0.015));
     let aovs = [Aov::Samples, Aov::Variance];
     let (one, stats) = render_with(&scene, 1, &aovs);
     let (two, _) = render_with(&scene, 2, &aovs);
@@ -60,7 +60,6 @@ fn adaptive_sampling_is_deterministic_and_spends_samples_where_the_noise_is() {
     assert_eq!(max, 128.0);
     assert!(stats.samples.mean < 120.0 && stats.samples.mean > 32.0, "{:?}", stats.samples);
     assert_eq!(stats.primary_rays, counts.iter().map(|&c| c as u64).sum::<u64>());
-    // Stopped pixels met the target: their estimated display error is at most 5 %.
     assert!(stats.noise > 0.0);
 }
 
@@ -176,7 +175,8 @@ fn toml_settings_drive_aovs_and_adaptive_sampling() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let stderr = String::from_utf8_lossy(&out.stderr);
     // A loose target stops most pixels at the first check, after MIN_BATCHES batches.
-    assert!(stderr.contains("samples per pixel: min 32, median 32"), "{stderr}");
+    let first_check = prism::render::SAMPLE_BATCH * prism::render::MIN_BATCHES;
+    assert!(stderr.contains(&format!("samples per pixel: min {first_check}, median {first_check}")), "{stderr}");
     let bytes = std::fs::read(&exr).unwrap();
     for name in [&b"depth.Z"[..], b"samples.count"] {
         assert!(bytes.windows(name.len()).any(|w| w == name), "{}", String::from_utf8_lossy(name));

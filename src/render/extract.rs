@@ -53,13 +53,12 @@ impl RenderScene {
     }
 }
 
-/// The pixel and lens patterns of `settings.samples` points per pixel, or under adaptive
-/// sampling of blocks of [`super::ADAPTIVE_BLOCK`] points.
+/// The pixel and lens patterns of `settings.samples` points per pixel (none under adaptive
+/// sampling, whose pixels draw progressive patterns of their own).
 fn patterns_for(settings: &RenderSettings, aperture: f64) -> PatternTable {
     let samples = settings.samples;
-    let points = if settings.noise.is_some() { samples.min(super::ADAPTIVE_BLOCK) } else { samples };
-    if samples > 1 || aperture > 0.0 {
-        PatternTable::new(points, settings.seed)
+    if (samples > 1 || aperture > 0.0) && settings.noise.is_none() {
+        PatternTable::new(samples, settings.seed)
     } else {
         PatternTable::untabulated(samples)
     }

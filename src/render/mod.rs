@@ -41,19 +41,12 @@ pub const TILE_SIZE: u32 = 16;
 pub const SAMPLE_BATCH: u32 = 8;
 
 /// Batches a pixel takes before adaptive sampling may stop it.
-pub const MIN_BATCHES: u32 = 4;
+pub const MIN_BATCHES: u32 = 2;
 
-/// Under adaptive sampling a pixel's samples come in blocks of this many, each block a whole
-/// stratified pattern of its own: a pixel stopped after k blocks holds k stratified
-/// patterns. (Drawn in order from one pattern of `samples` points, the first few dozen would
-/// be a scattered subset of it, hardly better than random points.)
-pub const ADAPTIVE_BLOCK: u32 = SAMPLE_BATCH * MIN_BATCHES;
-
-/// Displayed value under which adaptive sampling's error is measured against this value
-/// instead of the pixel's own: a pixel's error counts relative to its brightness on screen,
-/// but never to less than this share of display white (dark pixels would otherwise sample
-/// forever to reach a relative error nobody can see).
-pub const NOISE_FLOOR: f64 = 0.1;
+/// The largest standard deviation a displayed value (in [0, 1]) can have: adaptive
+/// sampling's stopping rule is scaled so that a pixel this noisy stops exactly at the
+/// `noise` target and every other pixel below it.
+const LARGEST_DISPLAY_DEVIATION: f64 = 0.5;
 
 /// How to run a render.
 #[derive(Clone, Debug, Default)]
@@ -303,9 +296,9 @@ pub struct PixelStats {
     /// Estimated variance of the mean radiance per channel (0 with one sample).
     pub variance: [f32; 3],
     /// Estimated error of the pixel as displayed: the standard deviation of the mean of its
-    /// samples' displayed luminance (exposure, tone map, clipped to [0, 1]) over the larger
-    /// of that mean and [`NOISE_FLOOR`] (0 with one sample). Adaptive sampling stops a pixel
-    /// when this is at most `noise`.
+    /// samples' displayed luminance (exposure, tone map, clipped to [0, 1]; so in units of
+    /// display white), 0 with one sample. Adaptive sampling never stops a pixel above the
+    /// `noise` target, and stops quiet pixels below it (see [`render_pixel_samples`]).
     pub display_error: f32,
     /// Samples whose radiance was NaN or infinite (overflow of extreme but accepted values),
     /// counted as black.
@@ -744,10 +737,27 @@ impl PixelSpread {
         (self.squares / (n * (n - 1.0)), self.squares_shown / (n * (n - 1.0)))
     }
 
-    /// Standard deviation of the mean displayed luminance over the larger of that mean and
-    /// [`NOISE_FLOOR`].
+    /// Standard deviation of the mean displayed luminance.
     fn display_error(&self) -> f64 {
-        self.variance_of_mean().1.max(0.0).sqrt() / self.mean_shown.max(NOISE_FLOOR)
+        self.variance_of_mean().1.max(0.0).sqrt()
+    }
+
+    /// Whether the pixel has had its share of samples under adaptive sampling with target
+    /// `noise`. For a given total, the image's mean squared error `sum(sigma_i^2 / n_i)` is
+    /// smallest with `n_i` proportional to `sigma_i`, the standard deviation of pixel i's
+    /// samples (Neyman's allocation; a Lagrange multiplier gives `sigma_i^2 / n_i^2` equal
+    /// everywhere): so a pixel stops once `sigma / n` falls below a constant. Stopping every
+    /// pixel at the same error instead costs exactly what uniform sampling costs at equal
+    /// RMSE. The constant, `noise^2 / LARGEST_DISPLAY_DEVIATION`, makes the noisiest
+    /// possible pixel stop at error `noise` and every other one below: the error at
+    /// stopping is `sqrt(sigma * noise^2 / LARGEST_DISPLAY_DEVIATION)`.
+    fn has_enough(&self, noise: f64) -> bool {
+        if self.count < 2 {
+            return false;
+        }
+        let n = f64::from(self.count);
+        let deviation = (self.squares_shown / (n - 1.0)).max(0.0).sqrt();
+        deviation / n <= noise * noise / LARGEST_DISPLAY_DEVIATION
     }
 }
 
@@ -755,8 +765,11 @@ impl PixelSpread {
 /// pixel: their weighted mean as [`render_pixel`] computes it, their weighted sum and
 /// weights, accumulated in sample order from zero, and what they say about the pixel's
 /// error. With `[render] noise` set and the whole range asked for, the pixel stops after the
-/// first whole batch, from [`MIN_BATCHES`] on, whose estimated display error
-/// ([`PixelStats::display_error`]) is at most `noise`; the decision depends on the pixel's own samples only, so the image is the same
+/// first whole batch, from [`MIN_BATCHES`] on, after which it has had its share
+/// (`PixelSpread::has_enough`: samples in proportion to the spread of its displayed values,
+/// never stopping above the `noise` target); its offsets and lens positions are then a
+/// progressive pattern ([`sampling::ProgressivePattern`]), stratified at whatever count it
+/// stops. The decision depends on the pixel's own samples only, so the image is the same
 /// for any thread count or tiling. (Sample ranges with `noise` are refused before this.)
 pub fn render_pixel_samples<I: Integrator>(
     scene: &RenderScene,
@@ -769,11 +782,10 @@ pub fn render_pixel_samples<I: Integrator>(
     let (width, height) = (f64::from(settings.width), f64::from(settings.height));
     let pixel = u64::from(y) * u64::from(settings.width) + u64::from(x);
     let samples = settings.samples;
-    // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels;
-    // under adaptive sampling each block of samples has its own pattern (and key).
-    let block = if settings.noise.is_some() { ADAPTIVE_BLOCK.min(samples) } else { samples };
-    let patterns_of = |b: u32| scene.patterns.for_key(hash4(pixel, u64::from(b), u64::MAX, settings.seed));
-    let mut patterns = (samples > 1).then(|| patterns_of(0));
+    // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels.
+    let key = hash4(pixel, 0, u64::MAX, settings.seed);
+    let mut progressive = (samples > 1 && settings.noise.is_some()).then(|| sampling::ProgressivePattern::new(key));
+    let patterns = (samples > 1 && progressive.is_none()).then(|| scene.patterns.for_key(key));
     let mut sum = DVec3::ZERO;
     let mut weights = 0.0;
     let mut rays = 0;
@@ -783,19 +795,26 @@ pub fn render_pixel_samples<I: Integrator>(
     let adaptive = settings.noise.filter(|_| range == (0..samples));
     let mut taken = range.len() as u32;
     for s in range {
-        if s % block == 0 && s > 0 && samples > 1 {
-            patterns = Some(patterns_of(s / block));
-        }
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
-        let in_block = s % block;
-        let mut offset = patterns.as_ref().map_or(DVec2::splat(0.5), |p| p.offset(in_block));
+        if let Some(progressive) = &mut progressive {
+            progressive.seek(s);
+        }
+        let mut offset = match (&progressive, &patterns) {
+            (Some(progressive), _) => progressive.offset(),
+            (None, Some(patterns)) => patterns.offset(s),
+            (None, None) => DVec2::splat(0.5),
+        };
         let mut weight = 1.0;
         if let Some(filter) = &scene.filter {
             let (from_centre, w) = filter.sample(offset);
             (offset, weight) = (from_centre + 0.5, w);
         }
         let lens = if scene.camera.aperture > 0.0 {
-            patterns.as_ref().map_or_else(|| sampling::concentric_disc(stream.uniform2(2)), |p| p.lens(in_block))
+            match (&progressive, &patterns) {
+                (Some(progressive), _) => progressive.lens(),
+                (None, Some(patterns)) => patterns.lens(s),
+                (None, None) => sampling::concentric_disc(stream.uniform2(2)),
+            }
         } else {
             DVec2::ZERO
         };
@@ -819,7 +838,7 @@ pub fn render_pixel_samples<I: Integrator>(
             && (s + 1) % SAMPLE_BATCH == 0
             && s + 1 >= SAMPLE_BATCH * MIN_BATCHES
             && s + 1 < samples
-            && spread.display_error() <= noise
+            && spread.has_enough(noise)
         {
             taken = s + 1;
             break;
@@ -835,4 +854,64 @@ pub fn render_pixel_samples<I: Integrator>(
         non_finite_samples,
     };
     (PixelSample { radiance, first_hit, rays }, PixelSums { sum: sum.to_array(), weight: weights }, stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Feeds `value(i)` (a grey radiance) to a fresh spread until `has_enough(noise)`, checked
+    /// after every batch from the first check on as `render_pixel_samples` does; returns the
+    /// count and the spread.
+    fn samples_until_enough(noise: f64, limit: u32, value: impl Fn(u32) -> f64) -> (u32, PixelSpread) {
+        let mut spread = PixelSpread::new(&crate::world::components::RenderSettings::default());
+        for i in 0..limit {
+            spread.add(DVec3::splat(value(i)));
+            let n = i + 1;
+            if n % SAMPLE_BATCH == 0 && n >= SAMPLE_BATCH * MIN_BATCHES && spread.has_enough(noise) {
+                return (n, spread);
+            }
+        }
+        (limit, spread)
+    }
+
+    /// Two-valued samples: `low` and `high` alternating, so the spread is known exactly.
+    fn alternating(low: f64, high: f64) -> impl Fn(u32) -> f64 {
+        move |i| if i % 2 == 0 { low } else { high }
+    }
+
+    #[test]
+    fn a_pixel_without_spread_stops_at_the_first_check() {
+        let (n, _) = samples_until_enough(0.01, 1 << 16, |_| 0.4);
+        assert_eq!(n, SAMPLE_BATCH * MIN_BATCHES);
+        // Brighter than white: every displayed value is 1.
+        let (n, _) = samples_until_enough(0.01, 1 << 16, alternating(3.0, 50.0));
+        assert_eq!(n, SAMPLE_BATCH * MIN_BATCHES);
+    }
+
+    /// Neyman's allocation: samples in proportion to the spread, so a pixel twice as noisy
+    /// takes twice the samples (not four times, as an equal-error rule would give it).
+    #[test]
+    fn samples_grow_in_proportion_to_the_spread() {
+        let noise = 0.01;
+        let (quiet, _) = samples_until_enough(noise, 1 << 20, alternating(0.4, 0.5));
+        let (noisy, _) = samples_until_enough(noise, 1 << 20, alternating(0.3, 0.5));
+        let ratio = f64::from(noisy) / f64::from(quiet);
+        assert!((ratio - 2.0).abs() < 0.1, "{noisy} against {quiet} samples: ratio {ratio}");
+    }
+
+    /// The noisiest pixel possible (displayed values 0 and 1, standard deviation 1/2) stops
+    /// at the target error, and a quieter one below it.
+    #[test]
+    fn no_pixel_stops_above_the_target() {
+        let noise = 0.02;
+        for (low, high) in [(0.0, 1.0), (0.0, 0.6), (0.45, 0.55), (0.2, 0.3)] {
+            let (n, spread) = samples_until_enough(noise, 1 << 20, alternating(low, high));
+            let error = spread.display_error();
+            assert!(error <= noise * 1.0001, "values {low} and {high}: error {error} after {n} samples");
+            if high - low == 1.0 {
+                assert!(error > 0.95 * noise, "the noisiest pixel stops at the target: {error}");
+            }
+        }
+    }
 }

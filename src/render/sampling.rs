@@ -328,6 +328,163 @@ impl PatternTable {
     }
 }
 
+/// Sobol's direction numbers of the first four dimensions (Joe and Kuo's primitive
+/// polynomials and initial numbers), one 32-bit column per bit of the sample index: the
+/// first dimension is the van der Corput sequence, the second makes the pair a
+/// (0, 2)-sequence.
+const SOBOL_DIRECTIONS: [[u32; 32]; 4] = sobol_directions();
+
+/// [`SOBOL_DIRECTIONS`] with their bits reversed: the form the Owen scramble works on.
+const SOBOL_DIRECTIONS_REVERSED: [[u32; 32]; 4] = reversed(SOBOL_DIRECTIONS);
+
+const fn reversed(directions: [[u32; 32]; 4]) -> [[u32; 32]; 4] {
+    let mut out = directions;
+    let mut d = 0;
+    while d < 4 {
+        let mut k = 0;
+        while k < 32 {
+            out[d][k] = directions[d][k].reverse_bits();
+            k += 1;
+        }
+        d += 1;
+    }
+    out
+}
+
+const fn sobol_directions() -> [[u32; 32]; 4] {
+    // (degree s, coefficients a, initial numbers m) of dimensions 2, 3 and 4.
+    const POLYNOMIALS: [(usize, u32, [u32; 3]); 3] = [(1, 0, [1, 0, 0]), (2, 1, [1, 3, 0]), (3, 1, [1, 3, 1])];
+    let mut directions = [[0u32; 32]; 4];
+    let mut k = 0;
+    while k < 32 {
+        directions[0][k] = 1 << (31 - k);
+        k += 1;
+    }
+    let mut d = 0;
+    while d < 3 {
+        let (s, a, m) = POLYNOMIALS[d];
+        let v = &mut directions[d + 1];
+        let mut k = 0;
+        while k < 32 {
+            v[k] = if k < s {
+                m[k] << (31 - k)
+            } else {
+                let mut value = v[k - s] ^ (v[k - s] >> s);
+                let mut j = 1;
+                while j < s {
+                    if (a >> (s - 1 - j)) & 1 == 1 {
+                        value ^= v[k - j];
+                    }
+                    j += 1;
+                }
+                value
+            };
+            k += 1;
+        }
+        d += 1;
+    }
+    directions
+}
+
+/// Coordinate `dimension` (0..4) of point `index` of the Sobol sequence, as 32 bits of a
+/// fraction.
+fn sobol(index: u32, dimension: usize) -> u32 {
+    let columns = &SOBOL_DIRECTIONS[dimension];
+    let mut bits = index;
+    let mut value = 0;
+    let mut column = 0;
+    while bits != 0 {
+        if bits & 1 == 1 {
+            value ^= columns[column];
+        }
+        bits >>= 1;
+        column += 1;
+    }
+    value
+}
+
+/// An Owen (nested uniform) scramble, keyed by `seed`, of a 32-bit fraction given with its
+/// bits reversed; returns the scrambled fraction (bits in order). By hashing (Burley,
+/// "Practical Hash-based Owen Scrambling", 2020): on the reversed bits, adding the seed and
+/// XOR-ing with even multiples only carries low bits into higher ones, so each output bit of
+/// the fraction depends on the bits above it alone, as a nested scramble's flips do. A
+/// scrambled net is still a net, and each scrambled point is uniform.
+fn owen_scramble_reversed(reversed_fraction: u32, seed: u32) -> u32 {
+    let mut x = reversed_fraction.wrapping_add(seed);
+    x ^= x.wrapping_mul(0x6c50_b47c);
+    x ^= x.wrapping_mul(0xb82f_1e52);
+    x ^= x.wrapping_mul(0xc7af_e638);
+    x ^= x.wrapping_mul(0x8d22_f6e6);
+    x.reverse_bits()
+}
+
+/// 2^-32: a 32-bit fraction to [0, 1).
+const FRACTION_SCALE: f64 = 1.0 / 4_294_967_296.0;
+
+/// The pixel offsets and lens positions of one pixel under adaptive sampling: an
+/// Owen-scrambled Sobol sequence, whose every prefix is well stratified. The offsets are
+/// dimensions 1 and 2, a (0, 2)-sequence: its first 2^k points (and every aligned block of
+/// 2^k) have exactly one point in each elementary interval of area 2^-k, so a pixel that
+/// stops after any number of samples holds a stratified pattern of that many points, not a
+/// scattered subset of a larger one. Lens positions are dimensions 3 and 4, mapped onto the
+/// disc. Each dimension has its own scramble, keyed by the pixel.
+///
+/// Points are taken in Gray-code order (point i is Sobol point `i ^ (i >> 1)`), which
+/// permutes each aligned block of 2^k points among itself, so the prefixes are the same sets;
+/// stepping to the next point then flips one direction number per dimension.
+#[derive(Clone, Copy, Debug)]
+pub struct ProgressivePattern {
+    seeds: [u32; 4],
+    /// The point the pattern stands at, and its unscrambled coordinates with their bits
+    /// reversed.
+    index: u32,
+    sobol_reversed: [u32; 4],
+}
+
+impl ProgressivePattern {
+    /// The pattern of the pixel (or image position) with hash `key`, at point 0.
+    pub fn new(key: u64) -> Self {
+        let seed = |d: u64| mix64(key ^ mix64(d + 1)) as u32;
+        Self { seeds: [seed(0), seed(1), seed(2), seed(3)], index: 0, sobol_reversed: [0; 4] }
+    }
+
+    /// Moves to point `index`: one XOR per dimension from the point before it, computed
+    /// afresh from any other.
+    #[inline]
+    pub fn seek(&mut self, index: u32) {
+        if index == self.index {
+            return;
+        }
+        if index == self.index.wrapping_add(1) {
+            let column = index.trailing_zeros() as usize;
+            for (d, value) in self.sobol_reversed.iter_mut().enumerate() {
+                *value ^= SOBOL_DIRECTIONS_REVERSED[d][column];
+            }
+        } else {
+            let gray = index ^ (index >> 1);
+            self.sobol_reversed = [0, 1, 2, 3].map(|d| sobol(gray, d).reverse_bits());
+        }
+        self.index = index;
+    }
+
+    #[inline]
+    fn coordinate(&self, dimension: usize) -> f64 {
+        f64::from(owen_scramble_reversed(self.sobol_reversed[dimension], self.seeds[dimension])) * FRACTION_SCALE
+    }
+
+    /// The offset of the current point in [0, 1)^2.
+    #[inline]
+    pub fn offset(&self) -> DVec2 {
+        DVec2::new(self.coordinate(0), self.coordinate(1))
+    }
+
+    /// The lens position of the current point on the unit disc.
+    #[inline]
+    pub fn lens(&self) -> DVec2 {
+        concentric_disc(DVec2::new(self.coordinate(2), self.coordinate(3)))
+    }
+}
+
 /// A uniformly distributed point on the unit disc (concentric mapping, which keeps strata).
 pub fn concentric_disc(u: DVec2) -> DVec2 {
     let a = 2.0 * u - DVec2::ONE;
@@ -466,6 +623,98 @@ mod tests {
         let n = 64;
         let mean = (0..n).map(|s| cmj(s, n, 99)).fold(DVec2::ZERO, |a, b| a + b) / f64::from(n);
         assert!((mean - DVec2::splat(0.5)).length() < 0.02, "{mean}");
+    }
+
+    /// Sobol's first dimensions as their defining recurrences give them: the van der Corput
+    /// sequence, and the second dimension's known first points.
+    #[test]
+    fn sobol_dimensions_are_the_known_sequences() {
+        for i in 0..1000u32 {
+            assert_eq!(sobol(i, 0), i.reverse_bits());
+        }
+        // Dimension 2 (direction numbers 1/2, 3/4, 5/8): 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8.
+        let eighths: Vec<u32> = (0..8).map(|i| sobol(i, 1) >> 29).collect();
+        assert_eq!(eighths, [0, 4, 6, 2, 5, 1, 3, 7]);
+        // Dimension 3 (1/2, 3/4, 3/8 from m = 1, 3 and x^2 + x + 1): 0, 1/2, 3/4, 1/4, 3/8,
+        // 7/8, 5/8, 1/8.
+        let eighths: Vec<u32> = (0..8).map(|i| sobol(i, 2) >> 29).collect();
+        assert_eq!(eighths, [0, 4, 6, 2, 3, 7, 5, 1]);
+    }
+
+    /// Every power-of-two prefix of a pixel's offsets, and every aligned block, is a
+    /// (0, k, 2)-net: one point in each elementary interval of area 2^-k, whatever the
+    /// scramble.
+    #[test]
+    fn progressive_offsets_are_nets_at_every_power_of_two() {
+        for pixel in 0..20u64 {
+            let mut pattern = ProgressivePattern::new(hash4(pixel, 0, u64::MAX, 9));
+            for k in 0..=10u32 {
+                let n = 1u32 << k;
+                for start in [0, n, 3 * n] {
+                    let points: Vec<DVec2> = (start..start + n)
+                        .map(|i| {
+                            pattern.seek(i);
+                            pattern.offset()
+                        })
+                        .collect();
+                    for columns_log in 0..=k {
+                        let (columns, rows) = (1u32 << columns_log, 1u32 << (k - columns_log));
+                        let mut cells = vec![0u32; n as usize];
+                        for p in &points {
+                            assert!((0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y));
+                            let cell = (p.x * f64::from(columns)) as u32 * rows + (p.y * f64::from(rows)) as u32;
+                            cells[cell as usize] += 1;
+                        }
+                        assert!(
+                            cells.iter().all(|&c| c == 1),
+                            "pixel {pixel}, 2^{k} points from {start}, {columns}x{rows}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// Over pixels, each sample of the progressive pattern is uniform in the square and on the
+    /// disc (chi-square over a grid of cells), and offsets and lens positions are independent.
+    #[test]
+    fn progressive_samples_are_uniform_over_pixels() {
+        use crate::test_support::chi2::assert_fits;
+        let cells = 8usize;
+        let pixels = 20_000u64;
+        for index in [0u32, 1, 5, 31, 200] {
+            let mut offsets = vec![0f64; cells * cells];
+            let mut joint = vec![0f64; cells * cells];
+            for pixel in 0..pixels {
+                let mut pattern = ProgressivePattern::new(hash4(pixel, 0, u64::MAX, 3));
+                pattern.seek(index);
+                let (o, l) = (pattern.offset(), pattern.lens());
+                offsets[(o.x * cells as f64) as usize * cells + (o.y * cells as f64) as usize] += 1.0;
+                // The lens point's angle sector against the offset's x: independent if uniform.
+                let sector = ((l.y.atan2(l.x) / std::f64::consts::TAU + 0.5) * cells as f64) as usize % cells;
+                joint[(o.x * cells as f64) as usize * cells + sector] += 1.0;
+            }
+            let expected = vec![pixels as f64 / (cells * cells) as f64; cells * cells];
+            assert_fits(&format!("sample {index}'s offset"), &offsets, &expected, 1e-4);
+            assert_fits(&format!("sample {index}'s offset x and lens angle"), &joint, &expected, 1e-4);
+        }
+    }
+
+    /// Stepping point by point gives the same points as seeking each one afresh.
+    #[test]
+    fn progressive_steps_equal_fresh_points() {
+        let key = hash4(77, 0, u64::MAX, 5);
+        let mut stepped = ProgressivePattern::new(key);
+        for i in 0..5000u32 {
+            stepped.seek(i);
+            let mut fresh = ProgressivePattern::new(key);
+            fresh.seek(i);
+            if i > 0 {
+                // From point 0, `seek` to a point other than 1 recomputes it.
+                assert_eq!(fresh.sobol_reversed, stepped.sobol_reversed, "point {i}");
+            }
+            assert_eq!((stepped.offset(), stepped.lens()), (fresh.offset(), fresh.lens()), "point {i}");
+        }
     }
 
     #[test]

@@ -514,10 +514,11 @@ pub struct RenderSettings {
     pub exposure: f64,
     /// Tone-mapping operator for 8-bit output.
     pub tone_map: ToneMap,
-    /// Adaptive sampling: each pixel stops sampling once the estimated error of its
-    /// displayed luminance (after exposure and tone map, clipped to [0, 1]), relative to
-    /// that luminance but at least `render::NOISE_FLOOR` of white, is at most this (in
-    /// (0, 1)), or at `samples`. Stratified sampling only.
+    /// Adaptive sampling: the largest estimated error a pixel's displayed luminance (after
+    /// exposure and tone map, clipped to [0, 1]; so in units of display white) may keep, in
+    /// (0, 1). Each pixel takes samples in proportion to the spread of its displayed
+    /// values, which for a given time gives the lowest RMSE, stopping at or below this
+    /// error, or at `samples`. Stratified sampling only.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub noise: Option<f64>,
     /// AOV layers written into the OpenEXR output besides the beauty image (`albedo`,
