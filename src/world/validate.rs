@@ -307,20 +307,6 @@ fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
                 .with_help("set point_at to where the light shines"),
         );
     }
-    let cone = light.kind == LightKind::Spot || (light.kind == LightKind::Area && light.spot);
-    if cone && light.shadowless {
-        // POV-Ray 3.7's parser keeps one light type, which `spotlight` and `shadowless` each
-        // overwrite (Parse_Light_Source), so it has no cone-limited light without shadows.
-        out.push(
-            Diagnostic::new(
-                origin.child("shadowless"),
-                "a spot light cannot be shadowless: POV-Ray 3.7 has no such light (`spotlight shadowless` \
-                 renders a shadowless point light with no cone, `shadowless spotlight` an ordinary spot \
-                 that casts shadows)",
-            )
-            .with_help("for a shadowless light without a cone write kind = \"point\"; for a spot drop `shadowless`"),
-        );
-    }
     if light.kind == LightKind::Area {
         for (key, n) in [("size1", light.size1), ("size2", light.size2)] {
             if n == 0 || n > 1024 {
