@@ -142,3 +142,37 @@ fn transparent_sphere_filters_its_shadow_at_each_crossing() {
         + "[[object]]\nshape = \"sphere\"\nradius = 0.5\ntransform = { translate = [0, 0, 5] }\nmaterial = { color = 1, transmit = 0.5 }\n";
     assert_close(pixel(&scene), [0.25; 3], 1e-6);
 }
+
+/// A clear sheet (transmit 1, index 1) at z = 0 in front of the seed camera, a red wall `gap`
+/// behind it, and a blue background.
+fn sheet_before_wall(gap: f64) -> String {
+    format!(
+        "[world]\nbackground = [0, 0, 1]\n\
+         [[object]]\nshape = \"plane\"\nnormal = [0, 0, 1]\noffset = 0\n\
+         material = {{ color = 1, ambient = 0, diffuse = 0, transmit = 1 }}\n\
+         [[object]]\nshape = \"plane\"\nnormal = [0, 0, 1]\noffset = {}\n\
+         material = {{ color = [1, 0, 0], ambient = 1, diffuse = 0 }}\n",
+        -gap
+    )
+}
+
+#[test]
+fn rays_ignore_hits_within_min_isect_depth_of_their_origin() {
+    // POV-Ray's MIN_ISECT_DEPTH: the ray continuing through the sheet ignores a wall closer
+    // than 1e-4 (world units) and sees the background; a wall beyond it is seen.
+    assert_close(pixel(&sheet_before_wall(5e-5)), [0.0, 0.0, 1.0], 1e-9);
+    assert_close(pixel(&sheet_before_wall(2e-4)), [1.0, 0.0, 0.0], 1e-9);
+}
+
+#[test]
+fn a_spot_whose_radius_exceeds_its_falloff_has_a_hard_edge_at_radius() {
+    // The wall's centre pixel lies 25 or 40 degrees off the axis of a spot with radius 30,
+    // falloff 20: POV-Ray lights it fully at 25 and not at all at 40.
+    let lit = |degrees: f64| {
+        let x = 10.0 * degrees.to_radians().tan();
+        let spot = format!("kind = \"spot\"\npoint_at = [{x}, 0, 0]\nradius = 30\nfalloff = 20");
+        pixel(&(wall("color = 1, ambient = 0, diffuse = 1") + &light(0.0, 0.0, 10.0, &spot)))
+    };
+    assert_close(lit(25.0), [1.0; 3], 1e-9);
+    assert_close(lit(40.0), [0.0; 3], 1e-9);
+}

@@ -172,6 +172,16 @@ fn cases() -> Vec<Case> {
         ),
         case("objects not an array", "object = 5\n", &["scene.toml:1:", "must be an array of tables"]),
         case("infinite light", "[[light]]\nposition = [inf, 0, 0]\n", &["scene.toml:", "position", "finite"]),
+        case(
+            "shadowless spot",
+            &format!("[[light]]\nkind = \"spot\"\nposition = [0, 5, 0]\nshadowless = true\n{SPHERE}"),
+            &["scene.toml:4:", "light[0].shadowless", "`spotlight shadowless`", "kind = \"point\""],
+        ),
+        case(
+            "shadowless area spot",
+            &format!("[[light]]\nkind = \"area\"\nspot = true\nposition = [0, 5, 0]\nshadowless = true\n{SPHERE}"),
+            &["scene.toml:5:", "light[0].shadowless", "a spot light cannot be shadowless"],
+        ),
         ply_case(
             "PLY face past the vertex list",
             &format!("{PLY_HEADER}0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
@@ -317,6 +327,23 @@ fn warnings_name_the_place_and_the_render_goes_on() {
     assert!(stderr.contains(points), "{stderr}");
     assert_eq!(stderr.matches("Points primitives").count(), 1, "{stderr}");
     assert!(stderr.contains("rendered 8x6"), "{stderr}");
+}
+
+#[test]
+fn a_spot_radius_beyond_its_falloff_is_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[render]\nwidth = 8\nheight = 6\n[[light]]\nkind = \"spot\"\nposition = [0, 5, 0]\n\
+                 radius = 40\nfalloff = 20\n[[object]]\nshape = \"sphere\"\n";
+    std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
+    let run = prism().current_dir(dir.path()).args(["render", "scene.toml", "-o", "out.png"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success() && dir.path().join("out.png").is_file(), "{stderr}");
+    assert!(stderr.contains("scene.toml:7:1: warning in `light[0].radius`: radius 40 exceeds falloff 20"), "{stderr}");
+    // Equal angles are a hard edge as written: no warning.
+    std::fs::write(dir.path().join("equal.toml"), scene.replace("radius = 40", "radius = 20")).unwrap();
+    let run = prism().current_dir(dir.path()).args(["render", "equal.toml", "-o", "out.png"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success() && !stderr.contains("exceeds falloff"), "{stderr}");
 }
 
 #[test]

@@ -38,6 +38,30 @@ impl Loader<'_> {
             table.remove(k);
         }
         let light: Light = self.deserialize(index, key, toml::Value::Table(table))?;
+        let cone = light.kind == LightKind::Spot || (light.kind == LightKind::Area && light.spot);
+        if cone && light.shadowless {
+            // POV-Ray 3.7's parser keeps one light type, which `spotlight` and `shadowless`
+            // each overwrite (Parse_Light_Source), so it has no cone-limited light without
+            // shadows.
+            let location = self.files[index].locate(&format!("{key}.shadowless"));
+            let message = "a spot light cannot be shadowless: POV-Ray 3.7 has no such light (`spotlight \
+                           shadowless` renders a shadowless point light with no cone, `shadowless spotlight` \
+                           an ordinary spot that casts shadows)";
+            let help = "for a shadowless light without a cone write kind = \"point\"; for a spot drop `shadowless`";
+            self.diagnostics.push(Diagnostic::new(location, message).with_help(help));
+            ok = false;
+        }
+        if cone && light.radius > light.falloff {
+            // POV-Ray's cubic_spline(falloff, radius, cos) is 0 below cos(falloff) and 1 from
+            // cos(radius) on; with the bounds crossed the cone has a hard edge at `radius`.
+            let location = self.files[index].locate(&format!("{key}.radius"));
+            let message = format!(
+                "radius {} exceeds falloff {}: the spot has a hard edge at {} degrees and no soft falloff, as in POV-Ray",
+                light.radius, light.falloff, light.radius
+            );
+            self.warnings
+                .push(Diagnostic::warning(location, message).with_help("make falloff at least radius for a soft edge"));
+        }
         ok.then_some(light)
     }
 }

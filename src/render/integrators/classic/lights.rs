@@ -134,7 +134,25 @@ pub fn pov_equivalent(light: &PhotometricLight) -> Light {
     }
 }
 
-/// Spotlight cone and distance fade, as POV-Ray computes them.
+/// POV-Ray's `EPSILON`: a `fade_distance` no farther than this from 0 means no fade.
+const FADE_EPSILON: f64 = 1e-10;
+
+/// POV-Ray's `cubic_spline(low, high, pos)`: 0 below `low`, 1 from `high` on, and the
+/// smoothstep `(3 - 2p) p^2` of `p = (pos - low) / (high - low)` between. The two bounds are
+/// tested in this order, so with `low > high` (a spot whose radius exceeds its falloff) the
+/// result is 0 below `low` and 1 from it on: a hard edge, never outside [0, 1].
+fn cubic_spline(low: f64, high: f64, pos: f64) -> f64 {
+    if pos < low {
+        return 0.0;
+    }
+    if pos >= high {
+        return 1.0;
+    }
+    let p = (pos - low) / (high - low);
+    (3.0 - 2.0 * p) * p * p
+}
+
+/// Spotlight cone and distance fade, as POV-Ray computes them (`Attenuate_Light`).
 pub(super) fn attenuation(light: &PovLight, l: DVec3, distance: f64) -> f64 {
     let mut a = 1.0;
     if let Some((cos_radius, cos_falloff, tightness)) = light.spot {
@@ -143,18 +161,12 @@ pub(super) fn attenuation(light: &PovLight, l: DVec3, distance: f64) -> f64 {
             return 0.0;
         }
         a = if tightness != 0.0 { pow(cos_theta, tightness) } else { 1.0 };
-        if cos_theta < cos_radius {
-            let p = (cos_theta - cos_falloff) / (cos_radius - cos_falloff);
-            a *= if p < 0.0 {
-                0.0
-            } else if p < 1.0 {
-                (3.0 - 2.0 * p) * p * p
-            } else {
-                1.0
-            };
+        // A radius of 90 degrees or more (cosine <= 0) turns the cone off in POV-Ray.
+        if cos_radius > 0.0 && cos_theta < cos_radius {
+            a *= cubic_spline(cos_falloff, cos_radius, cos_theta);
         }
     }
-    if light.fade_power > 0.0 && light.fade_distance != 0.0 {
+    if light.fade_power > 0.0 && light.fade_distance.abs() > FADE_EPSILON {
         a *= 2.0 / (1.0 + pow(distance / light.fade_distance, light.fade_power));
     }
     a
@@ -194,6 +206,67 @@ mod tests {
         assert!((attenuation(&light, -dir, 1.0) - expected).abs() < 1e-12);
         assert_eq!(attenuation(&light, DVec3::new(0.0, -1.0, 0.0), 1.0), 0.0, "behind the spot");
         assert!((attenuation(&light, DVec3::Y, 1.0) - 1.0).abs() < 1e-12, "on the axis");
+    }
+
+    /// A spot light with POV-Ray's radius and falloff in degrees, no tightness.
+    fn spot(radius: f64, falloff: f64) -> PovLight {
+        PovLight { spot: Some((radius.to_radians().cos(), falloff.to_radians().cos(), 0.0)), ..point_light(0.0, 0.0) }
+    }
+
+    /// The attenuation of `light` (shining down -y) toward a point `degrees` off its axis.
+    fn off_axis(light: &PovLight, degrees: f64) -> f64 {
+        let (s, c) = (degrees.to_radians().sin(), degrees.to_radians().cos());
+        attenuation(light, -DVec3::new(s, -c, 0.0), 1.0)
+    }
+
+    #[test]
+    fn radius_beyond_falloff_is_a_hard_edge_at_radius() {
+        // POV-Ray: cubic_spline(cos 20, cos 30, cos) is 0 below cos 20 and 1 from it on, but it
+        // is only consulted outside the radius (cos < cos 30): full inside 30 degrees, dark out.
+        let light = spot(30.0, 20.0);
+        for degrees in [0.0, 15.0, 25.0, 29.9] {
+            assert_eq!(off_axis(&light, degrees), 1.0, "{degrees} degrees");
+        }
+        for degrees in [30.1, 40.0, 60.0, 89.0] {
+            assert_eq!(off_axis(&light, degrees), 0.0, "{degrees} degrees");
+        }
+        // Falloff 0 likewise: a hard cone of the radius.
+        let light = spot(10.0, 0.0);
+        assert_eq!((off_axis(&light, 9.0), off_axis(&light, 11.0)), (1.0, 0.0));
+    }
+
+    #[test]
+    fn degenerate_cones_follow_pov_ray() {
+        // radius == falloff: a hard edge, no division by zero.
+        let light = spot(20.0, 20.0);
+        assert_eq!((off_axis(&light, 19.0), off_axis(&light, 21.0)), (1.0, 0.0));
+        // A radius of 90 degrees or more turns the cone off: the whole front half-space.
+        let light = spot(100.0, 120.0);
+        assert_eq!((off_axis(&light, 10.0), off_axis(&light, 85.0), off_axis(&light, 95.0)), (1.0, 1.0, 0.0));
+        // radius 0 (cosine 1): everywhere off the axis is in the falloff band.
+        let light = spot(0.0, 40.0);
+        let c = 20f64.to_radians().cos();
+        let p = (c - 40f64.to_radians().cos()) / (1.0 - 40f64.to_radians().cos());
+        assert!((off_axis(&light, 20.0) - (3.0 - 2.0 * p) * p * p).abs() < 1e-12);
+        // Negative tightness brightens away from the axis: pow(cos, -2).
+        let light =
+            PovLight { spot: Some((1.0f64.to_radians().cos(), 80f64.to_radians().cos(), -2.0)), ..spot(0.0, 0.0) };
+        let expected = c.powi(-2) * {
+            let (cr, cf) = (1f64.to_radians().cos(), 80f64.to_radians().cos());
+            let p = (c - cf) / (cr - cf);
+            (3.0 - 2.0 * p) * p * p
+        };
+        assert!((off_axis(&light, 20.0) - expected).abs() < 1e-12);
+    }
+
+    #[test]
+    fn fade_needs_a_positive_power_and_a_distance_beyond_epsilon() {
+        // POV-Ray fades only when fade_power > 0 and |fade_distance| > EPSILON (1e-10).
+        for (distance, power) in [(5.0, 0.0), (5.0, -1.0), (1e-11, 2.0), (0.0, 2.0)] {
+            assert_eq!(attenuation(&point_light(distance, power), DVec3::X, 10.0), 1.0, "{distance} {power}");
+        }
+        // A negative distance with a whole power fades like its magnitude.
+        assert!((attenuation(&point_light(-5.0, 2.0), DVec3::X, 10.0) - 0.4).abs() < 1e-12);
     }
 
     #[test]

@@ -21,8 +21,10 @@ use lights::{PovLight, attenuation};
 
 /// POV-Ray ignores shadow-ray hits closer than this to the surface or the light.
 const SHADOW_TOLERANCE: f64 = 1e-3;
-/// Hits closer than this to a ray's origin are ignored (POV-Ray's per-shape tolerance).
-const RAY_EPSILON: f64 = 1e-6;
+/// Camera, reflected and refracted rays ignore hits closer than this to their origin, in world
+/// units (POV-Ray's `MIN_ISECT_DEPTH`, which `Trace::FindIntersection` applies to the depth
+/// along the unit world-space ray). Shadow rays ignore the larger [`SHADOW_TOLERANCE`].
+const MIN_ISECT_DEPTH: f64 = 1e-4;
 /// POV-Ray ignores intersections farther than this.
 const MAX_DISTANCE: f64 = 1e7;
 /// POV-Ray's `EPSILON`: index ratios and fade distances closer than this to 1 and 0 count
@@ -192,7 +194,9 @@ impl<'a> Classic<'a> {
             return DVec3::ZERO;
         }
         state.rays += 1;
-        let Some(closest) = scene.accel.closest(&scene.primitives, ray, RAY_EPSILON, MAX_DISTANCE, |_| true) else {
+        // Camera rays need not be of unit length; the limit is a world distance.
+        let t_min = MIN_ISECT_DEPTH / ray.direction.length();
+        let Some(closest) = scene.accel.closest(&scene.primitives, ray, t_min, MAX_DISTANCE, |_| true) else {
             return scene.environment.background.0;
         };
         let primitive = &scene.primitives[closest.primitive as usize];
@@ -445,13 +449,7 @@ impl<'a> Classic<'a> {
         interiors: &Interiors,
         state: &mut PathState,
     ) -> DVec3 {
-        let (mut axis1, mut axis2) = (grid.axis1, grid.axis2);
-        if grid.orient {
-            let t = if (l.z.abs() - 1.0).abs() < 0.01 { DVec3::Y } else { DVec3::Z };
-            let len = axis1.length();
-            axis1 = l.cross(t).normalize() * len;
-            axis2 = l.cross(axis1).normalize() * len;
-        }
+        let (axis1, axis2) = if grid.orient { oriented_axes(l, grid.axis1.length()) } else { (grid.axis1, grid.axis2) };
         let (n1, n2) = (grid.size1 as usize, grid.size2 as usize);
         let jitter_base = state.dimension;
         state.dimension += 2 * (n1 * n2) as u64;
@@ -589,6 +587,21 @@ impl<'a> GridLattice<'a> {
     }
 }
 
+/// The axes, both of length `length`, of an `orient` area light seen along `l` (unit, from
+/// the shaded point to the light), as POV-Ray constructs them: `axis1 = l x t` with `t` the
+/// z axis (the y axis when `l` is within 0.01 of vertical in z), `axis2 = l x axis1`.
+/// POV-Ray takes these cross products in its left-handed frame, i.e. of the exported
+/// `(x, y, -z)` vectors; a cross product of mirrored vectors is the mirrored cross product
+/// negated, so in Prism's frame `axis1 = t' x l` (t' the mirrored t: -z or y) and
+/// `axis2 = axis1 x l`. With the circular grid's 0.001 offset, the sign of each axis moves
+/// the samples.
+fn oriented_axes(l: DVec3, length: f64) -> (DVec3, DVec3) {
+    let t = if (l.z.abs() - 1.0).abs() < 0.01 { DVec3::Y } else { DVec3::NEG_Z };
+    let axis1 = t.cross(l).normalize();
+    let axis2 = axis1.cross(l).normalize();
+    (axis1 * length, axis2 * length)
+}
+
 /// One region of POV-Ray's recursive area-light average.
 #[allow(clippy::too_many_arguments, reason = "a region is its two corners (four numbers) plus the recursion's state")]
 fn block(
@@ -664,6 +677,20 @@ fn interior_fade(m: &PovFinish, s: f64, shadow: bool) -> DVec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn oriented_axes_are_pov_rays_in_the_exported_frame() {
+        // POV-Ray, light along its +x: axis1 = x cross z = -y, axis2 = x cross -y = -z, which is
+        // +z in Prism's frame (z mirrored).
+        let (a1, a2) = oriented_axes(DVec3::X, 2.0);
+        assert!((a1 - DVec3::new(0.0, -2.0, 0.0)).length() < 1e-12, "{a1}");
+        assert!((a2 - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-12, "{a2}");
+        // Light straight up Prism's -z (POV-Ray's +z): t = y, axis1 = z cross y = -x,
+        // axis2 = z cross -x = -y, unchanged by the mirror.
+        let (a1, a2) = oriented_axes(DVec3::NEG_Z, 1.0);
+        assert!((a1 - DVec3::NEG_X).length() < 1e-12, "{a1}");
+        assert!((a2 - DVec3::NEG_Y).length() < 1e-12, "{a2}");
+    }
 
     #[test]
     fn fresnel_matches_pov_ray_measurement() {
