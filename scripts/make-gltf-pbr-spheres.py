@@ -13,7 +13,7 @@ Usage: python3 scripts/make-gltf-pbr-spheres.py [OUT_DIR]
 - sphere 2: a red dielectric with roughness 0.5 and no textures;
 and material_grid.gltf: the same sphere ten times, a copper row and a blue dielectric row
 with roughness 0.1 .. 0.9 (factors only), for scenes/gltf_showcase.toml.
-The spheres are 32 x 16 quads (the pole rows are triangles) of radius 0.5, with smooth
+The spheres are 64 x 32 quads (the pole rows are triangles) of radius 0.5, with smooth
 normals and glTF uvs (v down from the image's top, 0 at the north pole). Needs numpy and
 pillow. The output is deterministic.
 """
@@ -26,7 +26,7 @@ import sys
 import numpy as np
 from PIL import Image
 
-SEGMENTS_U, SEGMENTS_V = 32, 16
+SEGMENTS_U, SEGMENTS_V = 64, 32
 
 
 def sphere():

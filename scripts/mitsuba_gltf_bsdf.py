@@ -215,8 +215,15 @@ def _plugin_class():
             return dr.select(active, value, 0.0), dr.select(active, pdf, 0.0)
 
         def traverse(self, callback):
-            callback.put_parameter("metallic", self.metallic, mi.ParamFlags.NonDifferentiable)
-            callback.put_parameter("roughness", self.roughness, mi.ParamFlags.NonDifferentiable)
+            flags = +mi.ParamFlags.NonDifferentiable
+            callback.put("base_color_factor", self.base_color_factor, flags)
+            callback.put("metallic", self.metallic, flags)
+            callback.put("roughness", self.roughness, flags)
+            callback.put("ior", self.ior, flags)
+            for name in ("base_color_texture", "metallic_roughness_texture"):
+                texture = getattr(self, name)
+                if texture is not None:
+                    callback.put(name, texture, flags)
 
         def to_string(self):
             return (
