@@ -59,8 +59,10 @@ class Mitsuba:
     """One Mitsuba variant in a child process (a process holds one variant at a time)."""
 
     CHILD = r"""
-import sys, time, mitsuba as mi
-mi.set_variant(sys.argv[1])
+import os, sys, time, mitsuba as mi
+sys.path.insert(0, sys.argv[3])
+import mitsuba_gltf_bsdf
+mitsuba_gltf_bsdf.prepare(sys.argv[2], sys.argv[1])
 scene = mi.load_file(sys.argv[2])
 mi.render(scene, seed=999, spp=4)  # warm-up: the llvm variant compiles its kernel here
 for line in sys.stdin:
@@ -76,7 +78,7 @@ for line in sys.stdin:
     def __init__(self, variant, xml, threads):
         env = dict(os.environ, DRJIT_NUM_THREADS=str(threads))
         self.proc = subprocess.Popen(
-            [sys.executable, "-c", self.CHILD, variant, str(xml)],
+            [sys.executable, "-c", self.CHILD, variant, str(xml), os.path.dirname(os.path.abspath(__file__))],
             stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env,
         )
 

@@ -29,6 +29,7 @@ gltf_engine classic 480 270 -
 gltf_engine path 480 270 16
 gltf_clearcoat classic 480 480 -
 gltf_clearcoat path 480 480 16
+gltf_showcase path 480 270 32
 dragons classic 480 270 -
 dragons path 480 270 8
 "

@@ -6,11 +6,13 @@
 # For every equivalence scene in scenes/mitsuba/ (or the ones named): `prism export mitsuba`
 # writes its Mitsuba 3 XML afresh in place (git must see no change to the committed
 # scenes/mitsuba/NAME.xml and NAME_meshes/),
-# Mitsuba's scalar_rgb variant renders it with K seeds and Prism renders it with K other
+# Mitsuba renders it with K seeds (scalar_rgb; llvm_ad_rgb for a scene that uses the glTF
+# metallic-roughness plugin of scripts/mitsuba_gltf_bsdf.py) and Prism renders it with K other
 # seeds, both at SPP samples per pixel and the scene's size, and scripts/mitsuba_compare.py
 # decides with a per-pixel Welch t-test (Sidak-corrected) and a whole-image bias bound.
 # A failure leaves the mean, reference, difference and p-value images in the work folder
-# and prints how to look at them. Needs python3 with mitsuba==3.9.1 (installed by .ci/run).
+# and prints how to look at them. Needs python3 with mitsuba==3.9.1 and libllvm19 (installed
+# by scripts/ci-mitsuba.sh).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 cd "$ROOT"

@@ -5,7 +5,8 @@ Usage: python3 scripts/mitsuba-references.py [--seeds K] [--spp S] [SCENE.xml ..
 
 For every scenes/mitsuba/NAME.xml (written by `prism export mitsuba`; run
 scripts/mitsuba-check.sh or the exporter first), renders K seeds at S samples per pixel with
-Mitsuba 3's scalar_rgb variant and writes scenes/mitsuba/refs/NAME.exr (the mean over seeds,
+Mitsuba 3 (scalar_rgb, or llvm_ad_rgb for scenes that use the glTF metallic-roughness plugin
+of scripts/mitsuba_gltf_bsdf.py, registered before loading) and writes scenes/mitsuba/refs/NAME.exr (the mean over seeds,
 linear RGB) and scenes/mitsuba/refs/NAME_stderr.exr (the standard error of that mean per
 pixel channel: the sample standard deviation over seeds / sqrt(K)). tests/mitsuba.rs
 compares Prism's renders with them, so `cargo test` checks the path integrator against
@@ -20,6 +21,9 @@ import sys
 import mitsuba as mi
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import mitsuba_gltf_bsdf  # noqa: E402
+
 
 def main():
     ap = argparse.ArgumentParser()
@@ -27,13 +31,13 @@ def main():
     ap.add_argument("--spp", type=int, default=256)
     ap.add_argument("scenes", nargs="*")
     args = ap.parse_args()
-    mi.set_variant("scalar_rgb")
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     scenes = args.scenes or sorted(glob.glob(os.path.join(root, "scenes/mitsuba/*.xml")))
     refs = os.path.join(root, "scenes/mitsuba/refs")
     os.makedirs(refs, exist_ok=True)
     for path in scenes:
         name = os.path.splitext(os.path.basename(path))[0]
+        mitsuba_gltf_bsdf.prepare(path)
         scene = mi.load_file(path)
         images = np.stack([np.array(mi.render(scene, seed=k, spp=args.spp), dtype=np.float64)[..., :3]
                            for k in range(args.seeds)])

@@ -247,3 +247,71 @@ fn textured_materials_mitsuba_cannot_express_are_errors_naming_the_key() {
         }
     }
 }
+
+/// A glTF metallic-roughness material (here a scene's `pbr` table, as glTF files give it) is
+/// exported as the `gltf_metallic_roughness` plugin of scripts/mitsuba_gltf_bsdf.py with its
+/// factors and bitmaps (the base colour decoded from sRGB, the metallic-roughness texture
+/// raw); what the plugin does not hold is an error naming the key, and nothing is written.
+#[test]
+fn gltf_materials_become_the_plugin_and_what_it_cannot_hold_is_an_error_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(root().join("assets/textures/tiles16.png"), dir.path().join("t.png")).unwrap();
+    let clearcoat = root().join("assets/gltf/khronos-samples/ClearCoatTest/ClearCoatTest.gltf");
+    let clearcoat = clearcoat.display().to_string().replace('\\', "/");
+    let cases = [
+        (
+            "material = { color = [0.5, 0.6, 0.7], texture = \"t.png\", pbr = { metallic = 0.25, roughness = 0.5, metallic_roughness_texture = \"t.png\" } }".to_string(),
+            None,
+        ),
+        (
+            "material = { pbr = { emissive = [1, 1, 1], emissive_texture = \"t.png\" } }".to_string(),
+            Some("material.pbr.emissive_texture"),
+        ),
+        (
+            "material = { pbr = { metallic_roughness_texture = { file = \"t.png\", rotation = 30 } } }".to_string(),
+            Some("material.pbr.metallic_roughness_texture"),
+        ),
+        (
+            "material = { texture = { file = \"t.png\", wrap = [\"repeat\", \"mirror\"] }, pbr = { metallic = 0 } }"
+                .to_string(),
+            Some("material.texture"),
+        ),
+    ];
+    let mesh_case = (format!("[[object]]\nshape = \"mesh\"\nfile = \"{clearcoat}\"\n"), Some("normal map"));
+    let scenes = cases
+        .into_iter()
+        .map(|(material, error)| (format!("[[object]]\nshape = \"sphere\"\n{material}\n"), error))
+        .chain([mesh_case]);
+    for (object, error) in scenes {
+        std::fs::write(dir.path().join("s.toml"), format!("[render]\nintegrator = \"path\"\n{object}")).unwrap();
+        let xml = dir.path().join("s.xml");
+        let _ = std::fs::remove_file(&xml);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_prism"))
+            .current_dir(dir.path())
+            .args(["export", "mitsuba", "s.toml", "-o", "s.xml"])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        match error {
+            None => {
+                assert!(out.status.success(), "{object}: {stderr}");
+                let text = std::fs::read_to_string(&xml).unwrap();
+                for needle in [
+                    "<bsdf type=\"gltf_metallic_roughness\">",
+                    "<rgb name=\"base_color_factor\" value=\"0.5, 0.6, 0.7\"/>",
+                    "<float name=\"metallic\" value=\"0.25\"/>",
+                    "<float name=\"roughness\" value=\"0.5\"/>",
+                    "<texture type=\"bitmap\" name=\"base_color_texture\"><string name=\"filename\" value=\"t.png\"/><string name=\"filter_type\" value=\"bilinear\"/><string name=\"wrap_mode\" value=\"repeat\"/><boolean name=\"raw\" value=\"false\"/>",
+                    "<texture type=\"bitmap\" name=\"metallic_roughness_texture\"><string name=\"filename\" value=\"t.png\"/><string name=\"filter_type\" value=\"bilinear\"/><string name=\"wrap_mode\" value=\"repeat\"/><boolean name=\"raw\" value=\"true\"/>",
+                ] {
+                    assert!(text.contains(needle), "missing {needle} in {text}");
+                }
+            }
+            Some(key) => {
+                assert!(!out.status.success(), "{object}: exported");
+                assert!(stderr.contains("s.toml:") && stderr.contains(key), "{object}: {stderr}");
+                assert!(!xml.exists(), "{object}: wrote {}", xml.display());
+            }
+        }
+    }
+}

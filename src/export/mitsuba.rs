@@ -10,8 +10,13 @@
 //! are a `blendbsdf` tree with the same weights. Meshes become binary PLY files beside the
 //! XML. Lights keep their physical units (W/sr, W/m^2, W/(m^2 sr)).
 //!
+//! glTF metallic-roughness materials become the `gltf_metallic_roughness` BSDF that
+//! scripts/mitsuba_gltf_bsdf.py registers with Mitsuba (glTF 2.0 Appendix B written from the
+//! specification; Mitsuba's `principled` is a different model), with `bitmap` textures.
+//!
 //! What Mitsuba cannot express is an error naming the object, material or light: textures
-//! other than a diffuse colour image, glTF metallic-roughness (Mitsuba's `principled` is a different model), shapes without a
+//! other than a diffuse colour image or a glTF material's, meshes with normal maps or alpha
+//! masks, glTF alpha blending, shapes without a
 //! Mitsuba form (torus, blob, superellipsoid, cone, a disc with a hole), spheres and
 //! cylinders under non-uniform scales, spot cones with a soft edge (Mitsuba's falls off
 //! linearly in angle, Prism's in a smoothstep of the cosine), POV-Ray's antialiasing methods.
@@ -351,6 +356,14 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &P
     for (_, shape, transform, material, origin) in entries {
         let at = |key: &str| origin.map_or_else(|| scene.render_origin.clone(), |o| o.0.child(key));
         let Some(parts) = shape.geometry.to_mitsuba() else {
+            if shape.kind == crate::import::spawn::MESH_SHAPE {
+                errors.push(Diagnostic::new(
+                    at("file"),
+                    "a mesh whose file material has a normal map or an alpha mask (MASK) has no Mitsuba 3 \
+                     equivalent; replace the material (`material` or `material_map`) to export it",
+                ));
+                continue;
+            }
             errors.push(
                 Diagnostic::new(at("shape"), format!("shape `{}` has no Mitsuba 3 equivalent", shape.kind))
                     .with_help("its plugin must implement `Shape::to_mitsuba`"),
@@ -364,14 +377,15 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &P
             ));
             continue;
         }
-        let (bsdf, emission) =
-            match bsdf_xml(&material.material, xml_dir).and_then(|bsdf| Ok((bsdf, emitter_xml(&material.material)?))) {
-                Ok(xml) => xml,
-                Err((key, message)) => {
-                    errors.push(Diagnostic::new(at(&format!("material.{key}")), message));
-                    continue;
-                }
-            };
+        let (bsdf, emission) = match bsdf_xml(&material.material, xml_dir, out, mesh_prefix)
+            .and_then(|bsdf| Ok((bsdf, emitter_xml(&material.material)?)))
+        {
+            Ok(xml) => xml,
+            Err((key, message)) => {
+                errors.push(Diagnostic::new(at(&format!("material.{key}")), message));
+                continue;
+            }
+        };
         let world_from_object = transform.map_or(DAffine3::IDENTITY, |t| t.0);
         let infinite = !shape.geometry.bounds().is_bounded();
         for part in parts {
@@ -414,7 +428,8 @@ fn shape_xml(
     let xml = &mut out.xml;
     let _ = writeln!(xml, "  <shape type=\"{kind}\">");
     if let MitsubaKind::Triangles(triangles) = &part.kind {
-        let name = format!("{mesh_prefix}{:03}.ply", out.meshes.len());
+        let meshes = out.meshes.iter().filter(|(n, _)| n.ends_with(".ply")).count();
+        let name = format!("{mesh_prefix}{meshes:03}.ply");
         let _ = writeln!(xml, "    <string name=\"filename\" value=\"{}\"/>", escape(&name));
         let _ = writeln!(xml, "    <boolean name=\"face_normals\" value=\"{}\"/>", triangles.normals.is_empty());
         out.meshes.push((name, ply(triangles)));
@@ -439,13 +454,19 @@ fn shape_xml(
     xml.push_str("  </shape>\n");
 }
 
-/// Binary little-endian PLY of `triangles`: positions, normals when present, and faces.
+/// Binary little-endian PLY of `triangles`: positions, normals and uvs when present, and faces.
 fn ply(t: &TriangleList) -> Vec<u8> {
     let normals = t.normals.len() == t.positions.len() && !t.normals.is_empty();
+    let uvs = t.uvs.len() == t.positions.len() && !t.uvs.is_empty();
     let mut header = format!("ply\nformat binary_little_endian 1.0\nelement vertex {}\n", t.positions.len());
     header.push_str("property float x\nproperty float y\nproperty float z\n");
     if normals {
         header.push_str("property float nx\nproperty float ny\nproperty float nz\n");
+    }
+    if uvs {
+        // Mitsuba's PLY u, v are taken as they are, and its bitmaps put v = 0 at the image's
+        // top row, as Prism does.
+        header.push_str("property float u\nproperty float v\n");
     }
     let _ = write!(header, "element face {}\nproperty list uchar int vertex_indices\nend_header\n", t.triangles.len());
     let mut bytes = header.into_bytes();
@@ -455,6 +476,11 @@ fn ply(t: &TriangleList) -> Vec<u8> {
         }
         if normals {
             for v in t.normals[i] {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        if uvs {
+            for v in t.uvs[i] {
                 bytes.extend_from_slice(&v.to_le_bytes());
             }
         }
@@ -472,15 +498,17 @@ type Problem = (&'static str, String);
 
 /// The `<bsdf>` of a material, indented for a shape; image files are referred to relative to
 /// `xml_dir`.
-fn bsdf_xml(material: &crate::material::Material, xml_dir: &Path) -> Result<String, Problem> {
+fn bsdf_xml(
+    material: &crate::material::Material,
+    xml_dir: &Path,
+    out: &mut MitsubaScene,
+    mesh_prefix: &str,
+) -> Result<String, Problem> {
+    if let crate::material::SurfaceModel::MetallicRoughness(m) = &material.surface {
+        return metallic_roughness_xml(material, m, xml_dir, out, mesh_prefix).map(|bsdf| format!("    {bsdf}\n"));
+    }
     if material.is_textured() {
         return textured_diffuse_xml(material, xml_dir).map(|bsdf| format!("    {bsdf}\n"));
-    }
-    if matches!(material.surface, crate::material::SurfaceModel::MetallicRoughness(_)) {
-        return Err((
-            "pbr",
-            "glTF metallic-roughness has no exact Mitsuba 3 equivalent (`principled` is another model)".into(),
-        ));
     }
     let shaded = PathMaterial::new(material).shade(&SurfacePoint { uv: glam::DVec2::ZERO });
     let lobes: Vec<(DVec3, &Lobe)> = shaded.scatter.lobes().collect();
@@ -507,6 +535,103 @@ fn bsdf_xml(material: &crate::material::Material, xml_dir: &Path) -> Result<Stri
         parts.push((1.0 - total, "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0, 0, 0\"/></bsdf>".into()));
     }
     Ok(format!("    {}\n", blend(&parts)))
+}
+
+/// The Mitsuba plugin of glTF metallic-roughness, registered by scripts/mitsuba_gltf_bsdf.py.
+const GLTF_PLUGIN: &str = "gltf_metallic_roughness";
+
+/// A glTF metallic-roughness material as the `gltf_metallic_roughness` BSDF of
+/// scripts/mitsuba_gltf_bsdf.py (the specification's Appendix B, written from its text), as
+/// Prism's path integrator reads it: the base colour factor times an sRGB texture, the
+/// metallic and roughness factors times a linear texture's blue and green channels, ior 1.5,
+/// both sides alike. Textures are bilinear at full resolution with their wrap modes; an image
+/// inside a glTF file is written beside the meshes as a PNG of the texels Prism samples.
+/// Errors name what the plugin does not hold: alpha blending below full coverage, textured
+/// emission, texture transforms (KHR_texture_transform), different wraps along u and v.
+fn metallic_roughness_xml(
+    material: &crate::material::Material,
+    m: &crate::material::MetallicRoughness,
+    xml_dir: &Path,
+    out: &mut MitsubaScene,
+    mesh_prefix: &str,
+) -> Result<String, Problem> {
+    use crate::material::AlphaMode;
+    if material.emission.texture.is_some() {
+        return Err(("pbr.emissive_texture", "textured emission is not exported to Mitsuba".into()));
+    }
+    if m.alpha_mode == AlphaMode::Blend && m.alpha < 1.0 {
+        return Err((
+            "pbr",
+            format!("alpha blending (BLEND, alpha {}) is not exported to Mitsuba; use OPAQUE", m.alpha),
+        ));
+    }
+    let mut xml = format!(
+        "<bsdf type=\"{GLTF_PLUGIN}\"><rgb name=\"base_color_factor\" value=\"{}\"/><float name=\"metallic\" value=\"{}\"/><float name=\"roughness\" value=\"{}\"/><float name=\"ior\" value=\"1.5\"/>",
+        rgb(m.finish.color.0),
+        number(m.metallic),
+        number(m.roughness)
+    );
+    if let Some(texture) = &m.finish.texture {
+        xml.push_str(&bitmap_xml("base_color_texture", "texture", texture, false, xml_dir, out, mesh_prefix)?);
+    }
+    if let Some(texture) = &m.metallic_roughness_texture {
+        xml.push_str(&bitmap_xml(
+            "metallic_roughness_texture",
+            "pbr.metallic_roughness_texture",
+            texture,
+            true,
+            xml_dir,
+            out,
+            mesh_prefix,
+        )?);
+    }
+    xml.push_str("</bsdf>");
+    Ok(xml)
+}
+
+/// A `bitmap` texture named `name` (bilinear, `raw` for linear data, sRGB decoded
+/// otherwise) of `texture`, whose errors name `key`. An image file is referred to relative
+/// to `xml_dir`; an image inside a glTF file becomes a PNG file beside the meshes (one per
+/// distinct image).
+fn bitmap_xml(
+    name: &str,
+    key: &'static str,
+    texture: &crate::texture::TextureRef,
+    raw: bool,
+    xml_dir: &Path,
+    out: &mut MitsubaScene,
+    mesh_prefix: &str,
+) -> Result<String, Problem> {
+    use crate::texture::Wrap;
+    if texture.offset != [0.0; 2] || texture.scale != [1.0; 2] || texture.rotation != 0.0 {
+        return Err((key, "a texture's offset, scale or rotation is not exported to Mitsuba".into()));
+    }
+    let wrap = match texture.wrap {
+        [Wrap::Repeat, Wrap::Repeat] => "repeat",
+        [Wrap::Clamp, Wrap::Clamp] => "clamp",
+        [Wrap::Mirror, Wrap::Mirror] => "mirror",
+        _ => return Err((key, "Mitsuba's bitmap has one wrap mode for both axes".into())),
+    };
+    let file = match (texture.image, &texture.texture) {
+        (None, _) => relative_path(Path::new(&texture.file), xml_dir).display().to_string(),
+        (Some(_), Some(decoded)) => {
+            let png = decoded.rgb_png().map_err(|e| (key, format!("cannot encode the image as PNG: {e}")))?;
+            match out.meshes.iter().find(|(n, bytes)| n.ends_with(".png") && *bytes == png) {
+                Some((existing, _)) => existing.clone(),
+                None => {
+                    let images = out.meshes.iter().filter(|(n, _)| n.ends_with(".png")).count();
+                    let file = format!("{mesh_prefix}image{images:03}.png");
+                    out.meshes.push((file.clone(), png));
+                    file
+                }
+            }
+        }
+        (Some(_), None) => return Err((key, "the image inside the glTF file was not loaded".into())),
+    };
+    Ok(format!(
+        "<texture type=\"bitmap\" name=\"{name}\"><string name=\"filename\" value=\"{}\"/><string name=\"filter_type\" value=\"bilinear\"/><string name=\"wrap_mode\" value=\"{wrap}\"/><boolean name=\"raw\" value=\"{raw}\"/></texture>",
+        escape(&file)
+    ))
 }
 
 /// A diffuse `bsdf` material whose colour is an image file: Mitsuba's `diffuse` with a
@@ -648,7 +773,7 @@ fn bsdf_model_xml(bsdf: &Bsdf, tint: DVec3) -> Result<String, Problem> {
             )
         }
         Bsdf::MetallicRoughness { .. } => {
-            return Err(("pbr", "glTF metallic-roughness has no exact Mitsuba 3 equivalent".into()));
+            return Err(("pbr", "glTF metallic-roughness is exported only as a whole material".into()));
         }
     })
 }
@@ -734,5 +859,34 @@ mod tests {
         assert_eq!(name, "s_meshes/000.ply");
         assert!(bytes.starts_with(b"ply\nformat binary_little_endian 1.0\nelement vertex 3\n"));
         assert!(out.xml.contains("s_meshes/000.ply"));
+    }
+
+    #[test]
+    fn mesh_uvs_follow_each_vertex_in_the_ply() {
+        let t = TriangleList {
+            positions: vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+            normals: Vec::new(),
+            uvs: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 0.25]],
+            triangles: vec![[0, 1, 2]],
+        };
+        let bytes = ply(&t);
+        let header_end = bytes.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+        let header = std::str::from_utf8(&bytes[..header_end]).unwrap();
+        assert!(header.contains("property float z\nproperty float u\nproperty float v\n"), "{header}");
+        // Vertex 2: x, y, z, u, v as little-endian f32.
+        let vertex = &bytes[header_end + 2 * 20..header_end + 3 * 20];
+        let v = f32::from_le_bytes(vertex[16..20].try_into().unwrap());
+        assert_eq!(v, 0.25);
+    }
+
+    #[test]
+    fn a_pbr_material_is_the_gltf_plugin() {
+        let out = export_text(
+            "[[object]]\nshape = \"sphere\"\nmaterial = { color = [0.9, 0.5, 0.1], pbr = { metallic = 0.75, roughness = 0.3 } }\n",
+        )
+        .unwrap();
+        assert!(out.xml.contains("<bsdf type=\"gltf_metallic_roughness\">"), "{}", out.xml);
+        assert!(out.xml.contains("<float name=\"metallic\" value=\"0.75\"/>"), "{}", out.xml);
+        assert!(!out.xml.contains("twosided"), "the plugin is two-sided itself: {}", out.xml);
     }
 }

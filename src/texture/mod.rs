@@ -130,6 +130,22 @@ impl Texture {
         Self::from_rgba8(w.max(1), h.max(1), texels, space)
     }
 
+    /// The full-resolution level as an 8-bit RGB PNG file (alpha dropped): the texels
+    /// exactly as sampling reads them, for exporters that need the image as a file.
+    pub fn rgb_png(&self) -> image::ImageResult<Vec<u8>> {
+        use image::ImageEncoder;
+        let level = &self.levels[0];
+        let rgb: Vec<u8> = level.texels.iter().flat_map(|t| [t[0], t[1], t[2]]).collect();
+        let mut bytes = Vec::new();
+        image::codecs::png::PngEncoder::new(&mut bytes).write_image(
+            &rgb,
+            level.width as u32,
+            level.height as u32,
+            image::ExtendedColorType::Rgb8,
+        )?;
+        Ok(bytes)
+    }
+
     /// Width of the full-resolution level.
     pub fn width(&self) -> usize {
         self.levels[0].width
