@@ -120,6 +120,11 @@ impl TriangleBvh {
         self.triangles.is_empty()
     }
 
+    /// Vertices of every triangle, in input order.
+    pub fn triangles(&self) -> &[[Vec3; 3]] {
+        &self.triangles
+    }
+
     /// Vertices of triangle `index`.
     #[inline]
     pub fn triangle(&self, index: usize) -> &[Vec3; 3] {

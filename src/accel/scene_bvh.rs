@@ -6,21 +6,37 @@
 
 use std::time::Duration;
 
-use glam::{DVec3, Vec3A};
+use glam::{DVec3, Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::builder::build_bvh2;
 use prism_api::{Hit, Ray};
 
+use super::mesh_bvh::TriangleBvh;
 use super::primitive::Primitive;
 use super::simd::BoxRay;
+use super::triangle::{WatertightRay, mesh_hit, plane_t};
 use super::wide::{EMPTY, LEAF, WIDTH, WideTree, traverse_fastest, with_traversal_stack};
 
 /// The acceleration structure.
 pub struct Accel {
-    /// The tree over bounded primitives; a leaf's reference is the primitive's index.
+    /// The tree over bounded primitives whose triangles are not flattened; a leaf's
+    /// reference is the primitive's index.
     tree: Option<WideTree>,
     /// Primitives that are not bounded.
     unbounded: Vec<u32>,
+    /// The world-space triangles of small meshes, in one tree of their own.
+    flat: Option<FlatTriangles>,
+    /// When triangles are flattened: the tree over every bounded primitive, for
+    /// [`Accel::gather`] (which names primitives, not triangles).
+    gather_tree: Option<WideTree>,
+}
+
+/// The triangles of several mesh primitives in world space, in one triangle BVH: a ray
+/// meets them all in one traversal, with no per-mesh transform, tree or `dyn Shape` call.
+struct FlatTriangles {
+    bvh: TriangleBvh,
+    /// For each triangle of `bvh`: its primitive and its slot in that primitive's mesh.
+    owners: Vec<(u32, u32)>,
 }
 
 /// The closest hit of a ray: which primitive, the shape's hit record, and the object ray.
@@ -54,31 +70,64 @@ fn f32_bound(t: f64) -> f32 {
     if t.is_finite() { (t as f32).next_up() } else { f32::INFINITY }
 }
 
+/// The tree over the world bounds of `primitives[i]` for each `i` in `bounded`.
+fn primitive_tree(primitives: &[Primitive], bounded: &[u32]) -> Option<WideTree> {
+    (!bounded.is_empty()).then(|| {
+        let boxes: Vec<_> = bounded.iter().map(|&i| to_obvhs_aabb(&primitives[i as usize].world_bounds)).collect();
+        let mut build_time = Duration::default();
+        // One primitive per leaf: the wide tree's leaves are single primitives.
+        let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
+        let bvh2 = build_bvh2(&boxes, params, &mut build_time);
+        WideTree::collapse(&bvh2, 1, |prims| {
+            debug_assert_eq!(prims.len(), 1, "leaves hold one primitive");
+            bounded[prims[0] as usize]
+        })
+    })
+}
+
 impl Accel {
-    /// Builds the BVH over `primitives`' world bounds.
+    /// Builds the BVH over `primitives`' world bounds (two levels for every mesh).
     pub fn build(primitives: &[Primitive]) -> Self {
-        let mut boxes = Vec::new();
+        Self::build_flattening(primitives, &[])
+    }
+
+    /// Builds the BVH; `flatten[i]`, when given, holds primitive `i`'s object-space
+    /// triangles, indexed like the hits its shape reports, which it reports as
+    /// [`mesh_hit`]s and nothing else (a mesh without alpha mask). Those go into the
+    /// scene-level structure as world-space triangles instead of as one primitive with a
+    /// tree of its own; hits on them are the shape's own (same primitive, `part` and
+    /// barycentrics; `t` and barycentrics exactly the same when the primitive is not moved,
+    /// else up to the rounding of its vertices to world space).
+    pub fn build_flattening(primitives: &[Primitive], flatten: &[Option<&[[Vec3; 3]]>]) -> Self {
+        let mut all_bounded = Vec::new();
         let mut bounded = Vec::new();
         let mut unbounded = Vec::new();
+        let mut triangles = Vec::new();
+        let mut owners = Vec::new();
         for (i, p) in primitives.iter().enumerate() {
-            if p.world_bounds.is_bounded() {
-                boxes.push(to_obvhs_aabb(&p.world_bounds));
-                bounded.push(i as u32);
-            } else {
+            if !p.world_bounds.is_bounded() {
                 unbounded.push(i as u32);
+                continue;
+            }
+            all_bounded.push(i as u32);
+            match flatten.get(i).copied().flatten() {
+                Some(object) => {
+                    for (slot, t) in object.iter().enumerate() {
+                        triangles.push(t.map(|v| p.world_point(v.as_dvec3()).as_vec3()));
+                        owners.push((i as u32, slot as u32));
+                    }
+                }
+                None => bounded.push(i as u32),
             }
         }
-        let tree = (!boxes.is_empty()).then(|| {
-            let mut build_time = Duration::default();
-            // One primitive per leaf: the wide tree's leaves are single primitives.
-            let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
-            let bvh2 = build_bvh2(&boxes, params, &mut build_time);
-            WideTree::collapse(&bvh2, 1, |prims| {
-                debug_assert_eq!(prims.len(), 1, "leaves hold one primitive");
-                bounded[prims[0] as usize]
-            })
-        });
-        Self { tree, unbounded }
+        let flat = (!triangles.is_empty()).then(|| FlatTriangles { bvh: TriangleBvh::build(&triangles), owners });
+        let gather_tree = flat.is_some().then(|| primitive_tree(primitives, &all_bounded)).flatten();
+        Self { tree: primitive_tree(primitives, &bounded), unbounded, flat, gather_tree }
+    }
+
+    /// Number of triangles held in the scene-level structure itself.
+    pub fn flattened_triangles(&self) -> usize {
+        self.flat.as_ref().map_or(0, |f| f.owners.len())
     }
 
     /// The closest hit with `t_min < t < t_max` among primitives for which `accept` is true.
@@ -107,6 +156,22 @@ impl Accel {
         };
         for &index in &self.unbounded {
             test(index, &mut best_t, &mut best);
+        }
+        if let Some(flat) = &self.flat
+            && let Some(wray) = WatertightRay::new(ray.origin.as_vec3(), ray.direction.as_vec3())
+        {
+            // What `MeshShape::intersect` does, over the triangles of every flattened mesh.
+            flat.bvh.closest(&wray, f32_bound(best_t), |index, h, [a, b, c]| {
+                let (primitive, slot) = flat.owners[index];
+                let t = plane_t(ray.origin, ray.direction, a, b, c).unwrap_or(f64::from(h.t));
+                if t <= t_min || t >= best_t || !accept(primitive) {
+                    return None;
+                }
+                best_t = t;
+                best = Some((primitive, mesh_hit(t, slot, h)));
+                // Round up so the f32 traversal never prunes a box holding an equal hit.
+                Some(f32_bound(t))
+            });
         }
         if let Some(tree) = &self.tree {
             let r = box_ray(ray);
@@ -162,6 +227,15 @@ impl Accel {
         if self.unbounded.iter().any(|&i| test(i)) {
             return true;
         }
+        if let Some(flat) = &self.flat
+            && let Some(wray) = WatertightRay::new(ray.origin.as_vec3(), ray.direction.as_vec3())
+            && flat.bvh.any(&wray, f32_bound(t_max), |index, h, [a, b, c]| {
+                let t = plane_t(ray.origin, ray.direction, a, b, c).unwrap_or(f64::from(h.t));
+                t > t_min && t < t_max && accept(flat.owners[index].0)
+            })
+        {
+            return true;
+        }
         let Some(tree) = &self.tree else { return false };
         let r = box_ray(ray);
         with_traversal_stack(tree.stack_size, |stack| {
@@ -192,7 +266,7 @@ impl Accel {
                 return false;
             }
         }
-        let Some(tree) = &self.tree else { return true };
+        let Some(tree) = self.gather_tree.as_ref().or(self.tree.as_ref()) else { return true };
         let mut stack = [0u32; 64];
         let mut sp = 1;
         while sp > 0 {

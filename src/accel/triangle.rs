@@ -10,6 +10,7 @@
 //! kernels (`accel::simd`) test in lanes with exactly its results.
 
 use glam::{DVec3, Vec3};
+use prism_api::Hit;
 
 /// A ray prepared for the watertight test: the permutation that makes z the dominant
 /// direction axis and the shear that maps the direction to +z.
@@ -226,6 +227,14 @@ pub fn plane_t(origin: DVec3, direction: DVec3, a: Vec3, b: Vec3, c: Vec3) -> Op
         return None;
     }
     Some(n.dot(a - origin) / denominator)
+}
+
+/// The shape hit on triangle `slot` of a mesh at the refined distance `t`, with the f32
+/// test's barycentrics: the one form both the mesh shape's own BVH and the scene BVH's
+/// flattened triangles report, and which the mesh shape's `surface` reads back.
+#[inline]
+pub fn mesh_hit(t: f64, slot: u32, hit: TriangleHit) -> Hit {
+    Hit { t, part: slot, scratch: DVec3::new(f64::from(hit.b1), f64::from(hit.b2), 0.0) }
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ use glam::{DVec2, DVec3, Vec2, Vec3, Vec4};
 use prism_api::{Aabb, AreaSample, Hit, Ray, Shape, Surface};
 
 use crate::accel::mesh_bvh::TriangleBvh;
-use crate::accel::triangle::{WatertightRay, plane_t};
+use crate::accel::triangle::{WatertightRay, mesh_hit, plane_t};
 use crate::limits::{MemoryBudget, OverBudget};
 use crate::texture::TextureRef;
 
@@ -300,6 +300,14 @@ impl MeshShape {
         &self.data
     }
 
+    /// The triangles' vertices in object space, indexed like the hits' `part`, when the
+    /// triangles alone decide every hit (no alpha mask): then the scene BVH may hold them
+    /// itself and report [`crate::accel::triangle::mesh_hit`]s, as [`Shape::intersect`] does.
+    pub fn flattenable_triangles(&self) -> Option<&[[Vec3; 3]]> {
+        let masked = self.maps.as_ref().is_some_and(|m| m.alpha_mask.is_some());
+        (!masked).then(|| self.data.bvh.triangles())
+    }
+
     /// The alpha test of triangle slot `slot` at barycentrics (b1, b2): true when solid.
     #[inline]
     fn solid(&self, slot: usize, b1: f32, b2: f32) -> bool {
@@ -484,7 +492,7 @@ impl Shape for MeshShape {
                 return None;
             }
             best_t = t;
-            best = Some(Hit { t, part: slot as u32, scratch: DVec3::new(f64::from(h.b1), f64::from(h.b2), 0.0) });
+            best = Some(mesh_hit(t, slot as u32, h));
             // Round up so the f32 traversal never prunes a box holding an equally near hit.
             Some(next_up(t as f32))
         });

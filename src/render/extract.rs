@@ -8,9 +8,13 @@ use super::lights::{RenderLight, SceneLights};
 use super::sampling::PatternTable;
 use crate::accel::primitive::Primitive;
 use crate::accel::scene_bvh::Accel;
+use std::any::Any;
 use std::collections::HashMap;
 use std::sync::Arc;
 
+use glam::Vec3;
+
+use crate::geometry::mesh::MeshShape;
 use crate::material::Material;
 use crate::material::pov_view::PovView;
 use crate::world::Scene;
@@ -64,6 +68,32 @@ fn patterns_for(settings: &RenderSettings, aperture: f64) -> PatternTable {
     }
 }
 
+/// A mesh of at most this many triangles has them put into the scene-level BVH: for the
+/// few-dozen-triangle meshes of room-like scenes, a second traversal per mesh, its transform
+/// and its `dyn Shape` call cost more than its triangles. Larger meshes keep their own tree.
+const FLATTEN_MESH_TRIANGLES: usize = 4096;
+
+/// At most this many triangles are flattened in all, so that thousands of instances of a
+/// small mesh are not copied thousands of times (the rest stay instances).
+const FLATTEN_TOTAL_TRIANGLES: usize = 1 << 18;
+
+/// Which primitives' triangles go into the scene-level BVH (see
+/// [`Accel::build_flattening`]): meshes without alpha masks of at most
+/// [`FLATTEN_MESH_TRIANGLES`], in primitive order while the total allows.
+pub(crate) fn flattenable(primitives: &[Primitive]) -> Vec<Option<&[[Vec3; 3]]>> {
+    let mut total = 0;
+    primitives
+        .iter()
+        .map(|p| {
+            let shape: &dyn Any = p.shape.as_ref();
+            let triangles = shape.downcast_ref::<MeshShape>()?.flattenable_triangles()?;
+            let fits = triangles.len() <= FLATTEN_MESH_TRIANGLES && total + triangles.len() <= FLATTEN_TOTAL_TRIANGLES;
+            total += if fits { triangles.len() } else { 0 };
+            fits.then_some(triangles)
+        })
+        .collect()
+}
+
 /// Builds the render scene. Call after `resolve_transforms` and `validate`.
 pub fn extract(scene: &Scene) -> RenderScene {
     let mut entries: Vec<(hecs::Entity, Primitive, Arc<Material>)> = Vec::new();
@@ -98,7 +128,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
     let sources = lights.into_iter().map(|(_, l)| l).collect();
     let lights = SceneLights::new(sources, &primitives, &materials, &scene.environment);
 
-    let accel = Accel::build(&primitives);
+    let accel = Accel::build_flattening(&primitives, &flattenable(&primitives));
     let has_transparency = materials.iter().any(|m| PovView::new(m).base.is_transparent());
     let camera = RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height);
     let patterns = patterns_for(&scene.render, camera.aperture);
@@ -118,7 +148,114 @@ pub fn extract(scene: &Scene) -> RenderScene {
 
 #[cfg(test)]
 mod tests {
+    use glam::{DAffine3, DQuat, DVec3};
+    use prism_api::contract::TestRng;
+    use prism_api::{Ray, Shape};
+
+    use super::*;
+    use crate::geometry::mesh::MeshBuilder;
     use crate::scene::load::{Embedded, load_from};
+
+    /// A lumpy closed ball of triangles (a latitude-longitude sphere with a random radius at
+    /// each vertex), so rays meet it at every angle, on edges and at silhouettes.
+    fn lumpy_ball(rng: &mut TestRng) -> Arc<dyn Shape> {
+        let (rings, sectors) = (9, 14);
+        let mut positions = vec![Vec3::Y, Vec3::NEG_Y];
+        for i in 1..rings {
+            let theta = std::f32::consts::PI * i as f32 / rings as f32;
+            for j in 0..sectors {
+                let phi = std::f32::consts::TAU * j as f32 / sectors as f32;
+                let r = rng.range(0.8, 1.2) as f32;
+                positions.push(Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin()) * r);
+            }
+        }
+        let at = |i: u32, j: u32| 2 + (i - 1) * sectors + j % sectors;
+        let mut triangles = Vec::new();
+        for j in 0..sectors {
+            triangles.push([0, at(1, j + 1), at(1, j)]);
+            triangles.push([1, at(rings - 1, j), at(rings - 1, j + 1)]);
+            for i in 1..rings - 1 {
+                triangles.push([at(i, j), at(i, j + 1), at(i + 1, j)]);
+                triangles.push([at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)]);
+            }
+        }
+        let data = MeshBuilder { positions, triangles, ..MeshBuilder::default() }.build().unwrap();
+        Arc::new(MeshShape::new(Arc::new(data)))
+    }
+
+    /// Random rays through a mesh placed three ways (unmoved, moved, turned and squashed)
+    /// beside a sphere: the scene BVH with the meshes' triangles flattened into it finds the
+    /// hits the two-level BVH finds. Unmoved, the very same hit (primitive, t, triangle,
+    /// barycentrics); placed, the same up to the rounding of the vertices to world space.
+    #[test]
+    fn flattened_meshes_hit_as_the_two_level_tree_does() {
+        let mut rng = TestRng::new(21);
+        let mesh = lumpy_ball(&mut rng);
+        let turned = DAffine3::from_scale_rotation_translation(
+            DVec3::new(1.5, 0.7, 1.1),
+            DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -1.1, 0.6),
+            DVec3::new(-2.5, 0.5, 1.0),
+        );
+        let sphere: Arc<dyn Shape> = Arc::new(prism_sphere::Sphere { center: DVec3::ZERO, radius: 0.6 });
+        let primitives = vec![
+            Primitive::new(mesh.clone(), DAffine3::IDENTITY, 0, false),
+            Primitive::new(mesh.clone(), DAffine3::from_translation(DVec3::new(2.5, 0.3, -0.2)), 1, false),
+            Primitive::new(mesh, turned, 2, false),
+            Primitive::new(sphere, DAffine3::from_translation(DVec3::new(0.0, 2.2, 0.0)), 3, false),
+        ];
+        let flatten = flattenable(&primitives);
+        assert_eq!(flatten.iter().map(Option::is_some).collect::<Vec<_>>(), [true, true, true, false]);
+        let flat = Accel::build_flattening(&primitives, &flatten);
+        assert_eq!(flat.flattened_triangles(), 3 * flatten[0].unwrap().len());
+        let two_level = Accel::build(&primitives);
+        assert_eq!(two_level.flattened_triangles(), 0);
+        let (mut hits, mut near_misses) = (0, 0);
+        for case in 0..6000 {
+            let origin = DVec3::new(rng.range(-5.0, 5.0), rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
+            // Toward a point near one of the four objects, so that most rays meet one.
+            let centres = [DVec3::ZERO, DVec3::new(2.5, 0.3, -0.2), DVec3::new(-2.5, 0.5, 1.0), DVec3::Y * 2.2];
+            let target = centres[case % 4] + rng.unit_vector() * rng.range(0.0, 1.3);
+            let ray = Ray::new(origin, (target - origin) * rng.range(0.2, 2.0));
+            let t_max = if case % 4 == 0 { rng.range(0.5, 4.0) } else { f64::INFINITY };
+            let expected = two_level.closest(&primitives, &ray, 1e-6, t_max, |_| true);
+            let found = flat.closest(&primitives, &ray, 1e-6, t_max, |_| true);
+            let occluded = flat.occluded(&primitives, &ray, 1e-6, t_max, |_| true);
+            assert_eq!(occluded, found.is_some(), "case {case}: occlusion agrees with the closest hit");
+            let skip_one = |i: u32| i != 0;
+            let without = flat.closest(&primitives, &ray, 1e-6, t_max, skip_one).map(|h| h.primitive);
+            let without_expected = two_level.closest(&primitives, &ray, 1e-6, t_max, skip_one).map(|h| h.primitive);
+            match (expected, found) {
+                (None, None) => {}
+                (Some(e), Some(f)) if e.primitive == 0 || e.primitive == 3 => {
+                    hits += 1;
+                    if without_expected.is_none_or(|p| p == 3) {
+                        assert_eq!(without, without_expected, "case {case}: rejected primitives are skipped");
+                    }
+                    assert_eq!(f.primitive, e.primitive, "case {case}");
+                    assert_eq!(
+                        (f.hit.t, f.hit.part, f.hit.scratch),
+                        (e.hit.t, e.hit.part, e.hit.scratch),
+                        "case {case}"
+                    );
+                    let shape = &primitives[e.primitive as usize].shape;
+                    let (sf, se) = (shape.surface(&f.object_ray, &f.hit), shape.surface(&e.object_ray, &e.hit));
+                    assert_eq!((sf.point, sf.shading_normal, sf.uv), (se.point, se.shading_normal, se.uv));
+                }
+                (Some(e), Some(f)) if f.primitive == e.primitive && f.hit.part == e.hit.part => {
+                    hits += 1;
+                    // World distances; the vertices moved by an f32 rounding of about 1e-7.
+                    let apart = (f.hit.t - e.hit.t).abs() * ray.direction.length();
+                    assert!(apart <= 1e-4, "case {case}: {} vs {}", f.hit.t, e.hit.t);
+                    assert!((f.hit.scratch - e.hit.scratch).abs().max_element() < 1e-4, "case {case}");
+                }
+                // Rounding the placed meshes' vertices may move a hit across an edge or
+                // off a silhouette, for very few rays.
+                _ => near_misses += 1,
+            }
+        }
+        assert!(hits > 4000, "most rays hit something ({hits})");
+        assert!(near_misses < 10, "{near_misses} rays found different triangles");
+    }
 
     #[test]
     fn objects_naming_one_material_share_its_id() {

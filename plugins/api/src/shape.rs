@@ -1,3 +1,4 @@
+use std::any::Any;
 use std::fmt::Debug;
 
 use glam::{DVec2, DVec3};
@@ -124,7 +125,10 @@ pub fn for_each_crossing<S: Shape + ?Sized>(shape: &S, ray: &Ray, mut visit: imp
 
 /// A shape in its own object space. Prism transforms rays into this space; `t` is shared
 /// between spaces because the direction is not renormalised.
-pub trait Shape: Send + Sync + Debug + 'static {
+///
+/// `Any` lets the renderer recognise its own shapes behind `Arc<dyn Shape>` (a small
+/// triangle mesh's triangles go into the scene-level BVH); plugins need do nothing for it.
+pub trait Shape: Any + Send + Sync + Debug {
     /// Object-space bounds; [`Aabb::INFINITE`] for unbounded shapes.
     fn bounds(&self) -> Aabb;
 
