@@ -535,6 +535,15 @@ enum CliError {
         /// The path given twice.
         path: PathBuf,
     },
+    /// The checkpoint file is not named as an OpenEXR file.
+    #[error(
+        "{}: the checkpoint file (--checkpoint-file, by default the --resume file) is an OpenEXR file and its name must end in .exr",
+        path.display()
+    )]
+    CheckpointNotExr {
+        /// The checkpoint path.
+        path: PathBuf,
+    },
     /// Ctrl-C stopped a render with checkpoints: what was written and how to resume.
     #[error("{0}")]
     Interrupted(String),
@@ -842,6 +851,9 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
         });
         if outputs.contains(&path) {
             return Err(CliError::CheckpointIsOutput { path });
+        }
+        if !path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) {
+            return Err(CliError::CheckpointNotExr { path });
         }
         output::check_writable(&path)?;
         Some(path)

@@ -303,7 +303,12 @@ fn foreign_stale_and_broken_checkpoints_are_refused_and_nothing_is_written() {
             &["--checkpoint", "1s", "--checkpoint-file", "out.png"],
             &["out.png: the checkpoint file is also an image output"],
         ),
-        ("scene.toml", &["--checkpoint", "1s", "--checkpoint-file", "state.txt"], &["state.txt: unknown image format"]),
+        (
+            "scene.toml",
+            &["--checkpoint", "1s", "--checkpoint-file", "state.txt"],
+            &["state.txt: the checkpoint file (--checkpoint-file, by default the --resume file) is an OpenEXR file"],
+        ),
+        ("scene.toml", &["--resume", "/dev/zero"], &["/dev/zero: the checkpoint file", "must end in .exr"]),
         ("scene.toml", &["--checkpoint", "0"], &["more than zero"]),
         ("scene.toml", &["--checkpoint", "soon"], &["not a duration"]),
         (
