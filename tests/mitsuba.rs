@@ -33,6 +33,34 @@ const MIN_PASS: f64 = 0.98;
 /// Largest relative difference of the image means.
 const MAX_BIAS: f64 = 0.01;
 
+/// Writes `scene` as `s.toml` in `dir` and runs `prism export mitsuba s.toml -o s.xml` there.
+/// With `error` set, asserts the export failed naming `s.toml` and that key (`what` names the
+/// case) and wrote nothing, and returns `None`; otherwise asserts it succeeded and returns
+/// the XML.
+fn export_case(dir: &Path, scene: &str, what: &str, error: Option<&str>) -> Option<String> {
+    std::fs::write(dir.join("s.toml"), scene).unwrap();
+    let xml = dir.join("s.xml");
+    let _ = std::fs::remove_file(&xml);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_prism"))
+        .current_dir(dir)
+        .args(["export", "mitsuba", "s.toml", "-o", "s.xml"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    match error {
+        None => {
+            assert!(out.status.success(), "{what}: {stderr}");
+            Some(std::fs::read_to_string(&xml).unwrap())
+        }
+        Some(key) => {
+            assert!(!out.status.success(), "{what}: exported");
+            assert!(stderr.contains("s.toml:") && stderr.contains(key), "{what}: {stderr}");
+            assert!(!xml.exists(), "{what}: wrote {}", xml.display());
+            None
+        }
+    }
+}
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -223,27 +251,9 @@ fn textured_materials_mitsuba_cannot_express_are_errors_naming_the_key() {
     for (material, error) in cases {
         let scene =
             format!("[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = {{ {material} }}\n");
-        std::fs::write(dir.path().join("s.toml"), scene).unwrap();
-        let xml = dir.path().join("s.xml");
-        let _ = std::fs::remove_file(&xml);
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_prism"))
-            .current_dir(dir.path())
-            .args(["export", "mitsuba", "s.toml", "-o", "s.xml"])
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        match error {
-            None => {
-                assert!(out.status.success(), "{material}: {stderr}");
-                let text = std::fs::read_to_string(&xml).unwrap();
-                assert!(text.contains("<texture type=\"bitmap\" name=\"reflectance\">"), "{text}");
-                assert!(text.contains("value=\"t.png\""), "{text}");
-            }
-            Some(key) => {
-                assert!(!out.status.success(), "{material}: exported");
-                assert!(stderr.contains("s.toml:") && stderr.contains(key), "{material}: {stderr}");
-                assert!(!xml.exists(), "{material}: wrote {}", xml.display());
-            }
+        if let Some(text) = export_case(dir.path(), &scene, material, error) {
+            assert!(text.contains("<texture type=\"bitmap\" name=\"reflectance\">"), "{text}");
+            assert!(text.contains("value=\"t.png\""), "{text}");
         }
     }
 }
@@ -283,34 +293,17 @@ fn gltf_materials_become_the_plugin_and_what_it_cannot_hold_is_an_error_naming_t
         .map(|(material, error)| (format!("[[object]]\nshape = \"sphere\"\n{material}\n"), error))
         .chain([mesh_case]);
     for (object, error) in scenes {
-        std::fs::write(dir.path().join("s.toml"), format!("[render]\nintegrator = \"path\"\n{object}")).unwrap();
-        let xml = dir.path().join("s.xml");
-        let _ = std::fs::remove_file(&xml);
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_prism"))
-            .current_dir(dir.path())
-            .args(["export", "mitsuba", "s.toml", "-o", "s.xml"])
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        match error {
-            None => {
-                assert!(out.status.success(), "{object}: {stderr}");
-                let text = std::fs::read_to_string(&xml).unwrap();
-                for needle in [
-                    "<bsdf type=\"gltf_metallic_roughness\">",
-                    "<rgb name=\"base_color_factor\" value=\"0.5, 0.6, 0.7\"/>",
-                    "<float name=\"metallic\" value=\"0.25\"/>",
-                    "<float name=\"roughness\" value=\"0.5\"/>",
-                    "<texture type=\"bitmap\" name=\"base_color_texture\"><string name=\"filename\" value=\"t.png\"/><string name=\"filter_type\" value=\"bilinear\"/><string name=\"wrap_mode\" value=\"repeat\"/><boolean name=\"raw\" value=\"false\"/>",
-                    "<texture type=\"bitmap\" name=\"metallic_roughness_texture\"><string name=\"filename\" value=\"t.png\"/><string name=\"filter_type\" value=\"bilinear\"/><string name=\"wrap_mode\" value=\"repeat\"/><boolean name=\"raw\" value=\"true\"/>",
-                ] {
-                    assert!(text.contains(needle), "missing {needle} in {text}");
-                }
-            }
-            Some(key) => {
-                assert!(!out.status.success(), "{object}: exported");
-                assert!(stderr.contains("s.toml:") && stderr.contains(key), "{object}: {stderr}");
-                assert!(!xml.exists(), "{object}: wrote {}", xml.display());
+        let scene = format!("[render]\nintegrator = \"path\"\n{object}");
+        if let Some(text) = export_case(dir.path(), &scene, &object, error) {
+            for needle in [
+                "<bsdf type=\"gltf_metallic_roughness\">",
+                "<rgb name=\"base_color_factor\" value=\"0.5, 0.6, 0.7\"/>",
+                "<float name=\"metallic\" value=\"0.25\"/>",
+                "<float name=\"roughness\" value=\"0.5\"/>",
+                "<texture type=\"bitmap\" name=\"base_color_texture\"><string name=\"filename\" value=\"t.png\"/><string name=\"filter_type\" value=\"bilinear\"/><string name=\"wrap_mode\" value=\"repeat\"/><boolean name=\"raw\" value=\"false\"/>",
+                "<texture type=\"bitmap\" name=\"metallic_roughness_texture\"><string name=\"filename\" value=\"t.png\"/><string name=\"filter_type\" value=\"bilinear\"/><string name=\"wrap_mode\" value=\"repeat\"/><boolean name=\"raw\" value=\"true\"/>",
+            ] {
+                assert!(text.contains(needle), "missing {needle} in {text}");
             }
         }
     }
