@@ -22,7 +22,10 @@ time.
 Options: --size W H (default: the scene's), --reference FILE.exr (a converged image, e.g.
 scenes/mitsuba/refs/cornell.exr) or --ref-spp N (rendered with another seed, default 4096),
 --noise LIST (comma-separated targets, default 0.2,0.1,0.05,0.03), --max-spp N (default
-1024), --prism-adaptive BINARY (another build for the adaptive renders, to compare rules).
+1024), --prism-adaptive BINARY[,BINARY...] (other builds for the adaptive renders, to compare
+rules in one run), --seeds K (render everything with seeds 1..K and average the squared
+errors and costs: one render's RMSE moves by several per cent with its seed, which is as
+much as the differences measured).
 
 Needs numpy and OpenEXR's Python bindings (pip install OpenEXR).
 
@@ -70,6 +73,7 @@ def main():
     ap.add_argument("--threads", default="2")
     ap.add_argument("--prism-adaptive")
     ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--seeds", type=int, default=1)
     args, extra = ap.parse_known_args()
     extra = [*extra, "--threads", args.threads]
     if args.size:
@@ -84,10 +88,10 @@ def main():
             ref = load(ref_path)
             print(f"reference: {args.ref_spp} spp in {cpu:.1f} CPU s")
 
-        def rmse(path):
+        def squared_errors(path):
             image = load(path)
-            shown = math.sqrt(float(np.mean((np.clip(image, 0, 1) - np.clip(ref, 0, 1)) ** 2)))
-            linear = math.sqrt(float(np.mean((image - ref) ** 2)))
+            shown = float(np.mean((np.clip(image, 0, 1) - np.clip(ref, 0, 1)) ** 2))
+            linear = float(np.mean((image - ref) ** 2))
             return shown, linear
 
         def fixed_cost(e, which, cost):
@@ -99,33 +103,42 @@ def main():
             slope = (math.log(t1) - math.log(t0)) / (math.log(e1) - math.log(e0))
             return math.exp(math.log(t0) + slope * (math.log(e) - math.log(e0)))
 
-        # Each render's (RMSE shown, RMSE linear, smallest CPU time, rays, spread).
+        # Each render's (RMSE shown, RMSE linear, smallest CPU time, rays, spread), the RMSE
+        # over seeds the root of the mean squared error, CPU time and rays the means.
         runs = {}
+        adaptive_builds = (args.prism_adaptive or args.prism).split(",")
         jobs = [(f"fixed{spp}", args.prism, ["--samples", str(spp), *extra]) for spp in [16, 32, 64, 128, 256]]
         for noise in args.noise.split(","):
             adaptive_args = ["--samples", args.max_spp, "--noise", noise, "--aov", "samples", *extra]
-            jobs.append((f"adaptive{noise}", args.prism_adaptive or args.prism, adaptive_args))
+            for build, binary in enumerate(adaptive_builds):
+                jobs.append((f"adaptive{noise}/{build}", binary, adaptive_args))
         for _ in range(args.repeat):
             for name, binary, job_args in jobs:
-                path = f"{tmp}/{name}.exr"
-                t, rays, spread = render(binary, args.scene, job_args, path)
+                path = f"{tmp}/job.exr"
+                errors, cpu, ray_count = [0.0, 0.0], 0.0, 0
+                for seed in range(1, args.seeds + 1):
+                    t, rays, spread = render(binary, args.scene, [*job_args, "--seed", str(seed)], path)
+                    errors = [a + b / args.seeds for a, b in zip(errors, squared_errors(path))]
+                    cpu += t / args.seeds
+                    ray_count += rays / args.seeds
                 previous = runs.get(name)
-                runs[name] = (*rmse(path), min(t, previous[2]) if previous else t, rays, spread)
+                runs[name] = (*map(math.sqrt, errors), min(cpu, previous[2]) if previous else cpu, ray_count, spread)
         fixed = []
         for spp in [16, 32, 64, 128, 256]:
             fixed.append(runs[f"fixed{spp}"])
             shown, linear, t, rays, _ = fixed[-1]
             print(f"fixed {spp:4d} spp: RMSE shown {shown:.5f}, linear {linear:.5f}, {t:.2f} CPU s, {rays / 1e6:.2f} Mrays")
         for noise in args.noise.split(","):
-            shown, linear, t, rays, spread = runs[f"adaptive{noise}"]
-            ts, tl = fixed_cost(shown, 0, 2), fixed_cost(linear, 1, 2)
-            rs, rl = fixed_cost(shown, 0, 3), fixed_cost(linear, 1, 3)
-            print(
-                f"adaptive noise {noise}: RMSE shown {shown:.5f}: CPU {t:.2f} s vs fixed {ts:.2f} s (ratio {t / ts:.2f}), "
-                f"rays {rays / 1e6:.2f} M vs {rs / 1e6:.2f} M (ratio {rays / rs:.2f}); "
-                f"linear {linear:.5f}: CPU ratio {t / tl:.2f}, rays ratio {rays / rl:.2f}; {spread}"
-            )
-
+            for build, binary in enumerate(adaptive_builds):
+                shown, linear, t, rays, spread = runs[f"adaptive{noise}/{build}"]
+                ts, tl = fixed_cost(shown, 0, 2), fixed_cost(linear, 1, 2)
+                rs, rl = fixed_cost(shown, 0, 3), fixed_cost(linear, 1, 3)
+                print(
+                    f"adaptive ({binary}) noise {noise}: RMSE shown {shown:.5f}: CPU {t:.2f} s vs fixed {ts:.2f} s (ratio {t / ts:.2f}), "
+                    f"rays {rays / 1e6:.2f} M vs {rs / 1e6:.2f} M (ratio {rays / rs:.2f}); "
+                    f"linear {linear:.5f}: CPU ratio {t / tl:.2f}, rays ratio {rays / rl:.2f}; {spread}"
+                )
+    
 
 if __name__ == "__main__":
     main()

@@ -296,8 +296,9 @@ pub struct PixelStats {
     /// Estimated variance of the mean radiance per channel (0 with one sample).
     pub variance: [f32; 3],
     /// Estimated error of the pixel as displayed: the standard deviation of the mean of its
-    /// samples' displayed luminance (exposure, tone map, clipped to [0, 1]; so in units of
-    /// display white), 0 with one sample. Adaptive sampling never stops a pixel above the
+    /// samples' displayed values (each channel after exposure and tone map, clipped to
+    /// [0, 1], so in units of display white; root mean square over the channels), 0 with one
+    /// sample. Adaptive sampling never stops a pixel above the
     /// `noise` target, and stops quiet pixels below it (see [`render_pixel_samples`]).
     pub display_error: f32,
     /// Samples whose radiance was NaN or infinite (overflow of extreme but accepted values),
@@ -674,13 +675,8 @@ pub fn render_pixel<I: Integrator>(scene: &RenderScene, integrator: &I, x: u32, 
     render_pixel_samples(scene, integrator, x, y, 0..scene.settings.samples).0
 }
 
-/// Luminance of linear Rec. 709 RGB.
-fn luminance(c: DVec3) -> f64 {
-    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
-}
-
 /// The spread of a pixel's samples (Welford's running mean and sum of squared deviations,
-/// per channel and of luminance). The variance of the mean is the samples' variance over
+/// per channel, in radiance and as displayed). The variance of the mean is the samples' variance over
 /// their count: this ignores the gain of stratification, so it overestimates the error
 /// where stratification helps (the pixel then takes more samples than it needs), but with
 /// one degree of freedom per sample it is reliable from a few dozen samples on. (The
@@ -688,14 +684,17 @@ fn luminance(c: DVec3) -> f64 {
 /// of freedom, often underestimates: pixels on a light's edge stopped at 32 samples with
 /// an error of 18 %.)
 ///
-/// The error adaptive sampling reads is that of the displayed value, the luminance after
-/// exposure and tone map clipped to [0, 1]: a light's pixels, all of whose samples are
-/// brighter than white, are done at once, however large their variance in radiance.
+/// The error adaptive sampling reads is that of the displayed values: each channel after
+/// exposure and tone map, clipped to [0, 1] (the image's RMSE is measured over channels, and
+/// a red wall's noise is mostly in its red channel, which luminance would weigh at 0.21); the
+/// pixel's displayed variance is the mean of its three channels'. A light's pixels, all of
+/// whose samples are brighter than white, are done at once, however large their variance in
+/// radiance.
 struct PixelSpread {
     count: u32,
     mean: DVec3,
     squares: DVec3,
-    mean_shown: f64,
+    mean_shown: DVec3,
     squares_shown: f64,
     /// Exposure as a factor on radiance.
     exposure: f64,
@@ -708,7 +707,7 @@ impl PixelSpread {
             count: 0,
             mean: DVec3::ZERO,
             squares: DVec3::ZERO,
-            mean_shown: 0.0,
+            mean_shown: DVec3::ZERO,
             squares_shown: 0.0,
             exposure: settings.exposure.exp2(),
             tone_map: settings.tone_map,
@@ -721,14 +720,14 @@ impl PixelSpread {
         let delta = radiance - self.mean;
         self.mean += delta / n;
         self.squares += delta * (radiance - self.mean);
-        let shown = crate::output::tone_map(luminance(radiance) * self.exposure, self.tone_map).clamp(0.0, 1.0);
+        let shown = (radiance * self.exposure).map(|c| crate::output::tone_map(c, self.tone_map).clamp(0.0, 1.0));
         let delta_shown = shown - self.mean_shown;
         self.mean_shown += delta_shown / n;
-        self.squares_shown += delta_shown * (shown - self.mean_shown);
+        self.squares_shown += (delta_shown * (shown - self.mean_shown)).element_sum() / 3.0;
     }
 
-    /// Variance of the mean, per channel and of the displayed luminance (0 with fewer than
-    /// two samples).
+    /// Variance of the mean, per channel and of the displayed value (the mean over channels;
+    /// 0 with fewer than two samples).
     fn variance_of_mean(&self) -> (DVec3, f64) {
         if self.count < 2 {
             return (DVec3::ZERO, 0.0);
@@ -737,7 +736,7 @@ impl PixelSpread {
         (self.squares / (n * (n - 1.0)), self.squares_shown / (n * (n - 1.0)))
     }
 
-    /// Standard deviation of the mean displayed luminance.
+    /// Standard deviation of the mean displayed value (root mean square over channels).
     fn display_error(&self) -> f64 {
         self.variance_of_mean().1.max(0.0).sqrt()
     }
@@ -898,6 +897,21 @@ mod tests {
         let (noisy, _) = samples_until_enough(noise, 1 << 20, alternating(0.3, 0.5));
         let ratio = f64::from(noisy) / f64::from(quiet);
         assert!((ratio - 2.0).abs() < 0.1, "{noisy} against {quiet} samples: ratio {ratio}");
+    }
+
+    /// The displayed error is the root mean square over channels: a pixel whose red channel
+    /// alone alternates between 0 and 1 has a per-sample spread of sqrt(1/4 / 3), not the
+    /// 0.21 / 2 of its luminance, so it takes 2.7 times the samples a luminance rule gives it.
+    #[test]
+    fn the_spread_is_measured_per_channel() {
+        let mut spread = PixelSpread::new(&crate::world::components::RenderSettings::default());
+        let n = 64;
+        for i in 0..n {
+            spread.add(if i % 2 == 0 { DVec3::ZERO } else { DVec3::X });
+        }
+        let per_sample = spread.display_error() * f64::from(n).sqrt();
+        let expected = (0.25 * f64::from(n) / f64::from(n - 1) / 3.0).sqrt();
+        assert!((per_sample - expected).abs() < 1e-12, "{per_sample} against {expected}");
     }
 
     /// The noisiest pixel possible (displayed values 0 and 1, standard deviation 1/2) stops
