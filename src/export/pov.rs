@@ -220,6 +220,7 @@ fn light_source(out: &mut String, light: &Light) {
         jitter,
         circular,
         orient,
+        area_illumination,
     } = light;
     let v = |a: &[f64; 3]| vector(DVec3::from_array(*a));
     let _ = writeln!(out, "light_source {{ {}, color {}", v(position), rgb(Rgb(color.0 * *intensity)));
@@ -239,7 +240,12 @@ fn light_source(out: &mut String, light: &Light) {
     }
     if *kind == LightKind::Area {
         let _ = write!(out, "  area_light {}, {}, {size1}, {size2} adaptive {adaptive}", v(axis1), v(axis2));
-        for (flag, word) in [(*jitter, "jitter"), (*circular || *orient, "circular"), (*orient, "orient")] {
+        for (flag, word) in [
+            (*jitter, "jitter"),
+            (*circular || *orient, "circular"),
+            (*orient, "orient"),
+            (*area_illumination, "area_illumination on"),
+        ] {
             if flag {
                 let _ = write!(out, " {word}");
             }

@@ -98,6 +98,9 @@ pub struct AreaGrid {
     pub circular: bool,
     /// Grid turned toward each shaded point.
     pub orient: bool,
+    /// POV-Ray's `area_illumination`: the classic integrator shades with every point's own
+    /// direction and distance, not the centre's.
+    pub area_illumination: bool,
     /// The weight of each grid sample (row-major, `size1` per row) when `adaptive` is deep
     /// enough that POV-Ray's recursive average always subdivides down to neighbouring
     /// samples: the average is then this fixed weighted sum. `None` when the recursion
@@ -235,6 +238,7 @@ impl RenderLight {
                     // POV-Ray makes an oriented area light circular.
                     circular: light.circular || light.orient,
                     orient: light.orient,
+                    area_illumination: light.area_illumination,
                     fixed_weights: AreaGrid::fixed_weights(light.size1, light.size2, light.adaptive),
                 },
                 cone: light.spot.then_some(cone),

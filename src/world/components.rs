@@ -136,7 +136,7 @@ pub enum LightKind {
 
 /// Every key of a `[[light]]` table besides `kind`, with the kinds that accept it: the one
 /// list that loading, saving, the schema and the documentation's table follow.
-pub const LIGHT_KEYS: [(&str, &[LightKind]); 19] = {
+pub const LIGHT_KEYS: [(&str, &[LightKind]); 20] = {
     use LightKind::{Area, Parallel, Point, Spot};
     const ALL: &[LightKind] = &[Point, Spot, Parallel, Area];
     const CONE: &[LightKind] = &[Spot, Area];
@@ -155,6 +155,7 @@ pub const LIGHT_KEYS: [(&str, &[LightKind]); 19] = {
         ("jitter", &[Area]),
         ("circular", &[Area]),
         ("orient", &[Area]),
+        ("area_illumination", &[Area]),
         ("point_at", &[Spot, Parallel, Area]),
         ("radius", CONE),
         ("falloff", CONE),
@@ -240,6 +241,10 @@ pub struct Light {
     pub circular: bool,
     /// Area: turn the grid to face each shaded point.
     pub orient: bool,
+    /// Area: POV-Ray's `area_illumination`: the classic integrator shades with each grid
+    /// point's own direction and distance (diffuse, highlights, spot cone and fade per point),
+    /// not only its shadow, so a large light close to a surface lights it as an area does.
+    pub area_illumination: bool,
 }
 
 impl Default for Light {
@@ -265,6 +270,7 @@ impl Default for Light {
             jitter: false,
             circular: false,
             orient: false,
+            area_illumination: false,
         }
     }
 }

@@ -333,11 +333,15 @@ impl<'a> Classic<'a> {
                 let distance = to_light.length();
                 (to_light / distance, distance)
             };
+            // Under `area_illumination` each grid point is shaded from its own direction, so
+            // neither the centre's side of the surface nor its cone and fade decide anything.
+            let area_illumination = light.area.as_ref().filter(|grid| grid.area_illumination);
             let n_dot_l = n.dot(l);
-            if n_dot_l < 1e-10 {
+            if area_illumination.is_none() && n_dot_l < 1e-10 {
                 continue;
             }
-            let mut e = light.color * attenuation(light, l, distance);
+            let mut e =
+                if area_illumination.is_some() { light.color } else { light.color * attenuation(light, l, distance) };
             if e == DVec3::ZERO {
                 continue;
             }
@@ -350,31 +354,11 @@ impl<'a> Classic<'a> {
                     continue;
                 }
             }
-            if m.finish.diffuse != 0.0 {
-                let cosine = if m.finish.brilliance == 1.0 { n_dot_l } else { pow(n_dot_l, m.finish.brilliance) };
-                colour += m.finish.diffuse * opacity * cosine * pigment * e;
-            }
-            if light.shadowless {
-                continue;
-            }
-            let highlight = if m.finish.metallic != 0.0 {
-                e * (DVec3::ONE + m.finish.metallic * (1.0 - metallic_fresnel(n_dot_l)) * (pigment - DVec3::ONE))
-            } else {
-                e
+            let surface = LitSurface { point, normal: n, view: d, mirror, finish: m };
+            colour += match area_illumination {
+                Some(grid) => surface.area_illuminated(light, grid, l, e, state),
+                None => surface.lit(l, n_dot_l, e, !light.shadowless),
             };
-            if m.finish.phong != 0.0 {
-                let r_dot_l = mirror.dot(l);
-                if r_dot_l > 0.0 && !(m.finish.phong_size >= 60.0 && r_dot_l <= 0.0008) {
-                    colour += m.finish.phong * pow(r_dot_l, m.finish.phong_size) * highlight;
-                }
-            }
-            if m.finish.specular != 0.0 {
-                let h = (l - d).normalize();
-                let n_dot_h = n.dot(h);
-                if n_dot_h > 0.0 {
-                    colour += m.finish.specular * pow(n_dot_h, 1.0 / m.finish.roughness) * highlight;
-                }
-            }
         }
         colour
     }
@@ -531,6 +515,85 @@ impl<'a> Classic<'a> {
         let to = target - point;
         let distance = to.length();
         self.transmittance(point, to * distance.recip(), distance, interiors, blockers, state)
+    }
+}
+
+/// A point being shaded, with what every light's contribution there needs.
+struct LitSurface<'m> {
+    point: DVec3,
+    /// Unit shading normal, facing the viewer.
+    normal: DVec3,
+    /// Unit direction of the ray that found the point.
+    view: DVec3,
+    /// `view` mirrored about `normal` (Phong's reflection vector).
+    mirror: DVec3,
+    finish: &'m PovFinish,
+}
+
+impl LitSurface<'_> {
+    /// Diffuse light and, with `highlights`, Phong and specular highlights from light `e`
+    /// (POV-Ray's light colour, already attenuated and shadowed) arriving along unit `l`,
+    /// with `n_dot_l` > 0.
+    fn lit(&self, l: DVec3, n_dot_l: f64, e: DVec3, highlights: bool) -> DVec3 {
+        let m = self.finish;
+        let pigment = m.finish.color.0;
+        let mut colour = DVec3::ZERO;
+        if m.finish.diffuse != 0.0 {
+            let cosine = if m.finish.brilliance == 1.0 { n_dot_l } else { pow(n_dot_l, m.finish.brilliance) };
+            colour += m.finish.diffuse * m.opacity() * cosine * pigment * e;
+        }
+        if !highlights {
+            return colour;
+        }
+        let highlight = if m.finish.metallic != 0.0 {
+            e * (DVec3::ONE + m.finish.metallic * (1.0 - metallic_fresnel(n_dot_l)) * (pigment - DVec3::ONE))
+        } else {
+            e
+        };
+        if m.finish.phong != 0.0 {
+            let r_dot_l = self.mirror.dot(l);
+            if r_dot_l > 0.0 && !(m.finish.phong_size >= 60.0 && r_dot_l <= 0.0008) {
+                colour += m.finish.phong * pow(r_dot_l, m.finish.phong_size) * highlight;
+            }
+        }
+        if m.finish.specular != 0.0 {
+            let h = (l - self.view).normalize();
+            let n_dot_h = self.normal.dot(h);
+            if n_dot_h > 0.0 {
+                colour += m.finish.specular * pow(n_dot_h, 1.0 / m.finish.roughness) * highlight;
+            }
+        }
+        colour
+    }
+
+    /// POV-Ray 3.7's `area_illumination`: light `e` (the unattenuated colour times the
+    /// grid's shadow average) split evenly over every point of the full grid, each shading
+    /// the surface from its own (jittered, oriented, circular) position with its own spot
+    /// cone and fade, and skipped when it lies behind the surface. The grid is walked
+    /// whole, not adaptively, as POV-Ray does; jitter draws its own numbers.
+    fn area_illuminated(&self, light: &PovLight, grid: &AreaGrid, l: DVec3, e: DVec3, state: &mut PathState) -> DVec3 {
+        let axes = if grid.orient { oriented_axes(l, grid.axis1.length()) } else { (grid.axis1, grid.axis2) };
+        let (n1, n2) = (grid.size1 as usize, grid.size2 as usize);
+        let lattice = GridLattice::new(grid, axes, state.dimension);
+        state.dimension += 2 * (n1 * n2) as u64;
+        let share = e / (n1 * n2) as f64;
+        let mut colour = DVec3::ZERO;
+        for v in 0..n2 {
+            for u in 0..n1 {
+                let to_point = lattice.point(light.position, u, v, state) - self.point;
+                let distance = to_point.length();
+                let l = to_point / distance;
+                let n_dot_l = self.normal.dot(l);
+                if n_dot_l < 1e-10 {
+                    continue;
+                }
+                let e = share * attenuation(light, l, distance);
+                if e != DVec3::ZERO {
+                    colour += self.lit(l, n_dot_l, e, !light.shadowless);
+                }
+            }
+        }
+        colour
     }
 }
 
@@ -734,6 +797,37 @@ mod tests {
 
     /// Camera rays start inside the objects whose solids hold the camera: with and without
     /// an aperture, through transforms, and a plane whose normal faces away.
+    /// A white floor seen straight down at the point under a two-point area light whose
+    /// points stand 45 degrees off the vertical: shaded from the centre (straight above) the
+    /// diffuse light is the light's colour; with `area_illumination` each point brings half
+    /// of it at cos 45, 1/sqrt(2) in all (POV-Ray 3.7's `ComputeFullAreaDiffuseLight`).
+    #[test]
+    fn area_illumination_shades_from_every_grid_point() {
+        use crate::scene::load::{Embedded, load_from};
+        macro_rules! scene {
+            ($flag:literal) => {
+                concat!(
+                    "[render]\nwidth = 1\nheight = 1\n",
+                    "[camera]\nposition = [0.0, 0.5, 0.001]\nlook_at = [0.0, 0.0, 0.0]\nvfov = 0.01\n",
+                    "[[object]]\nshape = \"plane\"\nnormal = [0.0, 1.0, 0.0]\noffset = 0.0\n",
+                    "material = { color = [1.0, 1.0, 1.0], diffuse = 1.0, ambient = [0.0, 0.0, 0.0] }\n",
+                    "[[light]]\nkind = \"area\"\nposition = [0.0, 1.0, 0.0]\naxis1 = [2.0, 0.0, 0.0]\n",
+                    "axis2 = [0.0, 0.0, 1.0]\nsize1 = 2\nsize2 = 1\n",
+                    $flag,
+                )
+            };
+        }
+        const CENTRE: Embedded = Embedded(&[("s.toml", scene!(""))]);
+        const EVERY_POINT: Embedded = Embedded(&[("s.toml", scene!("area_illumination = true\n"))]);
+        for (files, expected) in [(CENTRE, 1.0), (EVERY_POINT, std::f64::consts::FRAC_1_SQRT_2)] {
+            let mut scene = load_from(&files, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+            let scene = crate::prepare(&mut scene).unwrap();
+            let (film, _) = crate::render::render_frame(&scene, &Default::default()).unwrap();
+            let value = f64::from(film.pixels[0][1]);
+            assert!((value - expected).abs() < 1e-4, "{value} against {expected}");
+        }
+    }
+
     #[test]
     fn camera_rays_start_in_the_interiors_around_the_camera() {
         use crate::scene::load::{Embedded, load_from};
