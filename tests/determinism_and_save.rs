@@ -38,7 +38,7 @@ fn thread_count_does_not_change_a_single_bit() {
 
 #[test]
 fn a_saved_scene_reloads_to_the_identical_image() {
-    for name in ["room.toml", "snowman.toml"] {
+    for name in ["room.toml", "snowman.toml", "parity/patterns.toml"] {
         let original = load(&scene_path(name));
         let text = prism::scene::save::save(&original).unwrap();
         let dir = tempfile::tempdir().unwrap();
