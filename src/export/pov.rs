@@ -485,6 +485,19 @@ fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DA
             number(p.mortar.unwrap_or(DEFAULT_MORTAR))
         );
     }
+    if let Some(t) = p.turbulence {
+        // Amounts per axis of the pattern's own (POV-Ray's) frame: not mirrored.
+        let t = t.vector();
+        let _ = write!(sdl, "\n      turbulence <{}, {}, {}>", number(t.x), number(t.y), number(t.z));
+    }
+    for (keyword, value) in [("omega", p.omega), ("lambda", p.lambda)] {
+        if let Some(v) = value {
+            let _ = write!(sdl, " {keyword} {}", number(v));
+        }
+    }
+    if let Some(n) = p.octaves {
+        let _ = write!(sdl, " octaves {n}");
+    }
     if !p.color_map.is_empty() {
         sdl.push_str("\n      color_map {");
         for MapEntry(value, color) in &p.color_map {

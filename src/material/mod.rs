@@ -8,6 +8,7 @@
 //! materials directly. `docs/meshes.md` documents the mappings.
 
 pub mod metals;
+pub mod noise;
 pub mod pattern;
 pub mod pov_view;
 pub mod spec;

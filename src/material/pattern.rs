@@ -15,6 +15,7 @@ use glam::{DAffine3, DMat3, DMat4, DVec3, EulerRot};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::noise::{Octaves, dturbulence, noise, turbulence};
 use crate::color::Rgb;
 
 /// POV-Ray's `EPSILON` (`configcore.h`), the offset of `checker`'s and `brick`'s cell edges.
@@ -41,11 +42,25 @@ pub enum PatternKind {
     Spiral1,
     /// Two crossing spirals about the z axis (POV-Ray's frame).
     Spiral2,
+    /// Solid noise.
+    Bozo,
+    /// Solid noise (the same function as `bozo`).
+    Spotted,
+    /// Six octaves of absolute noise.
+    Granite,
+    /// x plus scalar turbulence, triangle wave by default: veins across x.
+    Marble,
+    /// Rings about the z axis, bent by turbulence; triangle wave by default.
+    Wood,
+    /// Turbulence folded through a sine along z.
+    Agate,
+    /// Ten octaves of noise.
+    Wrinkles,
 }
 
 impl PatternKind {
     /// Every pattern with its name.
-    pub const ALL: [(PatternKind, &'static str); 9] = [
+    pub const ALL: [(PatternKind, &'static str); 16] = [
         (PatternKind::Checker, "checker"),
         (PatternKind::Hexagon, "hexagon"),
         (PatternKind::Brick, "brick"),
@@ -55,6 +70,13 @@ impl PatternKind {
         (PatternKind::Leopard, "leopard"),
         (PatternKind::Spiral1, "spiral1"),
         (PatternKind::Spiral2, "spiral2"),
+        (PatternKind::Bozo, "bozo"),
+        (PatternKind::Spotted, "spotted"),
+        (PatternKind::Granite, "granite"),
+        (PatternKind::Marble, "marble"),
+        (PatternKind::Wood, "wood"),
+        (PatternKind::Agate, "agate"),
+        (PatternKind::Wrinkles, "wrinkles"),
     ];
 
     /// The scene file's (and POV-Ray's) name.
@@ -65,7 +87,7 @@ impl PatternKind {
     /// The wave type POV-Ray gives the pattern when none is written.
     pub fn default_wave(self) -> Wave {
         match self {
-            PatternKind::Spiral1 | PatternKind::Spiral2 => Wave::Triangle,
+            PatternKind::Spiral1 | PatternKind::Spiral2 | PatternKind::Marble | PatternKind::Wood => Wave::Triangle,
             _ => Wave::Ramp,
         }
     }
@@ -197,6 +219,26 @@ pub enum PatternScale {
     PerAxis([f64; 3]),
 }
 
+/// A turbulence amount: one number for every axis, or one per axis (of the pattern's frame).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum TurbulenceAmount {
+    /// The same amount along every axis.
+    Uniform(f64),
+    /// One amount per axis.
+    PerAxis([f64; 3]),
+}
+
+impl TurbulenceAmount {
+    /// The amount per axis.
+    pub fn vector(&self) -> DVec3 {
+        match *self {
+            TurbulenceAmount::Uniform(v) => DVec3::splat(v),
+            TurbulenceAmount::PerAxis(v) => DVec3::from_array(v),
+        }
+    }
+}
+
 /// A pigment pattern as a scene file writes it (`pigment = { pattern = "...", ... }`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -233,6 +275,20 @@ pub struct Pigment {
     /// `ramp` for the others).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub wave: Option<Wave>,
+    /// POV-Ray's `turbulence`: displaces the point by vector turbulence (noise octaves)
+    /// times this amount, per axis of the pattern's frame, before the pattern reads it;
+    /// `marble`, `wood` (and the spirals and `agate`, besides) use it in their own way.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub turbulence: Option<TurbulenceAmount>,
+    /// Turbulence octaves, 1 to 10 (default 6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub octaves: Option<u32>,
+    /// Turbulence amplitude factor per octave (default 0.5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub omega: Option<f64>,
+    /// Turbulence frequency factor per octave (default 2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
     /// Pattern scale.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale: Option<PatternScale>,
@@ -377,7 +433,26 @@ impl Pigment {
         {
             return Err(("mortar", format!("must be finite and not negative, got {m}")));
         }
-        for (key, v) in [("frequency", self.frequency), ("phase", self.phase)] {
+        if let Some(t) = self.turbulence
+            && !t.vector().is_finite()
+        {
+            return Err(("turbulence", "must be finite".into()));
+        }
+        if let Some(n) = self.octaves
+            && !(1..=10).contains(&n)
+        {
+            return Err(("octaves", format!("must be between 1 and 10 (POV-Ray's limits), got {n}")));
+        }
+        let octave_keys =
+            [("octaves", self.octaves.is_some()), ("omega", self.omega.is_some()), ("lambda", self.lambda.is_some())];
+        if self.turbulence.is_none() && kind != PatternKind::Agate {
+            if let Some((key, _)) = octave_keys.iter().find(|(_, given)| *given) {
+                return Err((key, "shapes `turbulence`, which this pigment does not have".into()));
+            }
+        }
+        for (key, v) in
+            [("frequency", self.frequency), ("phase", self.phase), ("omega", self.omega), ("lambda", self.lambda)]
+        {
             if let Some(v) = v
                 && !v.is_finite()
             {
@@ -407,12 +482,26 @@ pub struct PigmentField {
     pub spec: Pigment,
     /// Object space (Prism's frame) to pattern space.
     pattern_from_object: DAffine3,
+    /// The turbulence amount per axis (zero without turbulence).
+    turbulence: DVec3,
+    /// The turbulence octaves.
+    octaves: Octaves,
 }
 
 impl PigmentField {
     /// The field of `spec` (which passed [`Pigment::check`]).
     pub fn new(spec: &Pigment) -> Self {
-        Self { spec: spec.clone(), pattern_from_object: spec.object_from_pattern().inverse() }
+        let d = Octaves::default();
+        Self {
+            spec: spec.clone(),
+            pattern_from_object: spec.object_from_pattern().inverse(),
+            turbulence: spec.turbulence.map_or(DVec3::ZERO, |t| t.vector()),
+            octaves: Octaves {
+                octaves: spec.octaves.unwrap_or(d.octaves),
+                omega: spec.omega.unwrap_or(d.omega),
+                lambda: spec.lambda.unwrap_or(d.lambda),
+            },
+        }
     }
 
     /// True when some colour of the pigment lets light through.
@@ -422,15 +511,49 @@ impl PigmentField {
 
     /// The colour at object-space point `p` (Prism's frame).
     pub fn at(&self, p: DVec3) -> Rgbft {
-        let q = self.pattern_from_object.transform_point3(p) * DVec3::new(1.0, 1.0, -1.0);
+        let mut q = self.pattern_from_object.transform_point3(p) * DVec3::new(1.0, 1.0, -1.0);
         let spec = &self.spec;
+        // POV-Ray's classic turbulence warp; marble and wood apply their turbulence themselves.
+        if spec.turbulence.is_some() && !matches!(spec.pattern, PatternKind::Marble | PatternKind::Wood) {
+            q += dturbulence(q, &self.octaves) * self.turbulence;
+        }
         match spec.pattern.discrete_colors() {
             Some(_) => {
                 let index = discrete_value(spec, q);
                 spec.colors[index.min(spec.colors.len() - 1)].rgbft()
             }
-            None => map_lookup(&spec.color_map, continuous_value(spec, q)),
+            None => map_lookup(&spec.color_map, self.continuous_value(q)),
         }
+    }
+
+    /// A continuous pattern's value at `q` after frequency, phase and wave (POV-Ray's
+    /// `Evaluate_TPat`).
+    fn continuous_value(&self, q: DVec3) -> f64 {
+        let spec = &self.spec;
+        let turbulent = spec.turbulence.is_some();
+        // Scalar turbulence, as marble and the spirals add it.
+        let turb_x = || if turbulent { self.turbulence.x * turbulence(q, &self.octaves) } else { 0.0 };
+        let raw = match spec.pattern {
+            PatternKind::Gradient => gradient(q, pov_vector(spec.vector.unwrap_or([0.0, 1.0, 0.0]))),
+            PatternKind::Radial => radial(q),
+            PatternKind::Onion => onion(q),
+            PatternKind::Leopard => leopard(q),
+            PatternKind::Spiral1 => spiral1(q, spec.arms.unwrap_or(0)) + turb_x(),
+            PatternKind::Spiral2 => spiral2(q, spec.arms.unwrap_or(0), turb_x()),
+            PatternKind::Bozo | PatternKind::Spotted => noise(q),
+            PatternKind::Granite => granite(q),
+            PatternKind::Marble => q.x + turb_x(),
+            PatternKind::Wood => wood(q, turbulent.then(|| (self.turbulence, &self.octaves))),
+            PatternKind::Agate => agate(q, &self.octaves),
+            PatternKind::Wrinkles => wrinkles(q),
+            PatternKind::Checker | PatternKind::Hexagon | PatternKind::Brick => 0.0,
+        };
+        shape_wave(
+            raw,
+            spec.frequency.unwrap_or(1.0),
+            spec.phase.unwrap_or(0.0),
+            spec.wave.unwrap_or(spec.pattern.default_wave()),
+        )
     }
 }
 
@@ -446,26 +569,6 @@ fn discrete_value(spec: &Pigment, q: DVec3) -> usize {
         ),
         _ => 0,
     }
-}
-
-/// A continuous pattern's value at `q` after frequency, phase and wave (POV-Ray's
-/// `ContinuousPattern::Evaluate`).
-fn continuous_value(spec: &Pigment, q: DVec3) -> f64 {
-    let raw = match spec.pattern {
-        PatternKind::Gradient => gradient(q, pov_vector(spec.vector.unwrap_or([0.0, 1.0, 0.0]))),
-        PatternKind::Radial => radial(q),
-        PatternKind::Onion => onion(q),
-        PatternKind::Leopard => leopard(q),
-        PatternKind::Spiral1 => spiral1(q, spec.arms.unwrap_or(0)),
-        PatternKind::Spiral2 => spiral2(q, spec.arms.unwrap_or(0)),
-        _ => 0.0,
-    };
-    shape_wave(
-        raw,
-        spec.frequency.unwrap_or(1.0),
-        spec.phase.unwrap_or(0.0),
-        spec.wave.unwrap_or(spec.pattern.default_wave()),
-    )
 }
 
 /// A Prism-frame direction in POV-Ray's frame.
@@ -649,9 +752,54 @@ fn spiral1(q: DVec3, arms: i32) -> f64 {
     q.z + rad + f64::from(arms) * phi / std::f64::consts::TAU
 }
 
-fn spiral2(q: DVec3, arms: i32) -> f64 {
+fn spiral2(q: DVec3, arms: i32, turbulence: f64) -> f64 {
     let (rad, phi) = spiral_polar(q);
-    triangle_wave(rad) + triangle_wave(q.z + rad + f64::from(arms) * phi / std::f64::consts::TAU)
+    triangle_wave(rad) + triangle_wave(q.z + rad + f64::from(arms) * phi / std::f64::consts::TAU + turbulence)
+}
+
+/// POV-Ray 3.7's granite (noise generator 2): six octaves of |1 - 2 noise|, each at most 0.5.
+fn granite(q: DVec3) -> f64 {
+    let mut value = 0.0;
+    let mut frequency = 1.0;
+    for _ in 0..6 {
+        value += (1.0 - 2.0 * noise(q * 4.0 * frequency)).abs().min(0.5) / frequency;
+        frequency *= 2.0;
+    }
+    value
+}
+
+/// POV-Ray's wood: the distance from the z axis, its x and y bent by vector turbulence
+/// through a sine when the pigment has turbulence (`amount` and octaves).
+fn wood(q: DVec3, turbulence: Option<(DVec3, &Octaves)>) -> f64 {
+    let (mut x, mut y) = (q.x, q.y);
+    if let Some((amount, octaves)) = turbulence {
+        let w = dturbulence(q, octaves);
+        x += cycloidal((q.x + w.x) * amount.x);
+        y += cycloidal((q.y + w.y) * amount.y);
+    }
+    (x * x + y * y).sqrt()
+}
+
+/// POV-Ray's agate (its `agate_turb` scale 1): scalar turbulence (always, with the pigment's
+/// octaves) folded through a sine along z, then raised to 0.77.
+fn agate(q: DVec3, octaves: &Octaves) -> f64 {
+    let t = turbulence(q, octaves);
+    let v = 0.5 * (cycloidal(1.3 * t + 1.1 * q.z) + 1.0);
+    if v < 0.0 { 0.0 } else { v.min(1.0).powf(0.77) }
+}
+
+/// POV-Ray 3.7's wrinkles pigment (noise generator 2): ten octaves of 2 noise - 0.5, each
+/// clamped to [0, 1], halved.
+fn wrinkles(q: DVec3) -> f64 {
+    let term = |p: DVec3| (2.0 * noise(p) - 0.5).clamp(0.0, 1.0);
+    let mut value = term(q);
+    let (mut lambda, mut omega) = (2.0, 0.5);
+    for _ in 1..10 {
+        value += omega * term(q * lambda);
+        lambda *= 2.0;
+        omega *= 0.5;
+    }
+    value / 2.0
 }
 
 #[cfg(test)]
@@ -761,7 +909,7 @@ mod tests {
         // On -y: x = 0 (not < 0) -> phi = pi / 2 + asin(-1) = 0.
         assert!((spiral1(DVec3::new(0.0, -2.0, 0.0), 3) - 2.0).abs() < 1e-15);
         // spiral2: tw(rad) + tw(z + rad + arms phi / 2 pi); rad 0.25 -> 0.5, 0.25 + 0.5 -> 0.5.
-        assert!((spiral2(DVec3::new(0.25, 0.0, 0.0), 2) - 1.0).abs() < 1e-15);
+        assert!((spiral2(DVec3::new(0.25, 0.0, 0.0), 2, 0.0) - 1.0).abs() < 1e-15);
     }
 
     #[test]
@@ -836,6 +984,52 @@ mod tests {
     }
 
     #[test]
+    fn noise_patterns_follow_povray_definitions() {
+        let p = DVec3::new(0.31, -1.27, 2.45);
+        // granite: sum over six octaves of min(|1 - 2 n(4 p 2^i)|, 0.5) / 2^i.
+        let expected: f64 = (0..6)
+            .map(|i| {
+                let f = f64::from(1 << i);
+                (1.0 - 2.0 * noise(p * 4.0 * f)).abs().min(0.5) / f
+            })
+            .sum();
+        assert_eq!(granite(p), expected);
+        // wood without turbulence: the distance from the z axis.
+        assert_eq!(wood(DVec3::new(3.0, 4.0, 9.0), None), 5.0);
+        // wrinkles is at most (1 + 0.5 + ... ) / 2 < 1 and at least 0.
+        assert!((0.0..1.0).contains(&wrinkles(p)));
+        // agate is in [0, 1] and uses turbulence even without a turbulence amount.
+        let a = agate(p, &Octaves::default());
+        assert!((0.0..=1.0).contains(&a));
+        // marble and wood default to the triangle wave, bozo to the ramp.
+        assert_eq!(PatternKind::Marble.default_wave(), Wave::Triangle);
+        assert_eq!(PatternKind::Bozo.default_wave(), Wave::Ramp);
+    }
+
+    #[test]
+    fn turbulence_displaces_the_point_except_for_marble_and_wood() {
+        let map = "color_map = [[0, [0, 0, 0]], [1, [1, 1, 1]]]";
+        let plain =
+            PigmentField::new(&pigment(&format!("pattern = \"gradient\"\nvector = [1, 0, 0]\nfrequency = 0\n{map}")));
+        let turbulent = PigmentField::new(&pigment(&format!(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\nfrequency = 0\nturbulence = [0.3, 0, 0]\noctaves = 3\n{map}"
+        )));
+        let p = prism(0.4, 0.2, 0.1);
+        let q = DVec3::new(0.4, 0.2, 0.1);
+        let o = Octaves { octaves: 3, ..Octaves::default() };
+        let expected = (0.4 + 0.3 * dturbulence(q, &o).x).clamp(0.0, 1.0);
+        assert!((turbulent.at(p).rgb.x - expected).abs() < 1e-12);
+        assert!((plain.at(p).rgb.x - 0.4).abs() < 1e-12);
+        // Marble: x + amount.x * scalar turbulence at the undisplaced point, triangle wave.
+        let marble = PigmentField::new(&pigment(&format!("pattern = \"marble\"\nturbulence = 0.5\n{map}")));
+        let raw = 0.4 + 0.5 * turbulence(q, &Octaves::default());
+        let expected = shape_wave(raw, 1.0, 0.0, Wave::Triangle);
+        assert!((marble.at(p).rgb.x - expected).abs() < 1e-12);
+        // Deterministic.
+        assert_eq!(marble.at(p), marble.at(p));
+    }
+
+    #[test]
     fn bad_pigments_name_their_key() {
         let err = |text: &str| toml::from_str::<Pigment>(text).unwrap().check().unwrap_err();
         assert_eq!(err("pattern = \"onion\"").0, "color_map");
@@ -847,6 +1041,9 @@ mod tests {
         assert_eq!(err(&format!("pattern = \"onion\"\nvector = [1, 0, 0]\n{BW}")).0, "vector");
         assert_eq!(err(&format!("pattern = \"spiral1\"\n{BW}")).0, "arms");
         assert_eq!(err(&format!("pattern = \"onion\"\nscale = 0\n{BW}")).0, "scale");
+        assert_eq!(err(&format!("pattern = \"bozo\"\nturbulence = 1\noctaves = 11\n{BW}")).0, "octaves");
+        assert_eq!(err(&format!("pattern = \"bozo\"\nturbulence = 1\noctaves = 0\n{BW}")).0, "octaves");
+        assert_eq!(err(&format!("pattern = \"bozo\"\nomega = 0.3\n{BW}")).0, "omega");
         let e = toml::from_str::<Pigment>("pattern = \"chekcer\"").unwrap_err().to_string();
         assert!(e.contains("did you mean `checker`?"), "{e}");
         let e = toml::from_str::<Pigment>("pattern = \"onion\"\nfrequncy = 2").unwrap_err().to_string();

@@ -155,6 +155,10 @@ fn pigment_key(key: &str) -> &'static str {
         "rotate" => "pigment.rotate",
         "translate" => "pigment.translate",
         "matrix" => "pigment.matrix",
+        "turbulence" => "pigment.turbulence",
+        "octaves" => "pigment.octaves",
+        "omega" => "pigment.omega",
+        "lambda" => "pigment.lambda",
         _ => "pigment",
     }
 }
