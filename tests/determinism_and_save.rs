@@ -42,7 +42,7 @@ fn a_saved_scene_reloads_to_the_identical_image() {
         let original = load(&scene_path(name));
         let text = prism::scene::save::save(&original).unwrap();
         let dir = tempfile::tempdir().unwrap();
-        let saved = dir.path().join(name);
+        let saved = dir.path().join(Path::new(name).file_name().unwrap());
         std::fs::write(&saved, &text).unwrap();
         let reloaded = load(&saved);
         assert_eq!(original.render, reloaded.render, "{name}: render settings");

@@ -445,10 +445,11 @@ impl Pigment {
         }
         let octave_keys =
             [("octaves", self.octaves.is_some()), ("omega", self.omega.is_some()), ("lambda", self.lambda.is_some())];
-        if self.turbulence.is_none() && kind != PatternKind::Agate {
-            if let Some((key, _)) = octave_keys.iter().find(|(_, given)| *given) {
-                return Err((key, "shapes `turbulence`, which this pigment does not have".into()));
-            }
+        if self.turbulence.is_none()
+            && kind != PatternKind::Agate
+            && let Some((key, _)) = octave_keys.iter().find(|(_, given)| *given)
+        {
+            return Err((key, "shapes `turbulence`, which this pigment does not have".into()));
         }
         for (key, v) in
             [("frequency", self.frequency), ("phase", self.phase), ("omega", self.omega), ("lambda", self.lambda)]
