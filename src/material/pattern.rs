@@ -544,7 +544,7 @@ impl PigmentField {
             PatternKind::Bozo | PatternKind::Spotted => noise(q),
             PatternKind::Granite => granite(q),
             PatternKind::Marble => q.x + turb_x(),
-            PatternKind::Wood => wood(q, turbulent.then(|| (self.turbulence, &self.octaves))),
+            PatternKind::Wood => wood(q, turbulent.then_some((self.turbulence, &self.octaves))),
             PatternKind::Agate => agate(q, &self.octaves),
             PatternKind::Wrinkles => wrinkles(q),
             PatternKind::Checker | PatternKind::Hexagon | PatternKind::Brick => 0.0,
@@ -704,10 +704,8 @@ fn brick(q: DVec3, size: DVec3, mortar: f64) -> usize {
     let ends_shifted = brick_fraction(p.x / size.x + 0.5);
     let faces = brick_fraction(p.z / size.z);
     let faces_shifted = brick_fraction(p.z / size.z + 0.5);
-    let mortar_here = (ends <= m.x && !upper)
-        || (ends_shifted <= m.x && upper)
-        || (faces <= m.z && upper)
-        || (faces_shifted <= m.z && !upper);
+    // Head and face joints alternate by half a brick from one course to the next.
+    let mortar_here = if upper { ends_shifted <= m.x || faces <= m.z } else { ends <= m.x || faces_shifted <= m.z };
     usize::from(!mortar_here)
 }
 
@@ -1053,10 +1051,10 @@ mod tests {
 
     #[test]
     fn round_trips_through_toml() {
-        let p = pigment(&format!(
+        let p = pigment(
             "pattern = \"spiral2\"\narms = 3\nfrequency = 2\nphase = 0.25\nwave = \"sine\"\nscale = [1, 2, 3]\n\
-             rotate = [0, 30, 0]\ncolor_map = [[0, [1, 0, 0]], [1, {{ color = [0, 0, 1], transmit = 0.5 }}]]"
-        ));
+             rotate = [0, 30, 0]\ncolor_map = [[0, [1, 0, 0]], [1, { color = [0, 0, 1], transmit = 0.5 }]]",
+        );
         let back: Pigment = toml::from_str(&toml::to_string(&p).unwrap()).unwrap();
         assert_eq!(back, p);
     }
