@@ -54,6 +54,31 @@ fn cases() -> Vec<Case> {
             &["scene.toml:", "camera.aperture", "no lens"],
         ),
         case(
+            "pigment with an empty color_map",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\ncolor_map = []\n",
+            &["scene.toml:5:", "object[0].material.pigment.color_map", "at least one entry"],
+        ),
+        case(
+            "unknown pigment pattern",
+            "[[object]]\nshape = \"sphere\"\nmaterial = { pigment = { pattern = \"chekcer\" } }\n",
+            &["scene.toml:3:", "object[0].material.pigment.pattern", "did you mean `checker`"],
+        ),
+        case(
+            "unknown pigment key",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\nfrequncy = 2\n",
+            &["scene.toml:5:", "object[0].material.pigment.frequncy", "did you mean `frequency`"],
+        ),
+        case(
+            "color_map out of order",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\ncolor_map = [[0.6, [1, 1, 1]], [0.2, [0, 0, 0]]]\n",
+            &["scene.toml:5:", "object[0].material.pigment.color_map", "entry 1", "ascending"],
+        ),
+        case(
+            "color beside a pigment",
+            "[[object]]\nshape = \"sphere\"\n[object.material]\ncolor = [1, 0, 0]\npigment = { pattern = \"checker\", colors = [[1, 1, 1], [0, 0, 0]] }\n",
+            &["scene.toml:4:", "object[0].material.color", "beside `pigment`"],
+        ),
+        case(
             "unknown top-level key",
             "[rendr]\nwidth = 10\n",
             &["scene.toml:1:", "unknown top-level key `rendr`", "did you mean `render`"],

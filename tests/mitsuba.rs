@@ -258,6 +258,15 @@ fn textured_materials_mitsuba_cannot_express_are_errors_naming_the_key() {
     }
 }
 
+/// A pigment pattern has no Mitsuba equivalent: the export is an error naming the key, and
+/// nothing is written.
+#[test]
+fn pigment_patterns_are_refused_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = { pigment = { pattern = \"checker\", colors = [[1, 1, 1], [0, 0, 0]] } }\n";
+    export_case(dir.path(), scene, "checker", Some("material.pigment"));
+}
+
 /// A glTF metallic-roughness material (here a scene's `pbr` table, as glTF files give it) is
 /// exported as the `gltf_metallic_roughness` plugin of scripts/mitsuba_gltf_bsdf.py with its
 /// factors and bitmaps (the base colour decoded from sRGB, the metallic-roughness texture

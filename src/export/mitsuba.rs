@@ -507,10 +507,16 @@ fn bsdf_xml(
     if let crate::material::SurfaceModel::MetallicRoughness(m) = &material.surface {
         return metallic_roughness_xml(material, m, xml_dir, out, mesh_prefix).map(|bsdf| format!("    {bsdf}\n"));
     }
+    if let crate::material::SurfaceModel::Finish(f) = &material.surface
+        && f.pigment.is_some()
+    {
+        return Err(("pigment", "pigment patterns are not exported to Mitsuba".into()));
+    }
     if material.is_textured() {
         return textured_diffuse_xml(material, xml_dir).map(|bsdf| format!("    {bsdf}\n"));
     }
-    let shaded = PathMaterial::new(material).shade(&SurfacePoint { uv: glam::DVec2::ZERO });
+    let shaded =
+        PathMaterial::new(material).shade(&SurfacePoint { uv: glam::DVec2::ZERO, object_point: glam::DVec3::ZERO });
     let lobes: Vec<(DVec3, &Lobe)> = shaded.scatter.lobes().collect();
     if lobes.is_empty() {
         return Ok(
@@ -784,7 +790,7 @@ fn emitter_xml(material: &crate::material::Material) -> Result<Option<String>, P
     if !path.can_emit() {
         return Ok(None);
     }
-    let radiance = path.emitted(&SurfacePoint { uv: glam::DVec2::ZERO });
+    let radiance = path.emitted(&SurfacePoint { uv: glam::DVec2::ZERO, object_point: glam::DVec3::ZERO });
     if radiance.max_element() <= 0.0 {
         return Ok(None);
     }

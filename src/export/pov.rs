@@ -307,7 +307,7 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
         if world_from_object != DAffine3::IDENTITY {
             let _ = writeln!(modifiers, "  matrix {}", pov_matrix(&world_from_object));
         }
-        if let Err(problems) = texture(&mut modifiers, &material.material) {
+        if let Err(problems) = texture(&mut modifiers, &material.material, &world_from_object) {
             for (key, message) in problems {
                 errors.push(Diagnostic::new(origin.0.child(&format!("material.{key}")), message));
             }
@@ -339,21 +339,28 @@ pub fn pov_matrix(m: &DAffine3) -> String {
 }
 
 /// The material as `texture { pigment finish }` and `interior` (the classic integrator's
-/// view of it), or the keys POV-Ray cannot express with messages.
-fn texture(out: &mut String, m: &Material) -> Result<(), Vec<(&'static str, String)>> {
+/// view of it), or the keys POV-Ray cannot express with messages. A pigment pattern carries
+/// the object's transform `world_from_object` itself: the texture is written after the
+/// object's `matrix`, which POV-Ray does not apply to textures added later.
+fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Result<(), Vec<(&'static str, String)>> {
     let (texture, pbr) = match &m.surface {
         SurfaceModel::Finish(f) => (f.texture.is_some(), false),
         SurfaceModel::MetallicRoughness(p) => (p.finish.texture.is_some(), true),
         SurfaceModel::Mtl(mtl) => (mtl.map_kd.is_some(), false),
         SurfaceModel::Physical(p) => (p.texture.is_some(), false),
     };
+    let pigment = match &m.surface {
+        SurfaceModel::Finish(f) => f.pigment.clone(),
+        _ => None,
+    };
+    let patterned = pigment.is_some() && m.emission.radiance == Rgb::BLACK && m.emission.texture.is_none();
     let mut problems = Vec::new();
     if texture {
         problems.push(("texture", "image textures are not exported to POV-Ray".to_string()));
     }
     if pbr {
         problems.push(("pbr", "glTF metallic-roughness materials have no POV-Ray finish equivalent".to_string()));
-    } else if PovView::new(m).varies_over_surface() && !texture {
+    } else if PovView::new(m).varies_over_surface() && !texture && !patterned {
         problems.push(("emission", "emitted radiance beside the finish has no POV-Ray equivalent".to_string()));
     }
     if !problems.is_empty() {
@@ -376,20 +383,27 @@ fn texture(out: &mut String, m: &Material) -> Result<(), Vec<(&'static str, Stri
                 reflection,
                 conserve_energy,
                 texture: _,
+                pigment: _,
             },
         emission,
         interior: Interior { ior, fade_distance, fade_power, fade_color },
     } = &PovView::new(m).base;
     let c = color.0;
+    let pigment_sdl = match &pigment {
+        Some(p) => pigment_pattern(&p.spec, world_from_object),
+        None => format!(
+            "pigment {{ rgbft <{}, {}, {}, {}, {}> }}",
+            number(c.x),
+            number(c.y),
+            number(c.z),
+            number(*filter),
+            number(*transmit)
+        ),
+    };
     let _ = write!(
         out,
-        "  texture {{\n    pigment {{ rgbft <{}, {}, {}, {}, {}> }}\n    finish {{\n      ambient {} emission {}\n      \
+        "  texture {{\n    {pigment_sdl}\n    finish {{\n      ambient {} emission {}\n      \
          diffuse {} brilliance {}\n      phong {} phong_size {}\n      specular {} roughness {}\n      metallic {}\n",
-        number(c.x),
-        number(c.y),
-        number(c.z),
-        number(*filter),
-        number(*transmit),
         rgb(*ambient),
         rgb(*emission),
         number(*diffuse),
@@ -431,6 +445,97 @@ fn texture(out: &mut String, m: &Material) -> Result<(), Vec<(&'static str, Stri
     }
     out.push_str(" }\n");
     Ok(())
+}
+
+/// POV-Ray's `rgbft` form of a pattern colour.
+fn rgbft(c: &crate::material::pattern::MapColor) -> String {
+    let c = c.rgbft();
+    format!(
+        "rgbft <{}, {}, {}, {}, {}>",
+        number(c.rgb.x),
+        number(c.rgb.y),
+        number(c.rgb.z),
+        number(c.filter),
+        number(c.transmit)
+    )
+}
+
+/// A pigment pattern in POV-Ray SDL: the pattern and its colours, its modifiers, its own
+/// transform and then the object's (both mirrored into POV-Ray's frame like every matrix).
+fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DAffine3) -> String {
+    use crate::material::pattern::{DEFAULT_BRICK_SIZE, DEFAULT_MORTAR, MapEntry, PatternKind, Wave};
+    let mut sdl = format!("pigment {{\n      {}", p.pattern);
+    match p.pattern {
+        PatternKind::Gradient => {
+            let v = p.vector.unwrap_or([0.0, 1.0, 0.0]);
+            let _ = write!(sdl, " {}", vector(DVec3::from_array(v)));
+        }
+        PatternKind::Spiral1 | PatternKind::Spiral2 => {
+            let _ = write!(sdl, " {}", p.arms.unwrap_or(0));
+        }
+        _ => {}
+    }
+    if !p.colors.is_empty() {
+        let colors: Vec<String> = p.colors.iter().map(|c| format!("color {}", rgbft(c))).collect();
+        let _ = write!(sdl, " {}", colors.join(", "));
+    }
+    if p.pattern == PatternKind::Brick {
+        let size = p.brick_size.unwrap_or(DEFAULT_BRICK_SIZE);
+        // Brick sizes are lengths along POV-Ray's own axes: not mirrored.
+        let _ = write!(
+            sdl,
+            " brick_size <{}, {}, {}> mortar {}",
+            number(size[0]),
+            number(size[1]),
+            number(size[2]),
+            number(p.mortar.unwrap_or(DEFAULT_MORTAR))
+        );
+    }
+    if let Some(t) = p.turbulence {
+        // Amounts per axis of the pattern's own (POV-Ray's) frame: not mirrored.
+        let t = t.vector();
+        let _ = write!(sdl, "\n      turbulence <{}, {}, {}>", number(t.x), number(t.y), number(t.z));
+    }
+    for (keyword, value) in [("omega", p.omega), ("lambda", p.lambda)] {
+        if let Some(v) = value {
+            let _ = write!(sdl, " {keyword} {}", number(v));
+        }
+    }
+    if let Some(n) = p.octaves {
+        let _ = write!(sdl, " octaves {n}");
+    }
+    if !p.color_map.is_empty() {
+        sdl.push_str("\n      color_map {");
+        for MapEntry(value, color) in &p.color_map {
+            let _ = write!(sdl, "\n        [{} color {}]", number(*value), rgbft(color));
+        }
+        sdl.push_str("\n      }");
+    }
+    if let Some(f) = p.frequency {
+        let _ = write!(sdl, "\n      frequency {}", number(f));
+    }
+    if let Some(phase) = p.phase {
+        let _ = write!(sdl, "\n      phase {}", number(phase));
+    }
+    if let Some(wave) = p.wave {
+        let keyword = match wave {
+            Wave::Ramp => "ramp_wave",
+            Wave::Sine => "sine_wave",
+            Wave::Triangle => "triangle_wave",
+            Wave::Scallop => "scallop_wave",
+            Wave::Cubic => "cubic_wave",
+        };
+        let _ = write!(sdl, "\n      {keyword}");
+    }
+    let own = p.object_from_pattern();
+    if own != DAffine3::IDENTITY {
+        let _ = write!(sdl, "\n      matrix {}", pov_matrix(&own));
+    }
+    if *world_from_object != DAffine3::IDENTITY {
+        let _ = write!(sdl, "\n      matrix {}", pov_matrix(world_from_object));
+    }
+    sdl.push_str("\n    }");
+    sdl
 }
 
 #[cfg(test)]

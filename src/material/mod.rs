@@ -8,6 +8,8 @@
 //! materials directly. `docs/meshes.md` documents the mappings.
 
 pub mod metals;
+pub mod noise;
+pub mod pattern;
 pub mod pov_view;
 pub mod spec;
 
@@ -132,6 +134,9 @@ pub struct Finish {
     pub conserve_energy: bool,
     /// An image (linear after decoding) multiplying `color`.
     pub texture: Option<TextureRef>,
+    /// A POV-Ray pigment pattern: where given, its colour, filter and transmit at the hit
+    /// (in the object's space) replace `color`, `filter` and `transmit`.
+    pub pigment: Option<std::sync::Arc<pattern::PigmentField>>,
 }
 
 impl Default for Finish {

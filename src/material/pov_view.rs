@@ -5,9 +5,11 @@
 //! textured or metallic-roughness materials do work per hit ([`PovView::at_surface`]).
 
 use std::borrow::Cow;
+use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
 
+use super::pattern::PigmentField;
 use super::{
     AlphaMode, Finish, Interior, Material, MetallicRoughness, Mtl, Physical, Reflection, Scattering, SurfaceModel,
 };
@@ -17,8 +19,8 @@ use crate::texture::TextureRef;
 /// A POV-Ray finish, pigment and interior at one point, every field with POV-Ray's meaning.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PovFinish {
-    /// Pigment and finish (`finish.texture` is always `None`: textures are looked up into
-    /// `finish.color` at each hit).
+    /// Pigment and finish (`finish.texture` and `finish.pigment` are always `None`: textures
+    /// and patterns are looked up into `finish.color`, `filter` and `transmit` at each hit).
     pub finish: Finish,
     /// `emission`, multiplied by the colour (like ambient).
     pub emission: Rgb,
@@ -65,6 +67,8 @@ struct Varying {
     pbr: Option<PbrParams>,
     /// Emitted radiance (W/(m^2 sr)) and its texture, added as is.
     emitted: Option<(Rgb, Option<TextureRef>)>,
+    /// A pigment pattern giving colour, filter and transmit.
+    pigment: Option<Arc<PigmentField>>,
 }
 
 #[derive(Clone, Debug)]
@@ -80,7 +84,7 @@ impl PovView {
         let interior = &material.interior;
         let emission = &material.emission;
         let finish = |f: &Finish, emission: Rgb| PovFinish {
-            finish: Finish { texture: None, ..f.clone() },
+            finish: Finish { texture: None, pigment: None, ..f.clone() },
             emission,
             interior: *interior,
         };
@@ -88,12 +92,22 @@ impl PovView {
         match &material.surface {
             SurfaceModel::Finish(f) => {
                 let glows = emission.radiance != Rgb::BLACK || emission.texture.is_some();
-                let varying = (f.texture.is_some() || glows).then(|| Varying {
+                let varying = (f.texture.is_some() || glows || f.pigment.is_some()).then(|| Varying {
                     texture: f.texture.clone(),
                     pbr: None,
                     emitted: glows.then(emitted),
+                    pigment: f.pigment.clone(),
                 });
-                Self { base: finish(f, emission.times_color), varying }
+                let mut base = finish(f, emission.times_color);
+                if let Some(p) = &f.pigment {
+                    // What does not vary (transparency tests, interiors) sees the pigment's
+                    // most transparent colours; every hit looks the pigment up.
+                    let first = p.spec.colors().next().map_or(DVec3::ONE, |c| c.rgb);
+                    base.finish.color = Rgb(first);
+                    base.finish.filter = p.spec.colors().map(|c| c.filter).fold(0.0, f64::max);
+                    base.finish.transmit = p.spec.colors().map(|c| c.transmit).fold(0.0, f64::max);
+                }
+                Self { base, varying }
             }
             SurfaceModel::MetallicRoughness(p) => {
                 let mut base = finish(&p.finish, emission.times_color);
@@ -101,8 +115,12 @@ impl PovView {
                     // Whitted tracing has no partial coverage: blending becomes transmission.
                     base.finish.transmit = (1.0 - p.alpha).clamp(0.0, 1.0);
                 }
-                let varying =
-                    Varying { texture: p.finish.texture.clone(), pbr: Some(pbr_params(p)), emitted: Some(emitted()) };
+                let varying = Varying {
+                    texture: p.finish.texture.clone(),
+                    pbr: Some(pbr_params(p)),
+                    emitted: Some(emitted()),
+                    pigment: None,
+                };
                 Self { base, varying: Some(varying) }
             }
             SurfaceModel::Physical(p) => {
@@ -114,6 +132,7 @@ impl PovView {
                     texture: p.texture.clone(),
                     pbr: None,
                     emitted: glows.then(emitted),
+                    pigment: None,
                 });
                 Self { base, varying }
             }
@@ -121,7 +140,7 @@ impl PovView {
                 let (mapped, texture) = mtl_finish(m, emission.radiance, interior.ior);
                 let mut base = finish(&mapped.finish, mapped.emission);
                 base.interior.ior = mapped.ior;
-                let varying = texture.map(|t| Varying { texture: Some(t), pbr: None, emitted: None });
+                let varying = texture.map(|t| Varying { texture: Some(t), pbr: None, emitted: None, pigment: None });
                 Self { base, varying }
             }
         }
@@ -133,19 +152,30 @@ impl PovView {
         self.varying.is_some()
     }
 
-    /// The finish at a surface point with texture coordinates `uv`, for a ray footprint
-    /// `footprint` wide in uv units (it selects the mip level).
+    /// The pigment pattern, when the material has one.
+    pub fn pigment(&self) -> Option<&PigmentField> {
+        self.varying.as_ref()?.pigment.as_deref()
+    }
+
+    /// The finish at object-space point `point` with texture coordinates `uv`, for a ray
+    /// footprint `footprint` wide in uv units (it selects the mip level).
     ///
     /// The finish derived from glTF parameters (documented in `docs/meshes.md`): with `m` =
     /// metallic, `r` = roughness and `g = (1 - r)^2`: diffuse `0.6 (1 - m)`, Blinn specular
     /// `g (0.25 + 0.75 m)` with POV-Ray roughness `a^2 / (2 - 2 a^2)` for GGX `a = r^2`
     /// (exponent 2 / a^2 - 2), highlights and reflection tinted by the base colour by `m`,
     /// mirror reflection `m g`.
-    pub fn at_surface(&self, uv: DVec2, footprint: f64) -> ShadedFinish<'_> {
+    pub fn at_surface(&self, point: DVec3, uv: DVec2, footprint: f64) -> ShadedFinish<'_> {
         let Some(varying) = &self.varying else {
             return ShadedFinish { finish: Cow::Borrowed(&self.base), emitted: DVec3::ZERO };
         };
         let mut m = self.base.clone();
+        if let Some(p) = &varying.pigment {
+            let c = p.at(point);
+            m.finish.color = Rgb(c.rgb);
+            m.finish.filter = c.filter;
+            m.finish.transmit = c.transmit;
+        }
         if let Some(t) = &varying.texture {
             let texel = t.sample(uv, footprint);
             m.finish.color = Rgb(m.finish.color.0 * texel.truncate().as_dvec3());
@@ -356,7 +386,7 @@ mod tests {
     #[test]
     fn metallic_roughness_maps_to_the_classic_finish() {
         let view = gltf(1.0, 0.0, AlphaMode::Opaque, 1.0);
-        let shaded = view.at_surface(DVec2::ZERO, 0.0);
+        let shaded = view.at_surface(DVec3::ZERO, DVec2::ZERO, 0.0);
         let f = &shaded.finish;
         assert_eq!(
             (f.finish.diffuse, f.finish.specular, f.finish.roughness, f.finish.metallic, f.finish.phong),
@@ -367,7 +397,7 @@ mod tests {
         assert_eq!(shaded.emitted, DVec3::new(1.0, 2.0, 3.0));
 
         let view = gltf(0.0, 0.5, AlphaMode::Blend, 0.25);
-        let f = view.at_surface(DVec2::ZERO, 0.0).finish.into_owned();
+        let f = view.at_surface(DVec3::ZERO, DVec2::ZERO, 0.0).finish.into_owned();
         assert_eq!((f.finish.diffuse, f.finish.specular, f.finish.metallic), (0.6, 0.25 * 0.25, 0.0));
         assert_eq!(f.finish.roughness, 0.0625 / (2.0 - 2.0 * 0.0625));
         assert!(!f.finish.reflection.is_reflective());

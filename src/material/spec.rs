@@ -13,6 +13,7 @@ use schemars::JsonSchema;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
+use super::pattern::{Pigment, PigmentField};
 use super::{AlphaMode, Emission, Finish, Interior, Material, MetallicRoughness, Physical, Scattering, SurfaceModel};
 use crate::color::Rgb;
 use crate::texture::{ColorSpace, TextureRef};
@@ -67,6 +68,12 @@ pub struct MaterialSpec {
     /// coordinates (meshes from glTF or OBJ files).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub texture: Option<TextureRef>,
+    /// A POV-Ray pigment pattern (`{ pattern = "checker", colors = [...] }`, `{ pattern =
+    /// "gradient", vector = [0, 1, 0], color_map = [[0, [1, 1, 1]], [1, [0, 0, 0]]] }`, see
+    /// `docs/scene-format.md`): the colour, filter and transmit vary over the object, in its
+    /// own space. It replaces `color`, `filter` and `transmit`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pigment: Option<Pigment>,
     /// glTF metallic-roughness parameters. When present, the classic finish (diffuse,
     /// highlights, reflection) is derived from them at every hit (see `docs/meshes.md`)
     /// instead of read from the fields above.
@@ -130,6 +137,30 @@ pub enum BsdfSpec {
         #[serde(default)]
         alpha: f64,
     },
+}
+
+/// A key under `pigment` as the material's key path.
+fn pigment_key(key: &str) -> &'static str {
+    match key {
+        "colors" => "pigment.colors",
+        "color_map" => "pigment.color_map",
+        "vector" => "pigment.vector",
+        "arms" => "pigment.arms",
+        "brick_size" => "pigment.brick_size",
+        "mortar" => "pigment.mortar",
+        "frequency" => "pigment.frequency",
+        "phase" => "pigment.phase",
+        "wave" => "pigment.wave",
+        "scale" => "pigment.scale",
+        "rotate" => "pigment.rotate",
+        "translate" => "pigment.translate",
+        "matrix" => "pigment.matrix",
+        "turbulence" => "pigment.turbulence",
+        "octaves" => "pigment.octaves",
+        "omega" => "pigment.omega",
+        "lambda" => "pigment.lambda",
+        _ => "pigment",
+    }
 }
 
 fn glass_ior() -> f64 {
@@ -218,6 +249,7 @@ impl Default for MaterialSpec {
             fade_power: 0.0,
             fade_color: Rgb::BLACK,
             texture: None,
+            pigment: None,
             pbr: None,
             bsdf: None,
         }
@@ -238,6 +270,9 @@ impl MaterialSpec {
                 "ior",
                 format!("must be greater than 0 and at most {}, got {}", crate::limits::MAX_IOR, self.ior),
             ));
+        }
+        if let Some(pigment) = &self.pigment {
+            self.check_pigment(pigment)?;
         }
         if let Some(bsdf) = &self.bsdf {
             self.check_only_bsdf()?;
@@ -263,6 +298,24 @@ impl MaterialSpec {
             }
         }
         Ok(())
+    }
+
+    /// The pigment's first problem, or a key written beside it that it replaces or that
+    /// belongs to another surface model.
+    fn check_pigment(&self, pigment: &Pigment) -> Result<(), (&'static str, String)> {
+        let d = Self::default();
+        let beside = [
+            ("color", self.color != d.color, "the pigment gives the colour"),
+            ("filter", self.filter != d.filter, "the pigment's colours give filter"),
+            ("transmit", self.transmit != d.transmit, "the pigment's colours give transmit"),
+            ("texture", self.texture.is_some(), "a pigment pattern and an image texture do not combine"),
+            ("bsdf", self.bsdf.is_some(), "a pigment pattern needs a POV-Ray finish, not a `bsdf`"),
+            ("pbr", self.pbr.is_some(), "a pigment pattern needs a POV-Ray finish, not `pbr`"),
+        ];
+        if let Some((key, _, why)) = beside.iter().find(|(_, written, _)| *written) {
+            return Err((key, format!("cannot be written beside `pigment`: {why}")));
+        }
+        pigment.check().map_err(|(key, message)| (pigment_key(key), message))
     }
 
     /// With a `bsdf`, the first POV-Ray finish or interior key (or `pbr`) written beside it:
@@ -334,6 +387,7 @@ impl MaterialSpec {
             reflection: self.reflection,
             conserve_energy: self.conserve_energy,
             texture: self.texture.clone(),
+            pigment: self.pigment.as_ref().map(|p| std::sync::Arc::new(PigmentField::new(p))),
         }
     }
 

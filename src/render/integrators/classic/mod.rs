@@ -164,7 +164,7 @@ impl<'a> Classic<'a> {
         // A pixel's ray cone widens with distance; an orthographic pixel is a fixed width.
         let width = if self.scene.camera.orthographic { self.pixel_spread } else { self.pixel_spread * distance };
         let footprint = crate::texture::uv_footprint(width, surface.uv_density, area_scale, cosine);
-        view.at_surface(surface.uv, footprint)
+        view.at_surface(surface.point, surface.uv, footprint)
     }
 
     fn medium_ior(&self, interiors: &Interiors) -> f64 {
@@ -404,11 +404,20 @@ impl<'a> Classic<'a> {
             let Some(hit) = scene.accel.closest(&scene.primitives, &ray, SHADOW_TOLERANCE, t_max, casts) else {
                 return filter;
             };
-            let m = self.material_of(hit.primitive);
+            let view = &self.views[scene.primitives[hit.primitive as usize].material as usize];
+            let m = &view.base;
             if !m.is_transparent() {
                 return DVec3::ZERO;
             }
-            filter *= m.finish.color.0 * m.finish.filter + DVec3::splat(m.finish.transmit);
+            filter *= match view.pigment() {
+                // A pattern's filter and transmit vary: look them up where the shadow ray
+                // crosses (in the object's space, as shading does).
+                Some(p) => {
+                    let c = p.at(hit.object_ray.at(hit.hit.t));
+                    c.rgb * c.filter + DVec3::splat(c.transmit)
+                }
+                None => m.finish.color.0 * m.finish.filter + DVec3::splat(m.finish.transmit),
+            };
             if inside.contains(hit.primitive) {
                 filter *= interior_fade(m, hit.hit.t, true);
                 inside = inside.leaving(hit.primitive);

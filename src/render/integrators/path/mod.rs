@@ -56,6 +56,8 @@ struct Vertex {
     shading_normal: DVec3,
     tangent: DVec3,
     uv: DVec2,
+    /// The hit in the primitive's object space (where pigment patterns are evaluated).
+    object_point: DVec3,
     primitive: u32,
     material: u32,
     distance: f64,
@@ -98,6 +100,7 @@ impl<'a> Path<'a> {
             shading_normal,
             tangent,
             uv: surface.uv,
+            object_point: surface.point,
             primitive: closest.primitive,
             material: primitive.material,
             distance: closest.hit.t * ray.direction.length(),
@@ -111,7 +114,7 @@ impl<'a> Path<'a> {
         if !material.can_emit() || (!material.emits_both_sides() && vertex.geometric_normal.dot(toward) <= 0.0) {
             return DVec3::ZERO;
         }
-        material.emitted(&SurfacePoint { uv: vertex.uv })
+        material.emitted(&SurfacePoint { uv: vertex.uv, object_point: vertex.object_point })
     }
 
     /// Solid-angle density with which light sampling from `from` picks `direction` toward the
@@ -183,7 +186,7 @@ impl<'a> Path<'a> {
                 break;
             }
             let material = &self.materials[vertex.material as usize];
-            let shaded = material.shade(&SurfacePoint { uv: vertex.uv });
+            let shaded = material.shade(&SurfacePoint { uv: vertex.uv, object_point: vertex.object_point });
             let scatter = &shaded.scatter;
             if depth == 1 {
                 first_hit = Some(FirstHit { albedo: scatter.albedo(), ..self.first_hit(&vertex, -direction) });

@@ -56,6 +56,8 @@ pub struct Scatter {
 pub struct SurfacePoint {
     /// Texture coordinates.
     pub uv: DVec2,
+    /// The point in the object's space (pigment patterns are evaluated there).
+    pub object_point: DVec3,
 }
 
 /// Luminance of linear Rec. 709 RGB.
@@ -256,24 +258,36 @@ impl PathMaterial {
         if !self.can_emit() {
             return DVec3::ZERO;
         }
-        self.emission(self.surface_color(point.uv), point.uv)
+        self.emission(self.surface_color(point).0, point.uv)
     }
 
-    fn surface_color(&self, uv: DVec2) -> DVec3 {
-        match &self.material.surface {
-            SurfaceModel::Finish(f) => f.color.0 * rgb_of(texel(&f.texture, uv)),
+    /// The surface colour at `point`, and the finish with a pigment pattern's filter and
+    /// transmit there (borrowed when the material has no pattern).
+    fn surface_color(&self, point: &SurfacePoint) -> (DVec3, Option<Finish>) {
+        let uv = point.uv;
+        let color = match &self.material.surface {
+            SurfaceModel::Finish(f) => {
+                if let Some(p) = &f.pigment {
+                    let c = p.at(point.object_point);
+                    return (c.rgb, Some(Finish { filter: c.filter, transmit: c.transmit, ..f.clone() }));
+                }
+                f.color.0 * rgb_of(texel(&f.texture, uv))
+            }
             SurfaceModel::MetallicRoughness(m) => m.finish.color.0 * rgb_of(texel(&m.finish.texture, uv)),
             SurfaceModel::Mtl(m) => m.kd.unwrap_or(Rgb::WHITE).0 * rgb_of(texel(&m.map_kd, uv)),
             SurfaceModel::Physical(p) => p.color.0 * rgb_of(texel(&p.texture, uv)),
-        }
+        };
+        (color, None)
     }
 
     /// The scattering and emission at `point`.
     pub fn shade(&self, point: &SurfacePoint) -> Shaded {
         let uv = point.uv;
-        let color = self.surface_color(uv);
+        let (color, patterned) = self.surface_color(point);
         let scatter = match &self.material.surface {
-            SurfaceModel::Finish(f) => finish_scatter(f, color, self.material.interior.ior),
+            SurfaceModel::Finish(f) => {
+                finish_scatter(patterned.as_ref().unwrap_or(f), color, self.material.interior.ior)
+            }
             SurfaceModel::MetallicRoughness(m) => metallic_roughness_scatter(m, color, uv),
             SurfaceModel::Mtl(m) => mtl_scatter(m, color),
             SurfaceModel::Physical(p) => physical_scatter(p, color),
@@ -377,4 +391,28 @@ fn physical_scatter(p: &Physical, color: DVec3) -> Scatter {
     };
     let two_sided = !matches!(p.scattering, Scattering::Dielectric { .. });
     Scatter::new([(DVec3::ONE, Lobe::Bsdf { bsdf, two_sided })])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pigment_pattern_gives_the_albedo_and_transmission_at_the_object_point() {
+        let spec: crate::material::MaterialSpec = toml::from_str(
+            "diffuse = 0.7\npigment = { pattern = \"checker\", colors = [[1, 0, 0], { color = [0, 0, 1], transmit = 0.5 }] }",
+        )
+        .unwrap();
+        let material = PathMaterial::new(&spec.to_material());
+        let at = |x: f64| material.shade(&SurfacePoint { uv: DVec2::ZERO, object_point: DVec3::new(x, 0.5, -0.5) });
+        // POV-Ray point (0.5, 0.5, 0.5): an even cell, the first colour, opaque: one diffuse lobe.
+        let red = at(0.5).scatter;
+        let weights: Vec<DVec3> = red.lobes().map(|(w, _)| w).collect();
+        assert_eq!(weights, [DVec3::new(1.0, 0.0, 0.0)]);
+        // (1.5, 0.5, 0.5): odd, the second colour; transmit 0.5 halves the diffuse lobe and
+        // adds a transmitting one of weight 0.5.
+        let blue = at(1.5).scatter;
+        let weights: Vec<DVec3> = blue.lobes().map(|(w, _)| w).collect();
+        assert_eq!(weights, [DVec3::new(0.0, 0.0, 0.5), DVec3::splat(0.5)]);
+    }
 }

@@ -1,0 +1,1061 @@
+//! POV-Ray 3.7 pigment patterns: a colour that varies over space, evaluated in the object's
+//! own space (a pattern moves with the object it is attached to, as POV-Ray's textures do).
+//!
+//! [`Pigment`] is the scene file's form (`pigment = { pattern = "checker", ... }`);
+//! [`PigmentField`] is what shading evaluates. Each pattern is POV-Ray's function (its
+//! `pattern.cpp`) of the point in POV-Ray's left-handed frame: Prism's object point `p`
+//! goes through the inverse pattern transform and then to `(x, y, -z)`, the mirror the POV-Ray
+//! exporter writes every scene through, so a scene and its export show the same picture.
+//! Continuous patterns then get POV-Ray's `frequency`, `phase` and wave type and look up a
+//! `color_map`; `checker`, `hexagon` and `brick` pick one of their listed colours.
+
+use std::fmt;
+
+use glam::{DAffine3, DMat3, DMat4, DVec3, EulerRot};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use super::noise::{Octaves, dturbulence, noise, turbulence};
+use crate::color::Rgb;
+
+/// POV-Ray's `EPSILON` (`configcore.h`), the offset of `checker`'s and `brick`'s cell edges.
+const POV_EPSILON: f64 = 1.0e-10;
+
+/// A pattern's name, as POV-Ray spells it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PatternKind {
+    /// Alternating unit cubes, two colours.
+    Checker,
+    /// Hexagonal tiles in the x-z plane, three colours.
+    Hexagon,
+    /// Bricks and mortar, two colours (mortar first).
+    Brick,
+    /// A ramp along a vector.
+    Gradient,
+    /// The angle about the y axis.
+    Radial,
+    /// Concentric spheres.
+    Onion,
+    /// Regular spots: the square of the mean of sin x, sin y, sin z.
+    Leopard,
+    /// A spiral about the z axis (POV-Ray's frame).
+    Spiral1,
+    /// Two crossing spirals about the z axis (POV-Ray's frame).
+    Spiral2,
+    /// Solid noise.
+    Bozo,
+    /// Solid noise (the same function as `bozo`).
+    Spotted,
+    /// Six octaves of absolute noise.
+    Granite,
+    /// x plus scalar turbulence, triangle wave by default: veins across x.
+    Marble,
+    /// Rings about the z axis, bent by turbulence; triangle wave by default.
+    Wood,
+    /// Turbulence folded through a sine along z.
+    Agate,
+    /// Ten octaves of noise.
+    Wrinkles,
+}
+
+impl PatternKind {
+    /// Every pattern with its name.
+    pub const ALL: [(PatternKind, &'static str); 16] = [
+        (PatternKind::Checker, "checker"),
+        (PatternKind::Hexagon, "hexagon"),
+        (PatternKind::Brick, "brick"),
+        (PatternKind::Gradient, "gradient"),
+        (PatternKind::Radial, "radial"),
+        (PatternKind::Onion, "onion"),
+        (PatternKind::Leopard, "leopard"),
+        (PatternKind::Spiral1, "spiral1"),
+        (PatternKind::Spiral2, "spiral2"),
+        (PatternKind::Bozo, "bozo"),
+        (PatternKind::Spotted, "spotted"),
+        (PatternKind::Granite, "granite"),
+        (PatternKind::Marble, "marble"),
+        (PatternKind::Wood, "wood"),
+        (PatternKind::Agate, "agate"),
+        (PatternKind::Wrinkles, "wrinkles"),
+    ];
+
+    /// The scene file's (and POV-Ray's) name.
+    pub fn name(self) -> &'static str {
+        Self::ALL.iter().find(|(k, _)| *k == self).map_or("", |(_, n)| n)
+    }
+
+    /// The wave type POV-Ray gives the pattern when none is written.
+    pub fn default_wave(self) -> Wave {
+        match self {
+            PatternKind::Spiral1 | PatternKind::Spiral2 | PatternKind::Marble | PatternKind::Wood => Wave::Triangle,
+            _ => Wave::Ramp,
+        }
+    }
+
+    /// The number of colours a discrete pattern lists (`None`: it takes a `color_map`).
+    pub fn discrete_colors(self) -> Option<usize> {
+        match self {
+            PatternKind::Checker | PatternKind::Brick => Some(2),
+            PatternKind::Hexagon => Some(3),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for PatternKind {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl TryFrom<String> for PatternKind {
+    type Error = String;
+
+    fn try_from(name: String) -> Result<Self, String> {
+        if let Some((kind, _)) = Self::ALL.iter().find(|(_, n)| *n == name) {
+            return Ok(*kind);
+        }
+        let names: Vec<&str> = Self::ALL.iter().map(|(_, n)| *n).collect();
+        let hint = crate::diagnostics::nearest_name(&name, names.iter().copied())
+            .map_or(String::new(), |n| format!("did you mean `{n}`? "));
+        Err(format!("unknown pattern `{name}`; {hint}known patterns: {}", names.join(", ")))
+    }
+}
+
+impl From<PatternKind> for String {
+    fn from(kind: PatternKind) -> String {
+        kind.name().to_string()
+    }
+}
+
+impl Serialize for PatternKind {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for PatternKind {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        PatternKind::try_from(String::deserialize(d)?).map_err(serde::de::Error::custom)
+    }
+}
+
+impl JsonSchema for PatternKind {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "PatternKind".into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let names: Vec<&str> = Self::ALL.iter().map(|(_, n)| *n).collect();
+        schemars::json_schema!({ "description": "A POV-Ray pigment pattern.", "enum": names })
+    }
+}
+
+/// POV-Ray's wave types: how a continuous pattern's value in [0, 1) is shaped.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Wave {
+    /// The value itself (POV-Ray's default).
+    #[default]
+    Ramp,
+    /// `(1 + sin(2 pi v)) / 2`.
+    Sine,
+    /// Up from 0 to 1 at v = 0.5, back down to 0.
+    Triangle,
+    /// `|sin(pi v)|`.
+    Scallop,
+    /// `3 v^2 - 2 v^3`.
+    Cubic,
+}
+
+/// A colour with POV-Ray's filter and transmit: written `[r, g, b]` or
+/// `{ color = [r, g, b], filter = f, transmit = t }`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum MapColor {
+    /// An opaque colour (linear RGB).
+    Opaque(Rgb),
+    /// A colour with filter and transmit.
+    Filtered(FilteredColor),
+}
+
+/// The table form of a [`MapColor`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FilteredColor {
+    /// Linear RGB.
+    pub color: Rgb,
+    /// Fraction of light passing through, tinted by the colour.
+    #[serde(default)]
+    pub filter: f64,
+    /// Fraction of light passing through untinted.
+    #[serde(default)]
+    pub transmit: f64,
+}
+
+impl MapColor {
+    /// The colour as POV-Ray's five components.
+    pub fn rgbft(&self) -> Rgbft {
+        match *self {
+            MapColor::Opaque(c) => Rgbft { rgb: c.0, filter: 0.0, transmit: 0.0 },
+            MapColor::Filtered(FilteredColor { color, filter, transmit }) => Rgbft { rgb: color.0, filter, transmit },
+        }
+    }
+}
+
+/// One `color_map` entry: `[value, colour]` with value in [0, 1].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MapEntry(pub f64, pub MapColor);
+
+/// A pattern transform in the object's space, written and applied like an object's:
+/// `scale`, then `rotate` (degrees about x, y, z), then `translate`; or `matrix` (four rows)
+/// instead of the three.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum PatternScale {
+    /// The same factor on every axis.
+    Uniform(f64),
+    /// One factor per axis.
+    PerAxis([f64; 3]),
+}
+
+/// A turbulence amount: one number for every axis, or one per axis (of the pattern's frame).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum TurbulenceAmount {
+    /// The same amount along every axis.
+    Uniform(f64),
+    /// One amount per axis.
+    PerAxis([f64; 3]),
+}
+
+impl TurbulenceAmount {
+    /// The amount per axis.
+    pub fn vector(&self) -> DVec3 {
+        match *self {
+            TurbulenceAmount::Uniform(v) => DVec3::splat(v),
+            TurbulenceAmount::PerAxis(v) => DVec3::from_array(v),
+        }
+    }
+}
+
+/// A pigment pattern as a scene file writes it (`pigment = { pattern = "...", ... }`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Pigment {
+    /// The pattern's POV-Ray name.
+    pub pattern: PatternKind,
+    /// `checker`, `brick` (mortar first): two colours; `hexagon`: three.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub colors: Vec<MapColor>,
+    /// The other patterns: `[value, colour]` entries, values in [0, 1] ascending, interpolated
+    /// linearly (below the first entry its colour, above the last the last's).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub color_map: Vec<MapEntry>,
+    /// `gradient`'s direction (the pattern repeats every 1 / |vector| along it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vector: Option<[f64; 3]>,
+    /// `spiral1` / `spiral2`: the number of arms.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arms: Option<i32>,
+    /// `brick`: the size of a brick with its mortar (POV-Ray's default [8, 3, 4.5]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub brick_size: Option<[f64; 3]>,
+    /// `brick`: the mortar's width (POV-Ray's default 0.5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mortar: Option<f64>,
+    /// Continuous patterns: how many times the colour map repeats per unit of the pattern
+    /// (POV-Ray's default 1; 0 leaves the value unwrapped).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequency: Option<f64>,
+    /// Continuous patterns: added to the value before wrapping (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub phase: Option<f64>,
+    /// Continuous patterns: the wave type (POV-Ray's default: `triangle` for the spirals,
+    /// `ramp` for the others).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wave: Option<Wave>,
+    /// POV-Ray's `turbulence`: displaces the point by vector turbulence (noise octaves)
+    /// times this amount, per axis of the pattern's frame, before the pattern reads it;
+    /// `marble`, `wood` (and the spirals and `agate`, besides) use it in their own way.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub turbulence: Option<TurbulenceAmount>,
+    /// Turbulence octaves, 1 to 10 (default 6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub octaves: Option<u32>,
+    /// Turbulence amplitude factor per octave (default 0.5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub omega: Option<f64>,
+    /// Turbulence frequency factor per octave (default 2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
+    /// Pattern scale.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<PatternScale>,
+    /// Pattern rotation, degrees about x, then y, then z.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<[f64; 3]>,
+    /// Pattern translation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub translate: Option<[f64; 3]>,
+    /// A 4x4 affine matrix (rows; the last [0, 0, 0, 1]) instead of scale, rotate, translate.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub matrix: Option<[[f64; 4]; 4]>,
+}
+
+/// POV-Ray's default brick size.
+pub const DEFAULT_BRICK_SIZE: [f64; 3] = [8.0, 3.0, 4.5];
+/// POV-Ray's default mortar width.
+pub const DEFAULT_MORTAR: f64 = 0.5;
+
+/// A colour with POV-Ray's filter and transmit, the value a pigment gives at a point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rgbft {
+    /// Linear RGB.
+    pub rgb: DVec3,
+    /// Filtered transmission (tinted by `rgb`).
+    pub filter: f64,
+    /// Unfiltered transmission.
+    pub transmit: f64,
+}
+
+impl Rgbft {
+    fn blend(a: Rgbft, wa: f64, b: Rgbft, wb: f64) -> Rgbft {
+        Rgbft {
+            rgb: a.rgb * wa + b.rgb * wb,
+            filter: a.filter * wa + b.filter * wb,
+            transmit: a.transmit * wa + b.transmit * wb,
+        }
+    }
+}
+
+impl Pigment {
+    /// The pattern transform (pattern space to object space, Prism's frame).
+    pub fn object_from_pattern(&self) -> DAffine3 {
+        if let Some(rows) = self.matrix {
+            return DAffine3::from_mat4(DMat4::from_cols_array_2d(&rows).transpose());
+        }
+        let scale = match self.scale {
+            None => DVec3::ONE,
+            Some(PatternScale::Uniform(s)) => DVec3::splat(s),
+            Some(PatternScale::PerAxis(s)) => DVec3::from_array(s),
+        };
+        let r = DVec3::from_array(self.rotate.unwrap_or_default()) * (std::f64::consts::PI / 180.0);
+        let rotation = DMat3::from_euler(EulerRot::ZYX, r.z, r.y, r.x);
+        let translation = DVec3::from_array(self.translate.unwrap_or_default());
+        DAffine3 { matrix3: rotation * DMat3::from_diagonal(scale), translation }
+    }
+
+    /// Every colour the pigment can give (its list or its map's).
+    pub fn colors(&self) -> impl Iterator<Item = Rgbft> + '_ {
+        self.colors.iter().map(MapColor::rgbft).chain(self.color_map.iter().map(|e| e.1.rgbft()))
+    }
+
+    /// The first out-of-range or contradictory parameter, as (key under `pigment`, message).
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        let kind = self.pattern;
+        match kind.discrete_colors() {
+            Some(n) => {
+                if self.colors.len() != n {
+                    return Err(("colors", format!("`{kind}` takes {n} colours, got {}", self.colors.len())));
+                }
+                if !self.color_map.is_empty() {
+                    return Err(("color_map", format!("`{kind}` takes `colors`, not a `color_map`")));
+                }
+                for (key, given) in [
+                    ("frequency", self.frequency.is_some()),
+                    ("phase", self.phase.is_some()),
+                    ("wave", self.wave.is_some()),
+                ] {
+                    if given {
+                        return Err((key, format!("has no effect on the discrete pattern `{kind}`")));
+                    }
+                }
+            }
+            None => {
+                if !self.colors.is_empty() {
+                    return Err(("colors", format!("`{kind}` takes a `color_map`, not `colors`")));
+                }
+                if self.color_map.is_empty() {
+                    return Err(("color_map", format!("`{kind}` needs a `color_map` with at least one entry")));
+                }
+                let mut previous = 0.0;
+                for (i, MapEntry(value, _)) in self.color_map.iter().enumerate() {
+                    if !(0.0..=1.0).contains(value) {
+                        return Err(("color_map", format!("entry {i}: value {value} is outside [0, 1]")));
+                    }
+                    if *value < previous {
+                        return Err((
+                            "color_map",
+                            format!(
+                                "entry {i}: value {value} is below the previous entry's {previous} (ascending order)"
+                            ),
+                        ));
+                    }
+                    previous = *value;
+                }
+            }
+        }
+        for c in self.colors() {
+            if !c.rgb.is_finite() || !c.filter.is_finite() || !c.transmit.is_finite() {
+                return Err(("color_map", "colours, filter and transmit must be finite".into()));
+            }
+        }
+        let only = |key: &'static str, given: bool, kinds: &[PatternKind]| {
+            if given && !kinds.contains(&kind) {
+                let names: Vec<&str> = kinds.iter().map(|k| k.name()).collect();
+                return Err((key, format!("belongs to {}, not `{kind}`", names.join(" and "))));
+            }
+            Ok(())
+        };
+        only("vector", self.vector.is_some(), &[PatternKind::Gradient])?;
+        only("arms", self.arms.is_some(), &[PatternKind::Spiral1, PatternKind::Spiral2])?;
+        only("brick_size", self.brick_size.is_some(), &[PatternKind::Brick])?;
+        only("mortar", self.mortar.is_some(), &[PatternKind::Brick])?;
+        if kind == PatternKind::Gradient && self.vector.is_none() {
+            return Err(("vector", "`gradient` needs its direction `vector = [x, y, z]`".into()));
+        }
+        if matches!(kind, PatternKind::Spiral1 | PatternKind::Spiral2) && self.arms.is_none() {
+            return Err(("arms", format!("`{kind}` needs its number of `arms`")));
+        }
+        if let Some(v) = self.vector
+            && !(v.iter().all(|c| c.is_finite()) && DVec3::from_array(v) != DVec3::ZERO)
+        {
+            return Err(("vector", "must be finite and not zero".into()));
+        }
+        if let Some(size) = self.brick_size
+            && !size.iter().all(|s| s.is_finite() && *s > 0.0)
+        {
+            return Err(("brick_size", format!("every side must be finite and positive, got {size:?}")));
+        }
+        if let Some(m) = self.mortar
+            && !(m.is_finite() && m >= 0.0)
+        {
+            return Err(("mortar", format!("must be finite and not negative, got {m}")));
+        }
+        if let Some(t) = self.turbulence
+            && !t.vector().is_finite()
+        {
+            return Err(("turbulence", "must be finite".into()));
+        }
+        if let Some(n) = self.octaves
+            && !(1..=10).contains(&n)
+        {
+            return Err(("octaves", format!("must be between 1 and 10 (POV-Ray's limits), got {n}")));
+        }
+        let octave_keys =
+            [("octaves", self.octaves.is_some()), ("omega", self.omega.is_some()), ("lambda", self.lambda.is_some())];
+        if self.turbulence.is_none()
+            && kind != PatternKind::Agate
+            && let Some((key, _)) = octave_keys.iter().find(|(_, given)| *given)
+        {
+            return Err((key, "shapes `turbulence`, which this pigment does not have".into()));
+        }
+        for (key, v) in
+            [("frequency", self.frequency), ("phase", self.phase), ("omega", self.omega), ("lambda", self.lambda)]
+        {
+            if let Some(v) = v
+                && !v.is_finite()
+            {
+                return Err((key, format!("must be finite, got {v}")));
+            }
+        }
+        if self.matrix.is_some() && (self.scale.is_some() || self.rotate.is_some() || self.translate.is_some()) {
+            return Err(("matrix", "give either `matrix` or `scale`, `rotate` and `translate`".into()));
+        }
+        if let Some(rows) = self.matrix
+            && rows[3] != [0.0, 0.0, 0.0, 1.0]
+        {
+            return Err(("matrix", "the last row must be [0, 0, 0, 1]".into()));
+        }
+        let m = self.object_from_pattern();
+        if !(m.matrix3.determinant().abs() > 1e-12 && m.to_cols_array().iter().all(|v| v.is_finite())) {
+            return Err(("scale", "the pattern transform must be finite and invertible".into()));
+        }
+        Ok(())
+    }
+}
+
+/// A pigment ready to evaluate: the pattern with its transform inverted.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PigmentField {
+    /// The pigment as written.
+    pub spec: Pigment,
+    /// Object space (Prism's frame) to pattern space.
+    pattern_from_object: DAffine3,
+    /// The turbulence amount per axis (zero without turbulence).
+    turbulence: DVec3,
+    /// The turbulence octaves.
+    octaves: Octaves,
+}
+
+impl PigmentField {
+    /// The field of `spec` (which passed [`Pigment::check`]).
+    pub fn new(spec: &Pigment) -> Self {
+        let d = Octaves::default();
+        Self {
+            spec: spec.clone(),
+            pattern_from_object: spec.object_from_pattern().inverse(),
+            turbulence: spec.turbulence.map_or(DVec3::ZERO, |t| t.vector()),
+            octaves: Octaves {
+                octaves: spec.octaves.unwrap_or(d.octaves),
+                omega: spec.omega.unwrap_or(d.omega),
+                lambda: spec.lambda.unwrap_or(d.lambda),
+            },
+        }
+    }
+
+    /// True when some colour of the pigment lets light through.
+    pub fn can_transmit(&self) -> bool {
+        self.spec.colors().any(|c| c.filter > 0.0 || c.transmit > 0.0)
+    }
+
+    /// The colour at object-space point `p` (Prism's frame).
+    pub fn at(&self, p: DVec3) -> Rgbft {
+        let mut q = self.pattern_from_object.transform_point3(p) * DVec3::new(1.0, 1.0, -1.0);
+        let spec = &self.spec;
+        // POV-Ray's classic turbulence warp; marble and wood apply their turbulence themselves.
+        if spec.turbulence.is_some() && !matches!(spec.pattern, PatternKind::Marble | PatternKind::Wood) {
+            q += dturbulence(q, &self.octaves) * self.turbulence;
+        }
+        match spec.pattern.discrete_colors() {
+            Some(_) => {
+                let index = discrete_value(spec, q);
+                spec.colors[index.min(spec.colors.len() - 1)].rgbft()
+            }
+            None => map_lookup(&spec.color_map, self.continuous_value(q)),
+        }
+    }
+
+    /// A continuous pattern's value at `q` after frequency, phase and wave (POV-Ray's
+    /// `Evaluate_TPat`).
+    fn continuous_value(&self, q: DVec3) -> f64 {
+        let spec = &self.spec;
+        let turbulent = spec.turbulence.is_some();
+        // Scalar turbulence, as marble and the spirals add it.
+        let turb_x = || if turbulent { self.turbulence.x * turbulence(q, &self.octaves) } else { 0.0 };
+        let raw = match spec.pattern {
+            PatternKind::Gradient => gradient(q, pov_vector(spec.vector.unwrap_or([0.0, 1.0, 0.0]))),
+            PatternKind::Radial => radial(q),
+            PatternKind::Onion => onion(q),
+            PatternKind::Leopard => leopard(q),
+            PatternKind::Spiral1 => spiral1(q, spec.arms.unwrap_or(0)) + turb_x(),
+            PatternKind::Spiral2 => spiral2(q, spec.arms.unwrap_or(0), turb_x()),
+            PatternKind::Bozo | PatternKind::Spotted => noise(q),
+            PatternKind::Granite => granite(q),
+            PatternKind::Marble => q.x + turb_x(),
+            PatternKind::Wood => wood(q, turbulent.then_some((self.turbulence, &self.octaves))),
+            PatternKind::Agate => agate(q, &self.octaves),
+            PatternKind::Wrinkles => wrinkles(q),
+            PatternKind::Checker | PatternKind::Hexagon | PatternKind::Brick => 0.0,
+        };
+        shape_wave(
+            raw,
+            spec.frequency.unwrap_or(1.0),
+            spec.phase.unwrap_or(0.0),
+            spec.wave.unwrap_or(spec.pattern.default_wave()),
+        )
+    }
+}
+
+/// A discrete pattern's colour index at pattern-space point `q` (POV-Ray's frame).
+fn discrete_value(spec: &Pigment, q: DVec3) -> usize {
+    match spec.pattern {
+        PatternKind::Checker => checker(q),
+        PatternKind::Hexagon => hexagon(q),
+        PatternKind::Brick => brick(
+            q,
+            DVec3::from_array(spec.brick_size.unwrap_or(DEFAULT_BRICK_SIZE)),
+            spec.mortar.unwrap_or(DEFAULT_MORTAR),
+        ),
+        _ => 0,
+    }
+}
+
+/// A Prism-frame direction in POV-Ray's frame.
+fn pov_vector(v: [f64; 3]) -> DVec3 {
+    DVec3::new(v[0], v[1], -v[2])
+}
+
+/// POV-Ray's frequency, phase and wave shaping of a raw pattern value.
+pub fn shape_wave(raw: f64, frequency: f64, phase: f64, wave: Wave) -> f64 {
+    let mut value = raw;
+    if frequency != 0.0 {
+        // POV-Ray wraps at 1.00001, not 1 (a value of exactly 1 stays 1).
+        value = (value * frequency + phase) % 1.00001;
+    }
+    if value < 0.0 {
+        value -= value.floor();
+    }
+    match wave {
+        Wave::Ramp => value,
+        Wave::Sine => (1.0 + cycloidal(value)) * 0.5,
+        Wave::Triangle => triangle_wave(value),
+        Wave::Scallop => cycloidal(value * 0.5).abs(),
+        Wave::Cubic => value * value * (3.0 - 2.0 * value),
+    }
+}
+
+/// POV-Ray's `cycloidal`: sin(2 pi v) of v's fractional part, odd in v.
+fn cycloidal(v: f64) -> f64 {
+    if v >= 0.0 {
+        ((v - v.floor()) * std::f64::consts::TAU).sin()
+    } else {
+        -((-(v + (-v).floor())) * std::f64::consts::TAU).sin()
+    }
+}
+
+/// POV-Ray's `Triangle_Wave`: 0 at integers, 1 halfway between.
+fn triangle_wave(v: f64) -> f64 {
+    let offset = if v >= 0.0 { v - v.floor() } else { v + 1.0 + v.abs().floor() };
+    if offset >= 0.5 { 2.0 * (1.0 - offset) } else { 2.0 * offset }
+}
+
+/// POV-Ray's colour map search: the first entry at or below its value, the last above it,
+/// linear in between; where entries share a value the lower one owns it exactly.
+pub fn map_lookup(map: &[MapEntry], value: f64) -> Rgbft {
+    let last = map.len() - 1;
+    if value >= map[last].0 {
+        return map[last].1.rgbft();
+    }
+    let next = map.iter().position(|e| value <= e.0).unwrap_or(last);
+    if next == 0 || value == map[next].0 {
+        return map[next].1.rgbft();
+    }
+    let (prev, next) = (&map[next - 1], &map[next]);
+    let w_prev = (next.0 - value) / (next.0 - prev.0);
+    Rgbft::blend(prev.1.rgbft(), w_prev, next.1.rgbft(), 1.0 - w_prev)
+}
+
+fn checker(q: DVec3) -> usize {
+    let sum = (q.x + POV_EPSILON).floor() + (q.y + POV_EPSILON).floor() + (q.z + POV_EPSILON).floor();
+    (sum as i64 & 1) as usize
+}
+
+/// POV-Ray's hexagon tiling: 0, 1 or 2.
+fn hexagon(q: DVec3) -> usize {
+    // Width and height factors of the grid of half-triangles.
+    const X_FACTOR: f64 = 0.5;
+    const Z_FACTOR: f64 = 0.866025404;
+    let x = q.x.abs();
+    // The grid is 6 blocks high (6 * sqrt(3) / 2): negative z is shifted, not mirrored.
+    let z = if q.z < 0.0 { 5.196152424 - q.z.abs() } else { q.z };
+    let mut xs = x / X_FACTOR;
+    let mut zs = z / Z_FACTOR;
+    xs -= (xs / 6.0).floor() * 6.0;
+    zs -= (zs / 6.0).floor() * 6.0;
+    let xm = (xs.floor() as i64).rem_euclid(6);
+    let zm = (zs.floor() as i64).rem_euclid(6);
+    match xm {
+        0 | 5 => match zm {
+            0 | 5 => 0,
+            1 | 2 => 1,
+            _ => 2,
+        },
+        2 | 3 => match zm {
+            0 | 1 => 2,
+            2 | 3 => 0,
+            _ => 1,
+        },
+        _ => {
+            let mut xl = xs - xm as f64;
+            let zl = zs - zm as f64;
+            if (xm + zm) % 2 == 1 {
+                xl = 1.0 - xl;
+            }
+            if xl == 0.0 {
+                xl = 0.0001;
+            }
+            if zl / xl < 1.0 {
+                match zm {
+                    0 | 3 => 0,
+                    2 | 5 => 1,
+                    _ => 2,
+                }
+            } else {
+                match zm {
+                    0 | 3 => 2,
+                    2 | 5 => 0,
+                    _ => 1,
+                }
+            }
+        }
+    }
+}
+
+/// The fractional part as POV-Ray's brick takes it: truncate toward zero, then lift
+/// negatives into [0, 1).
+fn brick_fraction(v: f64) -> f64 {
+    let f = v - v.trunc();
+    if f < 0.0 { f + 1.0 } else { f }
+}
+
+/// POV-Ray's brick: 0 in the mortar, 1 in a brick.
+fn brick(q: DVec3, size: DVec3, mortar: f64) -> usize {
+    let fudge = POV_EPSILON + mortar;
+    let p = q + DVec3::splat(fudge);
+    let m = DVec3::splat(mortar) / size;
+    if brick_fraction(p.y / size.y) <= m.y {
+        return 0;
+    }
+    // Which course (odd or even row) the point is in.
+    let upper = brick_fraction(p.y / size.y * 0.5) > 0.5;
+    let ends = brick_fraction(p.x / size.x);
+    let ends_shifted = brick_fraction(p.x / size.x + 0.5);
+    let faces = brick_fraction(p.z / size.z);
+    let faces_shifted = brick_fraction(p.z / size.z + 0.5);
+    // Head and face joints alternate by half a brick from one course to the next.
+    let mortar_here = if upper { ends_shifted <= m.x || faces <= m.z } else { ends <= m.x || faces_shifted <= m.z };
+    usize::from(!mortar_here)
+}
+
+/// POV-Ray's gradient: the projection on `v`, wrapped above 1.
+fn gradient(q: DVec3, v: DVec3) -> f64 {
+    let r = q.dot(v);
+    if r > 1.0 { r % 1.0 } else { r }
+}
+
+/// POV-Ray's radial: the angle about y from +z (POV-Ray's frame), a quarter turn added.
+fn radial(q: DVec3) -> f64 {
+    if q.x.abs() < 0.001 && q.z.abs() < 0.001 {
+        0.25
+    } else {
+        0.25 + (q.x.atan2(q.z) + std::f64::consts::PI) / std::f64::consts::TAU
+    }
+}
+
+fn onion(q: DVec3) -> f64 {
+    q.length() % 1.0
+}
+
+fn leopard(q: DVec3) -> f64 {
+    let s = (q.x.sin() + q.y.sin() + q.z.sin()) / 3.0;
+    s * s
+}
+
+/// Distance from the z axis and the angle about it (0..2 pi, POV-Ray's convention).
+fn spiral_polar(q: DVec3) -> (f64, f64) {
+    let rad = (q.x * q.x + q.y * q.y).sqrt();
+    let phi = if rad == 0.0 {
+        0.0
+    } else if q.x < 0.0 {
+        3.0 * std::f64::consts::FRAC_PI_2 - (q.y / rad).asin()
+    } else {
+        std::f64::consts::FRAC_PI_2 + (q.y / rad).asin()
+    };
+    (rad, phi)
+}
+
+fn spiral1(q: DVec3, arms: i32) -> f64 {
+    let (rad, phi) = spiral_polar(q);
+    q.z + rad + f64::from(arms) * phi / std::f64::consts::TAU
+}
+
+fn spiral2(q: DVec3, arms: i32, turbulence: f64) -> f64 {
+    let (rad, phi) = spiral_polar(q);
+    triangle_wave(rad) + triangle_wave(q.z + rad + f64::from(arms) * phi / std::f64::consts::TAU + turbulence)
+}
+
+/// POV-Ray 3.7's granite (noise generator 2): six octaves of |1 - 2 noise|, each at most 0.5.
+fn granite(q: DVec3) -> f64 {
+    let mut value = 0.0;
+    let mut frequency = 1.0;
+    for _ in 0..6 {
+        value += (1.0 - 2.0 * noise(q * 4.0 * frequency)).abs().min(0.5) / frequency;
+        frequency *= 2.0;
+    }
+    value
+}
+
+/// POV-Ray's wood: the distance from the z axis, its x and y bent by vector turbulence
+/// through a sine when the pigment has turbulence (`amount` and octaves).
+fn wood(q: DVec3, turbulence: Option<(DVec3, &Octaves)>) -> f64 {
+    let (mut x, mut y) = (q.x, q.y);
+    if let Some((amount, octaves)) = turbulence {
+        let w = dturbulence(q, octaves);
+        x += cycloidal((q.x + w.x) * amount.x);
+        y += cycloidal((q.y + w.y) * amount.y);
+    }
+    (x * x + y * y).sqrt()
+}
+
+/// POV-Ray's agate (its `agate_turb` scale 1): scalar turbulence (always, with the pigment's
+/// octaves) folded through a sine along z, then raised to 0.77.
+fn agate(q: DVec3, octaves: &Octaves) -> f64 {
+    let t = turbulence(q, octaves);
+    let v = 0.5 * (cycloidal(1.3 * t + 1.1 * q.z) + 1.0);
+    if v < 0.0 { 0.0 } else { v.min(1.0).powf(0.77) }
+}
+
+/// POV-Ray 3.7's wrinkles pigment (noise generator 2): ten octaves of 2 noise - 0.5, each
+/// clamped to [0, 1], halved.
+fn wrinkles(q: DVec3) -> f64 {
+    let term = |p: DVec3| (2.0 * noise(p) - 0.5).clamp(0.0, 1.0);
+    let mut value = term(q);
+    let (mut lambda, mut omega) = (2.0, 0.5);
+    for _ in 1..10 {
+        value += omega * term(q * lambda);
+        lambda *= 2.0;
+        omega *= 0.5;
+    }
+    value / 2.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pigment(text: &str) -> Pigment {
+        let p: Pigment = toml::from_str(text).unwrap();
+        p.check().unwrap();
+        p
+    }
+
+    /// A point given in POV-Ray's frame, as Prism's object point.
+    fn prism(x: f64, y: f64, z: f64) -> DVec3 {
+        DVec3::new(x, y, -z)
+    }
+
+    const BW: &str = "color_map = [[0, [0, 0, 0]], [1, [1, 1, 1]]]";
+
+    #[test]
+    fn checker_alternates_unit_cubes_including_negative_cells() {
+        let f = PigmentField::new(&pigment("pattern = \"checker\"\ncolors = [[1, 0, 0], [0, 0, 1]]"));
+        // floor sums: 0 -> even -> first colour; 1 -> odd -> second.
+        assert_eq!(f.at(prism(0.5, 0.5, 0.5)).rgb, DVec3::X);
+        assert_eq!(f.at(prism(1.5, 0.5, 0.5)).rgb, DVec3::Z);
+        // -0.5 floors to -1: odd.
+        assert_eq!(f.at(prism(-0.5, 0.5, 0.5)).rgb, DVec3::Z);
+        assert_eq!(f.at(prism(-0.5, -0.5, 0.5)).rgb, DVec3::X);
+        // The cell edge belongs to the upper cell (floor(x + 1e-10)).
+        assert_eq!(f.at(prism(1.0 - 1e-11, 0.5, 0.5)).rgb, DVec3::Z);
+    }
+
+    #[test]
+    fn checker_is_read_in_pov_ray_frame() {
+        // POV-Ray's z is Prism's -z: z = 0.5 in Prism is -0.5 there, an odd cell.
+        let f = PigmentField::new(&pigment("pattern = \"checker\"\ncolors = [[1, 0, 0], [0, 0, 1]]"));
+        assert_eq!(f.at(DVec3::new(0.5, 0.5, 0.5)).rgb, DVec3::Z);
+    }
+
+    #[test]
+    fn hexagon_known_cells() {
+        let p = |x, z| hexagon(DVec3::new(x, 0.0, z));
+        // xs = x / 0.5, zs = z / 0.866: block (0, 0) -> 0; (0, 1) -> 1; (0, 3) -> 2; (2, 0) -> 2.
+        assert_eq!(p(0.1, 0.1), 0);
+        assert_eq!(p(0.1, 1.0), 1);
+        assert_eq!(p(0.1, 3.0), 2);
+        assert_eq!(p(1.1, 0.1), 2);
+        assert_eq!(p(1.1, 2.0), 0);
+        // Block (1, 0) is split by its diagonal: xm + zm odd flips x; xl = 1 - 0.2 = 0.8.
+        // zl / xl = 0.1 / 0.8 < 1 -> zm 0 gives 0; zl = 0.9 -> 0.9 / 0.8 >= 1 -> 2.
+        assert_eq!(p(0.6, 0.1 * 0.866025404), 0);
+        assert_eq!(p(0.6, 0.9 * 0.866025404), 2);
+        // x is mirrored (|x|), z < 0 shifted by the grid height: z = -0.1 is zs = 5.9.
+        assert_eq!(p(-0.1, 0.1), 0);
+        assert_eq!(p(0.1, -0.1), 0);
+        // z = -1 -> 4.196 -> zs = 4.845: block (0, 4) -> 2 (mirrored, it would be block (0, 1) -> 1).
+        assert_eq!(p(0.1, -1.0), 2);
+    }
+
+    #[test]
+    fn brick_mortar_and_courses() {
+        let size = DVec3::new(8.0, 3.0, 4.5);
+        let b = |x, y, z| brick(DVec3::new(x, y, z), size, 0.5);
+        // y + 0.5 = 0.3: 0.3 / 3 = 0.1 <= 0.5 / 3 -> mortar (bed joint).
+        assert_eq!(b(3.0, -0.2, 1.0), 0);
+        // Middle of the first course: y = 1.5 -> y' = 2 -> 0.667 > 0.1667; course fraction
+        // 0.333 <= 0.5 (lower course): head joint at x' / 8 <= 1/16, i.e. x' <= 0.5.
+        assert_eq!(b(3.0, 1.5, 1.0), 1);
+        assert_eq!(b(-0.25, 1.5, 1.0), 0);
+        // The lower course's face joints are shifted by half a brick in z: z' / 4.5 + 0.5
+        // has fraction <= 0.5 / 4.5 at z' = 2.25 .. 2.75.
+        assert_eq!(b(3.0, 1.5, 2.0), 0);
+        // Upper course (y' = 5 -> 5 / 6 = 0.833 > 0.5): head joints shifted by half a brick.
+        assert_eq!(b(3.5, 4.5, 1.0), 0);
+        assert_eq!(b(-0.25, 4.5, 1.0), 1);
+        // ... and face joints unshifted: z' = 0.25 -> 0.25 / 4.5 <= 1/9.
+        assert_eq!(b(1.0, 4.5, -0.25), 0);
+    }
+
+    #[test]
+    fn gradient_wraps_above_one_and_keeps_negatives_for_the_wave() {
+        assert_eq!(gradient(DVec3::new(0.0, 0.25, 0.0), DVec3::Y), 0.25);
+        assert_eq!(gradient(DVec3::new(0.0, 1.0, 0.0), DVec3::Y), 1.0);
+        assert!((gradient(DVec3::new(0.0, 2.75, 0.0), DVec3::Y) - 0.75).abs() < 1e-15);
+        assert_eq!(gradient(DVec3::new(0.0, -0.25, 0.0), DVec3::Y), -0.25);
+        // The wave step lifts negatives: -0.25 -> 0.75.
+        assert!((shape_wave(-0.25, 1.0, 0.0, Wave::Ramp) - 0.75).abs() < 1e-12);
+        // A gradient along Prism's z is along POV-Ray's -z, so the ramp follows Prism's z.
+        let f = PigmentField::new(&pigment(&format!("pattern = \"gradient\"\nvector = [0, 0, 1]\n{BW}")));
+        assert!((f.at(DVec3::new(0.0, 0.0, 0.3)).rgb - DVec3::splat(0.3)).abs().max_element() < 1e-12);
+    }
+
+    #[test]
+    fn radial_onion_leopard_spirals() {
+        // +x in POV-Ray's frame: atan2(1, 0) = pi / 2 -> 0.25 + 0.75 = 1.0.
+        assert!((radial(DVec3::X) - 1.0).abs() < 1e-15);
+        // +z: atan2(0, 1) = 0 -> 0.75; on the axis 0.25.
+        assert!((radial(DVec3::Z) - 0.75).abs() < 1e-15);
+        assert_eq!(radial(DVec3::Y), 0.25);
+        assert!((onion(DVec3::new(3.0, 4.0, 0.0)) - 0.0).abs() < 1e-15);
+        assert!((onion(DVec3::new(0.0, 1.5, 0.0)) - 0.5).abs() < 1e-15);
+        let half_pi = std::f64::consts::FRAC_PI_2;
+        assert!((leopard(DVec3::new(half_pi, half_pi, half_pi)) - 1.0).abs() < 1e-15);
+        assert!((leopard(DVec3::new(half_pi, 0.0, 0.0)) - 1.0 / 9.0).abs() < 1e-15);
+        // On +x: rad 1, phi = pi / 2 + asin(0) -> z + 1 + arms / 4.
+        assert!((spiral1(DVec3::new(1.0, 0.0, 0.5), 2) - 2.0).abs() < 1e-15);
+        // On -y: x = 0 (not < 0) -> phi = pi / 2 + asin(-1) = 0.
+        assert!((spiral1(DVec3::new(0.0, -2.0, 0.0), 3) - 2.0).abs() < 1e-15);
+        // spiral2: tw(rad) + tw(z + rad + arms phi / 2 pi); rad 0.25 -> 0.5, 0.25 + 0.5 -> 0.5.
+        assert!((spiral2(DVec3::new(0.25, 0.0, 0.0), 2, 0.0) - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn spirals_default_to_the_triangle_wave() {
+        let map = "color_map = [[0, [0, 0, 0]], [1, [1, 1, 1]]]";
+        let f = PigmentField::new(&pigment(&format!("pattern = \"spiral1\"\narms = 1\n{map}")));
+        // POV-Ray point (0.25, 0, 0): raw 0.25 + 1 * (pi / 2) / (2 pi) = 0.5 -> triangle 1.
+        assert!((f.at(prism(0.25, 0.0, 0.0)).rgb.x - 1.0).abs() < 1e-9);
+        let f = PigmentField::new(&pigment(&format!("pattern = \"spiral1\"\narms = 1\nwave = \"ramp\"\n{map}")));
+        assert!((f.at(prism(0.25, 0.0, 0.0)).rgb.x - 0.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn waves_frequency_and_phase() {
+        assert!((shape_wave(0.3, 2.0, 0.0, Wave::Ramp) - 0.6).abs() < 1e-12);
+        assert!((shape_wave(0.3, 2.0, 0.5, Wave::Ramp) - (1.1 % 1.00001)).abs() < 1e-12);
+        // Frequency 0 leaves the value unwrapped (a negative one is still lifted).
+        assert_eq!(shape_wave(1.5, 0.0, 0.0, Wave::Ramp), 1.5);
+        // A value of exactly 1 is kept (POV-Ray wraps at 1.00001).
+        assert_eq!(shape_wave(1.0, 1.0, 0.0, Wave::Ramp), 1.0);
+        assert!((shape_wave(0.25, 1.0, 0.0, Wave::Sine) - 1.0).abs() < 1e-12);
+        assert!((shape_wave(0.75, 1.0, 0.0, Wave::Sine) - 0.0).abs() < 1e-12);
+        assert!((shape_wave(0.25, 1.0, 0.0, Wave::Triangle) - 0.5).abs() < 1e-12);
+        assert!((shape_wave(0.75, 1.0, 0.0, Wave::Triangle) - 0.5).abs() < 1e-12);
+        assert!((shape_wave(0.5, 1.0, 0.0, Wave::Scallop) - 1.0).abs() < 1e-12);
+        assert!((shape_wave(0.25, 1.0, 0.0, Wave::Scallop) - (std::f64::consts::FRAC_PI_4).sin()).abs() < 1e-12);
+        assert!((shape_wave(0.5, 1.0, 0.0, Wave::Cubic) - 0.5).abs() < 1e-12);
+        assert!((shape_wave(0.25, 1.0, 0.0, Wave::Cubic) - 0.15625).abs() < 1e-12);
+    }
+
+    #[test]
+    fn color_map_edges() {
+        let p = pigment(
+            "pattern = \"onion\"\ncolor_map = [[0.2, [1, 0, 0]], [0.5, [0, 1, 0]], [0.5, [0, 0, 1]], \
+             [0.8, { color = [1, 1, 1], filter = 0.5, transmit = 0.25 }]]",
+        );
+        let map = &p.color_map;
+        // Below the first entry: the first colour; above the last: the last.
+        assert_eq!(map_lookup(map, 0.0).rgb, DVec3::X);
+        assert_eq!(map_lookup(map, 0.95), Rgbft { rgb: DVec3::ONE, filter: 0.5, transmit: 0.25 });
+        // Between 0.2 and 0.5: linear.
+        let c = map_lookup(map, 0.35).rgb;
+        assert!((c - DVec3::new(0.5, 0.5, 0.0)).abs().max_element() < 1e-12, "{c}");
+        // Two entries at 0.5: exactly 0.5 is the first; just above, interpolation starts
+        // from the second.
+        assert_eq!(map_lookup(map, 0.5).rgb, DVec3::Y);
+        let c = map_lookup(map, 0.65);
+        assert!((c.rgb - DVec3::new(0.5, 0.5, 1.0)).abs().max_element() < 1e-12, "{:?}", c);
+        assert!((c.filter - 0.25).abs() < 1e-12 && (c.transmit - 0.125).abs() < 1e-12);
+        // One entry: everywhere that colour.
+        let one = [MapEntry(0.5, MapColor::Opaque(Rgb::grey(0.3)))];
+        assert_eq!(map_lookup(&one, 0.1).rgb, DVec3::splat(0.3));
+        assert_eq!(map_lookup(&one, 0.9).rgb, DVec3::splat(0.3));
+    }
+
+    #[test]
+    fn pattern_transform_scales_rotates_translates_in_object_space() {
+        // Scale 2 then translate 1 along x: the checker's cell [1, 3) in x is one cell.
+        let f = PigmentField::new(&pigment(
+            "pattern = \"checker\"\ncolors = [[1, 1, 1], [0, 0, 0]]\nscale = 2\ntranslate = [1, 0, 0]",
+        ));
+        let a = f.at(prism(1.1, 0.5, 0.5)).rgb;
+        assert_eq!(f.at(prism(2.9, 0.5, 0.5)).rgb, a);
+        assert_ne!(f.at(prism(3.1, 0.5, 0.5)).rgb, a);
+        assert_ne!(f.at(prism(0.9, 0.5, 0.5)).rgb, a);
+        // A gradient along x rotated 90 degrees about z runs along y.
+        let f = PigmentField::new(&pigment(&format!(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\nrotate = [0, 0, 90]\n{BW}"
+        )));
+        assert!((f.at(DVec3::new(0.0, 0.4, 0.0)).rgb.x - 0.4).abs() < 1e-12);
+        assert!((f.at(DVec3::new(0.4, 0.0, 0.0)).rgb.x - 0.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn noise_patterns_follow_povray_definitions() {
+        let p = DVec3::new(0.31, -1.27, 2.45);
+        // granite: sum over six octaves of min(|1 - 2 n(4 p 2^i)|, 0.5) / 2^i.
+        let expected: f64 = (0..6)
+            .map(|i| {
+                let f = f64::from(1 << i);
+                (1.0 - 2.0 * noise(p * 4.0 * f)).abs().min(0.5) / f
+            })
+            .sum();
+        assert_eq!(granite(p), expected);
+        // wood without turbulence: the distance from the z axis.
+        assert_eq!(wood(DVec3::new(3.0, 4.0, 9.0), None), 5.0);
+        // wrinkles is at most (1 + 0.5 + ... ) / 2 < 1 and at least 0.
+        assert!((0.0..1.0).contains(&wrinkles(p)));
+        // agate is in [0, 1] and uses turbulence even without a turbulence amount.
+        let a = agate(p, &Octaves::default());
+        assert!((0.0..=1.0).contains(&a));
+        // marble and wood default to the triangle wave, bozo to the ramp.
+        assert_eq!(PatternKind::Marble.default_wave(), Wave::Triangle);
+        assert_eq!(PatternKind::Bozo.default_wave(), Wave::Ramp);
+    }
+
+    #[test]
+    fn turbulence_displaces_the_point_except_for_marble_and_wood() {
+        let map = "color_map = [[0, [0, 0, 0]], [1, [1, 1, 1]]]";
+        let plain =
+            PigmentField::new(&pigment(&format!("pattern = \"gradient\"\nvector = [1, 0, 0]\nfrequency = 0\n{map}")));
+        let turbulent = PigmentField::new(&pigment(&format!(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\nfrequency = 0\nturbulence = [0.3, 0, 0]\noctaves = 3\n{map}"
+        )));
+        let p = prism(0.4, 0.2, 0.1);
+        let q = DVec3::new(0.4, 0.2, 0.1);
+        let o = Octaves { octaves: 3, ..Octaves::default() };
+        let expected = (0.4 + 0.3 * dturbulence(q, &o).x).clamp(0.0, 1.0);
+        assert!((turbulent.at(p).rgb.x - expected).abs() < 1e-12);
+        assert!((plain.at(p).rgb.x - 0.4).abs() < 1e-12);
+        // Marble: x + amount.x * scalar turbulence at the undisplaced point, triangle wave.
+        let marble = PigmentField::new(&pigment(&format!("pattern = \"marble\"\nturbulence = 0.5\n{map}")));
+        let raw = 0.4 + 0.5 * turbulence(q, &Octaves::default());
+        let expected = shape_wave(raw, 1.0, 0.0, Wave::Triangle);
+        assert!((marble.at(p).rgb.x - expected).abs() < 1e-12);
+        // Deterministic.
+        assert_eq!(marble.at(p), marble.at(p));
+    }
+
+    #[test]
+    fn bad_pigments_name_their_key() {
+        let err = |text: &str| toml::from_str::<Pigment>(text).unwrap().check().unwrap_err();
+        assert_eq!(err("pattern = \"onion\"").0, "color_map");
+        assert_eq!(err("pattern = \"onion\"\ncolor_map = [[0.5, [1, 1, 1]], [0.2, [0, 0, 0]]]").0, "color_map");
+        assert_eq!(err("pattern = \"onion\"\ncolor_map = [[1.5, [1, 1, 1]]]").0, "color_map");
+        assert_eq!(err("pattern = \"checker\"\ncolors = [[1, 1, 1]]").0, "colors");
+        assert_eq!(err("pattern = \"checker\"\ncolors = [[1, 1, 1], [0, 0, 0]]\nfrequency = 2").0, "frequency");
+        assert_eq!(err(&format!("pattern = \"gradient\"\n{BW}")).0, "vector");
+        assert_eq!(err(&format!("pattern = \"onion\"\nvector = [1, 0, 0]\n{BW}")).0, "vector");
+        assert_eq!(err(&format!("pattern = \"spiral1\"\n{BW}")).0, "arms");
+        assert_eq!(err(&format!("pattern = \"onion\"\nscale = 0\n{BW}")).0, "scale");
+        assert_eq!(err(&format!("pattern = \"bozo\"\nturbulence = 1\noctaves = 11\n{BW}")).0, "octaves");
+        assert_eq!(err(&format!("pattern = \"bozo\"\nturbulence = 1\noctaves = 0\n{BW}")).0, "octaves");
+        assert_eq!(err(&format!("pattern = \"bozo\"\nomega = 0.3\n{BW}")).0, "omega");
+        let e = toml::from_str::<Pigment>("pattern = \"chekcer\"").unwrap_err().to_string();
+        assert!(e.contains("did you mean `checker`?"), "{e}");
+        let e = toml::from_str::<Pigment>("pattern = \"onion\"\nfrequncy = 2").unwrap_err().to_string();
+        assert!(e.contains("unknown field `frequncy`"), "{e}");
+    }
+
+    #[test]
+    fn round_trips_through_toml() {
+        let p = pigment(
+            "pattern = \"spiral2\"\narms = 3\nfrequency = 2\nphase = 0.25\nwave = \"sine\"\nscale = [1, 2, 3]\n\
+             rotate = [0, 30, 0]\ncolor_map = [[0, [1, 0, 0]], [1, { color = [0, 0, 1], transmit = 0.5 }]]",
+        );
+        let back: Pigment = toml::from_str(&toml::to_string(&p).unwrap()).unwrap();
+        assert_eq!(back, p);
+    }
+}
