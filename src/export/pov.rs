@@ -28,7 +28,7 @@ use crate::render::camera::CameraFrame;
 use crate::render::integrators::classic::lights::pov_equivalent;
 use crate::world::Scene;
 use crate::world::components::{
-    Antialias, Camera, CsgLeafMaterials, Environment, IntegratorKind, Light, LightKind, MaterialComponent, Name,
+    Antialias, Camera, CsgMaterials, Environment, IntegratorKind, Light, LightKind, MaterialComponent, Name,
     ObjectFlags, Origin, PhotometricLight, Projection, RenderSettings, ShapeComponent, WorldTransform,
 };
 
@@ -283,8 +283,8 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
         let group: &dyn std::any::Any = shape.geometry.as_ref();
         let sdl = match group.downcast_ref::<CsgShape>() {
             Some(group) => {
-                let leaves = scene.world.get::<&CsgLeafMaterials>(entity).ok();
-                let leaves = leaves.as_deref().map_or(&[][..], |l| &l.0[..]);
+                let leaves = scene.world.get::<&CsgMaterials>(entity).ok();
+                let leaves = leaves.as_deref().map_or(&[][..], |l| &l.leaves[..]);
                 let mut csg = CsgSdl { leaves, group_material: &material.material, next_leaf: 0, problems: Vec::new() };
                 let sdl = csg.group(group);
                 if !csg.problems.is_empty() {

@@ -19,8 +19,8 @@ use crate::material::Material;
 use crate::material::pov_view::PovView;
 use crate::world::Scene;
 use crate::world::components::{
-    CsgLeafMaterials, Environment, Light, MaterialComponent, ObjectFlags, PhotometricLight, RenderSettings,
-    ShapeComponent, WorldTransform,
+    CsgMaterials, Environment, Light, MaterialComponent, ObjectFlags, PhotometricLight, RenderSettings, ShapeComponent,
+    WorldTransform,
 };
 
 /// Everything a render needs, immutable and shareable across threads.
@@ -104,11 +104,11 @@ pub fn extract(scene: &Scene) -> RenderScene {
         &WorldTransform,
         &MaterialComponent,
         Option<&ObjectFlags>,
-        Option<&CsgLeafMaterials>,
+        Option<&CsgMaterials>,
     )>();
     for (entity, shape, transform, material, flags, leaves) in query.iter() {
         let primitive = Primitive::new(shape.geometry.clone(), transform.0, 0, flags.is_some_and(|f| f.no_shadow));
-        let leaves = leaves.map(|l| l.0.iter().map(|m| m.material.clone()).collect());
+        let leaves = leaves.map(|l| l.leaves.iter().map(|m| m.material.clone()).collect());
         entries.push((entity, primitive, material.material.clone(), leaves));
     }
     // Entity order is load order: the render scene does not depend on hecs's archetypes.

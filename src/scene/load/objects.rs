@@ -8,7 +8,7 @@ use std::sync::Arc;
 use prism_api::ShapeType;
 
 use crate::geometry::csg::{CsgMember, CsgOperation, CsgShape};
-use crate::world::components::CsgLeafMaterials;
+use crate::world::components::CsgMaterials;
 
 /// Keys of a CSG group (`shape = "union"`...) besides the [`OBJECT_KEYS`].
 pub const CSG_KEYS: [&str; 1] = ["members"];
@@ -16,6 +16,16 @@ pub const CSG_KEYS: [&str; 1] = ["members"];
 /// Keys of a CSG member table besides its shape's parameters (and, for a nested group,
 /// [`CSG_KEYS`]).
 pub const MEMBER_KEYS: [&str; 4] = ["shape", "material", "transform", "inverse"];
+
+/// A CSG group as loaded.
+struct CsgGroup {
+    /// Its geometry.
+    shape: Arc<dyn prism_api::Shape>,
+    /// The material of each leaf, depth first.
+    leaves: Vec<MaterialComponent>,
+    /// Its `members` as they are saved.
+    members: toml::Value,
+}
 
 /// What an object's or member's `shape` names.
 #[derive(Clone, Copy)]
@@ -153,7 +163,8 @@ impl<'a> Loader<'a> {
         operation: CsgOperation,
         table: &toml::Table,
         inherited: &MaterialComponent,
-    ) -> Option<(Arc<dyn prism_api::Shape>, Vec<MaterialComponent>)> {
+        named: &mut Vec<MaterialComponent>,
+    ) -> Option<CsgGroup> {
         let name = operation.name();
         let mut ok = true;
         for field in table.keys().filter(|k| k.as_str() != "members") {
@@ -205,12 +216,14 @@ impl<'a> Loader<'a> {
         }
         let mut built = Vec::with_capacity(members.len());
         let mut leaves = Vec::new();
+        let mut written = Vec::with_capacity(members.len());
         for (i, member) in members.iter().enumerate() {
             let member_key = format!("{key}.members[{i}]");
-            match self.csg_member(file, &member_key, member, inherited) {
-                Some((member, member_leaves)) => {
+            match self.csg_member(file, &member_key, member, inherited, named) {
+                Some((member, member_leaves, as_written)) => {
                     built.push(member);
                     leaves.extend(member_leaves);
+                    written.push(as_written);
                 }
                 None => ok = false,
             }
@@ -219,7 +232,7 @@ impl<'a> Loader<'a> {
             return None;
         }
         let group = CsgShape::new(operation, built);
-        Some((Arc::new(group), leaves))
+        Some(CsgGroup { shape: Arc::new(group), leaves, members: toml::Value::Array(written) })
     }
 
     /// One member of a CSG group, written at `key`, with the materials of its leaves.
@@ -229,13 +242,15 @@ impl<'a> Loader<'a> {
         key: &str,
         value: &toml::Value,
         inherited: &MaterialComponent,
-    ) -> Option<(CsgMember, Vec<MaterialComponent>)> {
+        named: &mut Vec<MaterialComponent>,
+    ) -> Option<(CsgMember, Vec<MaterialComponent>, toml::Value)> {
         let toml::Value::Table(table) = value else {
             let d = Diagnostic::new(self.files[file].locate_value(key), "a CSG member must be a table")
                 .with_help("e.g. { shape = \"sphere\", radius = 1.0 }");
             self.diagnostics.push(d);
             return None;
         };
+        let mut as_written = table.clone();
         let mut table = table.clone();
         let kind = match table.remove("shape") {
             Some(toml::Value::String(kind)) => kind,
@@ -290,15 +305,28 @@ impl<'a> Loader<'a> {
                 return None;
             }
         };
+        // Saved as loaded: a named material by name (its table goes to [materials]), an
+        // inline one with its texture paths resolved.
+        match &material {
+            Some(m @ MaterialComponent { name: Some(_), .. }) => named.push(m.clone()),
+            Some(MaterialComponent { name: None, spec: Some(spec), .. }) => {
+                as_written.insert("material".into(), toml::Value::try_from(&**spec).ok()?);
+            }
+            _ => {}
+        }
         let own = material.as_ref().unwrap_or(inherited);
         let (shape, leaves) = match shape_kind {
-            ObjectKind::Csg(operation) => self.csg_group(file, key, operation, &table, own)?,
+            ObjectKind::Csg(operation) => {
+                let group = self.csg_group(file, key, operation, &table, own, named)?;
+                as_written.insert("members".into(), group.members);
+                (group.shape, group.leaves)
+            }
             ObjectKind::Plugin(shape_type) => {
                 let shape = self.build_shape(file, key, &kind, shape_type, &table, &MEMBER_KEYS)?;
                 (shape, vec![own.clone()])
             }
         };
-        Some((CsgMember::new(shape, transform.parent_from_local(), inverse), leaves))
+        Some((CsgMember::new(shape, transform.parent_from_local(), inverse), leaves, as_written.into()))
     }
 
     /// What `shape = "kind"` names: a CSG operation or a registered shape (`None` for a
@@ -401,10 +429,13 @@ impl<'a> Loader<'a> {
             },
             Some(ObjectKind::Csg(operation)) => {
                 let Some(material) = material else { return };
-                let Some((geometry, leaves)) = self.csg_group(file, &key, operation, &table, &material) else { return };
-                let shape = ShapeComponent { kind, params: table, geometry };
-                let origin = Origin(location.clone());
-                world.spawn((shape, transform, material, flags, origin, CsgLeafMaterials(leaves)))
+                let mut named = Vec::new();
+                let Some(group) = self.csg_group(file, &key, operation, &table, &material, &mut named) else { return };
+                let mut params = table;
+                params.insert("members".into(), group.members);
+                let shape = ShapeComponent { kind, params, geometry: group.shape };
+                let materials = CsgMaterials { leaves: group.leaves, named };
+                world.spawn((shape, transform, material, flags, Origin(location.clone()), materials))
             }
             Some(ObjectKind::Plugin(shape_type)) => {
                 let Some(geometry) = self.build_shape(file, &key, &kind, shape_type, &table, &OBJECT_KEYS) else {
