@@ -189,7 +189,12 @@ fn cases() -> Vec<Case> {
         case(
             "unknown key in a CSG member",
             "[[object]]\nshape = \"intersection\"\nmembers = [\n  { shape = \"sphere\" },\n  { shape = \"box\", inverted = true },\n]\n",
-            &["scene.toml:5:", "object[0].members[1].inverted", "unknown key `inverted` for shape `box`", "did you mean `inverse`"],
+            &[
+                "scene.toml:5:",
+                "object[0].members[1].inverted",
+                "unknown key `inverted` for shape `box`",
+                "did you mean `inverse`",
+            ],
         ),
         case(
             "unknown key on a CSG group",

@@ -65,6 +65,10 @@ impl CsgOperation {
 /// The bits of [`Hit::part`] a leaf's own part may use; the leaf index sits above them.
 pub const PART_BITS: u32 = 16;
 
+/// The most leaves (plain shapes, nested groups' included) a group can number in the bits
+/// of [`Hit::part`] above [`PART_BITS`].
+pub const MAX_LEAVES: u32 = 1 << (32 - PART_BITS);
+
 /// A member of a group: a shape (a plugin shape or another group) placed in the group's
 /// space.
 #[derive(Clone, Debug)]
@@ -184,11 +188,11 @@ impl CsgShape {
     /// True when a crossing of member `index` at group-space `point` lies on the boundary the
     /// group shows.
     fn keeps(&self, index: usize, point: DVec3) -> bool {
-        let others = self.members.iter().enumerate().filter(|&(j, _)| j != index).map(|(_, m)| m);
+        let mut others = self.members.iter().enumerate().filter(|&(j, _)| j != index).map(|(_, m)| m);
         match self.operation {
             CsgOperation::Union => true,
-            CsgOperation::Merge => others.into_iter().all(|m| !m.contains(point)),
-            CsgOperation::Intersection | CsgOperation::Difference => others.into_iter().all(|m| m.contains(point)),
+            CsgOperation::Merge => others.all(|m| !m.contains(point)),
+            CsgOperation::Intersection | CsgOperation::Difference => others.all(|m| m.contains(point)),
         }
     }
 

@@ -7,7 +7,7 @@ use std::sync::Arc;
 
 use prism_api::ShapeType;
 
-use crate::geometry::csg::{CsgMember, CsgOperation, CsgShape};
+use crate::geometry::csg::{CsgMember, CsgOperation, CsgShape, MAX_LEAVES};
 use crate::world::components::CsgMaterials;
 
 /// Keys of a CSG group (`shape = "union"`...) besides the [`OBJECT_KEYS`].
@@ -172,7 +172,7 @@ impl<'a> Loader<'a> {
                 self.files[file].locate(&format!("{key}.{field}")),
                 format!("unknown key `{field}` for `{name}`"),
             )
-            .suggest(field, CSG_KEYS.into_iter().chain(OBJECT_KEYS).chain(["inverse"]));
+            .suggest(field, CSG_KEYS.into_iter().chain(OBJECT_KEYS));
             let d = if d.help.is_none() {
                 d.with_help(format!("a `{name}` group takes `members` (an array of member tables)"))
             } else {
@@ -229,6 +229,14 @@ impl<'a> Loader<'a> {
             }
         }
         if !ok {
+            return None;
+        }
+        if leaves.len() > MAX_LEAVES as usize {
+            let d = Diagnostic::new(
+                self.files[file].locate(&format!("{key}.members")),
+                format!("`{name}` holds {} shapes; a CSG group holds at most {MAX_LEAVES}", leaves.len()),
+            );
+            self.diagnostics.push(d);
             return None;
         }
         let group = CsgShape::new(operation, built);
