@@ -196,6 +196,61 @@ fn cases() -> Vec<Case> {
             &["scene.toml:3:1", "unknown key `radus`", "did you mean `radius`"],
         ),
         case("objects not an array", "object = 5\n", &["scene.toml:1:", "must be an array of tables"]),
+        case(
+            "CSG group without members",
+            "[[object]]\nshape = \"union\"\nmembers = []\n",
+            &["scene.toml:3:", "object[0].members", "`union` has no members"],
+        ),
+        case(
+            "CSG group without a members key",
+            "[[object]]\nshape = \"merge\"\n",
+            &["scene.toml:1:", "object[0]", "`merge` needs `members`"],
+        ),
+        case(
+            "difference with one member",
+            "[[object]]\nshape = \"difference\"\nmembers = [{ shape = \"sphere\" }]\n",
+            &["scene.toml:3:", "object[0].members", "at least 2 members (it has 1)"],
+        ),
+        case(
+            "unknown key in a CSG member",
+            "[[object]]\nshape = \"intersection\"\nmembers = [\n  { shape = \"sphere\" },\n  { shape = \"box\", inverted = true },\n]\n",
+            &[
+                "scene.toml:5:",
+                "object[0].members[1].inverted",
+                "unknown key `inverted` for shape `box`",
+                "did you mean `inverse`",
+            ],
+        ),
+        case(
+            "unknown key on a CSG group",
+            "[[object]]\nshape = \"union\"\nmember = []\n",
+            &["scene.toml:3:", "unknown key `member` for `union`", "did you mean `members`"],
+        ),
+        case(
+            "mesh in a CSG group",
+            "[[object]]\nshape = \"union\"\nmembers = [{ shape = \"mesh\", file = \"a.obj\" }]\n",
+            &["scene.toml:3:", "object[0].members[0].shape", "a mesh cannot be a CSG member"],
+        ),
+        case(
+            "nested CSG member with a bad radius",
+            "[[object]]\nshape = \"union\"\nmembers = [{ shape = \"difference\", members = [\n  { shape = \"sphere\" },\n  { shape = \"sphere\", radius = -1 },\n] }]\n",
+            &["scene.toml:5:", "object[0].members[0].members[1].radius", "greater than 0"],
+        ),
+        case(
+            "unknown CSG operation",
+            "[[object]]\nshape = \"unoin\"\n",
+            &["scene.toml:2:", "unknown shape `unoin`", "did you mean `union`"],
+        ),
+        case(
+            "CSG member material unknown",
+            "[[object]]\nshape = \"union\"\nmembers = [{ shape = \"sphere\", material = \"glas\" }]\n[materials.glass]\ncolor = [1, 1, 1]\n",
+            &["scene.toml:3:", "object[0].members[0].material", "no material is named `glas`", "did you mean `glass`"],
+        ),
+        case(
+            "name on a CSG member",
+            "[[object]]\nshape = \"union\"\nmembers = [{ shape = \"sphere\", name = \"a\" }]\n",
+            &["scene.toml:3:", "object[0].members[0].name", "cannot be set on a CSG member"],
+        ),
         case("infinite light", "[[light]]\nposition = [inf, 0, 0]\n", &["scene.toml:", "position", "finite"]),
         case(
             "shadowless spot",

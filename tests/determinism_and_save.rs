@@ -1,5 +1,6 @@
 //! Determinism (bit-identical images for any thread count) and `save` as the inverse of
-//! `load` (a saved world reloads to the identical image), on both seed scenes.
+//! `load` (a saved world reloads to the identical image), on both seed scenes (and, for
+//! save, the CSG parity scene).
 
 use std::path::{Path, PathBuf};
 
@@ -38,7 +39,9 @@ fn thread_count_does_not_change_a_single_bit() {
 
 #[test]
 fn a_saved_scene_reloads_to_the_identical_image() {
-    for name in ["room.toml", "snowman.toml", "parity/patterns.toml"] {
+    // The pattern parity scene (pigments with transforms), and the CSG parity scene: groups
+    // with member materials (named and inline), transforms, `inverse` and a nested group.
+    for name in ["room.toml", "snowman.toml", "parity/patterns.toml", "parity/csg.toml"] {
         let original = load(&scene_path(name));
         let text = prism::scene::save::save(&original).unwrap();
         let dir = tempfile::tempdir().unwrap();

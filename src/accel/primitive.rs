@@ -23,6 +23,9 @@ pub struct Primitive {
     pub world_bounds: Aabb,
     /// Index into the scene's materials.
     pub material: u32,
+    /// For a CSG group: the material index of each member leaf (its own, or the group's it
+    /// inherits), which [`Primitive::material_at`] picks by the leaf a hit names.
+    pub leaf_materials: Option<Arc<[u32]>>,
     /// Casts no shadow.
     pub no_shadow: bool,
 }
@@ -66,7 +69,20 @@ impl Primitive {
             normal_to_world: object_from_world.matrix3.transpose(),
             placement: Placement::of(&world_from_object),
             material,
+            leaf_materials: None,
             no_shadow,
+        }
+    }
+
+    /// The material index at `hit` (a hit of this primitive's shape): the hit leaf's for a
+    /// CSG group, else the primitive's.
+    #[inline]
+    pub fn material_at(&self, hit: &Hit) -> u32 {
+        match &self.leaf_materials {
+            None => self.material,
+            Some(leaves) => {
+                leaves.get(crate::geometry::csg::CsgShape::leaf_of(hit) as usize).copied().unwrap_or(self.material)
+            }
         }
     }
 

@@ -21,14 +21,15 @@ use prism_api::pov::{number, vector};
 
 use crate::color::Rgb;
 use crate::diagnostics::{Diagnostic, SceneError};
+use crate::geometry::csg::CsgShape;
 use crate::material::pov_view::{PovFinish, PovView};
 use crate::material::{Finish, Interior, Material, Reflection, SurfaceModel};
 use crate::render::camera::CameraFrame;
 use crate::render::integrators::classic::lights::pov_equivalent;
 use crate::world::Scene;
 use crate::world::components::{
-    Antialias, Camera, Environment, IntegratorKind, Light, LightKind, MaterialComponent, Name, ObjectFlags, Origin,
-    PhotometricLight, Projection, RenderSettings, ShapeComponent, WorldTransform,
+    Antialias, Camera, CsgMaterials, Environment, IntegratorKind, Light, LightKind, MaterialComponent, Name,
+    ObjectFlags, Origin, PhotometricLight, Projection, RenderSettings, ShapeComponent, WorldTransform,
 };
 
 /// The deepest `max_trace_level` POV-Ray 3.7 accepts.
@@ -273,7 +274,7 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
     )>();
     let mut entries: Vec<_> = query.iter().collect();
     entries.sort_by_key(|(e, ..)| e.id());
-    for (_, shape, transform, material, flags, origin, name) in entries {
+    for (entity, shape, transform, material, flags, origin, name) in entries {
         let Some(origin) = origin else { continue };
         let (shape, material) = match (shape, material) {
             (Some(shape), Some(material)) => (shape, material),
@@ -285,7 +286,24 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
             }
         };
         let label = name.map_or(String::new(), |n| format!(" \"{}\"", n.0));
-        let Some(sdl) = shape.geometry.to_pov() else {
+        let group: &dyn std::any::Any = shape.geometry.as_ref();
+        let sdl = match group.downcast_ref::<CsgShape>() {
+            Some(group) => {
+                let leaves = scene.world.get::<&CsgMaterials>(entity).ok();
+                let leaves = leaves.as_deref().map_or(&[][..], |l| &l.leaves[..]);
+                let mut csg = CsgSdl { leaves, group_material: &material.material, next_leaf: 0, problems: Vec::new() };
+                let sdl = csg.group(group);
+                if !csg.problems.is_empty() {
+                    for (key, message) in csg.problems {
+                        errors.push(Diagnostic::new(origin.0.child(&key), message));
+                    }
+                    continue;
+                }
+                sdl
+            }
+            None => shape.geometry.to_pov(),
+        };
+        let Some(sdl) = sdl else {
             errors.push(
                 Diagnostic::new(
                     origin.0.child("shape"),
@@ -318,6 +336,63 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
         }
         let _ = writeln!(out, "//{label} {}", shape.kind);
         let _ = write!(out, "{}\n{modifiers}}}\n\n", body.trim_end());
+    }
+}
+
+/// Writes a CSG group: `union`, `merge`, `intersection` or `difference` around its members,
+/// each with its transform, `inverse`, and its texture where its material is not the whole
+/// object's (which the object's own texture gives it, as POV-Ray hands a group's texture to
+/// the members without one).
+struct CsgSdl<'a> {
+    /// The material of every leaf, depth first.
+    leaves: &'a [MaterialComponent],
+    /// The whole object's material.
+    group_material: &'a std::sync::Arc<Material>,
+    /// The leaf the next plain member is.
+    next_leaf: usize,
+    /// Key paths and messages of what cannot be written.
+    problems: Vec<(String, String)>,
+}
+
+impl CsgSdl<'_> {
+    /// The group's SDL, or `None` when a member's shape has no POV-Ray equivalent.
+    fn group(&mut self, group: &CsgShape) -> Option<String> {
+        let mut out = format!("{} {{\n", group.operation().name());
+        for member in group.members() {
+            let nested: &dyn std::any::Any = member.shape.as_ref();
+            let body = match nested.downcast_ref::<CsgShape>() {
+                Some(nested) => self.group(nested)?,
+                None => {
+                    let sdl = member.shape.to_pov()?;
+                    let leaf = self.leaves.get(self.next_leaf);
+                    self.next_leaf += 1;
+                    let mut sdl = sdl.trim_end().strip_suffix('}')?.trim_end().to_string();
+                    sdl.push('\n');
+                    if let Some(leaf) = leaf.filter(|l| !std::sync::Arc::ptr_eq(&l.material, self.group_material))
+                        && let Err(problems) = texture(&mut sdl, &leaf.material)
+                    {
+                        let at = format!("members.leaf{}", self.next_leaf - 1);
+                        self.problems.extend(problems.into_iter().map(|(key, m)| (format!("{at}.material.{key}"), m)));
+                    }
+                    sdl.push('}');
+                    sdl
+                }
+            };
+            let mut body = body.strip_suffix('}')?.trim_end().to_string();
+            body.push('\n');
+            if member.group_from_member != DAffine3::IDENTITY {
+                let _ = writeln!(body, "  matrix {}", pov_matrix(&member.group_from_member));
+            }
+            if member.inverse {
+                body.push_str("  inverse\n");
+            }
+            body.push('}');
+            for line in body.lines() {
+                let _ = writeln!(out, "  {line}");
+            }
+        }
+        out.push('}');
+        Some(out)
     }
 }
 

@@ -19,7 +19,7 @@ use crate::material::Material;
 use crate::material::pov_view::PovView;
 use crate::world::Scene;
 use crate::world::components::{
-    Environment, Light, MaterialComponent, ObjectFlags, PhotometricLight, RenderSettings, ShapeComponent,
+    CsgMaterials, Environment, Light, MaterialComponent, ObjectFlags, PhotometricLight, RenderSettings, ShapeComponent,
     WorldTransform,
 };
 
@@ -96,27 +96,36 @@ pub(crate) fn flattenable(primitives: &[Primitive]) -> Vec<Option<&[[Vec3; 3]]>>
 
 /// Builds the render scene. Call after `resolve_transforms` and `validate`.
 pub fn extract(scene: &Scene) -> RenderScene {
-    let mut entries: Vec<(hecs::Entity, Primitive, Arc<Material>)> = Vec::new();
-    let mut query =
-        scene
-            .world
-            .query::<(hecs::Entity, &ShapeComponent, &WorldTransform, &MaterialComponent, Option<&ObjectFlags>)>();
-    for (entity, shape, transform, material, flags) in query.iter() {
+    type Entry = (hecs::Entity, Primitive, Arc<Material>, Option<Vec<Arc<Material>>>);
+    let mut entries: Vec<Entry> = Vec::new();
+    let mut query = scene.world.query::<(
+        hecs::Entity,
+        &ShapeComponent,
+        &WorldTransform,
+        &MaterialComponent,
+        Option<&ObjectFlags>,
+        Option<&CsgMaterials>,
+    )>();
+    for (entity, shape, transform, material, flags, leaves) in query.iter() {
         let primitive = Primitive::new(shape.geometry.clone(), transform.0, 0, flags.is_some_and(|f| f.no_shadow));
-        entries.push((entity, primitive, material.material.clone()));
+        let leaves = leaves.map(|l| l.leaves.iter().map(|m| m.material.clone()).collect());
+        entries.push((entity, primitive, material.material.clone(), leaves));
     }
     // Entity order is load order: the render scene does not depend on hecs's archetypes.
-    entries.sort_by_key(|(e, _, _)| e.id());
+    entries.sort_by_key(|(e, ..)| e.id());
     let mut primitives = Vec::with_capacity(entries.len());
     let mut materials: Vec<Material> = Vec::new();
     // Keyed by the shared allocation; ids follow first use, so hash order never matters.
     let mut ids: HashMap<*const Material, usize> = HashMap::new();
-    for (_, mut primitive, material) in entries {
-        let index = *ids.entry(Arc::as_ptr(&material)).or_insert_with(|| {
-            materials.push(Material::clone(&material));
+    let mut id_of = |material: &Arc<Material>| {
+        *ids.entry(Arc::as_ptr(material)).or_insert_with(|| {
+            materials.push(Material::clone(material));
             materials.len() - 1
-        });
-        primitive.material = index as u32;
+        }) as u32
+    };
+    for (_, mut primitive, material, leaves) in entries {
+        primitive.material = id_of(&material);
+        primitive.leaf_materials = leaves.map(|leaves| leaves.iter().map(&mut id_of).collect());
         primitives.push(primitive);
     }
 

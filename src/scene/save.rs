@@ -15,7 +15,7 @@ use crate::import::{Imported, MeshSource};
 use crate::material::MaterialSpec;
 use crate::world::Scene;
 use crate::world::components::{
-    ImportedCamera, Light, MaterialComponent, Name, ObjectFlags, Parent, ShapeComponent, Transform,
+    CsgMaterials, ImportedCamera, Light, MaterialComponent, Name, ObjectFlags, Parent, ShapeComponent, Transform,
 };
 
 /// The scene as TOML text, with absolute file paths (the text loads wherever it is written).
@@ -119,6 +119,14 @@ fn write_scene(scene: &Scene, paths: &FilePaths) -> Result<String, toml::ser::Er
         common.write(scene, paths, &mut t, &mut materials)?;
         for (k, v) in &shape.params {
             t.insert(k.clone(), v.clone());
+        }
+        // CSG members name their materials in `members`; the tables go to [materials].
+        if let Ok(csg) = scene.world.get::<&CsgMaterials>(entity) {
+            for m in &csg.named {
+                if let (Some(name), Some(spec)) = (&m.name, &m.spec) {
+                    materials.insert(name.clone(), spec.clone());
+                }
+            }
         }
         objects.push((entity, t));
     }

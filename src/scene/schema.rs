@@ -5,6 +5,7 @@
 use schemars::SchemaGenerator;
 use serde_json::{Map, Value, json};
 
+use crate::geometry::csg::CsgOperation;
 use crate::material::MaterialSpec;
 use crate::registry::ShapeRegistry;
 use crate::world::components::{Camera, Environment, Light, LightKind, RenderSettings, Transform};
@@ -19,7 +20,7 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
     let transform = generator.subschema_for::<Transform>().to_value();
     generator.subschema_for::<Light>();
 
-    let objects: Vec<Value> = registry
+    let shape_params: Vec<Value> = registry
         .iter()
         .map(|shape_type| {
             let mut params = (shape_type.schema)(&mut generator).to_value();
@@ -28,7 +29,15 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
             object.insert("title".into(), json!(shape_type.name));
             object.insert("description".into(), json!(shape_type.description));
             object.insert("additionalProperties".into(), json!(false));
-            insert_common_keys(&mut params, shape_type.name, &material, &transform);
+            params
+        })
+        .collect();
+    let objects: Vec<Value> = shape_params
+        .iter()
+        .map(|params| {
+            let mut params = params.clone();
+            let name = params["title"].as_str().expect("a shape variant has a title").to_string();
+            insert_common_keys(&mut params, &name, &material, &transform);
             params
         })
         .collect();
@@ -63,8 +72,13 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
     });
     insert_common_keys(&mut mesh, crate::import::spawn::MESH_SHAPE, &material, &transform);
     objects.push(mesh);
+    let mut csg_object = csg_group();
+    insert_common_keys(&mut csg_object, "", &material, &transform);
+    csg_object["properties"]["shape"] = csg_shape();
+    objects.push(csg_object);
 
     let mut definitions: Map<String, Value> = generator.take_definitions(true);
+    definitions.insert(CSG_MEMBER.into(), csg_member(&shape_params, &material, &transform));
     let light = light_variants(&definitions.remove("Light").expect("the light schema is a definition"), &definitions);
     json!({
         "$schema": "https://json-schema.org/draft/2020-12/schema",
@@ -87,6 +101,73 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
         },
         "$defs": definitions
     })
+}
+
+/// The name of the definition of a CSG member in `$defs`.
+const CSG_MEMBER: &str = "CsgMember";
+
+/// The `shape` of a CSG group: one of the operations.
+fn csg_shape() -> Value {
+    json!({ "enum": CsgOperation::ALL.map(CsgOperation::name) })
+}
+
+/// A CSG group's own keys (`shape` and `members`), titled `csg`.
+fn csg_group() -> Value {
+    json!({
+        "title": "csg",
+        "description": "POV-Ray's CSG: `union` (interior surfaces kept), `merge` (without them), `intersection`, `difference` (the first member minus the others), over member shapes (see docs/scene-format.md).",
+        "type": "object",
+        "additionalProperties": false,
+        "required": ["shape", "members"],
+        "properties": {
+            "shape": csg_shape(),
+            "members": {
+                "type": "array",
+                "minItems": 1,
+                "items": { "$ref": format!("#/$defs/{CSG_MEMBER}") },
+                "description": "The member shapes (a difference needs at least two)."
+            }
+        }
+    })
+}
+
+/// A CSG member: any registered shape (given as `shape_params`, each a titled schema of its
+/// parameters) or a nested group, with an optional material, transform and `inverse`.
+fn csg_member(shape_params: &[Value], material: &Value, transform: &Value) -> Value {
+    let member_keys = |variant: &mut Value, shape: Value| {
+        let properties = variant["properties"].as_object_mut().expect("a variant has properties");
+        properties.insert("shape".into(), shape);
+        properties.insert(
+            "material".into(),
+            json!({ "description": "A [materials.NAME] name or an inline material; without one, the group's.", "anyOf": [{ "type": "string" }, material] }),
+        );
+        properties.insert("transform".into(), transform.clone());
+        properties.insert(
+            "inverse".into(),
+            json!({ "type": "boolean", "description": "Swap the member's inside and outside." }),
+        );
+        let required =
+            variant.as_object_mut().expect("a variant is an object").entry("required").or_insert_with(|| json!([]));
+        if let Value::Array(list) = required
+            && !list.contains(&json!("shape"))
+        {
+            list.push(json!("shape"));
+        }
+    };
+    let mut variants: Vec<Value> = shape_params
+        .iter()
+        .map(|params| {
+            let mut variant = params.clone();
+            variant.as_object_mut().expect("a variant is an object").entry("properties").or_insert_with(|| json!({}));
+            let name = variant["title"].clone();
+            member_keys(&mut variant, json!({ "const": name }));
+            variant
+        })
+        .collect();
+    let mut group = csg_group();
+    member_keys(&mut group, csg_shape());
+    variants.push(group);
+    json!({ "oneOf": variants })
 }
 
 /// A `[[light]]` table: one variant per kind, each with the keys
@@ -118,12 +199,15 @@ fn light_variants(light: &Value, definitions: &Map<String, Value>) -> Value {
 }
 
 /// Adds the keys every `[[object]]` has (shape, name, material, transform, parent,
-/// no_shadow) to an object variant's schema, and requires `shape`.
+/// no_shadow) to an object variant's schema, and requires `shape` (whose schema is the
+/// constant `shape` unless that is empty).
 fn insert_common_keys(variant: &mut Value, shape: &str, material: &Value, transform: &Value) {
     let object = variant.as_object_mut().expect("an object variant is a JSON object");
     let properties = object.entry("properties").or_insert_with(|| json!({}));
     let properties = properties.as_object_mut().expect("properties is an object");
-    properties.insert("shape".into(), json!({ "const": shape }));
+    if !shape.is_empty() {
+        properties.insert("shape".into(), json!({ "const": shape }));
+    }
     properties.insert("name".into(), json!({ "type": "string", "description": "Name other objects use as `parent`." }));
     properties.insert(
         "material".into(),

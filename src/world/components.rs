@@ -113,6 +113,17 @@ impl MaterialComponent {
     }
 }
 
+/// The materials of a CSG group's members.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CsgMaterials {
+    /// The material of each leaf (plain shape), depth first: the leaf's own, or the one it
+    /// inherits from the nearest enclosing member or group that names one (as in POV-Ray).
+    /// Inherited entries share the group's `Arc`, so they share its material id.
+    pub leaves: Vec<MaterialComponent>,
+    /// Every `[materials.NAME]` a member names (for saving).
+    pub named: Vec<MaterialComponent>,
+}
+
 /// Per-object render flags.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct ObjectFlags {

@@ -28,8 +28,8 @@ pub use glam::{DAffine3, DMat3, DVec2, DVec3};
 pub use ray::Ray;
 pub use registry::{ParamError, ShapeParams, ShapeType, shape_type};
 pub use shape::{
-    AreaSample, CROSSING_GAP, DirectionSample, Hit, MAX_CROSSINGS, Shape, Surface, for_each_crossing,
-    pdf_toward_by_area, sample_toward_by_area, sample_toward_flat,
+    AreaSample, CROSSING_GAP, DirectionSample, Hit, MAX_CROSSINGS, Shape, Surface, crossings_by_intersect,
+    for_each_crossing, pdf_toward_by_area, sample_toward_by_area, sample_toward_flat,
 };
 
 /// Re-exported so that plugins derive their parameter schema with the same version Prism uses.

@@ -1,5 +1,6 @@
 use std::any::Any;
 use std::fmt::Debug;
+use std::ops::ControlFlow;
 
 use glam::{DVec2, DVec3};
 
@@ -111,13 +112,31 @@ pub const MAX_CROSSINGS: usize = 4096;
 /// but tangent to the surface) count once. The default [`Shape::pdf_toward`] and the
 /// contract kit's area estimate are built on it.
 pub fn for_each_crossing<S: Shape + ?Sized>(shape: &S, ray: &Ray, mut visit: impl FnMut(&Hit, &Surface)) {
+    shape.crossings(ray, 0.0, f64::INFINITY, &mut |hit| {
+        visit(hit, &shape.surface_geometry(ray, hit));
+        ControlFlow::Continue(())
+    });
+}
+
+/// [`Shape::crossings`] built on [`Shape::intersect`], the trait's default: the nearest hit
+/// in the range, then the nearest one a hair ([`CROSSING_GAP`] of the shape's size) beyond
+/// it, and so on, at most [`MAX_CROSSINGS`] of them, until `visit` breaks.
+pub fn crossings_by_intersect<S: Shape + ?Sized>(
+    shape: &S,
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+    visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>,
+) {
     let bounds = shape.bounds();
     let size = if bounds.is_bounded() { (bounds.max - bounds.min).max_element() } else { 0.0 };
     let gap = CROSSING_GAP * size / ray.direction.length();
-    let mut t_min = 0.0;
+    let mut t_min = t_min;
     for _ in 0..MAX_CROSSINGS {
-        let Some(hit) = shape.intersect(ray, t_min, f64::INFINITY) else { return };
-        visit(&hit, &shape.surface_geometry(ray, &hit));
+        let Some(hit) = shape.intersect(ray, t_min, t_max) else { return };
+        if visit(&hit).is_break() {
+            return;
+        }
         // The relative step keeps the search moving for unbounded shapes and far crossings.
         t_min = hit.t + gap.max(hit.t.abs() * 1e-14);
     }
@@ -156,6 +175,16 @@ pub trait Shape: Any + Send + Sync + Debug {
     fn inside(&self, point: DVec3) -> bool {
         let _ = point;
         false
+    }
+
+    /// Calls `visit` with every crossing of `ray` with the surface at `t_min < t < t_max`,
+    /// nearest first, until it breaks. CSG walks its members' crossings with it and keeps
+    /// those on the combined solid's boundary, so for a closed shape each crossing must flip
+    /// [`Shape::inside`] (the contract kit's `check_inside_agrees_with_crossings` checks it).
+    /// The default, [`crossings_by_intersect`], asks [`Shape::intersect`] again beyond each
+    /// crossing; override it when all crossings come cheaper at once.
+    fn crossings(&self, ray: &Ray, t_min: f64, t_max: f64, visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>) {
+        crossings_by_intersect(self, ray, t_min, t_max, visit);
     }
 
     /// True when anything lies on the ray with `t_min < t < t_max` (shadow rays).

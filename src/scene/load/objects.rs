@@ -3,7 +3,40 @@
 
 use super::*;
 
-impl Loader<'_> {
+use std::sync::Arc;
+
+use prism_api::ShapeType;
+
+use crate::geometry::csg::{CsgMember, CsgOperation, CsgShape, MAX_LEAVES};
+use crate::world::components::CsgMaterials;
+
+/// Keys of a CSG group (`shape = "union"`...) besides the [`OBJECT_KEYS`].
+pub const CSG_KEYS: [&str; 1] = ["members"];
+
+/// Keys of a CSG member table besides its shape's parameters (and, for a nested group,
+/// [`CSG_KEYS`]).
+pub const MEMBER_KEYS: [&str; 4] = ["shape", "material", "transform", "inverse"];
+
+/// A CSG group as loaded.
+struct CsgGroup {
+    /// Its geometry.
+    shape: Arc<dyn prism_api::Shape>,
+    /// The material of each leaf, depth first.
+    leaves: Vec<MaterialComponent>,
+    /// Its `members` as they are saved.
+    members: toml::Value,
+}
+
+/// What an object's or member's `shape` names.
+#[derive(Clone, Copy)]
+enum ObjectKind<'a> {
+    /// A CSG group.
+    Csg(CsgOperation),
+    /// A registered shape type.
+    Plugin(&'a ShapeType),
+}
+
+impl<'a> Loader<'a> {
     /// Removes the string `table[field]` (`None` when absent); a diagnostic `message` at
     /// `key.field` and `Err` when it is not a string.
     fn optional_string(
@@ -23,6 +56,316 @@ impl Loader<'_> {
                 Err(())
             }
         }
+    }
+
+    /// Removes and checks `table.transform` (the identity when absent); `None` after a
+    /// diagnostic at `key.transform`.
+    fn object_transform(&mut self, table: &mut toml::Table, file: usize, key: &str) -> Option<Transform> {
+        let transform: Transform = match table.remove("transform") {
+            None => Transform::default(),
+            Some(v) => self.deserialize(file, &format!("{key}.transform"), v)?,
+        };
+        let matrix = transform.parent_from_local();
+        if !(matrix.matrix3.is_finite() && matrix.translation.is_finite()) {
+            let k = format!("{key}.transform");
+            self.diagnostics
+                .push(Diagnostic::new(self.files[file].locate(&k), "transform is not finite (NaN or infinity)"));
+            return None;
+        }
+        if matrix.matrix3.determinant().abs() < 1e-18 {
+            let k = format!("{key}.transform");
+            let d = Diagnostic::new(self.files[file].locate(&k), "transform is singular (it flattens the object)")
+                .with_help("a scale of 0 on some axis, or a matrix without an inverse");
+            self.diagnostics.push(d);
+            return None;
+        }
+        if transform.matrix.is_some()
+            && (transform.translate.is_some() || transform.rotate.is_some() || transform.scale.is_some())
+        {
+            let d = Diagnostic::new(
+                self.files[file].locate(&format!("{key}.transform.matrix")),
+                "`matrix` cannot be combined with translate, rotate or scale",
+            )
+            .with_help("fold the other parts into the matrix, or drop the matrix");
+            self.diagnostics.push(d);
+            return None;
+        }
+        Some(transform)
+    }
+
+    /// The material `value` written at `key.material`: a `[materials.NAME]` name or an
+    /// inline table; `None` after a diagnostic.
+    fn object_material(&mut self, file: usize, key: &str, value: toml::Value) -> Option<MaterialComponent> {
+        match value {
+            toml::Value::String(name) => match self.materials.get(&name) {
+                Some((m, _)) => Some(m.clone()),
+                None => {
+                    let d = Diagnostic::new(
+                        self.files[file].locate_value(&format!("{key}.material")),
+                        format!("no material is named `{name}`"),
+                    )
+                    .suggest(&name, self.materials.keys().map(String::as_str));
+                    self.diagnostics.push(d);
+                    None
+                }
+            },
+            v @ toml::Value::Table(_) => self.material(file, &format!("{key}.material"), v),
+            _ => {
+                self.diagnostics.push(Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.material")),
+                    "`material` must be the name of a [materials.NAME] table or an inline table",
+                ));
+                None
+            }
+        }
+    }
+
+    /// Builds a registered shape from its parameters `table` (the table at `key`, its other
+    /// keys removed); `None` after a diagnostic naming the key. `other_keys` are the keys
+    /// besides the shape's own that the table may hold (for suggestions).
+    fn build_shape(
+        &mut self,
+        file: usize,
+        key: &str,
+        kind: &str,
+        shape_type: &ShapeType,
+        table: &toml::Table,
+        other_keys: &[&str],
+    ) -> Option<Arc<dyn prism_api::Shape>> {
+        match (shape_type.build)(table.clone()) {
+            Ok(g) => Some(g),
+            Err(e) => {
+                let d = if let Some((field, expected)) = crate::diagnostics::parse_unknown_field(&e.message) {
+                    // The parameter path ends with the unknown key (`components[0].centre`).
+                    let inner = if e.key.is_empty() { field.clone() } else { e.key.clone() };
+                    let k = format!("{key}.{inner}");
+                    Diagnostic::new(self.files[file].locate(&k), format!("unknown key `{field}` for shape `{kind}`"))
+                        .suggest(&field, expected.iter().map(String::as_str).chain(other_keys.iter().copied()))
+                } else if e.key.is_empty() {
+                    Diagnostic::new(self.files[file].locate(key), format!("shape `{kind}`: {}", e.message))
+                } else {
+                    let k = format!("{key}.{}", e.key);
+                    Diagnostic::new(self.files[file].locate_value(&k), e.message.clone())
+                };
+                self.diagnostics.push(d);
+                None
+            }
+        }
+    }
+
+    /// The CSG group `operation` written at `key` (its `table` without the keys every object
+    /// or member has), with the material of each leaf; leaves without a material of their
+    /// own take `inherited`. `None` after diagnostics (every member is checked).
+    fn csg_group(
+        &mut self,
+        file: usize,
+        key: &str,
+        operation: CsgOperation,
+        table: &toml::Table,
+        inherited: &MaterialComponent,
+        named: &mut Vec<MaterialComponent>,
+    ) -> Option<CsgGroup> {
+        let name = operation.name();
+        let mut ok = true;
+        for field in table.keys().filter(|k| k.as_str() != "members") {
+            let d = Diagnostic::new(
+                self.files[file].locate(&format!("{key}.{field}")),
+                format!("unknown key `{field}` for `{name}`"),
+            )
+            .suggest(field, CSG_KEYS.into_iter().chain(OBJECT_KEYS));
+            let d = if d.help.is_none() {
+                d.with_help(format!("a `{name}` group takes `members` (an array of member tables)"))
+            } else {
+                d
+            };
+            self.diagnostics.push(d);
+            ok = false;
+        }
+        let members = match table.get("members") {
+            Some(toml::Value::Array(members)) => members,
+            Some(_) => {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.members")),
+                    "`members` must be an array of tables, one per member shape",
+                );
+                self.diagnostics.push(d);
+                return None;
+            }
+            None => {
+                let d = Diagnostic::new(self.files[file].locate(key), format!("`{name}` needs `members`")).with_help(
+                    "an array of member tables, e.g. members = [{ shape = \"sphere\" }, { shape = \"box\" }]",
+                );
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        if members.len() < operation.min_members() {
+            let message = if members.is_empty() {
+                format!("`{name}` has no members")
+            } else {
+                format!("`{name}` needs at least {} members (it has {})", operation.min_members(), members.len())
+            };
+            let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.members")), message);
+            let d = if operation == CsgOperation::Difference {
+                d.with_help("a difference subtracts every later member from the first")
+            } else {
+                d
+            };
+            self.diagnostics.push(d);
+            return None;
+        }
+        let mut built = Vec::with_capacity(members.len());
+        let mut leaves = Vec::new();
+        let mut written = Vec::with_capacity(members.len());
+        for (i, member) in members.iter().enumerate() {
+            let member_key = format!("{key}.members[{i}]");
+            match self.csg_member(file, &member_key, member, inherited, named) {
+                Some((member, member_leaves, as_written)) => {
+                    built.push(member);
+                    leaves.extend(member_leaves);
+                    written.push(as_written);
+                }
+                None => ok = false,
+            }
+        }
+        if !ok {
+            return None;
+        }
+        if leaves.len() > MAX_LEAVES as usize {
+            let d = Diagnostic::new(
+                self.files[file].locate(&format!("{key}.members")),
+                format!("`{name}` holds {} shapes; a CSG group holds at most {MAX_LEAVES}", leaves.len()),
+            );
+            self.diagnostics.push(d);
+            return None;
+        }
+        let group = CsgShape::new(operation, built);
+        Some(CsgGroup { shape: Arc::new(group), leaves, members: toml::Value::Array(written) })
+    }
+
+    /// One member of a CSG group, written at `key`, with the materials of its leaves.
+    fn csg_member(
+        &mut self,
+        file: usize,
+        key: &str,
+        value: &toml::Value,
+        inherited: &MaterialComponent,
+        named: &mut Vec<MaterialComponent>,
+    ) -> Option<(CsgMember, Vec<MaterialComponent>, toml::Value)> {
+        let toml::Value::Table(table) = value else {
+            let d = Diagnostic::new(self.files[file].locate_value(key), "a CSG member must be a table")
+                .with_help("e.g. { shape = \"sphere\", radius = 1.0 }");
+            self.diagnostics.push(d);
+            return None;
+        };
+        let mut as_written = table.clone();
+        let mut table = table.clone();
+        let kind = match table.remove("shape") {
+            Some(toml::Value::String(kind)) => kind,
+            Some(_) => {
+                let d =
+                    Diagnostic::new(self.files[file].locate_value(&format!("{key}.shape")), "`shape` must be a string");
+                self.diagnostics.push(d);
+                return None;
+            }
+            None => {
+                let d = Diagnostic::new(self.files[file].locate(key), "missing key `shape` in a CSG member");
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        let Some(shape_kind) = self.shape_kind(file, key, &kind) else {
+            if kind == MESH_SHAPE {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.shape")),
+                    "a mesh cannot be a CSG member",
+                )
+                .with_help("CSG needs an inside test, which meshes do not have; use analytic or plugin shapes");
+                self.diagnostics.push(d);
+            }
+            return None;
+        };
+        for field in ["name", "parent", "no_shadow"] {
+            if table.contains_key(field) {
+                let d = Diagnostic::new(
+                    self.files[file].locate(&format!("{key}.{field}")),
+                    format!("`{field}` cannot be set on a CSG member"),
+                )
+                .with_help("set it on the whole group's [[object]]");
+                self.diagnostics.push(d);
+                return None;
+            }
+        }
+        let transform = self.object_transform(&mut table, file, key)?;
+        let material = match table.remove("material") {
+            None => None,
+            Some(value) => Some(self.object_material(file, key, value)?),
+        };
+        let inverse = match table.remove("inverse") {
+            None => false,
+            Some(toml::Value::Boolean(b)) => b,
+            Some(_) => {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.inverse")),
+                    "`inverse` must be true or false",
+                );
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        // Saved as loaded: a named material by name (its table goes to [materials]), an
+        // inline one with its texture paths resolved.
+        match &material {
+            Some(m @ MaterialComponent { name: Some(_), .. }) => named.push(m.clone()),
+            Some(MaterialComponent { name: None, spec: Some(spec), .. }) => {
+                as_written.insert("material".into(), toml::Value::try_from(&**spec).ok()?);
+            }
+            _ => {}
+        }
+        let own = material.as_ref().unwrap_or(inherited);
+        let (shape, leaves) = match shape_kind {
+            ObjectKind::Csg(operation) => {
+                let group = self.csg_group(file, key, operation, &table, own, named)?;
+                as_written.insert("members".into(), group.members);
+                (group.shape, group.leaves)
+            }
+            ObjectKind::Plugin(shape_type) => {
+                let shape = self.build_shape(file, key, &kind, shape_type, &table, &MEMBER_KEYS)?;
+                (shape, vec![own.clone()])
+            }
+        };
+        Some((CsgMember::new(shape, transform.parent_from_local(), inverse), leaves, as_written.into()))
+    }
+
+    /// What `shape = "kind"` names: a CSG operation or a registered shape (`None` for a
+    /// mesh, and for an unknown name, which is reported at `key.shape`).
+    fn shape_kind(&mut self, file: usize, key: &str, kind: &str) -> Option<ObjectKind<'a>> {
+        if let Some(operation) = CsgOperation::from_name(kind) {
+            return Some(ObjectKind::Csg(operation));
+        }
+        let registry: &'a ShapeRegistry = self.registry;
+        if let Some(shape_type) = registry.get(kind) {
+            return Some(ObjectKind::Plugin(shape_type));
+        }
+        if kind != MESH_SHAPE {
+            let csg = CsgOperation::ALL.map(CsgOperation::name);
+            let d = Diagnostic::new(
+                self.files[file].locate_value(&format!("{key}.shape")),
+                format!("unknown shape `{kind}`"),
+            )
+            .suggest(kind, self.registry.names().chain([MESH_SHAPE]).chain(csg));
+            let d = if d.help.is_none() {
+                d.with_help(format!(
+                    "known shapes: {}, mesh, {}",
+                    self.registry.names().collect::<Vec<_>>().join(", "),
+                    csg.join(", ")
+                ))
+            } else {
+                d
+            };
+            self.diagnostics.push(d);
+        }
+        None
     }
 
     pub(super) fn object(
@@ -47,79 +390,18 @@ impl Loader<'_> {
             self.diagnostics.push(d);
             return;
         };
-        let shape_type = self.registry.get(&kind);
+        let shape_type = self.shape_kind(file, &key, &kind);
         if shape_type.is_none() && kind != MESH_SHAPE {
-            let d = Diagnostic::new(
-                self.files[file].locate_value(&format!("{key}.shape")),
-                format!("unknown shape `{kind}`"),
-            )
-            .suggest(&kind, self.registry.names().chain([MESH_SHAPE]));
-            let d = if d.help.is_none() {
-                d.with_help(format!("known shapes: {}, mesh", self.registry.names().collect::<Vec<_>>().join(", ")))
-            } else {
-                d
-            };
-            self.diagnostics.push(d);
             return;
         }
 
         let Ok(name) = self.optional_string(&mut table, file, &key, "name", "`name` must be a string") else {
             return;
         };
-        let transform: Transform = match table.remove("transform") {
-            None => Transform::default(),
-            Some(v) => match self.deserialize(file, &format!("{key}.transform"), v) {
-                Some(t) => t,
-                None => return,
-            },
-        };
-        let matrix = transform.parent_from_local();
-        if !(matrix.matrix3.is_finite() && matrix.translation.is_finite()) {
-            let k = format!("{key}.transform");
-            self.diagnostics
-                .push(Diagnostic::new(self.files[file].locate(&k), "transform is not finite (NaN or infinity)"));
-            return;
-        }
-        if matrix.matrix3.determinant().abs() < 1e-18 {
-            let k = format!("{key}.transform");
-            let d = Diagnostic::new(self.files[file].locate(&k), "transform is singular (it flattens the object)")
-                .with_help("a scale of 0 on some axis, or a matrix without an inverse");
-            self.diagnostics.push(d);
-            return;
-        }
-        if transform.matrix.is_some()
-            && (transform.translate.is_some() || transform.rotate.is_some() || transform.scale.is_some())
-        {
-            let d = Diagnostic::new(
-                self.files[file].locate(&format!("{key}.transform.matrix")),
-                "`matrix` cannot be combined with translate, rotate or scale",
-            )
-            .with_help("fold the other parts into the matrix, or drop the matrix");
-            self.diagnostics.push(d);
-            return;
-        }
+        let Some(transform) = self.object_transform(&mut table, file, &key) else { return };
         let material = match table.remove("material") {
             None => Some(self.default_material.clone()),
-            Some(toml::Value::String(name)) => match self.materials.get(&name) {
-                Some((m, _)) => Some(m.clone()),
-                None => {
-                    let d = Diagnostic::new(
-                        self.files[file].locate_value(&format!("{key}.material")),
-                        format!("no material is named `{name}`"),
-                    )
-                    .suggest(&name, self.materials.keys().map(String::as_str));
-                    self.diagnostics.push(d);
-                    None
-                }
-            },
-            Some(v @ toml::Value::Table(_)) => self.material(file, &format!("{key}.material"), v),
-            Some(_) => {
-                self.diagnostics.push(Diagnostic::new(
-                    self.files[file].locate_value(&format!("{key}.material")),
-                    "`material` must be the name of a [materials.NAME] table or an inline table",
-                ));
-                None
-            }
+            Some(value) => self.object_material(file, &key, value),
         };
         let Ok(parent) =
             self.optional_string(&mut table, file, &key, "parent", "`parent` must be the name of another object")
@@ -153,28 +435,19 @@ impl Loader<'_> {
                 Some(entity) => entity,
                 None => return,
             },
-            Some(shape_type) => {
-                let geometry = match (shape_type.build)(table.clone()) {
-                    Ok(g) => g,
-                    Err(e) => {
-                        let d = if let Some((field, expected)) = crate::diagnostics::parse_unknown_field(&e.message) {
-                            // The parameter path ends with the unknown key (`components[0].centre`).
-                            let inner = if e.key.is_empty() { field.clone() } else { e.key.clone() };
-                            let k = format!("{key}.{inner}");
-                            Diagnostic::new(
-                                self.files[file].locate(&k),
-                                format!("unknown key `{field}` for shape `{kind}`"),
-                            )
-                            .suggest(&field, expected.iter().map(String::as_str).chain(OBJECT_KEYS))
-                        } else if e.key.is_empty() {
-                            Diagnostic::new(location.clone(), format!("shape `{kind}`: {}", e.message))
-                        } else {
-                            let k = format!("{key}.{}", e.key);
-                            Diagnostic::new(self.files[file].locate_value(&k), e.message.clone())
-                        };
-                        self.diagnostics.push(d);
-                        return;
-                    }
+            Some(ObjectKind::Csg(operation)) => {
+                let Some(material) = material else { return };
+                let mut named = Vec::new();
+                let Some(group) = self.csg_group(file, &key, operation, &table, &material, &mut named) else { return };
+                let mut params = table;
+                params.insert("members".into(), group.members);
+                let shape = ShapeComponent { kind, params, geometry: group.shape };
+                let materials = CsgMaterials { leaves: group.leaves, named };
+                world.spawn((shape, transform, material, flags, Origin(location.clone()), materials))
+            }
+            Some(ObjectKind::Plugin(shape_type)) => {
+                let Some(geometry) = self.build_shape(file, &key, &kind, shape_type, &table, &OBJECT_KEYS) else {
+                    return;
                 };
                 let Some(material) = material else { return };
                 let shape = ShapeComponent { kind, params: table, geometry };

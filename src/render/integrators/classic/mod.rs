@@ -200,7 +200,8 @@ impl<'a> Classic<'a> {
             return scene.environment.background.0;
         };
         let primitive = &scene.primitives[closest.primitive as usize];
-        let view = &self.views[primitive.material as usize];
+        let material_id = primitive.material_at(&closest.hit);
+        let view = &self.views[material_id as usize];
         // The uv costs trigonometry on curved shapes; only textured materials look at it.
         let surface = if view.varies_over_surface() {
             primitive.shape.surface(&closest.object_ray, &closest.hit)
@@ -223,7 +224,7 @@ impl<'a> Classic<'a> {
                 depth: closest.hit.t * d.length(),
                 uv: surface.uv,
                 primitive: closest.primitive,
-                material: primitive.material,
+                material: material_id,
             });
         }
 
@@ -404,7 +405,7 @@ impl<'a> Classic<'a> {
             let Some(hit) = scene.accel.closest(&scene.primitives, &ray, SHADOW_TOLERANCE, t_max, casts) else {
                 return filter;
             };
-            let view = &self.views[scene.primitives[hit.primitive as usize].material as usize];
+            let view = &self.views[scene.primitives[hit.primitive as usize].material_at(&hit.hit) as usize];
             let m = &view.base;
             if !m.is_transparent() {
                 return DVec3::ZERO;

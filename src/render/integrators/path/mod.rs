@@ -80,7 +80,8 @@ impl<'a> Path<'a> {
     fn vertex(&self, ray: &Ray, closest: &ClosestHit) -> Vertex {
         let primitive = &self.scene.primitives[closest.primitive as usize];
         // The uv costs trigonometry on curved shapes; only textured materials look at it.
-        let surface = if self.materials[primitive.material as usize].is_textured() {
+        let material = primitive.material_at(&closest.hit);
+        let surface = if self.materials[material as usize].is_textured() {
             primitive.shape.surface(&closest.object_ray, &closest.hit)
         } else {
             primitive.shape.surface_geometry(&closest.object_ray, &closest.hit)
@@ -102,7 +103,7 @@ impl<'a> Path<'a> {
             uv: surface.uv,
             object_point: surface.point,
             primitive: closest.primitive,
-            material: primitive.material,
+            material,
             distance: closest.hit.t * ray.direction.length(),
         }
     }
