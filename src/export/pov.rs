@@ -368,8 +368,11 @@ impl CsgSdl<'_> {
                     self.next_leaf += 1;
                     let mut sdl = sdl.trim_end().strip_suffix('}')?.trim_end().to_string();
                     sdl.push('\n');
+                    // The member's texture is written before its `matrix`, so POV-Ray moves a
+                    // pattern with the member; Prism evaluates it in the group's space, which
+                    // the inverse undoes.
                     if let Some(leaf) = leaf.filter(|l| !std::sync::Arc::ptr_eq(&l.material, self.group_material))
-                        && let Err(problems) = texture(&mut sdl, &leaf.material)
+                        && let Err(problems) = texture(&mut sdl, &leaf.material, &member.group_from_member.inverse())
                     {
                         let at = format!("members.leaf{}", self.next_leaf - 1);
                         self.problems.extend(problems.into_iter().map(|(key, m)| (format!("{at}.material.{key}"), m)));
