@@ -6,6 +6,17 @@ use std::sync::Arc;
 use glam::{DAffine3, DMat3, DVec3};
 use prism_api::{Aabb, Hit, Ray, Shape};
 
+/// The bits of [`Hit::part`] a CSG leaf's own part may use; the index of the leaf hit (depth
+/// first) sits above them. It lives here, not with the CSG shape, because
+/// [`Primitive::material_at`] reads it for every hit of a group.
+pub const PART_BITS: u32 = 16;
+
+/// The leaf (depth-first index) a hit of a CSG group lies on.
+#[inline]
+pub fn leaf_of(hit: &Hit) -> u32 {
+    hit.part >> PART_BITS
+}
+
 /// One shape instance in world space.
 #[derive(Clone, Debug)]
 pub struct Primitive {
@@ -80,9 +91,7 @@ impl Primitive {
     pub fn material_at(&self, hit: &Hit) -> u32 {
         match &self.leaf_materials {
             None => self.material,
-            Some(leaves) => {
-                leaves.get(crate::geometry::csg::CsgShape::leaf_of(hit) as usize).copied().unwrap_or(self.material)
-            }
+            Some(leaves) => leaves.get(leaf_of(hit) as usize).copied().unwrap_or(self.material),
         }
     }
 

@@ -62,8 +62,7 @@ impl CsgOperation {
     }
 }
 
-/// The bits of [`Hit::part`] a leaf's own part may use; the leaf index sits above them.
-pub const PART_BITS: u32 = 16;
+use crate::accel::primitive::{PART_BITS, leaf_of};
 
 /// The most leaves (plain shapes, nested groups' included) a group can number in the bits
 /// of [`Hit::part`] above [`PART_BITS`].
@@ -180,11 +179,6 @@ impl CsgShape {
         self.leaves
     }
 
-    /// The leaf (depth-first index) a hit of this group lies on.
-    pub fn leaf_of(hit: &Hit) -> u32 {
-        hit.part >> PART_BITS
-    }
-
     /// True when a crossing of member `index` at group-space `point` lies on the boundary the
     /// group shows.
     fn keeps(&self, index: usize, point: DVec3) -> bool {
@@ -198,7 +192,7 @@ impl CsgShape {
 
     /// The member a hit of this group lies on, and the member's own hit.
     fn member_hit(&self, hit: &Hit) -> (&CsgMember, Hit) {
-        let leaf = Self::leaf_of(hit);
+        let leaf = leaf_of(hit);
         let member = self
             .members
             .iter()
@@ -363,12 +357,12 @@ mod tests {
         let ray = Ray::new(DVec3::X * -5.0, DVec3::X);
         let hit = difference.intersect(&ray, 1e-9, f64::INFINITY).unwrap();
         assert!((hit.t - 3.5).abs() < 1e-12);
-        assert_eq!(CsgShape::leaf_of(&hit), 0);
+        assert_eq!(leaf_of(&hit), 0);
         // Beyond the first surface the next one is the subtracted sphere's: its normal, out of
         // the remaining solid, points into the hollow (+x), against the sphere's own.
         let second = difference.intersect(&ray, hit.t + 1e-6, f64::INFINITY).unwrap();
         assert!((second.t - 4.5).abs() < 1e-12);
-        assert_eq!(CsgShape::leaf_of(&second), 1);
+        assert_eq!(leaf_of(&second), 1);
         let surface = difference.surface(&ray, &second);
         assert!((surface.point - DVec3::X * -0.5).length() < 1e-12);
         assert!((surface.normal - DVec3::X).length() < 1e-12, "{}", surface.normal);
@@ -441,12 +435,12 @@ mod tests {
         assert_ts(&crossings_along_x(&group), &[4.75, 5.25, 14.5, 15.5]);
         // The lens's near face is its second sphere's (leaf 1 + 1), its far face its first's.
         let near = group.intersect(&ray, 6.0, f64::INFINITY).unwrap();
-        assert_eq!(CsgShape::leaf_of(&near), 2);
+        assert_eq!(leaf_of(&near), 2);
         let surface = group.surface(&ray, &near);
         assert!((surface.point - DVec3::X * 9.5).length() < 1e-12);
         assert!((surface.normal - DVec3::NEG_X).length() < 1e-12);
         let far = group.intersect(&ray, near.t + 1e-6, f64::INFINITY).unwrap();
-        assert_eq!(CsgShape::leaf_of(&far), 1);
+        assert_eq!(leaf_of(&far), 1);
         // Bounds: the union of the small sphere's and the lens's (the overlap of its spheres).
         let b = group.bounds();
         assert!((b.min - DVec3::splat(-1.0).with_x(-0.25)).length() < 1e-9, "{b:?}");
