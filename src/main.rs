@@ -674,8 +674,7 @@ fn remove_temps_on_signals() {
                 report(&"\ninterrupted: finishing the tiles under way, then writing the checkpoint and the image so far (Ctrl-C again quits at once, writing nothing)");
                 continue;
             }
-            prism::output::remove_all_temps();
-            std::process::exit(128 + signal);
+            prism::output::remove_all_temps_and_exit(128 + signal);
         }
     });
     if spawned.is_err() {

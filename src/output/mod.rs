@@ -122,13 +122,24 @@ fn forget_temp(temp: &Path) {
     temps.retain(|p| p != temp);
 }
 
-/// Removes every temporary file still being written (for SIGINT and SIGTERM: the CLI calls
-/// this from its signal thread before exiting).
+/// Removes every temporary file still being written (after a panic, before the CLI exits).
 pub fn remove_all_temps() {
     let mut temps = TEMPS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     for temp in temps.drain(..) {
         let _ = std::fs::remove_file(temp);
     }
+}
+
+/// Removes every temporary file still being written and exits with `code`, holding the
+/// registry's lock until the process ends (for SIGINT and SIGTERM: the CLI's signal thread
+/// calls this). Holding it matters: another thread writing outputs would otherwise create
+/// its next temporary file between the cleanup and the exit, and leave it behind.
+pub fn remove_all_temps_and_exit(code: i32) -> ! {
+    let mut temps = TEMPS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    for temp in temps.drain(..) {
+        let _ = std::fs::remove_file(temp);
+    }
+    std::process::exit(code)
 }
 
 /// A fresh temporary file beside `path`, created exclusively (`O_EXCL`: never an existing
