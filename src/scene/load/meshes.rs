@@ -132,18 +132,7 @@ impl Loader<'_> {
                 }
             },
         };
-        let import_lights = match table.get("import_lights") {
-            None | Some(toml::Value::Boolean(false)) => false,
-            Some(toml::Value::Boolean(true)) => true,
-            Some(_) => {
-                let d = Diagnostic::new(
-                    self.files[file].locate_value(&format!("{key}.import_lights")),
-                    "`import_lights` must be true or false",
-                );
-                self.diagnostics.push(d);
-                return None;
-            }
-        };
+        let import_lights = self.boolean_flag(table.get("import_lights"), file, key, "import_lights").ok()?;
         let camera_choice = match table.get("import_camera").map(CameraChoice::parse) {
             None => None,
             Some(Ok(choice)) => choice,

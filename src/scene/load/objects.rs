@@ -58,6 +58,26 @@ impl<'a> Loader<'a> {
         }
     }
 
+    /// A boolean flag `key.field` whose value is `value` (false when absent); a diagnostic
+    /// at `key.field` and `Err` when it is not `true` or `false`.
+    pub(super) fn boolean_flag(
+        &mut self,
+        value: Option<&toml::Value>,
+        file: usize,
+        key: &str,
+        field: &str,
+    ) -> Result<bool, ()> {
+        match value {
+            None => Ok(false),
+            Some(toml::Value::Boolean(b)) => Ok(*b),
+            Some(_) => {
+                let at = self.files[file].locate_value(&format!("{key}.{field}"));
+                self.diagnostics.push(Diagnostic::new(at, format!("`{field}` must be true or false")));
+                Err(())
+            }
+        }
+    }
+
     /// Removes and checks `table.transform` (the identity when absent); `None` after a
     /// diagnostic at `key.transform`.
     fn object_transform(&mut self, table: &mut toml::Table, file: usize, key: &str) -> Option<Transform> {
@@ -301,18 +321,7 @@ impl<'a> Loader<'a> {
             None => None,
             Some(value) => Some(self.object_material(file, key, value)?),
         };
-        let inverse = match table.remove("inverse") {
-            None => false,
-            Some(toml::Value::Boolean(b)) => b,
-            Some(_) => {
-                let d = Diagnostic::new(
-                    self.files[file].locate_value(&format!("{key}.inverse")),
-                    "`inverse` must be true or false",
-                );
-                self.diagnostics.push(d);
-                return None;
-            }
-        };
+        let inverse = self.boolean_flag(table.remove("inverse").as_ref(), file, key, "inverse").ok()?;
         // Saved as loaded: a named material by name (its table goes to [materials]), an
         // inline one with its texture paths resolved.
         match &material {
