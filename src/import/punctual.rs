@@ -155,13 +155,20 @@ pub fn select_camera(model: &Model, choice: &CameraChoice) -> Result<(usize, Imp
 /// vertical field of view (radians in the file, degrees in Prism); an orthographic view is
 /// `2 * ymag` high in the node's frame, so `view_height` is that times the length the node's
 /// world transform gives its +y. `look_at` is one world unit ahead; the lens (`aperture`,
-/// `focal_distance`) comes from `lens`.
+/// `focal_distance`, the `blur_*` keys) comes from `lens`.
 pub fn camera_from_node(world_from_camera: DAffine3, view: ImportedView, lens: &Camera) -> Camera {
     let position = world_from_camera.translation;
     let direction = world_from_camera.transform_vector3(DVec3::NEG_Z).normalize_or_zero();
     let world_up = world_from_camera.transform_vector3(DVec3::Y);
     let up = world_up.normalize_or_zero();
-    let lens_keys = Camera { aperture: lens.aperture, focal_distance: lens.focal_distance, ..Camera::default() };
+    let lens_keys = Camera {
+        aperture: lens.aperture,
+        focal_distance: lens.focal_distance,
+        blur_variance: lens.blur_variance,
+        blur_confidence: lens.blur_confidence,
+        blur_min_samples: lens.blur_min_samples,
+        ..Camera::default()
+    };
     let pose = Camera {
         position: position.to_array(),
         look_at: (position + direction).to_array(),
