@@ -76,6 +76,11 @@ fn cases() -> Vec<Case> {
             &["scene.toml:3:", "camera.blur_min_samples", "between 1 and [render] samples (8)"],
         ),
         case(
+            "adaptive focal blur beside adaptive sampling",
+            &format!("[render]\nsamples = 16\nnoise = 0.01\n[camera]\naperture = 0.1\nblur_variance = 0.001\n{SPHERE}"),
+            &["scene.toml:4:", "camera.blur_variance", "use one"],
+        ),
+        case(
             "blur_confidence without blur_variance",
             &format!("[camera]\naperture = 0.1\nblur_confidence = 0.5\n{SPHERE}"),
             &["scene.toml:1:", "camera.blur_confidence", "without blur_variance"],

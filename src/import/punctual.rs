@@ -326,7 +326,14 @@ mod tests {
     #[test]
     fn cameras_look_down_minus_z_with_y_up() {
         let m = DAffine3::from_rotation_translation(DQuat::from_rotation_y(PI / 2.0), DVec3::new(1.0, 2.0, 3.0));
-        let lens = Camera { aperture: 0.5, focal_distance: Some(4.0), ..Camera::default() };
+        let lens = Camera {
+            aperture: 0.5,
+            focal_distance: Some(4.0),
+            blur_variance: Some(1e-3),
+            blur_confidence: Some(0.8),
+            blur_min_samples: Some(7),
+            ..Camera::default()
+        };
         let c = camera_from_node(m, ImportedView::Perspective { yfov: 0.5 }, &lens);
         assert_eq!(c.position, [1.0, 2.0, 3.0]);
         let view = DVec3::from_array(c.look_at) - DVec3::from_array(c.position);
@@ -334,6 +341,7 @@ mod tests {
         assert!((DVec3::from_array(c.up) - DVec3::Y).length() < 1e-12);
         assert!((c.vfov - 0.5f64.to_degrees()).abs() < 1e-12);
         assert_eq!((c.aperture, c.focal_distance, c.aspect), (0.5, Some(4.0), None));
+        assert_eq!((c.blur_variance, c.blur_confidence, c.blur_min_samples), (Some(1e-3), Some(0.8), Some(7)));
         assert_eq!((c.projection, c.view_height), (Projection::Perspective, None));
     }
 
