@@ -54,6 +54,38 @@ fn cases() -> Vec<Case> {
             &["scene.toml:", "camera.aperture", "no lens"],
         ),
         case(
+            "adaptive focal blur without a lens",
+            &format!("[camera]\nblur_variance = 0.001\n{SPHERE}"),
+            &["scene.toml:1:", "camera.blur_variance", "no aperture"],
+        ),
+        case(
+            "adaptive focal blur under the path integrator",
+            &format!("[render]\nintegrator = \"path\"\n[camera]\naperture = 0.1\nblur_variance = 0.001\n{SPHERE}"),
+            &["scene.toml:3:", "camera.blur_variance", "classic integrator"],
+        ),
+        case(
+            "blur_variance out of POV-Ray's range",
+            &format!("[camera]\naperture = 0.1\nblur_variance = 2\n{SPHERE}"),
+            &["scene.toml:1:", "camera.blur_variance", "between 0 and 1"],
+        ),
+        case(
+            "blur_min_samples above samples",
+            &format!(
+                "[render]\nsamples = 8\n[camera]\naperture = 0.1\nblur_variance = 0.001\nblur_min_samples = 9\n{SPHERE}"
+            ),
+            &["scene.toml:3:", "camera.blur_min_samples", "between 1 and [render] samples (8)"],
+        ),
+        case(
+            "adaptive focal blur beside adaptive sampling",
+            &format!("[render]\nsamples = 16\nnoise = 0.01\n[camera]\naperture = 0.1\nblur_variance = 0.001\n{SPHERE}"),
+            &["scene.toml:4:", "camera.blur_variance", "use one"],
+        ),
+        case(
+            "blur_confidence without blur_variance",
+            &format!("[camera]\naperture = 0.1\nblur_confidence = 0.5\n{SPHERE}"),
+            &["scene.toml:1:", "camera.blur_confidence", "without blur_variance"],
+        ),
+        case(
             "pigment with an empty color_map",
             "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\ncolor_map = []\n",
             &["scene.toml:5:", "object[0].material.pigment.color_map", "at least one entry"],

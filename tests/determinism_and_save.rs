@@ -72,3 +72,21 @@ fn stratified_samples_converge_to_the_pixel_mean() {
     let changed = one.pixels.iter().zip(&many.pixels).filter(|(a, b)| a != b).count();
     assert!(changed > 0, "supersampling changed nothing");
 }
+
+#[test]
+fn adaptive_focal_blur_is_bit_identical_for_any_thread_count() {
+    // POV-Ray's adaptive focal blur stops each pixel (under pov1, each traced position) from
+    // its own samples: the image must not depend on the threads or the tiles.
+    for antialias in ["", "antialias = { method = \"pov1\", threshold = 0.1, depth = 2 }\n"] {
+        let text = std::fs::read_to_string(scene_path("parity/focal_blur_adaptive.toml"))
+            .unwrap()
+            .replace("samples = 64\n", &format!("samples = 24\n{antialias}"));
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("blur.toml");
+        std::fs::write(&path, text).unwrap();
+        let one = render_scene(load(&path), 80, 45, 24, 1);
+        let two = render_scene(load(&path), 80, 45, 24, 2);
+        assert!(one == two, "{antialias}: films differ between 1 and 2 threads");
+        assert!(one.pixels.iter().any(|p| p[0] > 0.1), "{antialias}: image is black");
+    }
+}

@@ -131,6 +131,20 @@ fn focal_blur_maps_the_lens() {
     }
 }
 
+#[test]
+fn adaptive_focal_blur_writes_povrays_keywords() {
+    let (ok, stderr, dir) = export(
+        "[render]\nsamples = 64\n[camera]\naperture = 0.5\nblur_variance = 0.0001\nblur_confidence = 0.95\n\
+         blur_min_samples = 7\n[[object]]\nshape = \"sphere\"\n",
+    );
+    assert!(ok, "{stderr}");
+    let pov = std::fs::read_to_string(dir.path().join("scene.pov")).unwrap();
+    for needle in ["aperture 1.0", "blur_samples 7, 64", "variance 0.0001", "confidence 0.95"] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+    assert!(!pov.contains("variance 0\n"), "{pov}");
+}
+
 /// A plugin shape without a POV-Ray equivalent.
 #[derive(Clone, Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]

@@ -267,6 +267,15 @@ fn pigment_patterns_are_refused_naming_the_key() {
     export_case(dir.path(), scene, "checker", Some("material.pigment"));
 }
 
+/// POV-Ray's adaptive focal blur has no Mitsuba equivalent (Mitsuba takes the same samples
+/// in every pixel): the export is an error naming the key, and nothing is written.
+#[test]
+fn adaptive_focal_blur_is_refused_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[camera]\naperture = 0.2\nblur_variance = 0.0001\n[[object]]\nshape = \"sphere\"\n";
+    export_case(dir.path(), scene, "blur_variance", Some("camera.blur_variance"));
+}
+
 /// A glTF metallic-roughness material (here a scene's `pbr` table, as glTF files give it) is
 /// exported as the `gltf_metallic_roughness` plugin of scripts/mitsuba_gltf_bsdf.py with its
 /// factors and bitmaps (the base colour decoded from sRGB, the metallic-roughness texture

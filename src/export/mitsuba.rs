@@ -19,7 +19,8 @@
 //! masks, glTF alpha blending, shapes without a
 //! Mitsuba form (torus, blob, superellipsoid, cone, a disc with a hole), spheres and
 //! cylinders under non-uniform scales, spot cones with a soft edge (Mitsuba's falls off
-//! linearly in angle, Prism's in a smoothstep of the cosine), POV-Ray's antialiasing methods.
+//! linearly in angle, Prism's in a smoothstep of the cosine), POV-Ray's antialiasing methods
+//! and its adaptive focal blur (`blur_variance`: Mitsuba takes the same samples everywhere).
 //! An infinite plane is written as a square of side `MITSUBA_PLANE_SIZE` centred below the
 //! scene (under an orthographic camera, 2000 scene radii: Mitsuba places hit points in single
 //! precision relative to a shape's size, and such a camera sees no horizon).
@@ -157,6 +158,17 @@ fn sensor(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
             origin.child("aspect"),
             "Mitsuba's pixels are square: a viewport aspect other than the image's cannot be exported",
         ));
+    }
+    if camera.blur_variance.is_some_and(|v| v > 0.0) {
+        let origin =
+            scene.world.get::<&Origin>(scene.camera).map_or_else(|_| scene.render_origin.clone(), |o| o.0.clone());
+        errors.push(
+            Diagnostic::new(
+                origin.child("blur_variance"),
+                "POV-Ray's adaptive focal blur has no Mitsuba equivalent: Mitsuba takes the same samples in every pixel",
+            )
+            .with_help("remove blur_variance (or set it to 0) to export the fixed sample count"),
+        );
     }
     let orthographic = camera.projection == Projection::Orthographic;
     let kind = match (orthographic, camera.aperture > 0.0) {

@@ -28,8 +28,8 @@ use crate::render::camera::CameraFrame;
 use crate::render::integrators::classic::lights::pov_equivalent;
 use crate::world::Scene;
 use crate::world::components::{
-    Antialias, Camera, CsgMaterials, Environment, IntegratorKind, Light, LightKind, MaterialComponent, Name,
-    ObjectFlags, Origin, PhotometricLight, Projection, RenderSettings, ShapeComponent, WorldTransform,
+    AdaptiveBlur, Antialias, Camera, CsgMaterials, Environment, IntegratorKind, Light, LightKind, MaterialComponent,
+    Name, ObjectFlags, Origin, PhotometricLight, Projection, RenderSettings, ShapeComponent, WorldTransform,
 };
 
 /// The deepest `max_trace_level` POV-Ray 3.7 accepts.
@@ -175,10 +175,18 @@ fn camera(out: &mut String, camera: &Camera, samples: u32) {
     if *aperture > 0.0 {
         // POV-Ray's lens samples fill a disc of radius aperture / 4 (its sample grid spans
         // [-0.5, 0.5] and is scaled by aperture / 2), Prism's of radius aperture / 2.
-        // Variance 0 makes POV-Ray take all blur samples, as Prism does.
+        // Variance 0 makes POV-Ray take all blur samples, as Prism does without
+        // `blur_variance`; with it, POV-Ray stops each pixel by the same rule as Prism.
+        let (counts, variance) = match camera.adaptive_blur() {
+            None => (format!("{samples}"), "0".to_string()),
+            Some(AdaptiveBlur { variance, confidence, min_samples }) => (
+                format!("{min_samples}, {samples}"),
+                format!("{}\n  confidence {}", number(variance), number(confidence)),
+            ),
+        };
         let _ = write!(
             out,
-            "  aperture {}\n  blur_samples {samples}\n  focal_point {}\n  variance 0\n",
+            "  aperture {}\n  blur_samples {counts}\n  focal_point {}\n  variance {variance}\n",
             number(2.0 * aperture),
             vector(frame.position + frame.direction * frame.focal_distance),
         );

@@ -155,13 +155,20 @@ pub fn select_camera(model: &Model, choice: &CameraChoice) -> Result<(usize, Imp
 /// vertical field of view (radians in the file, degrees in Prism); an orthographic view is
 /// `2 * ymag` high in the node's frame, so `view_height` is that times the length the node's
 /// world transform gives its +y. `look_at` is one world unit ahead; the lens (`aperture`,
-/// `focal_distance`) comes from `lens`.
+/// `focal_distance`, the `blur_*` keys) comes from `lens`.
 pub fn camera_from_node(world_from_camera: DAffine3, view: ImportedView, lens: &Camera) -> Camera {
     let position = world_from_camera.translation;
     let direction = world_from_camera.transform_vector3(DVec3::NEG_Z).normalize_or_zero();
     let world_up = world_from_camera.transform_vector3(DVec3::Y);
     let up = world_up.normalize_or_zero();
-    let lens_keys = Camera { aperture: lens.aperture, focal_distance: lens.focal_distance, ..Camera::default() };
+    let lens_keys = Camera {
+        aperture: lens.aperture,
+        focal_distance: lens.focal_distance,
+        blur_variance: lens.blur_variance,
+        blur_confidence: lens.blur_confidence,
+        blur_min_samples: lens.blur_min_samples,
+        ..Camera::default()
+    };
     let pose = Camera {
         position: position.to_array(),
         look_at: (position + direction).to_array(),
@@ -319,7 +326,14 @@ mod tests {
     #[test]
     fn cameras_look_down_minus_z_with_y_up() {
         let m = DAffine3::from_rotation_translation(DQuat::from_rotation_y(PI / 2.0), DVec3::new(1.0, 2.0, 3.0));
-        let lens = Camera { aperture: 0.5, focal_distance: Some(4.0), ..Camera::default() };
+        let lens = Camera {
+            aperture: 0.5,
+            focal_distance: Some(4.0),
+            blur_variance: Some(1e-3),
+            blur_confidence: Some(0.8),
+            blur_min_samples: Some(7),
+            ..Camera::default()
+        };
         let c = camera_from_node(m, ImportedView::Perspective { yfov: 0.5 }, &lens);
         assert_eq!(c.position, [1.0, 2.0, 3.0]);
         let view = DVec3::from_array(c.look_at) - DVec3::from_array(c.position);
@@ -327,6 +341,7 @@ mod tests {
         assert!((DVec3::from_array(c.up) - DVec3::Y).length() < 1e-12);
         assert!((c.vfov - 0.5f64.to_degrees()).abs() < 1e-12);
         assert_eq!((c.aperture, c.focal_distance, c.aspect), (0.5, Some(4.0), None));
+        assert_eq!((c.blur_variance, c.blur_confidence, c.blur_min_samples), (Some(1e-3), Some(0.8), Some(7)));
         assert_eq!((c.projection, c.view_height), (Projection::Perspective, None));
     }
 

@@ -12,7 +12,7 @@ use glam::{DVec2, DVec3};
 use super::camera::pov_screen;
 use super::extract::RenderScene;
 use super::integrators::Integrator;
-use super::sampling::{SampleStream, hash4, mix64};
+use super::sampling::{ProgressivePattern, SampleStream, hash4, mix64};
 use crate::world::components::Antialias;
 
 /// Side of the square blocks POV-Ray antialiases independently (`Render_Block_Size`).
@@ -69,7 +69,8 @@ struct Sampler<'a, I: Integrator> {
 impl<I: Integrator> Sampler<'_, I> {
     /// The colour at image position (x, y), pixel centres at integers (POV-Ray's
     /// `TracePixel::operator()`). With an aperture it averages `samples` lens samples spread
-    /// over the pixel, as POV-Ray's focal blur does.
+    /// over the pixel, as POV-Ray's focal blur does (fewer once they agree, under adaptive
+    /// focal blur).
     fn trace(&mut self, x: f64, y: f64) -> DVec3 {
         let settings = &self.scene.settings;
         // Random numbers keyed by the exact position, so every block and thread agrees.
@@ -80,7 +81,27 @@ impl<I: Integrator> Sampler<'_, I> {
             return self.radiance(x0, y0, DVec2::ZERO, stream);
         }
         let samples = settings.samples;
-        let patterns = self.scene.patterns.for_key(hash4(key, 0, u64::MAX, settings.seed));
+        let pattern_key = hash4(key, 0, u64::MAX, settings.seed);
+        if let Some(blur) = &self.scene.focal_blur {
+            // POV-Ray's adaptive focal blur stops each traced position on its own; its lens
+            // and sub-pixel positions then come from a pattern stratified at every prefix.
+            let mut pattern = ProgressivePattern::new(pattern_key);
+            let mut test = blur.test();
+            let mut sum = DVec3::ZERO;
+            for s in 0..samples {
+                pattern.seek(s);
+                let offset = pattern.offset() - DVec2::splat(0.5);
+                let (x0, y0) = pov_screen(x + offset.x, y + offset.y, self.width, self.height);
+                let stream = SampleStream::new(key, u64::from(s), settings.seed);
+                let radiance = self.radiance(x0, y0, pattern.lens(), stream);
+                sum += radiance;
+                if test.add(radiance) {
+                    break;
+                }
+            }
+            return sum / f64::from(test.taken());
+        }
+        let patterns = self.scene.patterns.for_key(pattern_key);
         let mut sum = DVec3::ZERO;
         for s in 0..samples {
             let offset = patterns.offset(s) - DVec2::splat(0.5);

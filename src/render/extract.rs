@@ -4,6 +4,7 @@
 
 use super::camera::RenderCamera;
 use super::filter::FilterSampler;
+use super::focal_blur::BlurSchedule;
 use super::lights::{RenderLight, SceneLights};
 use super::sampling::PatternTable;
 use crate::accel::primitive::Primitive;
@@ -19,8 +20,8 @@ use crate::material::Material;
 use crate::material::pov_view::PovView;
 use crate::world::Scene;
 use crate::world::components::{
-    CsgMaterials, Environment, Light, MaterialComponent, ObjectFlags, PhotometricLight, RenderSettings, ShapeComponent,
-    WorldTransform,
+    CsgMaterials, Environment, IntegratorKind, Light, MaterialComponent, ObjectFlags, PhotometricLight, RenderSettings,
+    ShapeComponent, WorldTransform,
 };
 
 /// Everything a render needs, immutable and shareable across threads.
@@ -46,6 +47,9 @@ pub struct RenderScene {
     pub patterns: PatternTable,
     /// Draws sample offsets for a non-box pixel filter.
     pub filter: Option<FilterSampler>,
+    /// POV-Ray's adaptive focal blur (`[camera] blur_variance`): when each pixel (or, under
+    /// POV-Ray's antialiasing, each traced position) stops taking lens samples.
+    pub focal_blur: Option<BlurSchedule>,
 }
 
 impl RenderScene {
@@ -53,15 +57,16 @@ impl RenderScene {
     /// scene then renders exactly as one extracted with that count.
     pub fn set_samples(&mut self, samples: u32) {
         self.settings.samples = samples;
-        self.patterns = patterns_for(&self.settings, self.camera.aperture);
+        self.focal_blur = self.focal_blur.as_ref().map(|blur| blur.with_max(samples));
+        self.patterns = patterns_for(&self.settings, self.camera.aperture, self.focal_blur.is_some());
     }
 }
 
 /// The pixel and lens patterns of `settings.samples` points per pixel (none under adaptive
-/// sampling, whose pixels draw progressive patterns of their own).
-fn patterns_for(settings: &RenderSettings, aperture: f64) -> PatternTable {
+/// sampling or adaptive focal blur, whose pixels draw progressive patterns of their own).
+fn patterns_for(settings: &RenderSettings, aperture: f64, adaptive_blur: bool) -> PatternTable {
     let samples = settings.samples;
-    if (samples > 1 || aperture > 0.0) && settings.noise.is_none() {
+    if (samples > 1 || aperture > 0.0) && settings.noise.is_none() && !adaptive_blur {
         PatternTable::new(samples, settings.seed)
     } else {
         PatternTable::untabulated(samples)
@@ -140,7 +145,12 @@ pub fn extract(scene: &Scene) -> RenderScene {
     let accel = Accel::build_flattening(&primitives, &flattenable(&primitives));
     let has_transparency = materials.iter().any(|m| PovView::new(m).base.is_transparent());
     let camera = RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height);
-    let patterns = patterns_for(&scene.render, camera.aperture);
+    let focal_blur = scene
+        .camera()
+        .adaptive_blur()
+        .filter(|_| scene.render.integrator == IntegratorKind::Classic)
+        .map(|blur| BlurSchedule::new(blur.variance, blur.confidence, blur.min_samples, scene.render.samples));
+    let patterns = patterns_for(&scene.render, camera.aperture, focal_blur.is_some());
     RenderScene {
         camera,
         primitives,
@@ -152,6 +162,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
         has_transparency,
         patterns,
         filter: FilterSampler::new(scene.render.filter),
+        focal_blur,
     }
 }
 

@@ -9,6 +9,7 @@ pub mod bsdf;
 pub mod camera;
 pub mod extract;
 pub mod filter;
+pub mod focal_blur;
 pub mod integrators;
 pub mod lights;
 pub mod sampling;
@@ -194,6 +195,11 @@ pub enum RenderError {
         "--sample-range: the scene samples adaptively (`noise`), so each pixel decides from all its samples when to stop and its samples cannot be split; split the image with --region or --tile instead, or drop `noise`"
     )]
     SampleRangeWithNoise,
+    /// A sample range was asked of a render with adaptive focal blur.
+    #[error(
+        "--sample-range: the scene's focal blur is adaptive (`blur_variance`), so each pixel decides from all its lens samples when to stop and its samples cannot be split; split the image with --region or --tile instead, or drop `blur_variance`"
+    )]
+    SampleRangeWithAdaptiveBlur,
     /// The region is empty or leaves the frame.
     #[error("region {x0},{y0},{x1},{y1} is not a non-empty part of the {width}x{height} image", x0 = region.x0, y0 = region.y0, x1 = region.x1, y1 = region.y1)]
     Region {
@@ -402,6 +408,9 @@ fn render_samples<I: Integrator>(
     }
     if scene.settings.noise.is_some() && range != (0..samples) {
         return Err(RenderError::SampleRangeWithNoise);
+    }
+    if scene.focal_blur.is_some() && range != (0..samples) {
+        return Err(RenderError::SampleRangeWithAdaptiveBlur);
     }
     let threads = options.threads.unwrap_or(0);
     if threads > MAX_THREADS {
@@ -769,7 +778,9 @@ impl PixelSpread {
 /// never stopping above the `noise` target); its offsets and lens positions are then a
 /// progressive pattern ([`sampling::ProgressivePattern`]), stratified at whatever count it
 /// stops. The decision depends on the pixel's own samples only, so the image is the same
-/// for any thread count or tiling. (Sample ranges with `noise` are refused before this.)
+/// for any thread count or tiling. Adaptive focal blur (`[camera] blur_variance`) stops a
+/// pixel the same way at the batch ends of POV-Ray's rule ([`focal_blur::BlurTest`]), on the
+/// same progressive pattern. (Sample ranges with either are refused before this.)
 pub fn render_pixel_samples<I: Integrator>(
     scene: &RenderScene,
     integrator: &I,
@@ -783,7 +794,10 @@ pub fn render_pixel_samples<I: Integrator>(
     let samples = settings.samples;
     // Per-pixel pattern keys decorrelate the stratified patterns of neighbouring pixels.
     let key = hash4(pixel, 0, u64::MAX, settings.seed);
-    let mut progressive = (samples > 1 && settings.noise.is_some()).then(|| sampling::ProgressivePattern::new(key));
+    let adaptive_blur = scene.focal_blur.as_ref().filter(|_| range == (0..samples));
+    let mut progressive = (samples > 1 && (settings.noise.is_some() || scene.focal_blur.is_some()))
+        .then(|| sampling::ProgressivePattern::new(key));
+    let mut blur_test = adaptive_blur.map(focal_blur::BlurSchedule::test);
     let patterns = (samples > 1 && progressive.is_none()).then(|| scene.patterns.for_key(key));
     let mut sum = DVec3::ZERO;
     let mut weights = 0.0;
@@ -838,6 +852,12 @@ pub fn render_pixel_samples<I: Integrator>(
             && s + 1 >= SAMPLE_BATCH * MIN_BATCHES
             && s + 1 < samples
             && spread.has_enough(noise)
+        {
+            taken = s + 1;
+            break;
+        }
+        if let Some(test) = &mut blur_test
+            && test.add(radiance)
         {
             taken = s + 1;
             break;

@@ -221,6 +221,15 @@ fn camera_table(scene: &Scene) -> Result<toml::Value, toml::ser::Error> {
     if let Some(f) = camera.focal_distance {
         lens.insert("focal_distance".into(), f.into());
     }
+    if let Some(v) = camera.blur_variance {
+        lens.insert("blur_variance".into(), v.into());
+    }
+    if let Some(c) = camera.blur_confidence {
+        lens.insert("blur_confidence".into(), c.into());
+    }
+    if let Some(m) = camera.blur_min_samples {
+        lens.insert("blur_min_samples".into(), i64::from(m).into());
+    }
     Ok(lens.into())
 }
 

@@ -65,7 +65,7 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
                 "description": "glTF: add the file's KHR_lights_punctual lights, placed by their nodes under this object's transform."
             },
             "import_camera": {
-                "description": "glTF: the scene's camera is the file's camera (true: the first; a number: its index in the file's cameras; a string: its name or its node's name). [camera] may then set only aperture and focal_distance.",
+                "description": "glTF: the scene's camera is the file's camera (true: the first; a number: its index in the file's cameras; a string: its name or its node's name). [camera] may then set only the lens: aperture, focal_distance and the blur_* keys.",
                 "anyOf": [{ "type": "boolean" }, { "type": "integer", "minimum": 0 }, { "type": "string" }]
             }
         }

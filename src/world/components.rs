@@ -345,6 +345,18 @@ pub struct Camera {
     /// Distance of the sharp plane; the distance to `look_at` when absent.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub focal_distance: Option<f64>,
+    /// POV-Ray's adaptive focal blur (`variance`), classic integrator with an aperture: a
+    /// pixel stops taking lens samples once the variance of its mean is below this, scaled by
+    /// POV-Ray's chi-square ratio (0 to 1; absent or 0: always `[render] samples`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub blur_variance: Option<f64>,
+    /// POV-Ray's focal blur `confidence`, in (0, 1) (default 0.9); needs `blur_variance`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub blur_confidence: Option<f64>,
+    /// The fewest lens samples a pixel takes under adaptive focal blur (POV-Ray's
+    /// `blur_samples min, max` first value; 1 to `samples`, default 1); needs `blur_variance`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub blur_min_samples: Option<u32>,
     /// How rays leave the camera: from the eye through the viewport (`perspective`), or all
     /// parallel to the view axis from a rectangle around the eye (`orthographic`).
     #[serde(skip_serializing_if = "Projection::is_perspective")]
@@ -353,6 +365,33 @@ pub struct Camera {
     /// `look_at` when absent, so switching projection keeps the framing there.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub view_height: Option<f64>,
+}
+
+/// POV-Ray's default focal blur `confidence`.
+pub const DEFAULT_BLUR_CONFIDENCE: f64 = 0.9;
+
+/// A camera's adaptive focal blur settings, as [`Camera::adaptive_blur`] resolves them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptiveBlur {
+    /// POV-Ray's `variance` (positive).
+    pub variance: f64,
+    /// POV-Ray's `confidence`.
+    pub confidence: f64,
+    /// The fewest lens samples a pixel takes.
+    pub min_samples: u32,
+}
+
+impl Camera {
+    /// The adaptive focal blur this camera asks for: an aperture and a positive
+    /// `blur_variance`, with the defaults filled in (`None`: the fixed count).
+    pub fn adaptive_blur(&self) -> Option<AdaptiveBlur> {
+        let variance = self.blur_variance.filter(|v| *v > 0.0)?;
+        (self.aperture > 0.0).then(|| AdaptiveBlur {
+            variance,
+            confidence: self.blur_confidence.unwrap_or(DEFAULT_BLUR_CONFIDENCE),
+            min_samples: self.blur_min_samples.unwrap_or(1),
+        })
+    }
 }
 
 /// A camera's projection.
@@ -384,6 +423,9 @@ impl Default for Camera {
             aspect: None,
             aperture: 0.0,
             focal_distance: None,
+            blur_variance: None,
+            blur_confidence: None,
+            blur_min_samples: None,
             projection: Projection::Perspective,
             view_height: None,
         }

@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::Scene;
 use super::components::{
-    Antialias, ImportedCamera, IntegratorKind, Light, LightKind, MaterialComponent, Origin, PhotometricLight,
+    Antialias, Camera, ImportedCamera, IntegratorKind, Light, LightKind, MaterialComponent, Origin, PhotometricLight,
     PixelFilter, Projection, RenderSettings, WorldTransform,
 };
 use crate::diagnostics::{Diagnostic, Location, SceneError};
@@ -234,6 +234,7 @@ fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
     {
         out.push(Diagnostic::new(origin.child("focal_distance"), "focal_distance must be positive"));
     }
+    check_adaptive_blur(&camera, &scene.render, &origin, out);
     match camera.projection {
         Projection::Perspective => {
             if camera.view_height.is_some() {
@@ -263,6 +264,83 @@ fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
 }
 
 use crate::limits::{MAX_COEFFICIENT, MAX_COLOR_COMPONENT};
+
+/// POV-Ray's adaptive focal blur keys: in range, and only where they apply (a lens, the
+/// classic integrator, `blur_variance` for the other two, not beside `noise`).
+fn check_adaptive_blur(camera: &Camera, render: &RenderSettings, origin: &Location, out: &mut Vec<Diagnostic>) {
+    let set: Vec<&str> = [
+        ("blur_variance", camera.blur_variance.is_some()),
+        ("blur_confidence", camera.blur_confidence.is_some()),
+        ("blur_min_samples", camera.blur_min_samples.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(key, is_set)| is_set.then_some(key))
+    .collect();
+    let Some(&first) = set.first() else { return };
+    if let Some(v) = camera.blur_variance
+        && !(0.0..=1.0).contains(&v)
+    {
+        out.push(Diagnostic::new(
+            origin.child("blur_variance"),
+            format!("blur_variance must be between 0 and 1 (POV-Ray's range), got {v}"),
+        ));
+    }
+    if let Some(c) = camera.blur_confidence
+        && !(c > 0.0 && c < 1.0)
+    {
+        out.push(Diagnostic::new(
+            origin.child("blur_confidence"),
+            format!("blur_confidence must be between 0 and 1 (exclusive), got {c}"),
+        ));
+    }
+    if let Some(m) = camera.blur_min_samples
+        && !(1..=render.samples.max(1)).contains(&m)
+    {
+        out.push(
+            Diagnostic::new(
+                origin.child("blur_min_samples"),
+                format!("blur_min_samples must be between 1 and [render] samples ({}), got {m}", render.samples),
+            )
+            .with_help("[render] samples is the most lens samples a pixel takes (POV-Ray's blur_samples maximum)"),
+        );
+    }
+    if camera.aperture <= 0.0 {
+        out.push(
+            Diagnostic::new(
+                origin.child(first),
+                format!("{first} applies to focal blur, but the camera has no aperture"),
+            )
+            .with_help("set aperture > 0, or remove the blur_* keys"),
+        );
+        return;
+    }
+    if render.integrator != IntegratorKind::Classic {
+        out.push(
+            Diagnostic::new(
+                origin.child(first),
+                format!("{first} is POV-Ray's adaptive focal blur, a setting of the classic integrator"),
+            )
+            .with_help("the path integrator takes [render] samples lens samples in every pixel (use [render] noise to sample adaptively); remove the blur_* keys"),
+        );
+        return;
+    }
+    if !camera.blur_variance.is_some_and(|v| v > 0.0) {
+        for key in set.iter().filter(|k| **k != "blur_variance") {
+            out.push(
+                Diagnostic::new(origin.child(key), format!("{key} has no effect without blur_variance > 0"))
+                    .with_help("set blur_variance (POV-Ray's variance, e.g. 0.0001) to make the focal blur adaptive"),
+            );
+        }
+    } else if render.noise.is_some() {
+        out.push(
+            Diagnostic::new(
+                origin.child("blur_variance"),
+                "blur_variance and [render] noise are two rules for when a pixel stops sampling; use one",
+            )
+            .with_help("remove [render] noise to stop lens samples as POV-Ray does, or blur_variance for Prism's adaptive sampling"),
+        );
+    }
+}
 
 fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
     let vectors =

@@ -33,7 +33,8 @@ pub(super) fn spawn_imported_lights(
 }
 
 /// Spawns the scene's camera from an `import_camera` object: the file's camera at its node's
-/// world transform, with the lens (`aperture`, `focal_distance`) of `[camera]`.
+/// world transform, with the lens (`aperture`, `focal_distance`, the `blur_*` keys) of
+/// `[camera]`.
 pub(super) fn spawn_imported_camera(world: &mut hecs::World, import: CameraImport, lens: &Camera) -> hecs::Entity {
     let camera = match world_from_local(world, import.node) {
         Some(world_from_camera) => punctual::camera_from_node(world_from_camera, import.view, lens),
@@ -73,7 +74,8 @@ pub(super) struct CameraImport {
 }
 
 /// `[camera]` keys that may accompany an imported camera (the lens).
-pub(super) const LENS_KEYS: [&str; 2] = ["aperture", "focal_distance"];
+pub(super) const LENS_KEYS: [&str; 5] =
+    ["aperture", "focal_distance", "blur_variance", "blur_confidence", "blur_min_samples"];
 
 /// `[camera]` keys an imported camera takes from the file (a second source is an error).
 pub(super) const POSE_KEYS: [&str; 7] = ["position", "look_at", "up", "vfov", "aspect", "projection", "view_height"];
@@ -409,7 +411,7 @@ impl Loader<'_> {
             )
             .with_help(format!(
                 "with an imported camera, [camera] may set only {}; remove `import_camera` to place the camera here",
-                LENS_KEYS.join(" and ")
+                LENS_KEYS.join(", ")
             ));
             found.push(d);
         }
