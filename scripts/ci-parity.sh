@@ -3,16 +3,21 @@
 #
 # Installs Debian's POV-Ray 3.7 when it is missing, re-renders every parity reference into a
 # fresh directory with scripts/povray-references.sh (our exporter writes the .pov files,
-# povray renders them), checks that the exporter still writes the committed .pov files, and
-# runs tests/parity.rs against the fresh images as well as the committed ones
-# (PRISM_PARITY_REFS). A missing POV-Ray that cannot be installed is an error, never a skip.
+# povray renders them) and the references of POV-Ray's own sample scenes into its
+# povray-examples/ with scripts/povray-example-references.sh (povray renders the committed
+# originals), checks that the exporter still writes the committed .pov files, and runs
+# tests/parity.rs against the fresh images as well as the committed ones (PRISM_PARITY_REFS).
+# A missing POV-Ray that cannot be installed is an error, never a skip.
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 cd "$ROOT"
 
-if ! command -v povray >/dev/null 2>&1; then
+# povray-includes (colors.inc, finish.inc, ...) is only recommended by povray; the sample
+# scenes in scenes/povray-examples include it.
+if ! command -v povray >/dev/null 2>&1 || [ ! -e /usr/share/povray-3.7/include/colors.inc ]; then
     if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
-        apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq povray >/dev/null
+        apt-get update -qq &&
+            DEBIAN_FRONTEND=noninteractive apt-get install -y -qq povray povray-includes >/dev/null
     fi
 fi
 if ! command -v povray >/dev/null 2>&1; then
@@ -23,6 +28,7 @@ povray --version 2>&1 | grep -m1 "^POV-Ray" || true
 
 FRESH=$(mktemp -d "${TMPDIR:-/tmp}/prism-parity-refs.XXXXXX")
 scripts/povray-references.sh "$FRESH"
+scripts/povray-example-references.sh "$FRESH/povray-examples"
 
 stale=0
 for pov in "$FRESH"/*.pov; do

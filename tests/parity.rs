@@ -1,18 +1,23 @@
 //! Parity with POV-Ray 3.7: every scene in `scenes/parity/` renders like its POV-Ray
 //! reference, `scenes/parity/NAME.exr` (committed, rendered by POV-Ray from `NAME.pov`, which
-//! Prism's exporter wrote). Images are compared in linear light: RMSE at most 1e-3 and at
-//! most 0.5 % of the pixels off by more than 2/255 after sRGB encoding, unless the scene file
-//! states a statistical tolerance and its reason (`# parity-tolerance:` / `# parity-reason:`).
+//! Prism's exporter wrote), and every scene in `scenes/povray-examples/` like the reference
+//! POV-Ray renders from the original sample scene `NAME.pov` beside it. Images are compared in
+//! linear light (Prism's image rounded to half floats, the references' precision): RMSE at
+//! most 1e-3 and at most 0.5 % of the pixels off by more than 2/255 after sRGB encoding,
+//! unless the scene file states a statistical tolerance and its reason
+//! (`# parity-tolerance:` / `# parity-reason:`).
 //!
-//! With `PRISM_PARITY_REFS=DIR` the scenes are also compared with the references in DIR
-//! (rendered afresh by `scripts/povray-references.sh DIR`, as CI does), so the check is live.
-//! A failure writes Prism's image, the reference and a false-colour difference image to
+//! With `PRISM_PARITY_REFS=DIR` the scenes are also compared with the references in DIR and
+//! `DIR/povray-examples` (rendered afresh by `scripts/povray-references.sh DIR` and
+//! `scripts/povray-example-references.sh DIR/povray-examples`, as CI does), so the check is
+//! live. A failure writes Prism's image, the reference and a false-colour difference image to
 //! `target/parity/` and prints the command that regenerates the reference. A missing
 //! reference fails.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use exr::prelude::f16;
 use prism::film::Film;
 use prism::output::{read_exr, srgb_encode};
 use prism::render::{RenderOptions, render_frame};
@@ -31,8 +36,28 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn scenes() -> Vec<String> {
-    let dir = root().join("scenes/parity");
+/// A set of parity scenes: a directory of `NAME.toml` with their references `NAME.exr`.
+#[derive(Clone, Copy)]
+struct Suite {
+    /// The scenes' directory, relative to the repository.
+    dir: &'static str,
+    /// Where the live references of this suite lie under `PRISM_PARITY_REFS`.
+    live_subdir: &'static str,
+    /// The script that renders the references: `SCRIPT OUTDIR NAME`.
+    script: &'static str,
+}
+
+/// Scenes written by hand, their `.pov` files by Prism's exporter.
+const PARITY: Suite = Suite { dir: "scenes/parity", live_subdir: "", script: "scripts/povray-references.sh" };
+/// POV-Ray's own sample scenes, their `.pov` files the originals (see its README).
+const EXAMPLES: Suite = Suite {
+    dir: "scenes/povray-examples",
+    live_subdir: "povray-examples",
+    script: "scripts/povray-example-references.sh",
+};
+
+fn scenes(suite: Suite) -> Vec<String> {
+    let dir = root().join(suite.dir);
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .filter_map(|e| {
@@ -90,10 +115,18 @@ fn encoded(v: f32) -> f64 {
     srgb_encode(f64::from(v).clamp(0.0, 1.0))
 }
 
+/// `v` rounded to a half float, the precision of the references (POV-Ray writes half-float
+/// OpenEXR): far outside [0, 1], where the spacing of halves reaches 1/64 at 16, comparing
+/// unrounded values would measure the reference's rounding, not the renderers.
+fn as_stored(v: f32) -> f32 {
+    f16::from_f32(v).to_f32()
+}
+
 fn difference(ours: &Film, reference: &Film) -> Difference {
     let mut sum = 0.0;
     let mut per_pixel = Vec::with_capacity(ours.pixels.len());
     for (a, b) in ours.pixels.iter().zip(&reference.pixels) {
+        let a = a.map(as_stored);
         let mut worst: f64 = 0.0;
         for c in 0..3 {
             let d = f64::from(a[c]) - f64::from(b[c]);
@@ -111,7 +144,7 @@ fn difference(ours: &Film, reference: &Film) -> Difference {
             let mut d = [0.0f64; 3];
             for y in by * BLOCK..(by + 1) * BLOCK {
                 for x in bx * BLOCK..(bx + 1) * BLOCK {
-                    let (a, b) = (ours.pixels[y * w + x], reference.pixels[y * w + x]);
+                    let (a, b) = (ours.pixels[y * w + x].map(as_stored), reference.pixels[y * w + x]);
                     for c in 0..3 {
                         d[c] += f64::from(a[c]) - f64::from(b[c]);
                     }
@@ -162,19 +195,26 @@ fn write_artifacts(dir: &Path, name: &str, ours: &Film, reference: &Film, d: &Di
     diff.save(dir.join(format!("{name}.diff.png"))).map_err(std::io::Error::other)
 }
 
-fn render_scene(name: &str) -> Film {
-    let path = root().join(format!("scenes/parity/{name}.toml"));
+fn render_scene(suite: Suite, name: &str) -> Film {
+    let path = root().join(format!("{}/{name}.toml", suite.dir));
     let mut scene = load_file(&path, &plugins::registry()).unwrap_or_else(|e| panic!("{e}"));
     let render_scene = prepare(&mut scene).unwrap_or_else(|e| panic!("{e}"));
     render_frame(&render_scene, &RenderOptions::default()).expect("render").0
 }
 
 /// One comparison's line in the report, or `Err` with the reason it failed.
-fn check(name: &str, ours: &Film, reference: &Path, limits: &Tolerance, live: bool) -> Result<String, String> {
+fn check(
+    suite: Suite,
+    name: &str,
+    ours: &Film,
+    reference: &Path,
+    limits: &Tolerance,
+    live: bool,
+) -> Result<String, String> {
     let regenerate = if live {
-        format!("scripts/povray-references.sh {} {name}", reference.parent().unwrap_or(Path::new(".")).display())
+        format!("{} {} {name}", suite.script, reference.parent().unwrap_or(Path::new(".")).display())
     } else {
-        format!("scripts/povray-references.sh scenes/parity {name}")
+        format!("{} {} {name}", suite.script, suite.dir)
     };
     if !reference.exists() {
         return Err(format!("{name}: reference {} is missing; render it with: {regenerate}", reference.display()));
@@ -211,15 +251,13 @@ fn check(name: &str, ours: &Film, reference: &Path, limits: &Tolerance, live: bo
     Err(format!("{line}\n  FAILED: {written}\n  regenerate the reference with: {regenerate}"))
 }
 
-#[test]
-fn scenes_match_pov_ray() {
-    let names = scenes();
-    assert!(names.len() >= 16, "the parity suite has only {} scenes", names.len());
-    let live = std::env::var_os("PRISM_PARITY_REFS").map(PathBuf::from);
+/// Renders every scene of `suite` and compares it with its committed reference and, with
+/// `live`, the fresh one; returns the report lines and the failures.
+fn run_suite(suite: Suite, live: Option<&Path>) -> (Vec<String>, Vec<String>) {
     let mut report = Vec::new();
     let mut failures = Vec::new();
-    for name in &names {
-        let text = std::fs::read_to_string(root().join(format!("scenes/parity/{name}.toml"))).unwrap();
+    for name in &scenes(suite) {
+        let text = std::fs::read_to_string(root().join(format!("{}/{name}.toml", suite.dir))).unwrap();
         let limits = match tolerance(&text) {
             Ok(t) => t,
             Err(e) => {
@@ -227,18 +265,48 @@ fn scenes_match_pov_ray() {
                 continue;
             }
         };
-        let ours = render_scene(name);
-        let mut references = vec![(root().join(format!("scenes/parity/{name}.exr")), false)];
-        if let Some(dir) = &live {
-            references.push((dir.join(format!("{name}.exr")), true));
+        let ours = render_scene(suite, name);
+        let mut references = vec![(root().join(format!("{}/{name}.exr", suite.dir)), false)];
+        if let Some(dir) = live {
+            references.push((dir.join(suite.live_subdir).join(format!("{name}.exr")), true));
         }
         for (reference, is_live) in references {
-            match check(name, &ours, &reference, &limits, is_live) {
+            match check(suite, name, &ours, &reference, &limits, is_live) {
                 Ok(line) => report.push(line),
                 Err(e) => failures.push(e),
             }
         }
     }
+    (report, failures)
+}
+
+#[test]
+fn scenes_match_pov_ray() {
+    let names = scenes(PARITY);
+    assert!(names.len() >= 16, "the parity suite has only {} scenes", names.len());
+    let live = std::env::var_os("PRISM_PARITY_REFS").map(PathBuf::from);
+    let (report, failures) = run_suite(PARITY, live.as_deref());
+    println!("{}", report.join("\n"));
+    assert!(failures.is_empty(), "{} parity failure(s):\n{}", failures.len(), failures.join("\n"));
+}
+
+#[test]
+fn povray_examples_match_pov_ray() {
+    let names = scenes(EXAMPLES);
+    assert!(names.len() >= 4, "scenes/povray-examples has only {} scenes", names.len());
+    for name in &names {
+        let original = root().join(format!("{}/{name}.pov", EXAMPLES.dir));
+        assert!(original.exists(), "{name}: the original {} is missing", original.display());
+        let text = std::fs::read_to_string(root().join(format!("{}/{name}.toml", EXAMPLES.dir))).unwrap();
+        let options = text.lines().find_map(|l| l.strip_prefix("# povray-options:"));
+        assert!(
+            options.is_some_and(|o| o.split_whitespace().any(|w| w == "-J")),
+            "{name}.toml needs a `# povray-options:` line (without jitter, -J) for {}",
+            EXAMPLES.script
+        );
+    }
+    let live = std::env::var_os("PRISM_PARITY_REFS").map(PathBuf::from);
+    let (report, failures) = run_suite(EXAMPLES, live.as_deref());
     println!("{}", report.join("\n"));
     assert!(failures.is_empty(), "{} parity failure(s):\n{}", failures.len(), failures.join("\n"));
 }
@@ -246,7 +314,8 @@ fn scenes_match_pov_ray() {
 #[test]
 fn committed_pov_files_are_current() {
     let mut stale = Vec::new();
-    for name in scenes() {
+    // Only the exported scenes: the examples' .pov files are POV-Ray's originals.
+    for name in scenes(PARITY) {
         let path = root().join(format!("scenes/parity/{name}.toml"));
         let mut scene = load_file(&path, &plugins::registry()).unwrap_or_else(|e| panic!("{e}"));
         prism::world::transforms::resolve_transforms(&mut scene).unwrap();
