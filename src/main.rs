@@ -779,6 +779,13 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
     }
     if let Some(s) = args.frame.samples {
         settings.samples = s;
+        // --samples is POV-Ray's `blur_samples` maximum; the scene's minimum follows it down,
+        // so a quick low-sample preview of an adaptive focal blur scene still renders.
+        if let Ok(mut camera) = scene.world.get::<&mut prism::world::components::Camera>(scene.camera)
+            && camera.blur_min_samples.is_some_and(|m| m > s)
+        {
+            camera.blur_min_samples = Some(s.max(1));
+        }
     }
     if let Some(s) = args.seed {
         settings.seed = s;

@@ -59,11 +59,6 @@ fn cases() -> Vec<Case> {
             &["scene.toml:1:", "camera.blur_variance", "no aperture"],
         ),
         case(
-            "adaptive focal blur under the path integrator",
-            &format!("[render]\nintegrator = \"path\"\n[camera]\naperture = 0.1\nblur_variance = 0.001\n{SPHERE}"),
-            &["scene.toml:3:", "camera.blur_variance", "classic integrator"],
-        ),
-        case(
             "blur_variance out of POV-Ray's range",
             &format!("[camera]\naperture = 0.1\nblur_variance = 2\n{SPHERE}"),
             &["scene.toml:1:", "camera.blur_variance", "between 0 and 1"],
@@ -456,6 +451,31 @@ fn a_spot_radius_beyond_its_falloff_is_a_warning() {
     let run = prism().current_dir(dir.path()).args(["render", "equal.toml", "-o", "out.png"]).output().unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success() && !stderr.contains("exceeds falloff"), "{stderr}");
+}
+
+/// POV-Ray's adaptive focal blur keys are classic's: under `path` (here through
+/// `--integrator`) they are ignored with a warning at the key, so the scene still renders;
+/// `--samples` below `blur_min_samples` lowers the minimum with it.
+#[test]
+fn adaptive_blur_keys_bend_to_command_line_overrides() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[render]\nwidth = 8\nheight = 6\nsamples = 16\n[camera]\naperture = 0.1\nblur_variance = 0.001\n\
+                 blur_min_samples = 7\n[[light]]\nposition = [0, 5, 5]\n[[object]]\nshape = \"sphere\"\n";
+    std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
+    let run = |args: &[&str]| {
+        let run = prism().current_dir(dir.path()).args(["render", "scene.toml", "-o", "out.png"]).args(args).output();
+        let run = run.unwrap();
+        (run.status.success(), String::from_utf8_lossy(&run.stderr).into_owned())
+    };
+    let (ok, stderr) = run(&["--integrator", "path"]);
+    assert!(
+        ok && stderr.contains("scene.toml:5:2: warning in `camera.blur_variance`: blur_variance is ignored"),
+        "{stderr}"
+    );
+    let (ok, stderr) = run(&[]);
+    assert!(ok && !stderr.contains("warning"), "{stderr}");
+    let (ok, stderr) = run(&["--samples", "1"]);
+    assert!(ok && stderr.contains("at 1 spp"), "{stderr}");
 }
 
 #[test]

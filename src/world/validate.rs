@@ -18,8 +18,9 @@ pub const MAX_PIXELS: u64 = 268_435_456;
 pub const MAX_SAMPLES: u32 = 1 << 20;
 
 /// Warnings that depend on the final settings, so they are not among [`Scene::warnings`]: a
-/// camera imported from a file made for another aspect ratio than the image's, and a path-
-/// traced scene without any light (call it once the settings are final, after command-line
+/// camera imported from a file made for another aspect ratio than the image's, POV-Ray's
+/// adaptive focal blur keys under `path` (ignored there), and a path-traced scene without any
+/// light (call it once the settings are final, after command-line
 /// overrides).
 pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
     let mut out = Vec::new();
@@ -31,6 +32,30 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
             Err(_) => scene.render_origin.clone(),
         };
         out.push(Diagnostic::warning(location, format!("{}: {w}", imported.description)));
+    }
+    let camera = scene.camera();
+    let blur_keys = [
+        ("blur_variance", camera.blur_variance.is_some()),
+        ("blur_confidence", camera.blur_confidence.is_some()),
+        ("blur_min_samples", camera.blur_min_samples.is_some()),
+    ];
+    if scene.render.integrator == IntegratorKind::Path
+        && let Some((first, _)) = blur_keys.iter().find(|(_, set)| *set)
+    {
+        let location = match scene.world.get::<&Origin>(scene.camera) {
+            Ok(origin) => origin.0.child(first),
+            Err(_) => scene.render_origin.clone(),
+        };
+        out.push(
+            Diagnostic::warning(
+                location,
+                format!(
+                    "{first} is ignored: POV-Ray's adaptive focal blur belongs to the classic integrator, \
+                     and the path integrator takes [render] samples lens samples in every pixel"
+                ),
+            )
+            .with_help("use [render] noise to sample adaptively under path"),
+        );
     }
     if scene.render.integrator == IntegratorKind::Path && !has_light(scene) {
         out.push(
@@ -314,14 +339,9 @@ fn check_adaptive_blur(camera: &Camera, render: &RenderSettings, origin: &Locati
         );
         return;
     }
+    // Under `path` the keys are ignored with a warning ([`warnings`]), so that every scene
+    // renders under both integrators.
     if render.integrator != IntegratorKind::Classic {
-        out.push(
-            Diagnostic::new(
-                origin.child(first),
-                format!("{first} is POV-Ray's adaptive focal blur, a setting of the classic integrator"),
-            )
-            .with_help("the path integrator takes [render] samples lens samples in every pixel (use [render] noise to sample adaptively); remove the blur_* keys"),
-        );
         return;
     }
     if !camera.blur_variance.is_some_and(|v| v > 0.0) {
