@@ -63,7 +63,7 @@ fn writes_normal_patterns_after_the_pigment() {
     ] {
         assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
     }
-    assert_eq!(pov.matches("normal {").count(), 9);
+    assert_eq!(pov.matches("normal {").count(), 10);
 }
 
 #[test]

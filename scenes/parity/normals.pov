@@ -222,3 +222,25 @@ sphere { <0.0, 0.0, -0.0>, 0.7
   interior { ior 1.0 }
 }
 
+// "glass" sphere
+sphere { <0.0, 0.0, -0.0>, 0.5
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 0.0, 0.9, 6.5>
+  texture {
+    pigment { rgbft <1.0, 1.0, 1.0, 0.0, 0.9> }
+    normal {
+      bumps 0.6
+      matrix <0.15, 0.0, -0.0, 0.0, 0.15, -0.0, -0.0, -0.0, 0.15, 0.0, 0.0, -0.0>
+      matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 0.0, 0.9, 6.5>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.05 brilliance 1.0
+      phong 0.8 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+      reflection { rgb <0.05, 0.05, 0.05>, rgb <0.05, 0.05, 0.05> falloff 1.0 exponent 1.0 metallic 0.0 }
+    }
+  }
+  interior { ior 1.5 }
+}
+
