@@ -791,6 +791,31 @@ mod tests {
     }
 
     #[test]
+    fn reflection_about_a_tilted_normal_stays_above_the_surface() {
+        let raw = DVec3::Y;
+        // Untilted: the plain mirror.
+        let d = DVec3::new(1.0, -1.0, 0.0).normalize();
+        assert!((reflect(d, raw, raw) - DVec3::new(1.0, 1.0, 0.0).normalize()).length() < 1e-12);
+        // A steep ray and a normal tilted nearly flat: the mirror about the tilted normal goes
+        // below the surface but stays on the tilted normal's side, so POV-Ray reflects it back
+        // up about the raw normal.
+        let d = DVec3::NEG_Y;
+        let n = DVec3::new(1.0, 0.1, 0.0).normalize();
+        let tilted = d - 2.0 * d.dot(n) * n;
+        assert!(tilted.dot(raw) < 0.0 && tilted.dot(n) > 0.0, "{tilted}");
+        let expected = (tilted - 2.0 * tilted.dot(raw) * raw).normalize();
+        let r = reflect(d, n, raw);
+        assert!((r - expected).length() < 1e-12 && r.y > 0.0, "{r}");
+        // A normal tilted away from the ray: the mirror falls behind it too, and POV-Ray
+        // mirrors about the raw normal instead.
+        let d = DVec3::new(0.2, -1.0, 0.0).normalize();
+        let n = DVec3::new(1.0, 0.05, 0.0).normalize();
+        let tilted = d - 2.0 * d.dot(n) * n;
+        assert!(tilted.dot(raw) < 0.0 && tilted.dot(n) < 0.0, "{tilted}");
+        assert!((reflect(d, n, raw) - (d - 2.0 * d.dot(raw) * raw).normalize()).length() < 1e-12);
+    }
+
+    #[test]
     fn fresnel_matches_pov_ray_measurement() {
         // REPORT.md 7: ior 1.5 at 60 degrees -> 0.08919.
         assert!((fresnel(1.5, 60f64.to_radians().cos()) - 0.08919).abs() < 1e-5);
