@@ -101,6 +101,26 @@ fn cases() -> Vec<Case> {
             &["scene.toml:5:", "object[0].material.pigment.color_map", "entry 1", "ascending"],
         ),
         case(
+            "unknown normal pattern",
+            "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"bumsp\" } }\n",
+            &["scene.toml:3:", "object[0].material.normal.pattern", "did you mean `bumps`"],
+        ),
+        case(
+            "unknown normal key",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bumps\"\nbumpsize = 2\n",
+            &["scene.toml:5:", "object[0].material.normal.bumpsize", "did you mean `bump_size`"],
+        ),
+        case(
+            "non-finite bump_size",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bumps\"\nbump_size = nan\n",
+            &["scene.toml:5:", "object[0].material.normal.bump_size", "finite"],
+        ),
+        case(
+            "frequency on bumps",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bumps\"\nfrequency = 2\n",
+            &["scene.toml:5:", "object[0].material.normal.frequency", "ripples and waves"],
+        ),
+        case(
             "color beside a pigment",
             "[[object]]\nshape = \"sphere\"\n[object.material]\ncolor = [1, 0, 0]\npigment = { pattern = \"checker\", colors = [[1, 1, 1], [0, 0, 0]] }\n",
             &["scene.toml:4:", "object[0].material.color", "beside `pigment`"],

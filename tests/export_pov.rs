@@ -50,6 +50,23 @@ fn exports_the_seed_room() {
 }
 
 #[test]
+fn writes_normal_patterns_after_the_pigment() {
+    let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/normals.toml")).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = String::from_utf8(run.stdout).unwrap();
+    for needle in [
+        "    normal {\n      ripples 0.4\n      frequency 3.0\n      phase 0.2\n",
+        "      bumps 0.3\n      turbulence <0.5, 0.5, 0.5> octaves 3\n      matrix ",
+        "      waves -0.8\n      turbulence <0.2, 0.2, 0.2> omega 0.6 lambda 2.5 octaves 4\n      frequency 4.0\n",
+        "      dents 1.5\n",
+        "      wrinkles 0.8\n",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+    assert_eq!(pov.matches("normal {").count(), 10);
+}
+
+#[test]
 fn writes_the_file_given_with_o() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("room.pov");

@@ -267,6 +267,14 @@ fn pigment_patterns_are_refused_naming_the_key() {
     export_case(dir.path(), scene, "checker", Some("material.pigment"));
 }
 
+/// A normal pattern has no Mitsuba equivalent either: refused the same way.
+#[test]
+fn normal_patterns_are_refused_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"bumps\", scale = 0.2 } }\n";
+    export_case(dir.path(), scene, "bumps", Some("material.normal"));
+}
+
 /// POV-Ray's adaptive focal blur has no Mitsuba equivalent (Mitsuba takes the same samples
 /// in every pixel): the export is an error naming the key, and nothing is written.
 #[test]

@@ -524,6 +524,11 @@ fn bsdf_xml(
     {
         return Err(("pigment", "pigment patterns are not exported to Mitsuba".into()));
     }
+    if let crate::material::SurfaceModel::Finish(f) = &material.surface
+        && f.normal.is_some()
+    {
+        return Err(("normal", "normal patterns are not exported to Mitsuba".into()));
+    }
     if material.is_textured() {
         return textured_diffuse_xml(material, xml_dir).map(|bsdf| format!("    {bsdf}\n"));
     }

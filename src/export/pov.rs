@@ -435,9 +435,9 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
         SurfaceModel::Mtl(mtl) => (mtl.map_kd.is_some(), false),
         SurfaceModel::Physical(p) => (p.texture.is_some(), false),
     };
-    let pigment = match &m.surface {
-        SurfaceModel::Finish(f) => f.pigment.clone(),
-        _ => None,
+    let (pigment, normal) = match &m.surface {
+        SurfaceModel::Finish(f) => (f.pigment.clone(), f.normal.clone()),
+        _ => (None, None),
     };
     let patterned = pigment.is_some() && m.emission.radiance == Rgb::BLACK && m.emission.texture.is_none();
     let mut problems = Vec::new();
@@ -470,6 +470,7 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
                 conserve_energy,
                 texture: _,
                 pigment: _,
+                normal: _,
             },
         emission,
         interior: Interior { ior, fade_distance, fade_power, fade_color },
@@ -486,9 +487,13 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
             number(*transmit)
         ),
     };
+    let normal_sdl = match &normal {
+        Some(n) => format!("\n    {}", normal_pattern(&n.spec, world_from_object)),
+        None => String::new(),
+    };
     let _ = write!(
         out,
-        "  texture {{\n    {pigment_sdl}\n    finish {{\n      ambient {} emission {}\n      \
+        "  texture {{\n    {pigment_sdl}{normal_sdl}\n    finish {{\n      ambient {} emission {}\n      \
          diffuse {} brilliance {}\n      phong {} phong_size {}\n      specular {} roughness {}\n      metallic {}\n",
         rgb(*ambient),
         rgb(*emission),
@@ -577,19 +582,7 @@ fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DA
             number(p.mortar.unwrap_or(DEFAULT_MORTAR))
         );
     }
-    if let Some(t) = p.turbulence {
-        // Amounts per axis of the pattern's own (POV-Ray's) frame: not mirrored.
-        let t = t.vector();
-        let _ = write!(sdl, "\n      turbulence <{}, {}, {}>", number(t.x), number(t.y), number(t.z));
-    }
-    for (keyword, value) in [("omega", p.omega), ("lambda", p.lambda)] {
-        if let Some(v) = value {
-            let _ = write!(sdl, " {keyword} {}", number(v));
-        }
-    }
-    if let Some(n) = p.octaves {
-        let _ = write!(sdl, " octaves {n}");
-    }
+    turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves);
     if !p.color_map.is_empty() {
         sdl.push_str("\n      color_map {");
         for MapEntry(value, color) in &p.color_map {
@@ -613,15 +606,59 @@ fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DA
         };
         let _ = write!(sdl, "\n      {keyword}");
     }
-    let own = p.object_from_pattern();
-    if own != DAffine3::IDENTITY {
-        let _ = write!(sdl, "\n      matrix {}", pov_matrix(&own));
+    matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object);
+    sdl
+}
+
+/// A normal pattern in POV-Ray SDL: the pattern with its bump size, its modifiers, its own
+/// transform and then the object's.
+fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffine3) -> String {
+    use crate::material::normal::DEFAULT_BUMP_SIZE;
+    let mut sdl = format!("normal {{\n      {} {}", n.pattern, number(n.bump_size.unwrap_or(DEFAULT_BUMP_SIZE)));
+    turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves);
+    if let Some(f) = n.frequency {
+        let _ = write!(sdl, "\n      frequency {}", number(f));
+    }
+    if let Some(phase) = n.phase {
+        let _ = write!(sdl, "\n      phase {}", number(phase));
+    }
+    matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object);
+    sdl
+}
+
+/// A pattern's `turbulence` with its octaves, when it has one.
+fn turbulence_sdl(
+    sdl: &mut String,
+    turbulence: Option<crate::material::pattern::TurbulenceAmount>,
+    omega: Option<f64>,
+    lambda: Option<f64>,
+    octaves: Option<u32>,
+) {
+    if let Some(t) = turbulence {
+        // Amounts per axis of the pattern's own (POV-Ray's) frame: not mirrored.
+        let t = t.vector();
+        let _ = write!(sdl, "\n      turbulence <{}, {}, {}>", number(t.x), number(t.y), number(t.z));
+    }
+    for (keyword, value) in [("omega", omega), ("lambda", lambda)] {
+        if let Some(v) = value {
+            let _ = write!(sdl, " {keyword} {}", number(v));
+        }
+    }
+    if let Some(n) = octaves {
+        let _ = write!(sdl, " octaves {n}");
+    }
+}
+
+/// A pattern's own transform, then the object's (mirrored like every matrix), and the
+/// closing brace.
+fn matrices_sdl(sdl: &mut String, own: &DAffine3, world_from_object: &DAffine3) {
+    if *own != DAffine3::IDENTITY {
+        let _ = write!(sdl, "\n      matrix {}", pov_matrix(own));
     }
     if *world_from_object != DAffine3::IDENTITY {
         let _ = write!(sdl, "\n      matrix {}", pov_matrix(world_from_object));
     }
     sdl.push_str("\n    }");
-    sdl
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@
 
 pub mod metals;
 pub mod noise;
+pub mod normal;
 pub mod pattern;
 pub mod pov_view;
 pub mod spec;
@@ -137,6 +138,9 @@ pub struct Finish {
     /// A POV-Ray pigment pattern: where given, its colour, filter and transmit at the hit
     /// (in the object's space) replace `color`, `filter` and `transmit`.
     pub pigment: Option<std::sync::Arc<pattern::PigmentField>>,
+    /// A POV-Ray normal pattern: tilts the shading normal over the surface (in the object's
+    /// space); the classic integrator shades with the tilted normal.
+    pub normal: Option<std::sync::Arc<normal::NormalField>>,
 }
 
 impl Default for Finish {

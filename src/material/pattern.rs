@@ -332,18 +332,7 @@ impl Rgbft {
 impl Pigment {
     /// The pattern transform (pattern space to object space, Prism's frame).
     pub fn object_from_pattern(&self) -> DAffine3 {
-        if let Some(rows) = self.matrix {
-            return DAffine3::from_mat4(DMat4::from_cols_array_2d(&rows).transpose());
-        }
-        let scale = match self.scale {
-            None => DVec3::ONE,
-            Some(PatternScale::Uniform(s)) => DVec3::splat(s),
-            Some(PatternScale::PerAxis(s)) => DVec3::from_array(s),
-        };
-        let r = DVec3::from_array(self.rotate.unwrap_or_default()) * (std::f64::consts::PI / 180.0);
-        let rotation = DMat3::from_euler(EulerRot::ZYX, r.z, r.y, r.x);
-        let translation = DVec3::from_array(self.translate.unwrap_or_default());
-        DAffine3 { matrix3: rotation * DMat3::from_diagonal(scale), translation }
+        pattern_transform(self.scale, self.rotate, self.translate, self.matrix)
     }
 
     /// Every colour the pigment can give (its list or its map's).
@@ -433,46 +422,106 @@ impl Pigment {
         {
             return Err(("mortar", format!("must be finite and not negative, got {m}")));
         }
-        if let Some(t) = self.turbulence
-            && !t.vector().is_finite()
-        {
-            return Err(("turbulence", "must be finite".into()));
-        }
-        if let Some(n) = self.octaves
-            && !(1..=10).contains(&n)
-        {
-            return Err(("octaves", format!("must be between 1 and 10 (POV-Ray's limits), got {n}")));
-        }
-        let octave_keys =
-            [("octaves", self.octaves.is_some()), ("omega", self.omega.is_some()), ("lambda", self.lambda.is_some())];
-        if self.turbulence.is_none()
-            && kind != PatternKind::Agate
-            && let Some((key, _)) = octave_keys.iter().find(|(_, given)| *given)
-        {
-            return Err((key, "shapes `turbulence`, which this pigment does not have".into()));
-        }
-        for (key, v) in
-            [("frequency", self.frequency), ("phase", self.phase), ("omega", self.omega), ("lambda", self.lambda)]
-        {
+        check_turbulence(self.turbulence, self.octaves, self.omega, self.lambda, kind == PatternKind::Agate)?;
+        for (key, v) in [("frequency", self.frequency), ("phase", self.phase)] {
             if let Some(v) = v
                 && !v.is_finite()
             {
                 return Err((key, format!("must be finite, got {v}")));
             }
         }
-        if self.matrix.is_some() && (self.scale.is_some() || self.rotate.is_some() || self.translate.is_some()) {
-            return Err(("matrix", "give either `matrix` or `scale`, `rotate` and `translate`".into()));
-        }
-        if let Some(rows) = self.matrix
-            && rows[3] != [0.0, 0.0, 0.0, 1.0]
-        {
-            return Err(("matrix", "the last row must be [0, 0, 0, 1]".into()));
-        }
-        let m = self.object_from_pattern();
-        if !(m.matrix3.determinant().abs() > 1e-12 && m.to_cols_array().iter().all(|v| v.is_finite())) {
-            return Err(("scale", "the pattern transform must be finite and invertible".into()));
-        }
+        check_transform(self.scale, self.rotate, self.translate, self.matrix)?;
         Ok(())
+    }
+}
+
+/// The transform `scale`, `rotate` (degrees about x, then y, then z), `translate` (or
+/// `matrix`) of a pattern: pattern space to object space, Prism's frame.
+pub fn pattern_transform(
+    scale: Option<PatternScale>,
+    rotate: Option<[f64; 3]>,
+    translate: Option<[f64; 3]>,
+    matrix: Option<[[f64; 4]; 4]>,
+) -> DAffine3 {
+    if let Some(rows) = matrix {
+        return DAffine3::from_mat4(DMat4::from_cols_array_2d(&rows).transpose());
+    }
+    let scale = match scale {
+        None => DVec3::ONE,
+        Some(PatternScale::Uniform(s)) => DVec3::splat(s),
+        Some(PatternScale::PerAxis(s)) => DVec3::from_array(s),
+    };
+    let r = DVec3::from_array(rotate.unwrap_or_default()) * (std::f64::consts::PI / 180.0);
+    let rotation = DMat3::from_euler(EulerRot::ZYX, r.z, r.y, r.x);
+    let translation = DVec3::from_array(translate.unwrap_or_default());
+    DAffine3 { matrix3: rotation * DMat3::from_diagonal(scale), translation }
+}
+
+/// The first problem of a pattern transform, as (key, message).
+pub fn check_transform(
+    scale: Option<PatternScale>,
+    rotate: Option<[f64; 3]>,
+    translate: Option<[f64; 3]>,
+    matrix: Option<[[f64; 4]; 4]>,
+) -> Result<(), (&'static str, String)> {
+    if matrix.is_some() && (scale.is_some() || rotate.is_some() || translate.is_some()) {
+        return Err(("matrix", "give either `matrix` or `scale`, `rotate` and `translate`".into()));
+    }
+    if let Some(rows) = matrix
+        && rows[3] != [0.0, 0.0, 0.0, 1.0]
+    {
+        return Err(("matrix", "the last row must be [0, 0, 0, 1]".into()));
+    }
+    let m = pattern_transform(scale, rotate, translate, matrix);
+    if !(m.matrix3.determinant().abs() > 1e-12 && m.to_cols_array().iter().all(|v| v.is_finite())) {
+        return Err(("scale", "the pattern transform must be finite and invertible".into()));
+    }
+    Ok(())
+}
+
+/// The first problem of a pattern's turbulence keys, as (key, message). `octaves`, `omega`
+/// and `lambda` need a `turbulence` amount unless `octaves_alone` (agate's own turbulence).
+pub fn check_turbulence(
+    amount: Option<TurbulenceAmount>,
+    octaves: Option<u32>,
+    omega: Option<f64>,
+    lambda: Option<f64>,
+    octaves_alone: bool,
+) -> Result<(), (&'static str, String)> {
+    if let Some(t) = amount
+        && !t.vector().is_finite()
+    {
+        return Err(("turbulence", "must be finite".into()));
+    }
+    if let Some(n) = octaves
+        && !(1..=10).contains(&n)
+    {
+        return Err(("octaves", format!("must be between 1 and 10 (POV-Ray's limits), got {n}")));
+    }
+    let octave_keys = [("octaves", octaves.is_some()), ("omega", omega.is_some()), ("lambda", lambda.is_some())];
+    if amount.is_none()
+        && !octaves_alone
+        && let Some((key, _)) = octave_keys.iter().find(|(_, given)| *given)
+    {
+        return Err((key, "shapes `turbulence`, which this pattern does not have".into()));
+    }
+    for (key, v) in [("omega", omega), ("lambda", lambda)] {
+        if let Some(v) = v
+            && !v.is_finite()
+        {
+            return Err((key, format!("must be finite, got {v}")));
+        }
+    }
+    Ok(())
+}
+
+/// The turbulence octaves a pattern writes, with POV-Ray's defaults.
+pub fn octaves_of(octaves: Option<u32>, omega: Option<f64>, lambda: Option<f64>) -> Octaves {
+    let d = Octaves::default();
+    Octaves {
+        octaves: octaves.unwrap_or(d.octaves),
+        omega: omega.unwrap_or(d.omega),
+        lambda: lambda.unwrap_or(d.lambda),
     }
 }
 
@@ -492,16 +541,11 @@ pub struct PigmentField {
 impl PigmentField {
     /// The field of `spec` (which passed [`Pigment::check`]).
     pub fn new(spec: &Pigment) -> Self {
-        let d = Octaves::default();
         Self {
             spec: spec.clone(),
             pattern_from_object: spec.object_from_pattern().inverse(),
             turbulence: spec.turbulence.map_or(DVec3::ZERO, |t| t.vector()),
-            octaves: Octaves {
-                octaves: spec.octaves.unwrap_or(d.octaves),
-                omega: spec.omega.unwrap_or(d.omega),
-                lambda: spec.lambda.unwrap_or(d.lambda),
-            },
+            octaves: octaves_of(spec.octaves, spec.omega, spec.lambda),
         }
     }
 
@@ -597,7 +641,7 @@ pub fn shape_wave(raw: f64, frequency: f64, phase: f64, wave: Wave) -> f64 {
 }
 
 /// POV-Ray's `cycloidal`: sin(2 pi v) of v's fractional part, odd in v.
-fn cycloidal(v: f64) -> f64 {
+pub(super) fn cycloidal(v: f64) -> f64 {
     if v >= 0.0 {
         ((v - v.floor()) * std::f64::consts::TAU).sin()
     } else {

@@ -9,6 +9,7 @@ use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
 
+use super::normal::NormalField;
 use super::pattern::PigmentField;
 use super::{
     AlphaMode, Finish, Interior, Material, MetallicRoughness, Mtl, Physical, Reflection, Scattering, SurfaceModel,
@@ -56,6 +57,8 @@ pub struct PovView {
     /// The finish before textures (the whole finish of an untextured material).
     pub base: PovFinish,
     varying: Option<Varying>,
+    /// A normal pattern tilting the shading normal.
+    normal: Option<Arc<NormalField>>,
 }
 
 /// What a hit looks up.
@@ -84,7 +87,7 @@ impl PovView {
         let interior = &material.interior;
         let emission = &material.emission;
         let finish = |f: &Finish, emission: Rgb| PovFinish {
-            finish: Finish { texture: None, pigment: None, ..f.clone() },
+            finish: Finish { texture: None, pigment: None, normal: None, ..f.clone() },
             emission,
             interior: *interior,
         };
@@ -107,7 +110,7 @@ impl PovView {
                     base.finish.filter = p.spec.colors().map(|c| c.filter).fold(0.0, f64::max);
                     base.finish.transmit = p.spec.colors().map(|c| c.transmit).fold(0.0, f64::max);
                 }
-                Self { base, varying }
+                Self { base, varying, normal: f.normal.clone() }
             }
             SurfaceModel::MetallicRoughness(p) => {
                 let mut base = finish(&p.finish, emission.times_color);
@@ -121,7 +124,7 @@ impl PovView {
                     emitted: Some(emitted()),
                     pigment: None,
                 };
-                Self { base, varying: Some(varying) }
+                Self { base, varying: Some(varying), normal: None }
             }
             SurfaceModel::Physical(p) => {
                 let (derived, ior) = physical_finish(p);
@@ -134,14 +137,14 @@ impl PovView {
                     emitted: glows.then(emitted),
                     pigment: None,
                 });
-                Self { base, varying }
+                Self { base, varying, normal: None }
             }
             SurfaceModel::Mtl(m) => {
                 let (mapped, texture) = mtl_finish(m, emission.radiance, interior.ior);
                 let mut base = finish(&mapped.finish, mapped.emission);
                 base.interior.ior = mapped.ior;
                 let varying = texture.map(|t| Varying { texture: Some(t), pbr: None, emitted: None, pigment: None });
-                Self { base, varying }
+                Self { base, varying, normal: None }
             }
         }
     }
@@ -150,6 +153,11 @@ impl PovView {
     /// the surface's uv.
     pub fn varies_over_surface(&self) -> bool {
         self.varying.is_some()
+    }
+
+    /// The normal pattern, when the material has one.
+    pub fn normal(&self) -> Option<&NormalField> {
+        self.normal.as_deref()
     }
 
     /// The pigment pattern, when the material has one.

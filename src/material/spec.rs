@@ -13,6 +13,7 @@ use schemars::JsonSchema;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
 
+use super::normal::{Normal, NormalField};
 use super::pattern::{Pigment, PigmentField};
 use super::{AlphaMode, Emission, Finish, Interior, Material, MetallicRoughness, Physical, Scattering, SurfaceModel};
 use crate::color::Rgb;
@@ -74,6 +75,11 @@ pub struct MaterialSpec {
     /// own space. It replaces `color`, `filter` and `transmit`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pigment: Option<Pigment>,
+    /// A POV-Ray normal pattern (`{ pattern = "bumps", bump_size = 0.5, scale = 0.2 }`, see
+    /// `docs/scene-format.md`): tilts the shading normal over the object, in its own space.
+    /// The classic integrator shades with it; `path` ignores it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub normal: Option<Normal>,
     /// glTF metallic-roughness parameters. When present, the classic finish (diffuse,
     /// highlights, reflection) is derived from them at every hit (see `docs/meshes.md`)
     /// instead of read from the fields above.
@@ -137,6 +143,24 @@ pub enum BsdfSpec {
         #[serde(default)]
         alpha: f64,
     },
+}
+
+/// A key under `normal` as the material's key path.
+fn normal_key(key: &str) -> &'static str {
+    match key {
+        "bump_size" => "normal.bump_size",
+        "frequency" => "normal.frequency",
+        "phase" => "normal.phase",
+        "scale" => "normal.scale",
+        "rotate" => "normal.rotate",
+        "translate" => "normal.translate",
+        "matrix" => "normal.matrix",
+        "turbulence" => "normal.turbulence",
+        "octaves" => "normal.octaves",
+        "omega" => "normal.omega",
+        "lambda" => "normal.lambda",
+        _ => "normal",
+    }
 }
 
 /// A key under `pigment` as the material's key path.
@@ -250,6 +274,7 @@ impl Default for MaterialSpec {
             fade_color: Rgb::BLACK,
             texture: None,
             pigment: None,
+            normal: None,
             pbr: None,
             bsdf: None,
         }
@@ -273,6 +298,9 @@ impl MaterialSpec {
         }
         if let Some(pigment) = &self.pigment {
             self.check_pigment(pigment)?;
+        }
+        if let Some(normal) = &self.normal {
+            self.check_normal(normal)?;
         }
         if let Some(bsdf) = &self.bsdf {
             self.check_only_bsdf()?;
@@ -316,6 +344,17 @@ impl MaterialSpec {
             return Err((key, format!("cannot be written beside `pigment`: {why}")));
         }
         pigment.check().map_err(|(key, message)| (pigment_key(key), message))
+    }
+
+    /// The normal pattern's first problem, or a surface model it does not apply to.
+    fn check_normal(&self, normal: &Normal) -> Result<(), (&'static str, String)> {
+        if self.bsdf.is_some() {
+            return Err(("bsdf", "a normal pattern needs a POV-Ray finish, not a `bsdf`".into()));
+        }
+        if self.pbr.is_some() {
+            return Err(("pbr", "a normal pattern needs a POV-Ray finish, not `pbr`".into()));
+        }
+        normal.check().map_err(|(key, message)| (normal_key(key), message))
     }
 
     /// With a `bsdf`, the first POV-Ray finish or interior key (or `pbr`) written beside it:
@@ -388,6 +427,7 @@ impl MaterialSpec {
             conserve_energy: self.conserve_energy,
             texture: self.texture.clone(),
             pigment: self.pigment.as_ref().map(|p| std::sync::Arc::new(PigmentField::new(p))),
+            normal: self.normal.as_ref().map(|n| std::sync::Arc::new(NormalField::new(n))),
         }
     }
 

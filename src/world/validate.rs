@@ -19,9 +19,9 @@ pub const MAX_SAMPLES: u32 = 1 << 20;
 
 /// Warnings that depend on the final settings, so they are not among [`Scene::warnings`]: a
 /// camera imported from a file made for another aspect ratio than the image's, POV-Ray's
-/// adaptive focal blur keys under `path` (ignored there), and a path-traced scene without any
-/// light (call it once the settings are final, after command-line
-/// overrides).
+/// adaptive focal blur keys and normal patterns under `path` (ignored there), and a
+/// path-traced scene without any light (call it once the settings are final, after
+/// command-line overrides).
 pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
     let mut out = Vec::new();
     if let Ok(imported) = scene.world.get::<&ImportedCamera>(scene.camera)
@@ -65,6 +65,16 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
                  integrator renders it black",
             )
             .with_help("add a [[light]], a material with `emission`, or a [world] background or environment"),
+        );
+    }
+    let tilted = |m: &MaterialComponent| matches!(&m.material.surface, crate::material::SurfaceModel::Finish(f) if f.normal.is_some());
+    if scene.render.integrator == IntegratorKind::Path && scene.world.query::<&MaterialComponent>().iter().any(tilted) {
+        out.push(
+            Diagnostic::warning(
+                scene.render_origin.child("integrator"),
+                "the path integrator ignores normal patterns (`material.normal`): surfaces render smooth",
+            )
+            .with_help("render with the classic integrator to see them"),
         );
     }
     out

@@ -212,7 +212,17 @@ impl<'a> Classic<'a> {
         let shading = primitive.world_normal(surface.shading_normal);
         let d = ray.direction;
         // Two-sided: shade with the normal facing the viewer.
-        let n = if shading.dot(d) > 0.0 { -shading } else { shading };
+        let facing = shading.dot(d) > 0.0;
+        let raw = if facing { -shading } else { shading };
+        // A normal pattern tilts the facing normal (POV-Ray's `Perturb_Normal`, in the object's
+        // space); everything below shades with it, as POV-Ray's layer normal.
+        let n = match view.normal() {
+            Some(field) => {
+                let object_normal = if facing { -surface.shading_normal } else { surface.shading_normal };
+                primitive.world_normal(field.perturb(surface.point, object_normal)).normalize()
+            }
+            None => raw,
+        };
         let entering = !interiors.contains(closest.primitive);
         let shaded = self.shade(view, primitive, &surface, closest.hit.t * d.length(), n.dot(d) / d.length());
         let material: &PovFinish = &shaded.finish;
@@ -270,14 +280,17 @@ impl<'a> Classic<'a> {
                         filter * self.trace(&Ray::new(point, d), level, child_weight, inner, state)
                     }
                 } else {
+                    // POV-Ray refracts about the layer normal turned to face the ray (a tilted
+                    // normal may face away).
+                    let (c, toward) = if c < 0.0 { (-c, -n) } else { (c, n) };
                     let k = 1.0 + eta * eta * (c * c - 1.0);
                     if k < 0.0 {
                         // Total internal reflection: traced without the filter colour.
                         total_internal = true;
-                        let mirror = Ray::new(point, (d - 2.0 * d.dot(n) * n).normalize());
+                        let mirror = Ray::new(point, reflect(d, n, raw));
                         self.trace(&mirror, level + 1, child_weight, interiors, state)
                     } else {
-                        let direction = (eta * d + (eta * c - k.sqrt()) * n).normalize();
+                        let direction = (eta * d + (eta * c - k.sqrt()) * toward).normalize();
                         filter * self.trace(&Ray::new(point, direction), level + 1, child_weight, inner, state)
                     }
                 };
@@ -297,7 +310,7 @@ impl<'a> Classic<'a> {
             } else {
                 reflection.min.0.max_element().max(reflection.max.0.max_element())
             };
-            let mirror = Ray::new(point, (d - 2.0 * d.dot(n) * n).normalize());
+            let mirror = Ray::new(point, reflect(d, n, raw));
             let mut reflected = self.trace(&mirror, level + 1, weight * reflect_weight, interiors, state);
             if reflection.exponent != 1.0 {
                 reflected = reflected.max(DVec3::ZERO).powf(1.0 / reflection.exponent);
@@ -668,6 +681,18 @@ impl<'a> GridLattice<'a> {
 /// negated, so in Prism's frame `axis1 = t' x l` (t' the mirrored t: -z or y) and
 /// `axis2 = axis1 x l`. With the circular grid's 0.001 offset, the sign of each axis moves
 /// the samples.
+/// The mirror direction of `d` about the shading normal `n`, as POV-Ray's
+/// `ComputeReflection`: a direction that a tilted normal sends below the surface (the
+/// facing geometric normal `raw`) is reflected about `raw` instead, or reflected back
+/// above it.
+fn reflect(d: DVec3, n: DVec3, raw: DVec3) -> DVec3 {
+    let mut r = d - 2.0 * d.dot(n) * n;
+    if n != raw && r.dot(raw) < 0.0 {
+        r = if r.dot(n) < 0.0 { d - 2.0 * d.dot(raw) * raw } else { r - 2.0 * r.dot(raw) * raw };
+    }
+    r.normalize()
+}
+
 fn oriented_axes(l: DVec3, length: f64) -> (DVec3, DVec3) {
     let t = if (l.z.abs() - 1.0).abs() < 0.01 { DVec3::Y } else { DVec3::NEG_Z };
     let axis1 = t.cross(l).normalize();
@@ -763,6 +788,31 @@ mod tests {
         let (a1, a2) = oriented_axes(DVec3::NEG_Z, 1.0);
         assert!((a1 - DVec3::NEG_X).length() < 1e-12, "{a1}");
         assert!((a2 - DVec3::NEG_Y).length() < 1e-12, "{a2}");
+    }
+
+    #[test]
+    fn reflection_about_a_tilted_normal_stays_above_the_surface() {
+        let raw = DVec3::Y;
+        // Untilted: the plain mirror.
+        let d = DVec3::new(1.0, -1.0, 0.0).normalize();
+        assert!((reflect(d, raw, raw) - DVec3::new(1.0, 1.0, 0.0).normalize()).length() < 1e-12);
+        // A steep ray and a normal tilted nearly flat: the mirror about the tilted normal goes
+        // below the surface but stays on the tilted normal's side, so POV-Ray reflects it back
+        // up about the raw normal.
+        let d = DVec3::NEG_Y;
+        let n = DVec3::new(1.0, 0.1, 0.0).normalize();
+        let tilted = d - 2.0 * d.dot(n) * n;
+        assert!(tilted.dot(raw) < 0.0 && tilted.dot(n) > 0.0, "{tilted}");
+        let expected = (tilted - 2.0 * tilted.dot(raw) * raw).normalize();
+        let r = reflect(d, n, raw);
+        assert!((r - expected).length() < 1e-12 && r.y > 0.0, "{r}");
+        // A normal tilted away from the ray: the mirror falls behind it too, and POV-Ray
+        // mirrors about the raw normal instead.
+        let d = DVec3::new(0.2, -1.0, 0.0).normalize();
+        let n = DVec3::new(1.0, 0.05, 0.0).normalize();
+        let tilted = d - 2.0 * d.dot(n) * n;
+        assert!(tilted.dot(raw) < 0.0 && tilted.dot(n) < 0.0, "{tilted}");
+        assert!((reflect(d, n, raw) - (d - 2.0 * d.dot(raw) * raw).normalize()).length() < 1e-12);
     }
 
     #[test]

@@ -1,0 +1,246 @@
+// POV-Ray 3.7 scene written by `prism export pov` from normals.toml; regenerate, do not edit.
+// Prism is right-handed, POV-Ray left-handed: points, directions and normals are written as
+// (x, y, -z) and transforms as S*M*S with S = diag(1, 1, -1); the image is not mirrored.
+// povray-options: +W320 +H180 -A
+#version 3.7;
+
+global_settings {
+  assumed_gamma 1.0
+  max_trace_level 5
+  adc_bailout 0.00392156862745098
+  ambient_light rgb <1.0, 1.0, 1.0>
+}
+
+background { rgb <0.4, 0.45, 0.55> }
+
+camera {
+  perspective
+  location <0.0, 1.1, 1.2>
+  direction <0.0, -0.26311740579210885, 0.9647638212377321>
+  up <0.0, 1.0044485138015167, 0.2739405037640501>
+  right <1.0, -0.0, -0.0> * 1.0411341011034925 * image_width / image_height
+}
+
+light_source { <-3.0, 6.0, -1.0>, color rgb <1.0, 1.0, 1.0>
+}
+
+light_source { <4.0, 3.0, 1.0>, color rgb <0.4, 0.4, 0.4>
+}
+
+// "floor" plane
+plane { <0.0, 1.0, -0.0>, -1.0
+  texture {
+    pigment { rgbft <0.8, 0.78, 0.7, 0.0, 0.0> }
+    normal {
+      ripples 0.4
+      frequency 3.0
+      phase 0.2
+      matrix <2.0, 0.0, -0.0, 0.0, 2.0, -0.0, -0.0, -0.0, 2.0, 0.0, 0.0, 5.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.6 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.3 roughness 0.02
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "wall" plane
+plane { <0.0, 0.0, -1.0>, -9.0
+  texture {
+    pigment { rgbft <0.7, 0.75, 0.85, 0.0, 0.0> }
+    normal {
+      waves 0.6
+      frequency 2.0
+      matrix <1.5, 0.0, -0.0, 0.0, 1.5, -0.0, -0.0, -0.0, 1.5, 0.0, 0.0, -0.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "bumps" sphere
+sphere { <0.0, 0.0, -0.0>, 0.6
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, -2.6, -0.4, 5.0>
+  texture {
+    pigment { rgbft <0.9, 0.4, 0.2, 0.0, 0.0> }
+    normal {
+      bumps 0.5
+      matrix <0.2, 0.0, -0.0, 0.0, 0.2, -0.0, -0.0, -0.0, 0.2, 0.0, 0.0, -0.0>
+      matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, -2.6, -0.4, 5.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.6 phong_size 60.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "dents" sphere
+sphere { <0.0, 0.0, -0.0>, 0.6
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, -1.3, -0.4, 5.0>
+  texture {
+    pigment { rgbft <0.3, 0.7, 0.4, 0.0, 0.0> }
+    normal {
+      dents 1.5
+      matrix <0.15, 0.0, -0.0, 0.0, 0.15, -0.0, -0.0, -0.0, 0.15, 0.0, 0.0, -0.0>
+      matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, -1.3, -0.4, 5.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.5 roughness 0.01
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "mirror" sphere
+sphere { <0.0, 0.0, -0.0>, 0.6
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 0.0, -0.4, 5.0>
+  texture {
+    pigment { rgbft <0.6, 0.6, 0.7, 0.0, 0.0> }
+    normal {
+      bumps 0.3
+      turbulence <0.5, 0.5, 0.5> octaves 3
+      matrix <0.1915111107797445, 0.0, 0.1606969024216348, 0.05496157759823854, 0.2349231551964771, -0.06550065755734623, -0.1510056933887634, 0.08550503583141718, 0.17996157759823855, 0.0, 0.0, -0.0>
+      matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 0.0, -0.4, 5.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.2 brilliance 1.0
+      phong 0.8 phong_size 120.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+      reflection { rgb <0.6, 0.6, 0.6>, rgb <0.6, 0.6, 0.6> falloff 1.0 exponent 1.0 metallic 0.0 }
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "wrinkles" sphere
+sphere { <0.0, 0.0, -0.0>, 0.6
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 1.3, -0.4, 5.0>
+  texture {
+    pigment { rgbft <0.85, 0.85, 0.6, 0.0, 0.0> }
+    normal {
+      wrinkles 0.8
+      matrix <0.3, 0.0, -0.0, 0.0, 0.3, -0.0, -0.0, -0.0, 0.3, 0.0, 0.0, -0.0>
+      matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 1.3, -0.4, 5.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.4 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "ripples" sphere
+sphere { <0.0, 0.0, -0.0>, 0.6
+  matrix <1.0, 0.0, -0.0, 0.0, 1.3, -0.0, -0.0, -0.0, 1.0, 2.6, -0.4, 5.0>
+  texture {
+    pigment { rgbft <0.4, 0.5, 0.9, 0.0, 0.0> }
+    normal {
+      ripples 0.7
+      turbulence <0.3, 0.1, 0.2>
+      frequency 5.0
+      matrix <0.692820323027551, 0.39999999999999997, -0.0, -0.24999999999999997, 0.43301270189221935, -0.0, -0.0, -0.0, 1.0, 0.0, 0.0, -0.0>
+      matrix <1.0, 0.0, -0.0, 0.0, 1.3, -0.0, -0.0, -0.0, 1.0, 2.6, -0.4, 5.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.0 phong_size 40.0
+      specular 0.4 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "waves_box" box
+box { <-0.5, -0.5, 0.5>, <0.5, 0.5, -0.5>
+  matrix <0.8191520442889918, 0.0, 0.573576436351046, 0.19617469496901108, 0.9396926207859084, -0.2801664995932355, -0.5389855446957562, 0.3420201433256687, 0.7697511313200572, -1.2, 0.9, 6.0>
+  texture {
+    pigment { rgbft <0.9, 0.8, 0.5, 0.0, 0.0> }
+    normal {
+      waves -0.8
+      turbulence <0.2, 0.2, 0.2> omega 0.6 lambda 2.5 octaves 4
+      frequency 4.0
+      phase 0.3
+      matrix <0.8191520442889918, 0.0, 0.573576436351046, 0.19617469496901108, 0.9396926207859084, -0.2801664995932355, -0.5389855446957562, 0.3420201433256687, 0.7697511313200572, -1.2, 0.9, 6.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.5 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "dents_turbulent" sphere
+sphere { <0.0, 0.0, -0.0>, 0.7
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 1.2, 0.9, 6.0>
+  texture {
+    pigment { rgbft <0.8, 0.3, 0.6, 0.0, 0.0> }
+    normal {
+      dents 3.0
+      turbulence <0.4, 0.4, 0.4>
+      matrix <0.3, 0.0, -0.0, 0.0, 0.3, -0.0, -0.0, -0.0, 0.3, 0.0, 0.0, -0.0>
+      matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 1.2, 0.9, 6.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.5 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "glass" sphere
+sphere { <0.0, 0.0, -0.0>, 0.5
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 0.0, 0.9, 6.5>
+  texture {
+    pigment { rgbft <1.0, 1.0, 1.0, 0.0, 0.9> }
+    normal {
+      bumps 0.6
+      matrix <0.15, 0.0, -0.0, 0.0, 0.15, -0.0, -0.0, -0.0, 0.15, 0.0, 0.0, -0.0>
+      matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 0.0, 0.9, 6.5>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.05 brilliance 1.0
+      phong 0.8 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+      reflection { rgb <0.05, 0.05, 0.05>, rgb <0.05, 0.05, 0.05> falloff 1.0 exponent 1.0 metallic 0.0 }
+    }
+  }
+  interior { ior 1.5 }
+}
+

@@ -1,0 +1,374 @@
+//! POV-Ray 3.7 normal perturbation: `normal { bumps 0.5 scale 0.2 }` and its kin, which tilt
+//! the shading normal over the surface without moving it.
+//!
+//! [`Normal`] is the scene file's form (`normal = { pattern = "bumps", bump_size = 0.5, ... }`,
+//! shaped like `pigment` and sharing its transform and turbulence keys); [`NormalField`] is
+//! what shading evaluates. As in POV-Ray's `Perturb_Normal` (`normal.cpp`), the normal facing
+//! the ray goes into the pattern's frame (object space, the inverse pattern transform, then
+//! POV-Ray's mirrored `(x, y, -z)` frame) and is normalised, the pattern adds its vector
+//! there at the point (turbulence applied first), and the sum goes back and is normalised.
+
+use std::fmt;
+use std::sync::OnceLock;
+
+use glam::{DMat3, DVec3};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use super::noise::{Octaves, dnoise, dturbulence, noise};
+use super::pattern::{
+    PatternScale, TurbulenceAmount, check_transform, check_turbulence, cycloidal, octaves_of, pattern_transform,
+};
+
+/// POV-Ray's default `bump_size` (`Create_Tnormal`).
+pub const DEFAULT_BUMP_SIZE: f64 = 0.5;
+
+/// POV-Ray's default number of wave sources for `ripples` and `waves` (`global_settings {
+/// number_of_waves }`, which Prism does not expose).
+const NUMBER_OF_WAVES: usize = 10;
+
+/// A normal pattern's name, as POV-Ray spells it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NormalKind {
+    /// The gradient of solid noise.
+    Bumps,
+    /// Bumps scaled by the cube of the noise: sparse dents.
+    Dents,
+    /// Concentric rings about ten fixed sources.
+    Ripples,
+    /// Ripples with a different frequency (and amplitude) per source.
+    Waves,
+    /// Ten octaves of absolute noise gradients.
+    Wrinkles,
+}
+
+impl NormalKind {
+    /// Every normal pattern with its name.
+    pub const ALL: [(NormalKind, &'static str); 5] = [
+        (NormalKind::Bumps, "bumps"),
+        (NormalKind::Dents, "dents"),
+        (NormalKind::Ripples, "ripples"),
+        (NormalKind::Waves, "waves"),
+        (NormalKind::Wrinkles, "wrinkles"),
+    ];
+
+    /// The scene file's (and POV-Ray's) name.
+    pub fn name(self) -> &'static str {
+        Self::ALL.iter().find(|(k, _)| *k == self).map_or("", |(_, n)| n)
+    }
+
+    fn has_waves(self) -> bool {
+        matches!(self, NormalKind::Ripples | NormalKind::Waves)
+    }
+}
+
+impl fmt::Display for NormalKind {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Serialize for NormalKind {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for NormalKind {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        if let Some((kind, _)) = Self::ALL.iter().find(|(_, n)| *n == name) {
+            return Ok(*kind);
+        }
+        let names: Vec<&str> = Self::ALL.iter().map(|(_, n)| *n).collect();
+        let hint = crate::diagnostics::nearest_name(&name, names.iter().copied())
+            .map_or(String::new(), |n| format!("did you mean `{n}`? "));
+        Err(serde::de::Error::custom(format!(
+            "unknown normal pattern `{name}`; {hint}known normal patterns: {}",
+            names.join(", ")
+        )))
+    }
+}
+
+impl JsonSchema for NormalKind {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "NormalKind".into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let names: Vec<&str> = Self::ALL.iter().map(|(_, n)| *n).collect();
+        schemars::json_schema!({ "description": "A POV-Ray normal pattern.", "enum": names })
+    }
+}
+
+/// A normal pattern as a scene file writes it (`normal = { pattern = "bumps", ... }`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Normal {
+    /// The pattern's POV-Ray name.
+    pub pattern: NormalKind,
+    /// How far the pattern tilts the normal (POV-Ray's `bump_size`, the number after the
+    /// pattern's keyword; default 0.5; negative inverts).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bump_size: Option<f64>,
+    /// `ripples`, `waves`: rings per unit of distance from a source (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frequency: Option<f64>,
+    /// `ripples`, `waves`: shifts the rings (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub phase: Option<f64>,
+    /// POV-Ray's classic `turbulence`: displaces the point before the pattern reads it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub turbulence: Option<TurbulenceAmount>,
+    /// Turbulence octaves, 1 to 10 (default 6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub octaves: Option<u32>,
+    /// Turbulence amplitude factor per octave (default 0.5).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub omega: Option<f64>,
+    /// Turbulence frequency factor per octave (default 2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
+    /// Pattern scale.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<PatternScale>,
+    /// Pattern rotation, degrees about x, then y, then z.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<[f64; 3]>,
+    /// Pattern translation.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub translate: Option<[f64; 3]>,
+    /// A 4x4 affine matrix (rows; the last [0, 0, 0, 1]) instead of scale, rotate, translate.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub matrix: Option<[[f64; 4]; 4]>,
+}
+
+impl Normal {
+    /// The pattern transform (pattern space to object space, Prism's frame).
+    pub fn object_from_pattern(&self) -> glam::DAffine3 {
+        pattern_transform(self.scale, self.rotate, self.translate, self.matrix)
+    }
+
+    /// The first out-of-range or misplaced parameter, as (key under `normal`, message).
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        if let Some(b) = self.bump_size
+            && !b.is_finite()
+        {
+            return Err(("bump_size", format!("must be a finite number, got {b}")));
+        }
+        for (key, v) in [("frequency", self.frequency), ("phase", self.phase)] {
+            if let Some(v) = v {
+                if !self.pattern.has_waves() {
+                    return Err((key, format!("belongs to ripples and waves, not `{}`", self.pattern)));
+                }
+                if !v.is_finite() {
+                    return Err((key, format!("must be finite, got {v}")));
+                }
+            }
+        }
+        check_turbulence(self.turbulence, self.octaves, self.omega, self.lambda, false)?;
+        check_transform(self.scale, self.rotate, self.translate, self.matrix)
+    }
+}
+
+/// A normal pattern ready to evaluate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalField {
+    /// The pattern as written.
+    pub spec: Normal,
+    /// Object point to pattern point (Prism's frame, before the mirror).
+    pattern_from_object: glam::DAffine3,
+    /// Object normal into the pattern's frame (the transpose of the pattern transform's
+    /// linear part), and back (its inverse).
+    normal_in: DMat3,
+    normal_out: DMat3,
+    turbulence: Option<DVec3>,
+    octaves: Octaves,
+}
+
+/// POV-Ray's `(x, y, -z)` mirror between Prism's frame and its own.
+const MIRROR: DVec3 = DVec3::new(1.0, 1.0, -1.0);
+
+impl NormalField {
+    /// The field of `spec` (which must have passed [`Normal::check`]).
+    pub fn new(spec: &Normal) -> Self {
+        let object_from_pattern = spec.object_from_pattern();
+        let normal_in = object_from_pattern.matrix3.transpose();
+        Self {
+            spec: spec.clone(),
+            pattern_from_object: object_from_pattern.inverse(),
+            normal_in,
+            normal_out: normal_in.inverse(),
+            turbulence: spec.turbulence.map(|t| t.vector()),
+            octaves: octaves_of(spec.octaves, spec.omega, spec.lambda),
+        }
+    }
+
+    /// The perturbed unit normal at object point `p` with object-space normal `n` (facing
+    /// the ray, any length).
+    pub fn perturb(&self, p: DVec3, n: DVec3) -> DVec3 {
+        let mut q = self.pattern_from_object.transform_point3(p) * MIRROR;
+        if let Some(amount) = self.turbulence {
+            q += dturbulence(q, &self.octaves) * amount;
+        }
+        let n_pattern = ((self.normal_in * n) * MIRROR).normalize();
+        let tilted = n_pattern + self.offset(q);
+        (self.normal_out * (tilted * MIRROR)).normalize()
+    }
+
+    /// What the pattern adds to the unit normal at pattern point `q` (POV-Ray's frame).
+    fn offset(&self, q: DVec3) -> DVec3 {
+        let spec = &self.spec;
+        let amount = spec.bump_size.unwrap_or(DEFAULT_BUMP_SIZE);
+        match spec.pattern {
+            NormalKind::Bumps => amount * dnoise(q),
+            NormalKind::Dents => noise(q).powi(3) * amount * dnoise(q),
+            NormalKind::Ripples | NormalKind::Waves => {
+                let frequency = spec.frequency.unwrap_or(1.0);
+                let phase = spec.phase.unwrap_or(0.0);
+                let waves = spec.pattern == NormalKind::Waves;
+                let (sources, frequencies) = wave_sources();
+                let mut sum = DVec3::ZERO;
+                for (source, f) in sources.iter().zip(frequencies) {
+                    let v = q - *source;
+                    let mut length = v.length();
+                    if length == 0.0 {
+                        length = 1.0;
+                    }
+                    let scalar = if waves {
+                        cycloidal(length * frequency * f + phase) * amount / f
+                    } else {
+                        cycloidal(length * frequency + phase) * amount
+                    };
+                    sum += (scalar / (length * NUMBER_OF_WAVES as f64)) * v;
+                }
+                sum
+            }
+            NormalKind::Wrinkles => {
+                let mut sum = DVec3::ZERO;
+                let mut scale = 1.0;
+                for _ in 0..10 {
+                    sum += (dnoise(q * scale) / scale).abs();
+                    scale *= 2.0;
+                }
+                amount * sum
+            }
+        }
+    }
+}
+
+/// POV-Ray's wave sources and their frequencies (`Initialize_Waves`): source i is the unit
+/// vector along `DNoise(i, 0, 0)`; the frequencies come from its 32-bit random sequence.
+fn wave_sources() -> &'static ([DVec3; NUMBER_OF_WAVES], [f64; NUMBER_OF_WAVES]) {
+    static SOURCES: OnceLock<([DVec3; NUMBER_OF_WAVES], [f64; NUMBER_OF_WAVES])> = OnceLock::new();
+    SOURCES.get_or_init(|| {
+        let mut sources = [DVec3::ZERO; NUMBER_OF_WAVES];
+        let mut frequencies = [0.0; NUMBER_OF_WAVES];
+        let mut next: i32 = -560_851_967;
+        for i in 0..NUMBER_OF_WAVES {
+            sources[i] = dnoise(DVec3::new(i as f64, 0.0, 0.0)).normalize();
+            next = (i64::from(next) * 1_812_433_253 + 12_345) as i32;
+            frequencies[i] = f64::from((next >> 16) & 0x7FFF) * 0.000030518509476 + 0.01;
+        }
+        (sources, frequencies)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn field(text: &str) -> NormalField {
+        let n: Normal = toml::from_str(text).unwrap();
+        n.check().unwrap();
+        NormalField::new(&n)
+    }
+
+    const POINTS: [DVec3; 4] = [
+        DVec3::new(0.31, -1.27, 2.45),
+        DVec3::new(-3.5, 0.25, 0.125),
+        DVec3::new(10.2, 4.4, -7.9),
+        DVec3::new(0.0, 0.0, 0.0),
+    ];
+
+    #[test]
+    fn bump_size_zero_leaves_the_normal_unchanged() {
+        for kind in ["bumps", "dents", "ripples", "waves", "wrinkles"] {
+            let f = field(&format!("pattern = \"{kind}\"\nbump_size = 0\nscale = [0.5, 2, 1]\nrotate = [10, 20, 30]"));
+            for p in POINTS {
+                let n = DVec3::new(0.3, 0.9, -0.2).normalize();
+                assert!((f.perturb(p, n) - n).length() < 1e-12, "{kind} at {p}");
+            }
+        }
+    }
+
+    #[test]
+    fn perturbed_normals_are_unit_and_tilted() {
+        for kind in ["bumps", "dents", "ripples", "waves", "wrinkles"] {
+            let f = field(&format!("pattern = \"{kind}\"\nbump_size = 0.8\nturbulence = 0.3\nscale = 0.4"));
+            let mut moved = 0;
+            for p in POINTS {
+                let m = f.perturb(p, DVec3::new(0.0, 2.0, 0.0));
+                assert!((m.length() - 1.0).abs() < 1e-12, "{kind} at {p}");
+                moved += usize::from((m - DVec3::Y).length() > 1e-6);
+            }
+            assert!(moved >= 2, "{kind} barely moves the normal");
+        }
+    }
+
+    #[test]
+    fn wave_sources_follow_povray() {
+        let (sources, frequencies) = wave_sources();
+        // The first random number: (-560851967 * 1812433253 + 12345) mod 2^32 as i32.
+        let first = (-560_851_967_i64 * 1_812_433_253 + 12_345) as i32;
+        assert_eq!(frequencies[0], f64::from((first >> 16) & 0x7FFF) * 0.000030518509476 + 0.01);
+        for (s, f) in sources.iter().zip(frequencies) {
+            assert!((s.length() - 1.0).abs() < 1e-12);
+            assert!((0.01..=1.01).contains(f));
+        }
+    }
+
+    #[test]
+    fn ripples_known_value() {
+        // With the identity transform, the POV-Ray point of Prism's (x, y, z) is (x, y, -z).
+        let f = field("pattern = \"ripples\"\nbump_size = 0.6\nfrequency = 2\nphase = 0.1");
+        let p = DVec3::new(0.7, -0.2, 0.4);
+        let q = p * MIRROR;
+        let (sources, _) = wave_sources();
+        let mut offset = DVec3::ZERO;
+        for s in sources {
+            let v = q - *s;
+            let l = v.length();
+            offset += (0.6 * ((l * 2.0 + 0.1) * std::f64::consts::TAU).sin() / (l * 10.0)) * v;
+        }
+        let expected = ((DVec3::Y + offset) * MIRROR).normalize();
+        assert!((f.perturb(p, DVec3::Y) - expected).length() < 1e-12);
+    }
+
+    #[test]
+    fn the_pattern_transform_carries_the_normal() {
+        // Rotating the pattern 90 degrees about z: bumps seen by a normal along +x equal the
+        // unrotated bumps seen along -y at the rotated point, rotated back.
+        let plain = field("pattern = \"bumps\"");
+        let rotated = field("pattern = \"bumps\"\nrotate = [0, 0, 90]");
+        let p = DVec3::new(0.3, 1.1, -0.6);
+        let r = glam::DMat3::from_rotation_z(std::f64::consts::FRAC_PI_2);
+        let expected = r * plain.perturb(r.transpose() * p, r.transpose() * DVec3::X);
+        assert!((rotated.perturb(p, DVec3::X) - expected).length() < 1e-9);
+    }
+
+    #[test]
+    fn bad_normals_name_their_key() {
+        let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err().0;
+        assert_eq!(err("pattern = \"bumps\"\nbump_size = nan"), "bump_size");
+        assert_eq!(err("pattern = \"bumps\"\nbump_size = inf"), "bump_size");
+        assert_eq!(err("pattern = \"bumps\"\nfrequency = 2"), "frequency");
+        assert_eq!(err("pattern = \"ripples\"\nphase = inf"), "phase");
+        assert_eq!(err("pattern = \"dents\"\noctaves = 3"), "octaves");
+        assert_eq!(err("pattern = \"dents\"\nscale = 0"), "scale");
+        let e = toml::from_str::<Normal>("pattern = \"bumsp\"").unwrap_err().to_string();
+        assert!(e.contains("did you mean `bumps`?"), "{e}");
+        let e = toml::from_str::<Normal>("pattern = \"bumps\"\nbumpsize = 2").unwrap_err().to_string();
+        assert!(e.contains("unknown field `bumpsize`"), "{e}");
+    }
+}
