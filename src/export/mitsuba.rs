@@ -519,6 +519,9 @@ fn bsdf_xml(
     if let crate::material::SurfaceModel::MetallicRoughness(m) = &material.surface {
         return metallic_roughness_xml(material, m, xml_dir, out, mesh_prefix).map(|bsdf| format!("    {bsdf}\n"));
     }
+    if let crate::material::SurfaceModel::Layered(_) = &material.surface {
+        return Err(("layers", "layered textures are not exported to Mitsuba".into()));
+    }
     if let crate::material::SurfaceModel::Finish(f) = &material.surface
         && f.pigment.is_some()
     {

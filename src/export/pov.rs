@@ -424,34 +424,65 @@ pub fn pov_matrix(m: &DAffine3) -> String {
     format!("<{}>", text.join(", "))
 }
 
-/// The material as `texture { pigment finish }` and `interior` (the classic integrator's
-/// view of it), or the keys POV-Ray cannot express with messages. A pigment pattern carries
+/// The material as `texture { pigment finish }` (one per layer of a layered texture, bottom
+/// first) and `interior` (the classic integrator's view of it), or the keys POV-Ray cannot
+/// express with messages. A pigment pattern carries
 /// the object's transform `world_from_object` itself: the texture is written after the
 /// object's `matrix`, which POV-Ray does not apply to textures added later.
 fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Result<(), Vec<(&'static str, String)>> {
+    if let SurfaceModel::Layered(layers) = &m.surface {
+        if layers.iter().any(|l| l.finish.texture.is_some()) {
+            return Err(vec![("layers", "image textures are not exported to POV-Ray".to_string())]);
+        }
+        // One `texture { }` per layer, bottom first: POV-Ray puts the last on top.
+        let view = PovView::new(m);
+        let views: Vec<&PovView> = view.layers().collect();
+        for (layer, layer_view) in layers.iter().zip(views.into_iter().rev()) {
+            let (pigment, normal) = (layer.finish.pigment.as_deref(), layer.finish.normal.as_deref());
+            texture_block(out, &layer_view.base, pigment, normal, world_from_object);
+        }
+        interior_sdl(out, &view.base.interior);
+        return Ok(());
+    }
     let (texture, pbr) = match &m.surface {
         SurfaceModel::Finish(f) => (f.texture.is_some(), false),
         SurfaceModel::MetallicRoughness(p) => (p.finish.texture.is_some(), true),
         SurfaceModel::Mtl(mtl) => (mtl.map_kd.is_some(), false),
         SurfaceModel::Physical(p) => (p.texture.is_some(), false),
+        SurfaceModel::Layered(_) => (false, false),
     };
     let (pigment, normal) = match &m.surface {
         SurfaceModel::Finish(f) => (f.pigment.clone(), f.normal.clone()),
         _ => (None, None),
     };
     let patterned = pigment.is_some() && m.emission.radiance == Rgb::BLACK && m.emission.texture.is_none();
+    let view = PovView::new(m);
     let mut problems = Vec::new();
     if texture {
         problems.push(("texture", "image textures are not exported to POV-Ray".to_string()));
     }
     if pbr {
         problems.push(("pbr", "glTF metallic-roughness materials have no POV-Ray finish equivalent".to_string()));
-    } else if PovView::new(m).varies_over_surface() && !texture && !patterned {
+    } else if view.varies_over_surface() && !texture && !patterned {
         problems.push(("emission", "emitted radiance beside the finish has no POV-Ray equivalent".to_string()));
     }
     if !problems.is_empty() {
         return Err(problems);
     }
+    texture_block(out, &view.base, pigment.as_deref(), normal.as_deref(), world_from_object);
+    interior_sdl(out, &view.base.interior);
+    Ok(())
+}
+
+/// One `texture { pigment normal finish }`: the pattern where given, else the finish's
+/// colour with its filter and transmit.
+fn texture_block(
+    out: &mut String,
+    base: &PovFinish,
+    pigment: Option<&crate::material::pattern::PigmentField>,
+    normal: Option<&crate::material::normal::NormalField>,
+    world_from_object: &DAffine3,
+) {
     let PovFinish {
         finish:
             Finish {
@@ -473,10 +504,10 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
                 normal: _,
             },
         emission,
-        interior: Interior { ior, fade_distance, fade_power, fade_color },
-    } = &PovView::new(m).base;
+        interior: _,
+    } = base;
     let c = color.0;
-    let pigment_sdl = match &pigment {
+    let pigment_sdl = match pigment {
         Some(p) => pigment_pattern(&p.spec, world_from_object),
         None => format!(
             "pigment {{ rgbft <{}, {}, {}, {}, {}> }}",
@@ -487,7 +518,7 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
             number(*transmit)
         ),
     };
-    let normal_sdl = match &normal {
+    let normal_sdl = match normal {
         Some(n) => format!("\n    {}", normal_pattern(&n.spec, world_from_object)),
         None => String::new(),
     };
@@ -524,7 +555,13 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
     if *conserve_energy {
         out.push_str("      conserve_energy\n");
     }
-    let _ = write!(out, "    }}\n  }}\n  interior {{ ior {}", number(*ior));
+    out.push_str("    }\n  }\n");
+}
+
+/// The object's `interior { }`.
+fn interior_sdl(out: &mut String, interior: &Interior) {
+    let Interior { ior, fade_distance, fade_power, fade_color } = interior;
+    let _ = write!(out, "  interior {{ ior {}", number(*ior));
     if *fade_distance != 0.0 {
         let _ = write!(
             out,
@@ -535,7 +572,6 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
         );
     }
     out.push_str(" }\n");
-    Ok(())
 }
 
 /// POV-Ray's `rgbft` form of a pattern colour.

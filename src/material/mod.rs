@@ -48,6 +48,18 @@ pub enum SurfaceModel {
     Mtl(Mtl),
     /// A physically based scattering model, as a scene's `bsdf` table wrote it.
     Physical(Physical),
+    /// POV-Ray's layered texture (`texture { } texture { }`), bottom layer first as written:
+    /// each layer's filter and transmit let the layers below show through.
+    Layered(Vec<Layer>),
+}
+
+/// One layer of a layered texture: its pigment and finish, and its finish's `emission`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layer {
+    /// The layer's pigment and finish.
+    pub finish: Finish,
+    /// POV-Ray's `emission` of this layer's finish (radiance per unit of colour).
+    pub emission: Rgb,
 }
 
 /// A physically based surface: a scattering model and the colour (with its texture) that
@@ -272,6 +284,7 @@ impl Material {
                 }
                 SurfaceModel::Mtl(m) => m.map_kd.is_some(),
                 SurfaceModel::Physical(p) => p.texture.is_some(),
+                SurfaceModel::Layered(layers) => layers.iter().any(|l| l.finish.texture.is_some()),
             }
     }
 
@@ -291,6 +304,12 @@ impl Material {
         let mut textures: Vec<&TextureRef> = self.emission.texture.iter().collect();
         match &self.surface {
             SurfaceModel::Finish(f) => check_finish(f)?,
+            SurfaceModel::Layered(layers) => {
+                for layer in layers {
+                    check_finish(&layer.finish)?;
+                    check_finite(&[("emission", layer.emission)], &[])?;
+                }
+            }
             SurfaceModel::MetallicRoughness(p) => {
                 check_finish(&p.finish)?;
                 for (key, v) in [("metallic", p.metallic), ("roughness", p.roughness)] {

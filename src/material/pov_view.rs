@@ -12,7 +12,8 @@ use glam::{DVec2, DVec3};
 use super::normal::NormalField;
 use super::pattern::PigmentField;
 use super::{
-    AlphaMode, Finish, Interior, Material, MetallicRoughness, Mtl, Physical, Reflection, Scattering, SurfaceModel,
+    AlphaMode, Emission, Finish, Interior, Material, MetallicRoughness, Mtl, Physical, Reflection, Scattering,
+    SurfaceModel,
 };
 use crate::color::Rgb;
 use crate::texture::TextureRef;
@@ -59,6 +60,9 @@ pub struct PovView {
     varying: Option<Varying>,
     /// A normal pattern tilting the shading normal.
     normal: Option<Arc<NormalField>>,
+    /// A layered texture's layers under this one, top first (POV-Ray's order after the top
+    /// layer, which is this view); empty for a single texture.
+    below: Vec<PovView>,
 }
 
 /// What a hit looks up.
@@ -110,7 +114,7 @@ impl PovView {
                     base.finish.filter = p.spec.colors().map(|c| c.filter).fold(0.0, f64::max);
                     base.finish.transmit = p.spec.colors().map(|c| c.transmit).fold(0.0, f64::max);
                 }
-                Self { base, varying, normal: f.normal.clone() }
+                Self { base, varying, normal: f.normal.clone(), below: Vec::new() }
             }
             SurfaceModel::MetallicRoughness(p) => {
                 let mut base = finish(&p.finish, emission.times_color);
@@ -124,7 +128,7 @@ impl PovView {
                     emitted: Some(emitted()),
                     pigment: None,
                 };
-                Self { base, varying: Some(varying), normal: None }
+                Self { base, varying: Some(varying), normal: None, below: Vec::new() }
             }
             SurfaceModel::Physical(p) => {
                 let (derived, ior) = physical_finish(p);
@@ -137,22 +141,66 @@ impl PovView {
                     emitted: glows.then(emitted),
                     pigment: None,
                 });
-                Self { base, varying, normal: None }
+                Self { base, varying, normal: None, below: Vec::new() }
             }
             SurfaceModel::Mtl(m) => {
                 let (mapped, texture) = mtl_finish(m, emission.radiance, interior.ior);
                 let mut base = finish(&mapped.finish, mapped.emission);
                 base.interior.ior = mapped.ior;
                 let varying = texture.map(|t| Varying { texture: Some(t), pbr: None, emitted: None, pigment: None });
-                Self { base, varying, normal: None }
+                Self { base, varying, normal: None, below: Vec::new() }
+            }
+            SurfaceModel::Layered(layers) => {
+                let mut views = layers.iter().rev().map(|layer| {
+                    Self::new(&Material {
+                        surface: SurfaceModel::Finish(layer.finish.clone()),
+                        interior: *interior,
+                        emission: Emission { times_color: layer.emission, ..Emission::default() },
+                    })
+                });
+                let top = views.next();
+                let below = views.collect();
+                let top = top.unwrap_or_else(|| Self::new(&Material { interior: *interior, ..Material::default() }));
+                Self { below, ..top }
             }
         }
+    }
+
+    /// The layers, top first (one for a single texture): POV-Ray's texture list.
+    pub fn layers(&self) -> impl Iterator<Item = &PovView> {
+        std::iter::once(self).chain(&self.below)
+    }
+
+    /// True when the material has more than one layer.
+    pub fn is_layered(&self) -> bool {
+        !self.below.is_empty()
+    }
+
+    /// True when light can pass through every layer somewhere (the most transparent colours
+    /// of patterns).
+    pub fn is_transparent(&self) -> bool {
+        self.layers().all(|l| l.base.is_transparent())
+    }
+
+    /// What a shadow ray crossing the surface at object-space `point` keeps of the light:
+    /// the product over the layers of `colour * filter + transmit` (POV-Ray's
+    /// `ComputeShadowTexture`), patterns looked up at the point.
+    pub fn shadow_filter(&self, point: DVec3) -> DVec3 {
+        self.layers()
+            .map(|l| match l.pigment() {
+                Some(p) => {
+                    let c = p.at(point);
+                    c.rgb * c.filter + DVec3::splat(c.transmit)
+                }
+                None => l.base.finish.color.0 * l.base.finish.filter + DVec3::splat(l.base.finish.transmit),
+            })
+            .product()
     }
 
     /// True when the finish depends on where the surface is hit: only then does shading need
     /// the surface's uv.
     pub fn varies_over_surface(&self) -> bool {
-        self.varying.is_some()
+        self.varying.is_some() || self.below.iter().any(PovView::varies_over_surface)
     }
 
     /// The normal pattern, when the material has one.

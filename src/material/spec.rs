@@ -15,7 +15,9 @@ use serde::{Deserialize, Serialize};
 
 use super::normal::{Normal, NormalField};
 use super::pattern::{Pigment, PigmentField};
-use super::{AlphaMode, Emission, Finish, Interior, Material, MetallicRoughness, Physical, Scattering, SurfaceModel};
+use super::{
+    AlphaMode, Emission, Finish, Interior, Layer, Material, MetallicRoughness, Physical, Scattering, SurfaceModel,
+};
 use crate::color::Rgb;
 use crate::texture::{ColorSpace, TextureRef};
 
@@ -92,6 +94,14 @@ pub struct MaterialSpec {
     /// the classic integrator derives its finish from the model.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bsdf: Option<BsdfSpec>,
+    /// POV-Ray's layered texture: layers bottom first, as POV-Ray writes `texture { }` blocks
+    /// (the last is on top, and each layer's `filter` and `transmit` let the layers below
+    /// show through). Each layer takes the pigment and finish keys of a material (`color`,
+    /// `filter`, `transmit`, `pigment`, `normal`, `texture`, `ambient`, `emission`,
+    /// `diffuse`, ..., `reflection`, `conserve_energy`); the interior (`ior`, `fade_*`) is
+    /// the object's and is written beside `layers`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub layers: Option<Vec<MaterialSpec>>,
 }
 
 /// A scene's `bsdf` table: a physically based scattering model and its parameters, named and
@@ -277,13 +287,94 @@ impl Default for MaterialSpec {
             normal: None,
             pbr: None,
             bsdf: None,
+            layers: None,
         }
     }
 }
 
 impl MaterialSpec {
-    /// The first non-finite or out-of-range parameter, as (key, message).
-    pub fn check(&self) -> Result<(), (&'static str, String)> {
+    /// The first non-finite or out-of-range parameter, or misplaced key, as (key path under
+    /// the material, message).
+    pub fn check(&self) -> Result<(), (String, String)> {
+        let owned = |(key, message): (&str, String)| (key.to_string(), message);
+        let Some(layers) = &self.layers else {
+            return self.check_single().map_err(owned);
+        };
+        if layers.is_empty() {
+            return Err((
+                "layers".into(),
+                "needs at least one layer (POV-Ray's `texture { }` blocks, bottom first)".into(),
+            ));
+        }
+        if let Some(key) = self.layer_keys_written().first() {
+            return Err((
+                key.to_string(),
+                "belongs to a layer: write it inside one of `layers` (beside `layers` only the interior, \
+                 `ior` and `fade_*`, and `emission_two_sided` may be written)"
+                    .into(),
+            ));
+        }
+        Self { layers: None, ..self.clone() }.check_single().map_err(owned)?;
+        for (i, layer) in layers.iter().enumerate() {
+            let at = |key: &str| format!("layers[{i}].{key}");
+            if layer.layers.is_some() {
+                return Err((at("layers"), "layers do not nest: list every layer in one `layers`".into()));
+            }
+            for (key, written) in [("pbr", layer.pbr.is_some()), ("bsdf", layer.bsdf.is_some())] {
+                if written {
+                    return Err((
+                        at(key),
+                        format!("a layer is a POV-Ray pigment and finish: `{key}` has no layered form"),
+                    ));
+                }
+            }
+            let d = Self::default();
+            let interior = [
+                ("ior", layer.ior != d.ior),
+                ("fade_distance", layer.fade_distance != d.fade_distance),
+                ("fade_power", layer.fade_power != d.fade_power),
+                ("fade_color", layer.fade_color != d.fade_color),
+                ("emission_two_sided", layer.emission_two_sided != d.emission_two_sided),
+            ];
+            if let Some((key, _)) = interior.iter().find(|(_, w)| *w) {
+                return Err((at(key), "is the object's, shared by every layer: write it beside `layers`".into()));
+            }
+            layer.check_single().map_err(|(key, message)| (at(key), message))?;
+        }
+        Ok(())
+    }
+
+    /// The pigment and finish keys written (differing from the defaults): a layer's keys.
+    fn layer_keys_written(&self) -> Vec<&'static str> {
+        let d = Self::default();
+        [
+            ("color", self.color != d.color),
+            ("filter", self.filter != d.filter),
+            ("transmit", self.transmit != d.transmit),
+            ("ambient", self.ambient != d.ambient),
+            ("emission", self.emission != d.emission),
+            ("diffuse", self.diffuse != d.diffuse),
+            ("brilliance", self.brilliance != d.brilliance),
+            ("phong", self.phong != d.phong),
+            ("phong_size", self.phong_size != d.phong_size),
+            ("specular", self.specular != d.specular),
+            ("roughness", self.roughness != d.roughness),
+            ("metallic", self.metallic != d.metallic),
+            ("reflection", self.reflection != d.reflection),
+            ("conserve_energy", self.conserve_energy != d.conserve_energy),
+            ("texture", self.texture.is_some()),
+            ("pigment", self.pigment.is_some()),
+            ("normal", self.normal.is_some()),
+            ("pbr", self.pbr.is_some()),
+            ("bsdf", self.bsdf.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(key, written)| written.then_some(key))
+        .collect()
+    }
+
+    /// [`Self::check`] of a material without layers.
+    fn check_single(&self) -> Result<(), (&'static str, String)> {
         let finish = self.finish();
         super::check_finish(&finish)?;
         super::check_finite(
@@ -406,6 +497,9 @@ impl MaterialSpec {
                 out.push((t, ColorSpace::Srgb));
             }
         }
+        for layer in self.layers.iter_mut().flatten() {
+            out.extend(layer.textures_mut());
+        }
         out
     }
 
@@ -444,6 +538,14 @@ impl MaterialSpec {
             emission = Emission { radiance: self.emission, ..Emission::default() };
         }
         emission.two_sided = self.emission_two_sided;
+        if let Some(layers) = &self.layers {
+            let layers: Vec<Layer> =
+                layers.iter().map(|l| Layer { finish: l.finish(), emission: l.emission }).collect();
+            // Shading reads each layer's emission; this says whether any layer glows.
+            emission.times_color =
+                Rgb(layers.iter().map(|l| l.emission.0.abs()).fold(glam::DVec3::ZERO, glam::DVec3::max));
+            return Material { surface: SurfaceModel::Layered(layers), interior: self.interior(), emission };
+        }
         let surface = match (&self.pbr, physical) {
             (_, Some(scattering)) => {
                 SurfaceModel::Physical(Physical { scattering, color: self.color, texture: self.texture.clone() })
@@ -462,13 +564,16 @@ impl MaterialSpec {
                 })
             }
         };
-        let interior = Interior {
+        Material { surface, interior: self.interior(), emission }
+    }
+
+    fn interior(&self) -> Interior {
+        Interior {
             ior: self.ior,
             fade_distance: self.fade_distance,
             fade_power: self.fade_power,
             fade_color: self.fade_color,
-        };
-        Material { surface, interior, emission }
+        }
     }
 }
 

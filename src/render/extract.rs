@@ -143,7 +143,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
     let lights = SceneLights::new(sources, &primitives, &materials, &scene.environment);
 
     let accel = Accel::build_flattening(&primitives, &flattenable(&primitives));
-    let has_transparency = materials.iter().any(|m| PovView::new(m).base.is_transparent());
+    let has_transparency = materials.iter().any(|m| PovView::new(m).is_transparent());
     let camera = RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height);
     let focal_blur = scene
         .camera()

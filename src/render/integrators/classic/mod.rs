@@ -214,112 +214,131 @@ impl<'a> Classic<'a> {
         // Two-sided: shade with the normal facing the viewer.
         let facing = shading.dot(d) > 0.0;
         let raw = if facing { -shading } else { shading };
-        // A normal pattern tilts the facing normal (POV-Ray's `Perturb_Normal`, in the object's
-        // space); everything below shades with it, as POV-Ray's layer normal.
-        let n = match view.normal() {
-            Some(field) => {
-                let object_normal = if facing { -surface.shading_normal } else { surface.shading_normal };
-                primitive.world_normal(field.perturb(surface.point, object_normal)).normalize()
-            }
-            None => raw,
-        };
+        let object_normal = if facing { -surface.shading_normal } else { surface.shading_normal };
+        let distance = closest.hit.t * d.length();
         let entering = !interiors.contains(closest.primitive);
-        let shaded = self.shade(view, primitive, &surface, closest.hit.t * d.length(), n.dot(d) / d.length());
-        let material: &PovFinish = &shaded.finish;
-        if level == 1 && state.first_hit.is_none() {
-            state.first_hit = Some(FirstHit {
-                albedo: material.finish.color.0,
-                normal: n,
-                position: point,
-                depth: closest.hit.t * d.length(),
-                uv: surface.uv,
-                primitive: closest.primitive,
-                material: material_id,
-            });
-        }
 
-        let mut colour = self.local_shading(point, n, d, material, &interiors, state) + shaded.emitted;
-
-        // Reflection and refraction.
-        let c = -d.dot(n);
-        let n_from = self.medium_ior(&interiors);
-        let inner = if entering { interiors.entering(closest.primitive) } else { interiors.leaving(closest.primitive) };
-        let n_to = if entering { material.interior.ior } else { self.medium_ior(&inner) };
-
-        let reflection = &material.finish.reflection;
-        let mut rf = DVec3::ZERO;
-        if reflection.is_reflective() {
-            let (min, max) = (reflection.min.0, reflection.max.0);
-            rf = if reflection.fresnel {
-                min + (max - min) * fresnel(self.fresnel_eta(&interiors, closest.primitive, material.interior.ior), c)
-            } else {
-                min + (max - min) * (1.0 - c).max(0.0).powf(reflection.falloff)
-            };
-            if reflection.metallic != 0.0 {
-                rf *= DVec3::ONE
-                    + reflection.metallic * (1.0 - metallic_fresnel(c)) * (material.finish.color.0 - DVec3::ONE);
+        // POV-Ray's `ComputeLightedTexture`: the layers from the top down, each lit with its
+        // own finish and normal and seen through the filter of the layers above it
+        // (`filter`, POV-Ray's filCol), until too little shows through (`trans`).
+        let mut colour = DVec3::ZERO;
+        let mut filter = DVec3::ONE;
+        let mut trans = 1.0;
+        let mut top_normal = raw;
+        let mut reflections = LayerReflections::default();
+        for (index, layer) in view.layers().enumerate() {
+            if trans <= scene.settings.adc_bailout {
+                break;
             }
-        }
-
-        let mut total_internal = false;
-        if material.is_transparent() {
-            let mut filter = material.finish.color.0 * material.finish.filter + DVec3::splat(material.finish.transmit);
+            // A normal pattern tilts the facing normal (POV-Ray's `Perturb_Normal`, in the
+            // object's space); the layer shades and reflects with it.
+            let n = match layer.normal() {
+                Some(field) => primitive.world_normal(field.perturb(surface.point, object_normal)).normalize(),
+                None => raw,
+            };
+            let shaded = self.shade(layer, primitive, &surface, distance, n.dot(d) / d.length());
+            let material: &PovFinish = &shaded.finish;
+            if index == 0 {
+                top_normal = n;
+                if level == 1 && state.first_hit.is_none() {
+                    state.first_hit = Some(FirstHit {
+                        albedo: material.finish.color.0,
+                        normal: n,
+                        position: point,
+                        depth: distance,
+                        uv: surface.uv,
+                        primitive: closest.primitive,
+                        material: material_id,
+                    });
+                }
+            }
+            let reflection = &material.finish.reflection;
+            let mut rf = DVec3::ZERO;
+            if reflection.is_reflective() {
+                let c = -d.dot(n);
+                let (min, max) = (reflection.min.0, reflection.max.0);
+                let reflect_weight;
+                (rf, reflect_weight) = if reflection.fresnel {
+                    let eta = self.fresnel_eta(&interiors, closest.primitive, material.interior.ior);
+                    let rf = min + (max - min) * fresnel(eta, c);
+                    (rf, rf.max_element())
+                } else {
+                    let rf = min + (max - min) * (1.0 - c).max(0.0).powf(reflection.falloff);
+                    (rf, min.max_element().max(max.max_element()))
+                };
+                if reflection.metallic != 0.0 {
+                    rf *= DVec3::ONE
+                        + reflection.metallic * (1.0 - metallic_fresnel(c)) * (material.finish.color.0 - DVec3::ONE);
+                }
+                reflections.push(LayerReflection {
+                    normal: n,
+                    rf,
+                    weight: weight * trans * reflect_weight,
+                    exponent: reflection.exponent,
+                });
+            }
+            colour += filter * (self.local_shading(point, n, d, material, &interiors, state) + shaded.emitted);
+            filter *= material.finish.color.0 * material.finish.filter + DVec3::splat(material.finish.transmit);
             if material.finish.conserve_energy {
                 filter *= (DVec3::ONE - rf).min(DVec3::ONE);
             }
-            let strength = (0.297 * filter.x + 0.589 * filter.y + 0.114 * filter.z).abs().min(1.0);
-            if strength > scene.settings.adc_bailout {
-                let child_weight = weight * filter.abs().max_element();
-                let eta = n_from / n_to;
-                let transmitted = if (eta - 1.0).abs() < IOR_EPSILON {
-                    // No refraction: the ray continues at the same level, but POV-Ray still
-                    // tests the level limit first, as if it were one deeper.
-                    if level >= scene.settings.max_depth {
-                        DVec3::ZERO
-                    } else {
-                        filter * self.trace(&Ray::new(point, d), level, child_weight, inner, state)
-                    }
-                } else {
-                    // POV-Ray refracts about the layer normal turned to face the ray (a tilted
-                    // normal may face away).
-                    let (c, toward) = if c < 0.0 { (-c, -n) } else { (c, n) };
-                    let k = 1.0 + eta * eta * (c * c - 1.0);
-                    if k < 0.0 {
-                        // Total internal reflection: traced without the filter colour.
-                        total_internal = true;
-                        let mirror = Ray::new(point, reflect(d, n, raw));
-                        self.trace(&mirror, level + 1, child_weight, interiors, state)
-                    } else {
-                        let direction = (eta * d + (eta * c - k.sqrt()) * toward).normalize();
-                        filter * self.trace(&Ray::new(point, direction), level + 1, child_weight, inner, state)
-                    }
-                };
-                // Interior fade applies where the ray leaves the object, over the distance it
-                // travelled inside, and only to the light coming through (POV-Ray's attCol).
-                colour += if entering {
-                    transmitted
-                } else {
-                    transmitted * interior_fade(material, closest.hit.t * d.length(), false)
-                };
-            }
+            trans = (0.297 * filter.x + 0.589 * filter.y + 0.114 * filter.z).abs().min(1.0);
         }
 
-        if reflection.is_reflective() && !total_internal {
-            let reflect_weight = if reflection.fresnel {
-                rf.max_element()
+        // Refraction about the top layer's normal, filtered by every layer.
+        let n = top_normal;
+        let c = -d.dot(n);
+        let n_from = self.medium_ior(&interiors);
+        let inner = if entering { interiors.entering(closest.primitive) } else { interiors.leaving(closest.primitive) };
+        let interior = &view.base;
+        let n_to = if entering { interior.interior.ior } else { self.medium_ior(&inner) };
+        let mut total_internal = false;
+        if trans > scene.settings.adc_bailout {
+            let child_weight = weight * filter.abs().max_element();
+            let eta = n_from / n_to;
+            let transmitted = if (eta - 1.0).abs() < IOR_EPSILON {
+                // No refraction: the ray continues at the same level, but POV-Ray still
+                // tests the level limit first, as if it were one deeper.
+                if level >= scene.settings.max_depth {
+                    DVec3::ZERO
+                } else {
+                    filter * self.trace(&Ray::new(point, d), level, child_weight, inner, state)
+                }
             } else {
-                reflection.min.0.max_element().max(reflection.max.0.max_element())
+                // POV-Ray refracts about the layer normal turned to face the ray (a tilted
+                // normal may face away).
+                let (c, toward) = if c < 0.0 { (-c, -n) } else { (c, n) };
+                let k = 1.0 + eta * eta * (c * c - 1.0);
+                if k < 0.0 {
+                    // Total internal reflection: traced without the filter colour.
+                    total_internal = true;
+                    let mirror = Ray::new(point, reflect(d, n, raw));
+                    self.trace(&mirror, level + 1, child_weight, interiors, state)
+                } else {
+                    let direction = (eta * d + (eta * c - k.sqrt()) * toward).normalize();
+                    filter * self.trace(&Ray::new(point, direction), level + 1, child_weight, inner, state)
+                }
             };
-            let mirror = Ray::new(point, reflect(d, n, raw));
-            let mut reflected = self.trace(&mirror, level + 1, weight * reflect_weight, interiors, state);
-            if reflection.exponent != 1.0 {
-                reflected = reflected.max(DVec3::ZERO).powf(1.0 / reflection.exponent);
+            // Interior fade applies where the ray leaves the object, over the distance it
+            // travelled inside, and only to the light coming through (POV-Ray's attCol).
+            colour += if entering { transmitted } else { transmitted * interior_fade(interior, distance, false) };
+        }
+
+        // Each layer's reflection, unfiltered by the layers above (POV-Ray adds them); after
+        // total internal reflection, those about the top normal were already traced.
+        for r in reflections.iter() {
+            if total_internal && (r.normal - top_normal).abs().max_element() <= IOR_EPSILON {
+                continue;
             }
-            colour += rf * reflected;
+            let mirror = Ray::new(point, reflect(d, r.normal, raw));
+            let mut reflected = self.trace(&mirror, level + 1, r.weight, interiors, state);
+            if r.exponent != 1.0 {
+                reflected = reflected.max(DVec3::ZERO).powf(1.0 / r.exponent);
+            }
+            colour += r.rf * reflected;
         }
         colour
     }
-
     /// Ambient, emission, diffuse and highlights from every light.
     fn local_shading(
         &self,
@@ -419,19 +438,13 @@ impl<'a> Classic<'a> {
                 return filter;
             };
             let view = &self.views[scene.primitives[hit.primitive as usize].material_at(&hit.hit) as usize];
-            let m = &view.base;
-            if !m.is_transparent() {
+            if !view.is_transparent() {
                 return DVec3::ZERO;
             }
-            filter *= match view.pigment() {
-                // A pattern's filter and transmit vary: look them up where the shadow ray
-                // crosses (in the object's space, as shading does).
-                Some(p) => {
-                    let c = p.at(hit.object_ray.at(hit.hit.t));
-                    c.rgb * c.filter + DVec3::splat(c.transmit)
-                }
-                None => m.finish.color.0 * m.finish.filter + DVec3::splat(m.finish.transmit),
-            };
+            // Patterns' filter and transmit vary: they are looked up where the shadow ray
+            // crosses (in the object's space, as shading does), every layer's.
+            filter *= view.shadow_filter(hit.object_ray.at(hit.hit.t));
+            let m = &view.base;
             if inside.contains(hit.primitive) {
                 filter *= interior_fade(m, hit.hit.t, true);
                 inside = inside.leaving(hit.primitive);
@@ -538,6 +551,41 @@ impl<'a> Classic<'a> {
         let to = target - point;
         let distance = to.length();
         self.transmittance(point, to * distance.recip(), distance, interiors, blockers, state)
+    }
+}
+
+/// What one layer's reflection needs once refraction has been traced.
+#[derive(Clone, Copy, Debug)]
+struct LayerReflection {
+    /// The layer's shading normal.
+    normal: DVec3,
+    /// Its reflectivity toward the viewer.
+    rf: DVec3,
+    /// The reflected ray's weight (for `adc_bailout`).
+    weight: f64,
+    /// POV-Ray's reflection `exponent`.
+    exponent: f64,
+}
+
+/// The reflecting layers of one hit, top first: the first held inline (most materials have
+/// one layer), the rest in a vector.
+#[derive(Default)]
+struct LayerReflections {
+    first: Option<LayerReflection>,
+    rest: Vec<LayerReflection>,
+}
+
+impl LayerReflections {
+    fn push(&mut self, r: LayerReflection) {
+        if self.first.is_none() {
+            self.first = Some(r);
+        } else {
+            self.rest.push(r);
+        }
+    }
+
+    fn iter(&self) -> impl Iterator<Item = &LayerReflection> {
+        self.first.iter().chain(&self.rest)
     }
 }
 

@@ -13,13 +13,18 @@
 //!   the diffuse part by `1 - reflection`, so no POV-Ray finish creates energy. Phong and
 //!   specular highlights are the lights' reflections in Whitted tracing and have no extra
 //!   lobe: under `path` they are what the mirror lobe (or nothing) reflects;
+//! - a layered texture (POV-Ray's `texture { } texture { }`) sums its layers' readings as
+//!   POV-Ray weighs them: each layer's opaque part is seen through the filter of the layers
+//!   above, and what passes every layer is the dielectric, tinted by the product of filters
+//!   (one diffuse lobe, one mirror, one dielectric in all; layer normals are ignored, as
+//!   every normal pattern under `path`);
 //! - OBJ/MTL: `Kd` (times `map_Kd`) diffuse, `Ks` with `Ns` a plastic-like glossy lobe
 //!   (roughness from Phong's exponent), illum 3/5-7 a mirror, `d` < 1 a dielectric of `Ni`.
 
 use glam::{DVec2, DVec3};
 
 use crate::color::Rgb;
-use crate::material::{AlphaMode, Finish, Material, MetallicRoughness, Mtl, Physical, Scattering, SurfaceModel};
+use crate::material::{AlphaMode, Finish, Layer, Material, MetallicRoughness, Mtl, Physical, Scattering, SurfaceModel};
 use crate::render::bsdf::{Bsdf, BsdfSample};
 
 /// At most this many lobes at one hit.
@@ -258,6 +263,9 @@ impl PathMaterial {
         if !self.can_emit() {
             return DVec3::ZERO;
         }
+        if let SurfaceModel::Layered(layers) = &self.material.surface {
+            return layered_scatter(layers, point, self.material.interior.ior).emitted;
+        }
         self.emission(self.surface_color(point).0, point.uv)
     }
 
@@ -266,22 +274,23 @@ impl PathMaterial {
     fn surface_color(&self, point: &SurfacePoint) -> (DVec3, Option<Finish>) {
         let uv = point.uv;
         let color = match &self.material.surface {
-            SurfaceModel::Finish(f) => {
-                if let Some(p) = &f.pigment {
-                    let c = p.at(point.object_point);
-                    return (c.rgb, Some(Finish { filter: c.filter, transmit: c.transmit, ..f.clone() }));
-                }
-                f.color.0 * rgb_of(texel(&f.texture, uv))
-            }
+            SurfaceModel::Finish(f) => return layer_color(f, point),
             SurfaceModel::MetallicRoughness(m) => m.finish.color.0 * rgb_of(texel(&m.finish.texture, uv)),
             SurfaceModel::Mtl(m) => m.kd.unwrap_or(Rgb::WHITE).0 * rgb_of(texel(&m.map_kd, uv)),
             SurfaceModel::Physical(p) => p.color.0 * rgb_of(texel(&p.texture, uv)),
+            SurfaceModel::Layered(layers) => match layers.last() {
+                Some(top) => return layer_color(&top.finish, point),
+                None => DVec3::ZERO,
+            },
         };
         (color, None)
     }
 
     /// The scattering and emission at `point`.
     pub fn shade(&self, point: &SurfacePoint) -> Shaded {
+        if let SurfaceModel::Layered(layers) = &self.material.surface {
+            return layered_scatter(layers, point, self.material.interior.ior);
+        }
         let uv = point.uv;
         let (color, patterned) = self.surface_color(point);
         let scatter = match &self.material.surface {
@@ -291,6 +300,7 @@ impl PathMaterial {
             SurfaceModel::MetallicRoughness(m) => metallic_roughness_scatter(m, color, uv),
             SurfaceModel::Mtl(m) => mtl_scatter(m, color),
             SurfaceModel::Physical(p) => physical_scatter(p, color),
+            SurfaceModel::Layered(_) => unreachable!("layered surfaces return above"),
         };
         Shaded { scatter, emitted: self.emission(color, uv) }
     }
@@ -308,20 +318,62 @@ fn smooth_dielectric(ior: f64, transmit_tint: DVec3) -> Lobe {
 }
 
 fn finish_scatter(f: &Finish, color: DVec3, ior: f64) -> Scatter {
-    let transmitted = f.filter * color + DVec3::splat(f.transmit);
-    let opacity = (1.0 - f.filter - f.transmit).clamp(0.0, 1.0);
-    let mirror = f.reflection.min.0.max(f.reflection.max.0).clamp(DVec3::ZERO, DVec3::ONE);
-    let albedo = if f.diffuse > 0.0 { color.clamp(DVec3::ZERO, DVec3::ONE) } else { DVec3::ZERO };
-    // The transparent share is a dielectric whose transmission carries the filter's tint.
-    let through = (opacity < 1.0 && transmitted.max_element() > 0.0).then(|| {
-        let share = 1.0 - opacity;
-        (DVec3::splat(share), smooth_dielectric(ior, (transmitted / share).min(DVec3::ONE)))
-    });
-    Scatter::new(
-        [(opacity * (DVec3::ONE - mirror) * albedo, diffuse(DVec3::ONE)), (opacity * mirror, Lobe::Mirror)]
-            .into_iter()
-            .chain(through),
-    )
+    stacked_scatter(std::iter::once((f, color)), ior)
+}
+
+/// A stack of POV-Ray finishes, top first, each with its colour at the hit, as one diffuse
+/// lobe, one mirror and one pass-through: each layer's opaque part is seen through the
+/// filter (`colour * filter + transmit`) of the layers above it, as POV-Ray weighs layers,
+/// and what passes every layer is a dielectric of the interior's `ior` tinted by the
+/// product of the filters. One layer is [`finish_scatter`]'s reading.
+fn stacked_scatter<'a>(layers: impl Iterator<Item = (&'a Finish, DVec3)>, ior: f64) -> Scatter {
+    let (mut diffuse_weight, mut mirror_weight) = (DVec3::ZERO, DVec3::ZERO);
+    // What the layers so far let through: tinted, and as a fraction of the light.
+    let (mut transmitted, mut share) = (DVec3::ONE, 1.0);
+    for (f, color) in layers {
+        let opacity = (1.0 - f.filter - f.transmit).clamp(0.0, 1.0);
+        let mirror = f.reflection.min.0.max(f.reflection.max.0).clamp(DVec3::ZERO, DVec3::ONE);
+        let albedo = if f.diffuse > 0.0 { color.clamp(DVec3::ZERO, DVec3::ONE) } else { DVec3::ZERO };
+        diffuse_weight += transmitted * opacity * (DVec3::ONE - mirror) * albedo;
+        mirror_weight += transmitted * opacity * mirror;
+        transmitted *= f.filter * color + DVec3::splat(f.transmit);
+        share *= 1.0 - opacity;
+    }
+    // The transparent share is a dielectric whose transmission carries the filters' tint.
+    let through = (share > 0.0 && transmitted.max_element() > 0.0)
+        .then(|| (DVec3::splat(share), smooth_dielectric(ior, (transmitted / share).min(DVec3::ONE))));
+    Scatter::new([(diffuse_weight, diffuse(DVec3::ONE)), (mirror_weight, Lobe::Mirror)].into_iter().chain(through))
+}
+
+/// The colour of one layer at `point`, and its finish with a pigment pattern's filter and
+/// transmit there when it has one.
+fn layer_color(f: &Finish, point: &SurfacePoint) -> (DVec3, Option<Finish>) {
+    match &f.pigment {
+        Some(p) => {
+            let c = p.at(point.object_point);
+            (c.rgb, Some(Finish { filter: c.filter, transmit: c.transmit, ..f.clone() }))
+        }
+        None => (f.color.0 * rgb_of(texel(&f.texture, point.uv)), None),
+    }
+}
+
+/// A layered texture (`layers`, bottom first) read by [`stacked_scatter`], with each layer's
+/// emission times its colour seen through the layers above.
+fn layered_scatter(layers: &[Layer], point: &SurfacePoint, ior: f64) -> Shaded {
+    let looked_up: Vec<(DVec3, Option<Finish>)> = layers.iter().rev().map(|l| layer_color(&l.finish, point)).collect();
+    let finishes = layers
+        .iter()
+        .rev()
+        .zip(&looked_up)
+        .map(|(l, (color, patterned))| (patterned.as_ref().unwrap_or(&l.finish), *color));
+    let scatter = stacked_scatter(finishes.clone(), ior);
+    let mut emitted = DVec3::ZERO;
+    let mut transmitted = DVec3::ONE;
+    for ((f, color), layer) in finishes.zip(layers.iter().rev()) {
+        emitted += transmitted * layer.emission.0 * color;
+        transmitted *= f.filter * color + DVec3::splat(f.transmit);
+    }
+    Shaded { scatter, emitted }
 }
 
 fn metallic_roughness_scatter(m: &MetallicRoughness, base_color: DVec3, uv: DVec2) -> Scatter {
