@@ -298,6 +298,36 @@ fn cases() -> Vec<Case> {
             "[[object]]\nshape = \"union\"\nmembers = [{ shape = \"sphere\", name = \"a\" }]\n",
             &["scene.toml:3:", "object[0].members[0].name", "cannot be set on a CSG member"],
         ),
+        case(
+            "empty layers",
+            "[[object]]\nshape = \"sphere\"\nmaterial = { layers = [] }\n",
+            &["scene.toml:3:", "object[0].material.layers", "at least one layer"],
+        ),
+        case(
+            "a layer key beside layers",
+            "[[object]]\nshape = \"sphere\"\n[object.material]\nphong = 0.5\n[[object.material.layers]]\ncolor = [1, 0, 0]\n",
+            &["scene.toml:4:", "object[0].material.phong", "belongs to a layer"],
+        ),
+        case(
+            "a bsdf layer",
+            "[materials.m]\n[[materials.m.layers]]\ncolor = [1, 0, 0]\n[[materials.m.layers]]\nbsdf = { type = \"diffuse\" }\n[[object]]\nshape = \"sphere\"\nmaterial = \"m\"\n",
+            &["scene.toml:5:", "materials.m.layers[1].bsdf", "no layered form"],
+        ),
+        case(
+            "a pbr layer",
+            "[[object]]\nshape = \"sphere\"\nmaterial = { layers = [{ pbr = { metallic = 1 } }] }\n",
+            &["scene.toml:3:", "object[0].material.layers[0].pbr", "no layered form"],
+        ),
+        case(
+            "an interior key in a layer",
+            "[[object]]\nshape = \"sphere\"\nmaterial = { layers = [{ transmit = 1 }, { ior = 1.5 }] }\n",
+            &["scene.toml:3:", "object[0].material.layers[1].ior", "beside `layers`"],
+        ),
+        case(
+            "a bad value in a layer",
+            "[[object]]\nshape = \"sphere\"\n[[object.material.layers]]\nroughness = 0\n",
+            &["scene.toml:4:", "object[0].material.layers[0].roughness", "greater than 0"],
+        ),
         case("infinite light", "[[light]]\nposition = [inf, 0, 0]\n", &["scene.toml:", "position", "finite"]),
         case(
             "shadowless spot",

@@ -67,6 +67,24 @@ fn writes_normal_patterns_after_the_pigment() {
 }
 
 #[test]
+fn writes_one_texture_per_layer_bottom_first() {
+    let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/layered.toml")).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = String::from_utf8(run.stdout).unwrap();
+    // The wall's one texture, two on the floor, three on the sphere, two on the glass and the box.
+    assert_eq!(pov.matches("  texture {").count(), 10);
+    let sphere = &pov[pov.find("\"three_layers\" sphere").unwrap()..pov.find("\"coated_glass\" sphere").unwrap()];
+    let at = |needle: &str| sphere.find(needle).unwrap_or_else(|| panic!("missing `{needle}` in:\n{sphere}"));
+    // POV-Ray puts the last texture on top: the base first, the clear coat last.
+    assert!(at("rgbft <0.8, 0.15, 0.1, 0.0, 0.0>") < at("gradient <0.0, 1.0, -0.0>"));
+    assert!(at("gradient <0.0, 1.0, -0.0>") < at("bumps 0.4"));
+    assert!(at("emission rgb <0.15, 0.15, 0.15>") < at("bumps 0.4"));
+    // One interior for the object, after every layer.
+    assert_eq!(sphere.matches("interior {").count(), 1);
+    assert!(at("bumps 0.4") < at("interior { ior 1.0 }"));
+}
+
+#[test]
 fn writes_the_file_given_with_o() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("room.pov");

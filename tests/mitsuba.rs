@@ -275,6 +275,14 @@ fn normal_patterns_are_refused_naming_the_key() {
     export_case(dir.path(), scene, "bumps", Some("material.normal"));
 }
 
+/// A layered texture has no Mitsuba equivalent: refused the same way.
+#[test]
+fn layered_textures_are_refused_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = { layers = [{ color = [1, 0, 0] }, { transmit = 0.5 }] }\n";
+    export_case(dir.path(), scene, "layers", Some("material.layers"));
+}
+
 /// POV-Ray's adaptive focal blur has no Mitsuba equivalent (Mitsuba takes the same samples
 /// in every pixel): the export is an error naming the key, and nothing is written.
 #[test]

@@ -252,7 +252,9 @@ pub struct Emission {
     pub radiance: Rgb,
     /// An image (linear after decoding) multiplying `radiance`.
     pub texture: Option<TextureRef>,
-    /// Emitted radiance per unit of surface colour, W/(m^2 sr) (POV-Ray's `emission`).
+    /// Emitted radiance per unit of surface colour, W/(m^2 sr) (POV-Ray's `emission`). For a
+    /// layered texture, the largest of its layers' (so that [`Self::can_emit`] says whether
+    /// any layer glows); shading reads each [`Layer::emission`].
     pub times_color: Rgb,
     /// Emits from both sides of the surface. Otherwise (physically based integrators) only
     /// from the side the shape's normal points to; POV-Ray's emission is always two-sided.

@@ -2,7 +2,8 @@
 //! with. A scene's finish is itself; glTF metallic-roughness and OBJ/MTL surfaces are mapped
 //! to a finish here (the mappings are documented in `docs/meshes.md`). Everything that does
 //! not vary over the surface is computed once per material ([`PovView::new`]); only
-//! textured or metallic-roughness materials do work per hit ([`PovView::at_surface`]).
+//! textured or metallic-roughness materials do work per hit ([`PovView::at_surface`]). A
+//! layered texture is one view per layer, top first ([`PovView::layers`]).
 
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -55,7 +56,8 @@ pub struct ShadedFinish<'a> {
 /// textured, plus what varies over it.
 #[derive(Clone, Debug)]
 pub struct PovView {
-    /// The finish before textures (the whole finish of an untextured material).
+    /// The finish before textures (the whole finish of an untextured material; a layered
+    /// texture's top layer, with the interior every layer shares).
     pub base: PovFinish,
     varying: Option<Varying>,
     /// A normal pattern tilting the shading normal.

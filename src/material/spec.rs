@@ -726,6 +726,39 @@ mod tests {
     }
 
     #[test]
+    fn layers_are_materials_bottom_first_under_one_interior() {
+        let m: MaterialSpec = toml::from_str(
+            "ior = 1.5\n[[layers]]\ncolor = [1, 0, 0]\nemission = 0.5\n[[layers]]\ntransmit = 0.8\nphong = 1",
+        )
+        .unwrap();
+        assert!(m.check().is_ok());
+        let material = m.to_material();
+        let SurfaceModel::Layered(layers) = &material.surface else { panic!("layered") };
+        assert_eq!(layers.len(), 2);
+        assert_eq!((layers[0].finish.color, layers[0].emission), (Rgb::new(1.0, 0.0, 0.0), Rgb::grey(0.5)));
+        assert_eq!((layers[1].finish.transmit, layers[1].finish.phong), (0.8, 1.0));
+        assert_eq!(material.interior.ior, 1.5);
+        assert!(material.emission.can_emit());
+        let back: MaterialSpec = toml::from_str(&toml::to_string(&m).unwrap()).unwrap();
+        assert_eq!(m, back);
+    }
+
+    #[test]
+    fn misplaced_layer_keys_are_named() {
+        let err = |text: &str| toml::from_str::<MaterialSpec>(text).unwrap().check().unwrap_err().0;
+        assert_eq!(err("layers = []"), "layers");
+        assert_eq!(err("phong = 1\nlayers = [{}]"), "phong");
+        assert_eq!(err("pigment = { pattern = \"checker\" }\nlayers = [{}]"), "pigment");
+        assert_eq!(err("layers = [{}, { bsdf = { type = \"diffuse\" } }]"), "layers[1].bsdf");
+        assert_eq!(err("layers = [{ pbr = {} }]"), "layers[0].pbr");
+        assert_eq!(err("layers = [{ fade_distance = 2 }]"), "layers[0].fade_distance");
+        assert_eq!(err("layers = [{ layers = [{}] }]"), "layers[0].layers");
+        assert_eq!(err("layers = [{}, { reflection = { exponent = 0 } }]"), "layers[1].reflection.exponent");
+        assert_eq!(err("layers = [{ normal = { pattern = \"bumps\", scale = 0 } }]"), "layers[0].normal.scale");
+        assert_eq!(err("ior = -1\nlayers = [{}]"), "ior");
+    }
+
+    #[test]
     fn round_trips_through_toml() {
         let m: MaterialSpec =
             toml::from_str("color = [0.9, 0.3, 0.1]\nphong = 0.5\nreflection = { min = 0.1, max = 0.9 }").unwrap();

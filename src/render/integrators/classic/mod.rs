@@ -936,6 +936,58 @@ mod tests {
         }
     }
 
+    /// A small frame of a sphere of material `material` (a TOML inline table) over a
+    /// patterned floor, lit by a point light: its pixels.
+    fn render_sphere(material: &str) -> Vec<[f32; 3]> {
+        use crate::scene::load::{Embedded, load_from};
+        let text = format!(
+            "[render]\nwidth = 24\nheight = 16\nmax_depth = 6\n\
+             [camera]\nposition = [0.0, 1.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nvfov = 50.0\n\
+             [[object]]\nshape = \"plane\"\nnormal = [0.0, 1.0, 0.0]\noffset = -1.0\n\
+             material = {{ pigment = {{ pattern = \"checker\", colors = [[0.9, 0.9, 0.9], [0.1, 0.2, 0.5]], scale = 0.5 }} }}\n\
+             [[object]]\nshape = \"sphere\"\nradius = 1.0\nmaterial = {material}\n\
+             [[light]]\nposition = [2.0, 4.0, 3.0]\n"
+        );
+        let text: &'static str = Box::leak(text.into_boxed_str());
+        let files = Embedded(Box::leak(Box::new([("s.toml", text)])));
+        let mut scene = load_from(&files, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+        let scene = crate::prepare(&mut scene).unwrap();
+        crate::render::render_frame(&scene, &Default::default()).unwrap().0.pixels
+    }
+
+    /// POV-Ray stops at a layer nothing shows through: an opaque top layer hides every layer
+    /// below it, in shading, reflection, refraction and shadows.
+    #[test]
+    fn an_opaque_top_layer_is_that_layer_alone() {
+        let top = "{ color = [0.8, 0.2, 0.1], phong = 0.7, reflection = 0.2, normal = { pattern = \"bumps\", bump_size = 0.5, scale = 0.2 } }";
+        let below = "{ color = [0.2, 0.9, 0.3], filter = 0.6, reflection = 0.5, specular = 1.0 }";
+        let layered = render_sphere(&format!("{{ ior = 1.3, layers = [{below}, {top}] }}"));
+        let alone = render_sphere(&format!("{{ ior = 1.3, {} }}", &top[2..top.len() - 2]));
+        assert_eq!(layered, alone);
+    }
+
+    /// A clear top layer (transmit 1, no highlights or reflection) adds nothing and filters
+    /// nothing: the layer below is seen, reflects, refracts and casts its shadow as it does
+    /// alone. (POV-Ray refracts about the top layer's normal, so a normal pattern below
+    /// changes refraction: that case is compared without refraction.)
+    #[test]
+    fn a_fully_transmitting_top_layer_shows_the_layer_below() {
+        let below = "color = [0.9, 0.5, 0.2], filter = 0.5, phong = 0.5, reflection = 0.1";
+        let dents = "normal = { pattern = \"dents\", scale = 0.3 }";
+        for (ior, below) in [(1.3, below.to_string()), (1.0, format!("{below}, {dents}"))] {
+            let layered = render_sphere(&format!("{{ ior = {ior}, layers = [{{ {below} }}, {{ transmit = 1.0 }}] }}"));
+            let alone = render_sphere(&format!("{{ ior = {ior}, {below} }}"));
+            assert_eq!(layered, alone, "ior {ior}");
+        }
+        // The layers do matter: the same top layer with some opacity changes the picture, and
+        // so does refraction about the clear layer's normal instead of the dented one below.
+        let dented = format!("{below}, {dents}");
+        let tinted = render_sphere(&format!("{{ ior = 1.3, layers = [{{ {below} }}, {{ transmit = 0.7 }}] }}"));
+        assert_ne!(tinted, render_sphere(&format!("{{ ior = 1.3, {below} }}")));
+        let layered = render_sphere(&format!("{{ ior = 1.3, layers = [{{ {dented} }}, {{ transmit = 1.0 }}] }}"));
+        assert_ne!(layered, render_sphere(&format!("{{ ior = 1.3, {dented} }}")));
+    }
+
     #[test]
     fn camera_rays_start_in_the_interiors_around_the_camera() {
         use crate::scene::load::{Embedded, load_from};

@@ -467,4 +467,37 @@ mod tests {
         let weights: Vec<DVec3> = blue.lobes().map(|(w, _)| w).collect();
         assert_eq!(weights, [DVec3::new(0.0, 0.0, 0.5), DVec3::splat(0.5)]);
     }
+
+    fn shaded(text: &str) -> Shaded {
+        let spec: crate::material::MaterialSpec = toml::from_str(text).unwrap();
+        PathMaterial::new(&spec.to_material()).shade(&SurfacePoint { uv: DVec2::ZERO, object_point: DVec3::ZERO })
+    }
+
+    fn lobes(s: &Shaded) -> Vec<String> {
+        s.scatter.lobes().map(|(w, lobe)| format!("{w:?} {lobe:?}")).collect()
+    }
+
+    #[test]
+    fn layers_weigh_as_pov_ray_sees_them() {
+        let lines = |inline: &str| inline.replace("; ", "\n");
+        let inline = |text: &str| text.replace("; ", ", ");
+        let below = "color = [0.2, 0.9, 0.3]; filter = 0.5; reflection = 0.25; emission = 0.5";
+        let alone = shaded(&format!("ior = 1.4\n{}", lines(below)));
+        let below = inline(below);
+        // An opaque top layer is that layer alone; a clear one shows the layer below alone.
+        let top = "color = [0.8, 0.2, 0.1]; reflection = 0.2";
+        let opaque = shaded(&format!("ior = 1.4\nlayers = [{{ {below} }}, {{ {} }}]", inline(top)));
+        assert_eq!(lobes(&opaque), lobes(&shaded(&format!("ior = 1.4\n{}", lines(top)))));
+        let clear = shaded(&format!("ior = 1.4\nlayers = [{{ {below} }}, {{ transmit = 1 }}]"));
+        assert_eq!((lobes(&clear), clear.emitted), (lobes(&alone), alone.emitted));
+        // A half-transmitting white top layer: half its own diffuse, the rest the layer below
+        // at half weight; the emission below is seen through it.
+        let half = shaded(&format!("ior = 1.4\nlayers = [{{ {below} }}, {{ transmit = 0.5 }}]"));
+        let weights: Vec<DVec3> = half.scatter.lobes().map(|(w, _)| w).collect();
+        let below_diffuse = 0.5 * 0.75 * DVec3::new(0.2, 0.9, 0.3);
+        assert!((weights[0] - (DVec3::splat(0.5) + 0.5 * below_diffuse)).abs().max_element() < 1e-12);
+        assert!((weights[1] - DVec3::splat(0.5 * 0.5 * 0.25)).abs().max_element() < 1e-12);
+        assert!((weights[2] - DVec3::splat(0.25)).abs().max_element() < 1e-12);
+        assert!((half.emitted - 0.5 * alone.emitted).abs().max_element() < 1e-12);
+    }
 }
