@@ -73,7 +73,7 @@ fn writes_one_texture_per_layer_bottom_first() {
     let pov = String::from_utf8(run.stdout).unwrap();
     // The wall's one texture, two on the floor, three on the sphere, two on the glass and the box.
     assert_eq!(pov.matches("  texture {").count(), 10);
-    let sphere = &pov[pov.find("\"three_layers\" sphere").unwrap()..pov.find("\"coated_glass\" sphere").unwrap()];
+    let sphere = &pov[pov.find("\"three_layers\" sphere").unwrap()..pov.find("\"coated_glass\" box").unwrap()];
     let at = |needle: &str| sphere.find(needle).unwrap_or_else(|| panic!("missing `{needle}` in:\n{sphere}"));
     // POV-Ray puts the last texture on top: the base first, the clear coat last.
     assert!(at("rgbft <0.8, 0.15, 0.1, 0.0, 0.0>") < at("gradient <0.0, 1.0, -0.0>"));
