@@ -226,6 +226,9 @@ impl<'a> Classic<'a> {
         let mut trans = 1.0;
         let mut top_normal = raw;
         let mut reflections = LayerReflections::default();
+        // Each light's shadow, traced once per hit and shared by the layers (POV-Ray's
+        // `lightColorCache`); a single layer needs no memo.
+        let mut shadows = if view.is_layered() { vec![None; self.lights.len()] } else { Vec::new() };
         for (index, layer) in view.layers().enumerate() {
             if trans <= scene.settings.adc_bailout {
                 break;
@@ -277,7 +280,8 @@ impl<'a> Classic<'a> {
                     exponent: reflection.exponent,
                 });
             }
-            colour += filter * (self.local_shading(point, n, d, material, &interiors, state) + shaded.emitted);
+            let lit = self.local_shading(point, n, d, material, &interiors, &mut shadows, state);
+            colour += filter * (lit + shaded.emitted);
             filter *= material.finish.color.0 * material.finish.filter + DVec3::splat(material.finish.transmit);
             if material.finish.conserve_energy {
                 filter *= (DVec3::ONE - rf).min(DVec3::ONE);
@@ -339,7 +343,9 @@ impl<'a> Classic<'a> {
         }
         colour
     }
-    /// Ambient, emission, diffuse and highlights from every light.
+    /// Ambient, emission, diffuse and highlights from every light. `shadows`, when not
+    /// empty, memoises each light's shadow at `point` (indexed like the lights).
+    #[allow(clippy::too_many_arguments, reason = "the shading point and frame, the finish, and the per-ray state")]
     fn local_shading(
         &self,
         point: DVec3,
@@ -347,6 +353,7 @@ impl<'a> Classic<'a> {
         d: DVec3,
         m: &PovFinish,
         interiors: &Interiors,
+        shadows: &mut [Option<DVec3>],
         state: &mut PathState,
     ) -> DVec3 {
         let scene = self.scene;
@@ -357,7 +364,7 @@ impl<'a> Classic<'a> {
             return colour;
         }
         let mirror = d - 2.0 * d.dot(n) * n;
-        for light in &self.lights {
+        for (index, light) in self.lights.iter().enumerate() {
             let (l, distance) = if light.parallel {
                 let l = -light.axis;
                 (l, (light.position - point).dot(l))
@@ -379,9 +386,18 @@ impl<'a> Classic<'a> {
                 continue;
             }
             if !light.shadowless {
-                e *= match &light.area {
-                    Some(grid) => self.area_visibility(point, l, light, grid, interiors, state),
-                    None => self.transmittance(point, l, distance, interiors, None, state),
+                e *= match shadows.get(index).copied().flatten() {
+                    Some(visibility) => visibility,
+                    None => {
+                        let visibility = match &light.area {
+                            Some(grid) => self.area_visibility(point, l, light, grid, interiors, state),
+                            None => self.transmittance(point, l, distance, interiors, None, state),
+                        };
+                        if let Some(slot) = shadows.get_mut(index) {
+                            *slot = Some(visibility);
+                        }
+                        visibility
+                    }
                 };
                 if e == DVec3::ZERO {
                     continue;
