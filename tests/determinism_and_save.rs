@@ -39,9 +39,10 @@ fn thread_count_does_not_change_a_single_bit() {
 
 #[test]
 fn a_saved_scene_reloads_to_the_identical_image() {
-    // The pattern parity scene (pigments with transforms), and the CSG parity scene: groups
-    // with member materials (named and inline), transforms, `inverse` and a nested group.
-    for name in ["room.toml", "snowman.toml", "parity/patterns.toml", "parity/csg.toml"] {
+    // The pattern parity scene (pigments with transforms), the CSG parity scene: groups
+    // with member materials (named and inline), transforms, `inverse` and a nested group, and
+    // the layered-texture one (named materials of several layers, patterns in layers).
+    for name in ["room.toml", "snowman.toml", "parity/patterns.toml", "parity/csg.toml", "parity/layered.toml"] {
         let original = load(&scene_path(name));
         let text = prism::scene::save::save(&original).unwrap();
         let dir = tempfile::tempdir().unwrap();

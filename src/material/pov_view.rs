@@ -181,22 +181,21 @@ impl PovView {
     /// True when light can pass through every layer somewhere (the most transparent colours
     /// of patterns).
     pub fn is_transparent(&self) -> bool {
-        self.layers().all(|l| l.base.is_transparent())
+        self.base.is_transparent() && self.below.iter().all(|l| l.base.is_transparent())
     }
 
     /// What a shadow ray crossing the surface at object-space `point` keeps of the light:
     /// the product over the layers of `colour * filter + transmit` (POV-Ray's
     /// `ComputeShadowTexture`), patterns looked up at the point.
     pub fn shadow_filter(&self, point: DVec3) -> DVec3 {
-        self.layers()
-            .map(|l| match l.pigment() {
-                Some(p) => {
-                    let c = p.at(point);
-                    c.rgb * c.filter + DVec3::splat(c.transmit)
-                }
-                None => l.base.finish.color.0 * l.base.finish.filter + DVec3::splat(l.base.finish.transmit),
-            })
-            .product()
+        let filter = |l: &PovView| match l.pigment() {
+            Some(p) => {
+                let c = p.at(point);
+                c.rgb * c.filter + DVec3::splat(c.transmit)
+            }
+            None => l.base.finish.color.0 * l.base.finish.filter + DVec3::splat(l.base.finish.transmit),
+        };
+        self.below.iter().fold(filter(self), |f, l| f * filter(l))
     }
 
     /// True when the finish depends on where the surface is hit: only then does shading need
