@@ -282,6 +282,11 @@ impl<'a> Classic<'a> {
             }
             let lit = self.local_shading(point, n, d, material, &interiors, &mut shadows, state);
             colour += filter * (lit + shaded.emitted);
+            if !material.is_transparent() {
+                // Nothing below shows through, and nothing refracts.
+                trans = 0.0;
+                break;
+            }
             filter *= material.finish.color.0 * material.finish.filter + DVec3::splat(material.finish.transmit);
             if material.finish.conserve_energy {
                 filter *= (DVec3::ONE - rf).min(DVec3::ONE);
