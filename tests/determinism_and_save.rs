@@ -40,8 +40,9 @@ fn thread_count_does_not_change_a_single_bit() {
 #[test]
 fn a_saved_scene_reloads_to_the_identical_image() {
     // The pattern parity scene (pigments with transforms), and the CSG parity scene: groups
-    // with member materials (named and inline), transforms, `inverse` and a nested group.
-    for name in ["room.toml", "snowman.toml", "parity/patterns.toml", "parity/csg.toml"] {
+    // with member materials (named and inline), transforms, `inverse` and a nested group; the
+    // image map parity scene (PNG paths written absolute and read again).
+    for name in ["room.toml", "snowman.toml", "parity/patterns.toml", "parity/csg.toml", "parity/image_map.toml"] {
         let original = load(&scene_path(name));
         let text = prism::scene::save::save(&original).unwrap();
         let dir = tempfile::tempdir().unwrap();
