@@ -9,6 +9,13 @@ image_map.png        32 x 16 RGB, 8 bits: a hue ramp across, light to dark down,
                      every 8 texels and a red corner mark at the top left (orientation)
 image_map_alpha.png  16 x 16 RGBA, 8 bits: a blue-to-orange disc fading to clear at its rim
 image_map_grey.png   16 x 8 grey, 8 bits: a ramp across with a dark bottom row
+
+and for scenes/parity/image_map_png.toml, 8 x 8 texels each (a mixed pattern, see `texel`):
+
+image_map_rgb16.png    RGB, 16 bits per sample
+image_map_palette.png  an 8-colour palette with partial transparency (tRNS)
+image_map_grey4.png    grey, 4 bits
+image_map_gamma.png    RGB, 8 bits, with a gAMA chunk of 1/2.2 (a power law, not sRGB)
 """
 import math
 import os
@@ -21,11 +28,17 @@ def chunk(kind, data):
     return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
 
 
-def write_png(path, width, height, colour_type, rows):
-    """rows: a list of byte strings, one per row (8-bit samples)."""
+def write_png(path, width, height, colour_type, rows, depth=8, extra=b""):
+    """rows: a list of byte strings, one per row (samples packed as the depth says)."""
     raw = b"".join(b"\x00" + row for row in rows)
-    header = struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0)
-    data = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+    header = struct.pack(">IIBBBBB", width, height, depth, colour_type, 0, 0, 0)
+    data = (
+        b"\x89PNG\r\n\x1a\n"
+        + chunk(b"IHDR", header)
+        + extra
+        + chunk(b"IDAT", zlib.compress(raw, 9))
+        + chunk(b"IEND", b"")
+    )
     with open(path, "wb") as f:
         f.write(data)
 
@@ -38,6 +51,11 @@ def hue(h):
 
 def byte(v):
     return max(0, min(255, int(round(v * 255.0))))
+
+
+def texel(x, y, c):
+    """A deterministic 0..1 value for texel (x, y), channel c of an 8 x 8 image."""
+    return ((x * 37 + y * 91 + c * 53 + x * y * 17) % 101) / 100.0
 
 
 def main():
@@ -73,6 +91,25 @@ def main():
     for y in range(8):
         rows.append(bytes(byte(0.05 + 0.9 * x / 15.0) if y < 7 else 20 for x in range(16)))
     write_png(os.path.join(out, "image_map_grey.png"), 16, 8, 0, rows)
+
+    rows = [b"".join(struct.pack(">H", int(texel(x, y, c) * 65535)) for x in range(8) for c in range(3)) for y in range(8)]
+    write_png(os.path.join(out, "image_map_rgb16.png"), 8, 8, 2, rows, depth=16)
+
+    palette = bytes(byte(texel(i, 3, c)) for i in range(8) for c in range(3))
+    alphas = bytes([255, 128, 0, 200, 255, 64, 255, 255])
+    rows = [bytes((x * 3 + y * 5 + (x * y) // 3) % 8 for x in range(8)) for y in range(8)]
+    extra = chunk(b"PLTE", palette) + chunk(b"tRNS", alphas)
+    write_png(os.path.join(out, "image_map_palette.png"), 8, 8, 3, rows, extra=extra)
+
+    rows = []
+    for y in range(8):
+        levels = [int(texel(x, y, 0) * 15) for x in range(8)]
+        rows.append(bytes((levels[i] << 4) | levels[i + 1] for i in range(0, 8, 2)))
+    write_png(os.path.join(out, "image_map_grey4.png"), 8, 8, 0, rows, depth=4)
+
+    rows = [bytes(byte(texel(x, y, c)) for x in range(8) for c in range(3)) for y in range(8)]
+    extra = chunk(b"gAMA", struct.pack(">I", 45455))
+    write_png(os.path.join(out, "image_map_gamma.png"), 8, 8, 2, rows, extra=extra)
 
 
 if __name__ == "__main__":
