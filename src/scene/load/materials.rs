@@ -47,6 +47,18 @@ impl Loader<'_> {
                 return false;
             }
         };
+        let canonical = match self.access.resolve(&path) {
+            Ok(canonical) => canonical,
+            Err(e) => {
+                self.diagnostics.push(Diagnostic::new(at, e.to_string()));
+                return false;
+            }
+        };
+        if let Some(image) = self.image_maps.get(&canonical) {
+            map.image = Some(image.clone());
+            map.path = Some(canonical);
+            return true;
+        }
         let store = &mut self.meshes.textures;
         let loaded = crate::material::image_map::load(&path, &self.access, store.budget());
         let loaded = match loaded {
@@ -64,8 +76,10 @@ impl Loader<'_> {
         });
         match loaded {
             Ok(image) => {
-                map.path = Some(std::fs::canonicalize(&path).unwrap_or(path));
-                map.image = Some(std::sync::Arc::new(image));
+                let image = std::sync::Arc::new(image);
+                self.image_maps.insert(canonical.clone(), image.clone());
+                map.path = Some(canonical);
+                map.image = Some(image);
                 true
             }
             Err(e) => {
