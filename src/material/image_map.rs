@@ -491,6 +491,14 @@ pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<Map
     let buffer = &buffer[..frame.buffer_size()];
     let channels = color_type.samples();
     let sixteen = depth == png::BitDepth::Sixteen;
+    let (w, h) = (width as usize, height as usize);
+    // EXPAND leaves whole samples of 8 or 16 bits; anything else is not an image this reads.
+    let bytes_per_sample = if sixteen { 2 } else { 1 };
+    if !(matches!(depth, png::BitDepth::Eight | png::BitDepth::Sixteen)
+        && buffer.len() >= w * h * channels * bytes_per_sample)
+    {
+        return Err(corrupt(png::DecodingError::LimitsExceeded));
+    }
     let max = if sixteen { 65535.0 } else { 255.0 };
     let sample = |i: usize| -> f32 {
         let v = if sixteen { u16::from_be_bytes([buffer[2 * i], buffer[2 * i + 1]]) } else { u16::from(buffer[i]) };
@@ -500,7 +508,6 @@ pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<Map
         let linear = decoding.decode(v);
         if grey8 { (linear * 255.0).trunc() / 255.0 } else { linear }
     };
-    let (w, h) = (width as usize, height as usize);
     let mut texels = Vec::with_capacity(w * h);
     for t in 0..w * h {
         let s = |c: usize| sample(t * channels + c);
