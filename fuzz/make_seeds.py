@@ -34,6 +34,8 @@ def scenes():
         text = re.sub(r'"(\.\./)+assets/', '"../assets/', text)
         text = text.replace('"../base/room.toml"', '"base/room.toml"').replace('"../room.toml"', '"room.toml"')
         text = text.replace('"../snowman.toml"', '"snowman.toml"')
+        if p.parent.name == "parity":
+            text = re.sub(r'file = "image_map', 'file = "parity/image_map', text)
         put("scene", str(p.relative_to(ROOT / "scenes")).replace("/", "_"), text.encode())
 
 
@@ -142,6 +144,8 @@ def images():
     put("image", "rgba.png", sel("png") + png(w, h, rgba))
     put("image", "CesiumLogoFlat.png", sel("png") + (ROOT / "assets/BoxTextured/CesiumLogoFlat.png").read_bytes())
     put("image", "SpiderTex.jpg", sel("jpg") + (SHARED / "obj/assimp-cases/SpiderTex.jpg").read_bytes())
+    for p in sorted((ROOT / "scenes" / "parity").glob("image_map*.png")):
+        put("image", p.name, sel("png") + p.read_bytes())
     hdr = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (h, w)
     hdr += bytes(c for p in rgb for c in (p[0] | 1, p[1] | 1, p[2] | 1, 128))
     put("image", "flat.hdr", sel("hdr") + hdr)

@@ -629,3 +629,71 @@ fn schema_is_json_with_every_shape() {
         assert!(text.contains(&format!("\"{shape}\"")), "{shape} missing");
     }
 }
+
+/// A PNG of `width` x `height` grey texels.
+fn grey_png(width: u32, height: u32) -> Vec<u8> {
+    let mut out = Vec::new();
+    let mut e = png::Encoder::new(&mut out, width, height);
+    e.set_color(png::ColorType::Grayscale);
+    e.write_header().unwrap().write_image_data(&vec![128; (width * height) as usize]).unwrap();
+    out
+}
+
+/// Every problem with an `image_map`'s file or keys names the scene file, line and key,
+/// exits non-zero and writes nothing.
+#[test]
+fn image_map_problems_name_the_file_and_key() {
+    let object = |map: &str| format!("[[object]]\nshape = \"sphere\"\nmaterial = {{ pigment = {{ {map} }} }}\n");
+    let mut truncated = grey_png(4, 4);
+    truncated.truncate(45);
+    let cases: Vec<(&str, String, Vec<&str>)> = vec![
+        ("missing", object("image_map = { file = \"nothere.png\" }"), vec!["nothere.png"]),
+        ("not a PNG", object("image_map = { file = \"text.png\" }"), vec!["image_map reads PNG files"]),
+        ("truncated", object("image_map = { file = \"truncated.png\" }"), vec!["cannot decode image"]),
+        ("huge", object("image_map = { file = \"huge.png\" }"), vec!["40000 x 1", "longer than the limit"]),
+        (
+            "unknown map_type",
+            object("image_map = { file = \"ok.png\", map_type = \"sphrical\" }"),
+            vec!["map_type", "did you mean `spherical`"],
+        ),
+        (
+            "pattern and image_map",
+            object("pattern = \"checker\", colors = [[1, 1, 1], [0, 0, 0]], image_map = { file = \"ok.png\" }"),
+            vec!["object[0].material.pigment.image_map", "not both"],
+        ),
+        (
+            "color_map beside image_map",
+            object("image_map = { file = \"ok.png\" }, color_map = [[0, [1, 1, 1]]]"),
+            vec!["object[0].material.pigment.color_map", "belongs to a `pattern`"],
+        ),
+        (
+            "infinite transmit_all",
+            object("image_map = { file = \"ok.png\", transmit_all = inf }"),
+            vec!["object[0].material.pigment.image_map.transmit_all", "finite"],
+        ),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("text.png"), "not an image").unwrap();
+    std::fs::write(dir.path().join("truncated.png"), &truncated).unwrap();
+    std::fs::write(dir.path().join("huge.png"), grey_png(40_000, 1)).unwrap();
+    std::fs::write(dir.path().join("ok.png"), grey_png(2, 2)).unwrap();
+    let mut failures = Vec::new();
+    for (name, scene, mut expect) in cases {
+        std::fs::write(dir.path().join("scene.toml"), &scene).unwrap();
+        let before = files_in(dir.path());
+        let run = prism()
+            .current_dir(dir.path())
+            .args(["render", "scene.toml", "-o", "out.png", "--width", "8", "--height", "6"])
+            .output()
+            .unwrap();
+        expect.push("scene.toml:3:");
+        let mut problems = failed_run_problems(&run, &expect);
+        if files_in(dir.path()) != before {
+            problems.push("wrote a file".to_string());
+        }
+        if !problems.is_empty() {
+            failures.push(format!("{name}: {}\n{}", problems.join("; "), String::from_utf8_lossy(&run.stderr)));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -40,9 +40,17 @@ fn thread_count_does_not_change_a_single_bit() {
 #[test]
 fn a_saved_scene_reloads_to_the_identical_image() {
     // The pattern parity scene (pigments with transforms), the CSG parity scene: groups
-    // with member materials (named and inline), transforms, `inverse` and a nested group, and
-    // the layered-texture one (named materials of several layers, patterns in layers).
-    for name in ["room.toml", "snowman.toml", "parity/patterns.toml", "parity/csg.toml", "parity/layered.toml"] {
+    // with member materials (named and inline), transforms, `inverse` and a nested group; the
+    // layered-texture one (named materials of several layers, patterns in layers) and the
+    // image map one (PNG paths written absolute and read again).
+    for name in [
+        "room.toml",
+        "snowman.toml",
+        "parity/patterns.toml",
+        "parity/csg.toml",
+        "parity/layered.toml",
+        "parity/image_map.toml",
+    ] {
         let original = load(&scene_path(name));
         let text = prism::scene::save::save(&original).unwrap();
         let dir = tempfile::tempdir().unwrap();

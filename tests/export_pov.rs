@@ -223,3 +223,33 @@ fn a_shape_without_to_pov_is_named() {
         assert!(error.contains(needle), "missing `{needle}` in: {error}");
     }
 }
+
+/// An image map is written with POV-Ray's keywords and numbers and the file as the scene wrote
+/// it; a file name POV-Ray's strings cannot hold is refused.
+#[test]
+fn writes_image_maps_with_the_file_as_written() {
+    let png = std::fs::read(root().join("scenes/parity/image_map.png")).unwrap();
+    let map = |file: &str| {
+        format!(
+            "[[object]]\nshape = \"sphere\"\nmaterial = {{ pigment = {{ image_map = {{ file = {file:?}, map_type = \
+             \"spherical\", interpolate = \"bilinear\", once = true, filter_all = 0.2, transmit_all = 0.1 }} }} }}\n"
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("tex")).unwrap();
+    std::fs::write(dir.path().join("tex/img.png"), &png).unwrap();
+    std::fs::write(dir.path().join("scene.toml"), map("tex/img.png")).unwrap();
+    let run = prism().current_dir(dir.path()).args(["export", "pov", "scene.toml"]).output().unwrap();
+    let pov = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(
+        pov.contains("image_map { png \"tex/img.png\" map_type 1 interpolate 2 once filter all 0.2 transmit all 0.1 }"),
+        "{pov}"
+    );
+    std::fs::write(dir.path().join("q\"uote.png"), &png).unwrap();
+    std::fs::write(dir.path().join("scene.toml"), map("q\"uote.png")).unwrap();
+    let run = prism().current_dir(dir.path()).args(["export", "pov", "scene.toml"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success() && stderr.contains("pigment.image_map.file"), "{stderr}");
+    assert!(stderr.contains("cannot be written as a POV-Ray string"), "{stderr}");
+}

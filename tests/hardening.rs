@@ -85,6 +85,11 @@ fn non_regular_files_are_refused_without_blocking() {
         ("buffer", "[[object]]\nshape = \"mesh\"\nfile = \"buf.gltf\"\n".to_string(), "a FIFO"),
         ("device mesh", "[[object]]\nshape = \"mesh\"\nfile = \"zero.obj\"\n".to_string(), "a device"),
         ("texture", format!("{SPHERE}material = {{ texture = \"fifo.png\" }}\n"), "a FIFO"),
+        (
+            "image_map",
+            format!("{SPHERE}material = {{ pigment = {{ image_map = {{ file = \"fifo.png\" }} }} }}\n"),
+            "a FIFO",
+        ),
         ("environment", "[world]\nenvironment = { file = \"fifo.hdr\" }\n".to_string(), "a FIFO"),
     ];
     for (name, scene, expect) in cases {
@@ -429,6 +434,11 @@ fn the_root_sandbox_confines_every_read() {
             "texture ..",
             format!("{SPHERE}material = {{ texture = \"../secret/t.png\" }}\n"),
             vec!["object[0]", "outside the --root"],
+        ),
+        (
+            "image_map ..",
+            format!("{SPHERE}material = {{ pigment = {{ image_map = {{ file = \"../secret/t.png\" }} }} }}\n"),
+            vec!["object[0].material.pigment.image_map.file", "outside the --root"],
         ),
         (
             "environment absolute",

@@ -42,6 +42,13 @@ pub fn repository_files() -> Vec<(PathBuf, Vec<u8>)> {
         file!("assets/BoxTextured/CesiumLogoFlat.png"),
         file!("assets/env/studio_256x128.hdr"),
         file!("assets/env/sunset_256x128.exr"),
+        file!("scenes/parity/image_map.png"),
+        file!("scenes/parity/image_map_alpha.png"),
+        file!("scenes/parity/image_map_grey.png"),
+        file!("scenes/parity/image_map_rgb16.png"),
+        file!("scenes/parity/image_map_palette.png"),
+        file!("scenes/parity/image_map_grey4.png"),
+        file!("scenes/parity/image_map_gamma.png"),
     ]
 }
 
@@ -124,8 +131,9 @@ pub fn ply(data: &[u8]) {
 pub const IMAGE_EXTENSIONS: [&str; 9] = ["png", "jpg", "hdr", "exr", "bmp", "tga", "tif", "pnm", "qoi"];
 
 /// Image target: the first byte picks an extension from [`IMAGE_EXTENSIONS`], the rest is
-/// the file. Decoded as a texture (both colour spaces) and, for `.hdr` and `.exr`, as an
-/// environment map: the paths `prism` uses for material textures and `[world] environment`.
+/// the file. Decoded as a texture (both colour spaces), for `.png` as an image map, and for
+/// `.hdr` and `.exr` as an environment map: the paths `prism` uses for material textures,
+/// `pigment.image_map` and `[world] environment`.
 pub fn image(data: &[u8]) {
     let Some((&selector, bytes)) = data.split_first() else { return };
     let extension = IMAGE_EXTENSIONS[usize::from(selector) % IMAGE_EXTENSIONS.len()];
@@ -134,6 +142,9 @@ pub fn image(data: &[u8]) {
     let mut textures = TextureStore::with_limits(access.clone(), FUZZ_BUDGET);
     if textures.load_file(&path, ColorSpace::Srgb).is_ok() {
         let _ = textures.load_file(&path, ColorSpace::Linear);
+    }
+    if extension == "png" {
+        let _ = prism::material::image_map::decode_png(&path, bytes, FUZZ_BUDGET);
     }
     if matches!(extension, "hdr" | "exr") {
         let _ = EnvironmentMap::load_with(&path, &access, FUZZ_BUDGET);

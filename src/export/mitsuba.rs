@@ -525,7 +525,7 @@ fn bsdf_xml(
     if let crate::material::SurfaceModel::Finish(f) = &material.surface
         && f.pigment.is_some()
     {
-        return Err(("pigment", "pigment patterns are not exported to Mitsuba".into()));
+        return Err(("pigment", "pigment patterns and image maps are not exported to Mitsuba".into()));
     }
     if let crate::material::SurfaceModel::Finish(f) = &material.surface
         && f.normal.is_some()

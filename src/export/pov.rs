@@ -461,6 +461,15 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
     if texture {
         problems.push(("texture", "image textures are not exported to POV-Ray".to_string()));
     }
+    if let Some(map) = pigment.as_ref().and_then(|p| p.spec.image_map.as_ref())
+        && map.file.chars().any(|c| c == '"' || c == '\\' || c.is_control())
+    {
+        problems.push((
+            "pigment.image_map.file",
+            "a file name with quotes, backslashes or control characters cannot be written as a POV-Ray string"
+                .to_string(),
+        ));
+    }
     if pbr {
         problems.push(("pbr", "glTF metallic-roughness materials have no POV-Ray finish equivalent".to_string()));
     } else if view.varies_over_surface() && !texture && !patterned {
@@ -591,8 +600,17 @@ fn rgbft(c: &crate::material::pattern::MapColor) -> String {
 /// transform and then the object's (both mirrored into POV-Ray's frame like every matrix).
 fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DAffine3) -> String {
     use crate::material::pattern::{DEFAULT_BRICK_SIZE, DEFAULT_MORTAR, MapEntry, PatternKind, Wave};
-    let mut sdl = format!("pigment {{\n      {}", p.pattern);
-    match p.pattern {
+    let Some(kind) = p.pattern else {
+        let mut sdl = String::from("pigment {\n      ");
+        if let Some(map) = &p.image_map {
+            sdl.push_str(&image_map_sdl(map));
+        }
+        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves);
+        matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object);
+        return sdl;
+    };
+    let mut sdl = format!("pigment {{\n      {kind}");
+    match kind {
         PatternKind::Gradient => {
             let v = p.vector.unwrap_or([0.0, 1.0, 0.0]);
             let _ = write!(sdl, " {}", vector(DVec3::from_array(v)));
@@ -606,7 +624,7 @@ fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DA
         let colors: Vec<String> = p.colors.iter().map(|c| format!("color {}", rgbft(c))).collect();
         let _ = write!(sdl, " {}", colors.join(", "));
     }
-    if p.pattern == PatternKind::Brick {
+    if kind == PatternKind::Brick {
         let size = p.brick_size.unwrap_or(DEFAULT_BRICK_SIZE);
         // Brick sizes are lengths along POV-Ray's own axes: not mirrored.
         let _ = write!(
@@ -643,6 +661,27 @@ fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DA
         let _ = write!(sdl, "\n      {keyword}");
     }
     matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object);
+    sdl
+}
+
+/// An image map in POV-Ray SDL: the file as the scene wrote it (relative to the scene file,
+/// so POV-Ray finds it when run in, or with `+L`, the scene's folder) and POV-Ray's numbers.
+fn image_map_sdl(map: &crate::material::image_map::ImageMap) -> String {
+    use crate::material::image_map::Interpolate;
+    let mut sdl = format!("image_map {{ png \"{}\" map_type {}", map.file, map.map_type.pov_number());
+    if map.interpolate != Interpolate::None {
+        let _ = write!(sdl, " interpolate {}", map.interpolate.pov_number());
+    }
+    if map.once {
+        sdl.push_str(" once");
+    }
+    if let Some(f) = map.filter_all {
+        let _ = write!(sdl, " filter all {}", number(f));
+    }
+    if let Some(t) = map.transmit_all {
+        let _ = write!(sdl, " transmit all {}", number(t));
+    }
+    sdl.push_str(" }");
     sdl
 }
 

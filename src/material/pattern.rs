@@ -15,6 +15,7 @@ use glam::{DAffine3, DMat3, DMat4, DVec3, EulerRot};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::image_map::ImageMap;
 use super::noise::{Octaves, dturbulence, noise, turbulence};
 use crate::color::Rgb;
 
@@ -239,12 +240,18 @@ impl TurbulenceAmount {
     }
 }
 
-/// A pigment pattern as a scene file writes it (`pigment = { pattern = "...", ... }`).
+/// A pigment pattern as a scene file writes it (`pigment = { pattern = "...", ... }`), or an
+/// image map (`pigment = { image_map = { file = "...", ... }, ... }`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Pigment {
-    /// The pattern's POV-Ray name.
-    pub pattern: PatternKind,
+    /// The pattern's POV-Ray name (exclusive with `image_map`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pattern: Option<PatternKind>,
+    /// POV-Ray's `image_map`: a PNG image projected onto the object (exclusive with
+    /// `pattern`; see [`ImageMap`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub image_map: Option<ImageMap>,
     /// `checker`, `brick` (mortar first): two colours; `hexagon`: three.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub colors: Vec<MapColor>,
@@ -335,14 +342,25 @@ impl Pigment {
         pattern_transform(self.scale, self.rotate, self.translate, self.matrix)
     }
 
-    /// Every colour the pigment can give (its list or its map's).
+    /// Every colour the pigment can give (its list or its map's; an image map's clearest).
     pub fn colors(&self) -> impl Iterator<Item = Rgbft> + '_ {
-        self.colors.iter().map(MapColor::rgbft).chain(self.color_map.iter().map(|e| e.1.rgbft()))
+        self.colors
+            .iter()
+            .map(MapColor::rgbft)
+            .chain(self.color_map.iter().map(|e| e.1.rgbft()))
+            .chain(self.image_map.iter().map(ImageMap::clearest))
     }
 
     /// The first out-of-range or contradictory parameter, as (key under `pigment`, message).
     pub fn check(&self) -> Result<(), (&'static str, String)> {
-        let kind = self.pattern;
+        let kind = match (self.pattern, &self.image_map) {
+            (Some(_), Some(_)) => {
+                return Err(("image_map", "give either a `pattern` or an `image_map`, not both".into()));
+            }
+            (None, Some(map)) => return self.check_image_map(map),
+            (None, None) => return Err(("pattern", "needs a `pattern` or an `image_map`".into())),
+            (Some(kind), None) => kind,
+        };
         match kind.discrete_colors() {
             Some(n) => {
                 if self.colors.len() != n {
@@ -432,6 +450,35 @@ impl Pigment {
         }
         check_transform(self.scale, self.rotate, self.translate, self.matrix)?;
         Ok(())
+    }
+
+    /// An image map's first problem, or a pattern key written beside it.
+    fn check_image_map(&self, map: &ImageMap) -> Result<(), (&'static str, String)> {
+        let pattern_keys = [
+            ("colors", !self.colors.is_empty()),
+            ("color_map", !self.color_map.is_empty()),
+            ("vector", self.vector.is_some()),
+            ("arms", self.arms.is_some()),
+            ("brick_size", self.brick_size.is_some()),
+            ("mortar", self.mortar.is_some()),
+            ("frequency", self.frequency.is_some()),
+            ("phase", self.phase.is_some()),
+            ("wave", self.wave.is_some()),
+        ];
+        if let Some((key, _)) = pattern_keys.iter().find(|(_, given)| *given) {
+            return Err((key, "belongs to a `pattern`, not to an `image_map`".into()));
+        }
+        map.check().map_err(|(key, message)| {
+            let key = match key {
+                "filter_all" => "image_map.filter_all",
+                "transmit_all" => "image_map.transmit_all",
+                "file" => "image_map.file",
+                _ => "image_map",
+            };
+            (key, message)
+        })?;
+        check_turbulence(self.turbulence, self.octaves, self.omega, self.lambda, false)?;
+        check_transform(self.scale, self.rotate, self.translate, self.matrix)
     }
 }
 
@@ -530,6 +577,8 @@ pub fn octaves_of(octaves: Option<u32>, omega: Option<f64>, lambda: Option<f64>)
 pub struct PigmentField {
     /// The pigment as written.
     pub spec: Pigment,
+    /// The pattern (unused with an image map).
+    kind: PatternKind,
     /// Object space (Prism's frame) to pattern space.
     pattern_from_object: DAffine3,
     /// The turbulence amount per axis (zero without turbulence).
@@ -543,6 +592,7 @@ impl PigmentField {
     pub fn new(spec: &Pigment) -> Self {
         Self {
             spec: spec.clone(),
+            kind: spec.pattern.unwrap_or(PatternKind::Checker),
             pattern_from_object: spec.object_from_pattern().inverse(),
             turbulence: spec.turbulence.map_or(DVec3::ZERO, |t| t.vector()),
             octaves: octaves_of(spec.octaves, spec.omega, spec.lambda),
@@ -559,12 +609,16 @@ impl PigmentField {
         let mut q = self.pattern_from_object.transform_point3(p) * DVec3::new(1.0, 1.0, -1.0);
         let spec = &self.spec;
         // POV-Ray's classic turbulence warp; marble and wood apply their turbulence themselves.
-        if spec.turbulence.is_some() && !matches!(spec.pattern, PatternKind::Marble | PatternKind::Wood) {
+        let plain_warp = spec.image_map.is_some() || !matches!(self.kind, PatternKind::Marble | PatternKind::Wood);
+        if spec.turbulence.is_some() && plain_warp {
             q += dturbulence(q, &self.octaves) * self.turbulence;
         }
-        match spec.pattern.discrete_colors() {
+        if let Some(map) = &spec.image_map {
+            return map.at(q);
+        }
+        match self.kind.discrete_colors() {
             Some(_) => {
-                let index = discrete_value(spec, q);
+                let index = discrete_value(self.kind, spec, q);
                 spec.colors[index.min(spec.colors.len() - 1)].rgbft()
             }
             None => map_lookup(&spec.color_map, self.continuous_value(q)),
@@ -578,7 +632,7 @@ impl PigmentField {
         let turbulent = spec.turbulence.is_some();
         // Scalar turbulence, as marble and the spirals add it.
         let turb_x = || if turbulent { self.turbulence.x * turbulence(q, &self.octaves) } else { 0.0 };
-        let raw = match spec.pattern {
+        let raw = match self.kind {
             PatternKind::Gradient => gradient(q, pov_vector(spec.vector.unwrap_or([0.0, 1.0, 0.0]))),
             PatternKind::Radial => radial(q),
             PatternKind::Onion => onion(q),
@@ -597,14 +651,14 @@ impl PigmentField {
             raw,
             spec.frequency.unwrap_or(1.0),
             spec.phase.unwrap_or(0.0),
-            spec.wave.unwrap_or(spec.pattern.default_wave()),
+            spec.wave.unwrap_or(self.kind.default_wave()),
         )
     }
 }
 
 /// A discrete pattern's colour index at pattern-space point `q` (POV-Ray's frame).
-fn discrete_value(spec: &Pigment, q: DVec3) -> usize {
-    match spec.pattern {
+fn discrete_value(kind: PatternKind, spec: &Pigment, q: DVec3) -> usize {
+    match kind {
         PatternKind::Checker => checker(q),
         PatternKind::Hexagon => hexagon(q),
         PatternKind::Brick => brick(

@@ -193,6 +193,11 @@ fn pigment_key(key: &str) -> &'static str {
         "octaves" => "pigment.octaves",
         "omega" => "pigment.omega",
         "lambda" => "pigment.lambda",
+        "pattern" => "pigment.pattern",
+        "image_map" => "pigment.image_map",
+        "image_map.file" => "pigment.image_map.file",
+        "image_map.filter_all" => "pigment.image_map.filter_all",
+        "image_map.transmit_all" => "pigment.image_map.transmit_all",
         _ => "pigment",
     }
 }

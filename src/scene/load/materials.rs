@@ -28,8 +28,65 @@ impl Loader<'_> {
             self.diagnostics.push(Diagnostic::new(self.files[index].locate(&k), message));
             return None;
         }
-        self.material_textures(index, key, &mut material)
-            .then(|| MaterialComponent::authored(None, std::sync::Arc::new(material)))
+        let textures = self.material_textures(index, key, &mut material);
+        let image_map = self.material_image_map(index, key, &mut material);
+        (textures && image_map).then(|| MaterialComponent::authored(None, std::sync::Arc::new(material)))
+    }
+
+    /// Resolves and decodes the PNG of a material's `pigment.image_map` (relative to scene
+    /// file `index`), as every image a scene names is read; reports a problem at its `file`.
+    fn material_image_map(&mut self, index: usize, key: &str, material: &mut MaterialSpec) -> bool {
+        let Some(map) = material.pigment.as_mut().and_then(|p| p.image_map.as_mut()) else {
+            return true;
+        };
+        let at = self.files[index].locate(&format!("{key}.pigment.image_map.file"));
+        let path = match self.access.join(&self.directory(index), &map.file) {
+            Ok(path) => path,
+            Err(e) => {
+                self.diagnostics.push(Diagnostic::new(at, e.to_string()));
+                return false;
+            }
+        };
+        let canonical = match self.access.resolve(&path) {
+            Ok(canonical) => canonical,
+            Err(e) => {
+                self.diagnostics.push(Diagnostic::new(at, e.to_string()));
+                return false;
+            }
+        };
+        if let Some(image) = self.image_maps.get(&canonical) {
+            map.image = Some(image.clone());
+            map.path = Some(canonical);
+            return true;
+        }
+        let store = &mut self.meshes.textures;
+        let loaded = crate::material::image_map::load(&path, &self.access, store.budget());
+        let loaded = match loaded {
+            Err(crate::material::image_map::ImageMapError::Texture(crate::texture::TextureError::OverBudget(e))) => {
+                Err(crate::texture::TextureError::OverBudget(store.restate(e)).into())
+            }
+            other => other,
+        };
+        let loaded = loaded.and_then(|image| {
+            let estimate = crate::material::image_map::memory_estimate(image.width as u32, image.height as u32);
+            store.reserve(|| format!("image `{}`", crate::files::shown_path(&path)), estimate).map_err(|e| {
+                crate::material::image_map::ImageMapError::Texture(crate::texture::TextureError::OverBudget(e))
+            })?;
+            Ok(image)
+        });
+        match loaded {
+            Ok(image) => {
+                let image = std::sync::Arc::new(image);
+                self.image_maps.insert(canonical.clone(), image.clone());
+                map.path = Some(canonical);
+                map.image = Some(image);
+                true
+            }
+            Err(e) => {
+                self.diagnostics.push(Diagnostic::new(at, e.to_string()));
+                false
+            }
+        }
     }
 
     /// Resolves the texture paths of a scene material (relative to scene file `index`) to

@@ -123,6 +123,7 @@ pub fn load_with(
         objects: Vec::new(),
         lights: Vec::new(),
         meshes: MeshStore::with_limits(access, budget),
+        image_maps: HashMap::new(),
         light_imports: Vec::new(),
         camera_import: None,
         imported_entities: 0,
@@ -185,6 +186,8 @@ struct Loader<'a> {
     lights: Vec<(Light, Location)>,
     /// Imported mesh files and decoded textures, shared by every object that uses them.
     meshes: MeshStore,
+    /// Decoded `image_map` PNGs by canonical path, shared by every material that names them.
+    image_maps: HashMap<PathBuf, std::sync::Arc<crate::material::image_map::MapImage>>,
     /// Mesh objects whose file's lights are imported.
     light_imports: Vec<LightImport>,
     /// The mesh object whose file's camera is the scene's camera.
