@@ -252,7 +252,8 @@ pub struct Pigment {
     /// linearly (below the first entry its colour, above the last the last's).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub color_map: Vec<MapEntry>,
-    /// `gradient`'s direction (the pattern repeats every 1 / |vector| along it).
+    /// `gradient`'s direction (normalised, as POV-Ray's parser does: the pattern repeats every
+    /// unit along it whatever its length).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vector: Option<[f64; 3]>,
     /// `spiral1` / `spiral2`: the number of arms.
@@ -579,7 +580,7 @@ impl PigmentField {
         // Scalar turbulence, as marble and the spirals add it.
         let turb_x = || if turbulent { self.turbulence.x * turbulence(q, &self.octaves) } else { 0.0 };
         let raw = match spec.pattern {
-            PatternKind::Gradient => gradient(q, pov_vector(spec.vector.unwrap_or([0.0, 1.0, 0.0]))),
+            PatternKind::Gradient => gradient(q, pov_vector(spec.vector.unwrap_or([0.0, 1.0, 0.0])).normalize()),
             PatternKind::Radial => radial(q),
             PatternKind::Onion => onion(q),
             PatternKind::Leopard => leopard(q),
@@ -933,6 +934,9 @@ mod tests {
         // A gradient along Prism's z is along POV-Ray's -z, so the ramp follows Prism's z.
         let f = PigmentField::new(&pigment(&format!("pattern = \"gradient\"\nvector = [0, 0, 1]\n{BW}")));
         assert!((f.at(DVec3::new(0.0, 0.0, 0.3)).rgb - DVec3::splat(0.3)).abs().max_element() < 1e-12);
+        // POV-Ray normalises the vector: its length does not change the period.
+        let f = PigmentField::new(&pigment(&format!("pattern = \"gradient\"\nvector = [0, 3, 4]\n{BW}")));
+        assert!((f.at(DVec3::new(0.0, 0.3, 0.4)).rgb - DVec3::splat(0.5)).abs().max_element() < 1e-12);
     }
 
     #[test]
