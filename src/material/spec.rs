@@ -159,6 +159,16 @@ fn normal_key(key: &str) -> &'static str {
         "octaves" => "normal.octaves",
         "omega" => "normal.omega",
         "lambda" => "normal.lambda",
+        "accuracy" => "normal.accuracy",
+        "wave" => "normal.wave",
+        "vector" => "normal.vector",
+        "arms" => "normal.arms",
+        "form" => "normal.form",
+        "metric" => "normal.metric",
+        "offset" => "normal.offset",
+        "solid" => "normal.solid",
+        "control0" => "normal.control0",
+        "control1" => "normal.control1",
         _ => "normal",
     }
 }
@@ -183,6 +193,12 @@ fn pigment_key(key: &str) -> &'static str {
         "octaves" => "pigment.octaves",
         "omega" => "pigment.omega",
         "lambda" => "pigment.lambda",
+        "form" => "pigment.form",
+        "metric" => "pigment.metric",
+        "offset" => "pigment.offset",
+        "solid" => "pigment.solid",
+        "control0" => "pigment.control0",
+        "control1" => "pigment.control1",
         _ => "pigment",
     }
 }
