@@ -156,6 +156,11 @@ fn cases() -> Vec<Case> {
             &["scene.toml:5:", "object[0].material.normal.metric", "at most 100"],
         ),
         case(
+            "facets of size 0",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"facets\"\nsize = 0\n",
+            &["scene.toml:5:", "object[0].material.normal.size", "above 0"],
+        ),
+        case(
             "a discrete pattern as a normal",
             "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"checker\" } }\n",
             &["scene.toml:3:", "object[0].material.normal.pattern", "list of normals"],

@@ -78,6 +78,8 @@ fn writes_crackle_quilted_and_pattern_normals() {
         "      granite bump_size 0.4 accuracy 0.05\n",
         "      quilted 0.8 control0 0.3 control1 0.8\n",
         "      gradient <1.0, 1.0, -0.0> bump_size -0.7\n      frequency 3.0\n      triangle_wave\n",
+        "      facets 0.5 size 0.15\n",
+        "      facets 0.5 coords 0.6 metric 3.0\n",
         "      crackle bump_size 1.2 accuracy 0.01\n      form <0.0, 1.0, -0.5> metric 2.5\n      turbulence <0.2, 0.2, 0.2>\n",
     ] {
         assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");

@@ -295,3 +295,44 @@ sphere { <0.0, 0.0, -0.0>, 0.5
   interior { ior 1.0 }
 }
 
+// "facets" sphere
+sphere { <0.0, 0.0, -0.0>, 0.35
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, -2.9, 0.75, 6.0>
+  texture {
+    pigment { rgbft <0.8, 0.8, 0.9, 0.0, 0.0> }
+    normal {
+      facets 0.5 size 0.15
+      matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, -2.9, 0.75, 6.0>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.6 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+
+// "facets_coords" sphere
+sphere { <0.0, 0.0, -0.0>, 0.35
+  matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 2.9, 0.75, 6.5>
+  texture {
+    pigment { rgbft <0.9, 0.7, 0.8, 0.0, 0.0> }
+    normal {
+      facets 0.5 coords 0.6 metric 3.0
+      matrix <0.2, 0.0, -0.0, 0.0, 0.2, -0.0, -0.0, -0.0, 0.2, 0.0, 0.0, -0.0>
+      matrix <1.0, 0.0, -0.0, 0.0, 1.0, -0.0, -0.0, -0.0, 1.0, 2.9, 0.75, 6.5>
+    }
+    finish {
+      ambient rgb <0.1, 0.1, 0.1> emission rgb <0.0, 0.0, 0.0>
+      diffuse 0.7 brilliance 1.0
+      phong 0.6 phong_size 40.0
+      specular 0.0 roughness 0.05
+      metallic 0.0
+    }
+  }
+  interior { ior 1.0 }
+}
+

@@ -659,11 +659,15 @@ fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffi
         return sdl;
     }
     let mut sdl = format!("normal {{\n      {} {bump_size}", n.pattern);
-    if n.pattern == crate::material::normal::NormalKind::Quilted {
-        for (keyword, value) in [("control0", n.control0), ("control1", n.control1)] {
-            if let Some(v) = value {
-                let _ = write!(sdl, " {keyword} {}", number(v));
-            }
+    for (keyword, value) in [
+        ("control0", n.control0),
+        ("control1", n.control1),
+        ("size", n.size),
+        ("coords", n.coords),
+        ("metric", n.metric),
+    ] {
+        if let Some(v) = value {
+            let _ = write!(sdl, " {keyword} {}", number(v));
         }
     }
     turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves);

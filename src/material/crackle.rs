@@ -198,6 +198,34 @@ pub fn crackle(q: DVec3, params: &CrackleParams) -> f64 {
     value.clamp(0.0, 1.0)
 }
 
+/// POV-Ray's `facets` search: the cell point nearest to `tv` among the same 81 cubes, the
+/// first of equals winning. Its metric 1 sums the components without their absolute values,
+/// as POV-Ray's `facets` does.
+pub fn nearest_facet_point(tv: DVec3, metric: f64) -> DVec3 {
+    let sum = |d: DVec3| {
+        if metric == 2.0 {
+            d.length_squared()
+        } else if metric == 1.0 {
+            d.x + d.y + d.z
+        } else {
+            d.x.abs().powf(metric) + d.y.abs().powf(metric) + d.z.abs().powf(metric)
+        }
+    };
+    let cube =
+        [(tv.x - POV_EPSILON).floor() as i32, (tv.y - POV_EPSILON).floor() as i32, (tv.z - POV_EPSILON).floor() as i32];
+    let mut best = DVec3::ZERO;
+    let mut best_sum = f64::INFINITY;
+    for (i, [dx, dy, dz]) in CUBE_OFFSETS.iter().enumerate() {
+        let p = cell_point(cube[0] + dx, cube[1] + dy, cube[2] + dz);
+        let s = sum(p - tv);
+        if i == 0 || s < best_sum {
+            best = p;
+            best_sum = s;
+        }
+    }
+    best
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -295,6 +323,26 @@ mod tests {
         let mid = (a + b) * 0.5;
         assert!(crackle(mid, &CrackleParams::default()) < 1e-9);
         assert!((crackle(a, &CrackleParams::default()) - s[1].0.sqrt().min(1.0)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn facets_take_the_nearest_cell_point() {
+        for q in POINTS {
+            let s = sorted_sums(q, Metric::Square);
+            assert_eq!(nearest_facet_point(q, 2.0), s[0].1, "{q}");
+            let s = sorted_sums(q, Metric::Power(3.0));
+            assert_eq!(nearest_facet_point(q, 3.0), s[0].1, "{q}");
+        }
+        // Metric 1 without absolute values: the smallest signed sum, a point below and
+        // behind rather than the nearest.
+        let q = DVec3::new(0.5, 0.5, 0.5);
+        let c = (q - DVec3::splat(POV_EPSILON)).floor();
+        let signed = CUBE_OFFSETS
+            .iter()
+            .map(|[x, y, z]| cell_point(c.x as i32 + x, c.y as i32 + y, c.z as i32 + z))
+            .min_by(|a, b| (a.x + a.y + a.z).total_cmp(&(b.x + b.y + b.z)))
+            .unwrap();
+        assert_eq!(nearest_facet_point(q, 1.0), signed);
     }
 
     #[test]

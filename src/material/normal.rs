@@ -20,10 +20,11 @@ use glam::{DMat3, DVec3};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::crackle::nearest_facet_point;
 use super::noise::{Octaves, dnoise, dturbulence, noise};
 use super::pattern::{
-    PatternKind, PatternScale, Pigment, PigmentField, TurbulenceAmount, Wave, check_transform, check_turbulence,
-    cycloidal, octaves_of, pattern_transform, quilt_vector, warps_with_turbulence,
+    MAX_METRIC, PatternKind, PatternScale, Pigment, PigmentField, TurbulenceAmount, Wave, check_transform,
+    check_turbulence, cycloidal, octaves_of, pattern_transform, quilt_vector, warps_with_turbulence,
 };
 
 /// POV-Ray's default `bump_size` (`Create_Tnormal`).
@@ -32,6 +33,9 @@ pub const DEFAULT_BUMP_SIZE: f64 = 0.5;
 /// POV-Ray's default `accuracy` (`Create_Tnormal`'s `Delta`): the radius of the points a
 /// pigment pattern is read at.
 pub const DEFAULT_ACCURACY: f64 = 0.02;
+
+/// POV-Ray's default facet `size`.
+pub const DEFAULT_FACET_SIZE: f64 = 0.1;
 
 /// The smallest `accuracy`: closer points differ from the centre only by rounding.
 pub const MIN_ACCURACY: f64 = 1.0e-6;
@@ -64,6 +68,8 @@ pub enum NormalKind {
     Wrinkles,
     /// The offset from each unit cube's centre, rounded by two control points.
     Quilted,
+    /// Flat facets: the normal replaced by the direction of the nearest crackle cell point.
+    Facets,
     /// A continuous pigment pattern (not `wrinkles` or `quilted`, whose normal forms
     /// above take their names), read through its numerical gradient.
     Pattern(PatternKind),
@@ -71,13 +77,14 @@ pub enum NormalKind {
 
 impl NormalKind {
     /// POV-Ray's normal-only patterns with their names.
-    pub const NORMAL_ONLY: [(NormalKind, &'static str); 6] = [
+    pub const NORMAL_ONLY: [(NormalKind, &'static str); 7] = [
         (NormalKind::Bumps, "bumps"),
         (NormalKind::Dents, "dents"),
         (NormalKind::Ripples, "ripples"),
         (NormalKind::Waves, "waves"),
         (NormalKind::Wrinkles, "wrinkles"),
         (NormalKind::Quilted, "quilted"),
+        (NormalKind::Facets, "facets"),
     ];
 
     /// The scene file's (and POV-Ray's) name.
@@ -206,6 +213,13 @@ pub struct Normal {
     /// `crackle`: one value per cell, as in a pigment.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub solid: Option<bool>,
+    /// `facets`: the size of the facets (default 0.1; above 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<f64>,
+    /// `facets`: 0 (default) facets the normal's directions; otherwise facets by position,
+    /// tilting each by this much of the noise gradient at its cell point.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coords: Option<f64>,
     /// `quilted`: the first control point (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub control0: Option<f64>,
@@ -291,8 +305,29 @@ impl Normal {
                 return Err(("accuracy", format!("must be finite and at least {MIN_ACCURACY:e}, got {a}")));
             }
         }
+        for (key, v) in [("size", self.size), ("coords", self.coords)] {
+            if let Some(v) = v {
+                if kind != NormalKind::Facets {
+                    return Err((key, format!("belongs to facets, not `{kind}`")));
+                }
+                if !v.is_finite() {
+                    return Err((key, format!("must be finite, got {v}")));
+                }
+            }
+        }
+        if let Some(size) = self.size
+            && size <= 0.0
+        {
+            return Err(("size", format!("must be above 0, got {size}")));
+        }
         if let Some(pigment) = self.as_pigment() {
             return pigment.check_keys();
+        }
+        if kind == NormalKind::Facets
+            && let Some(m) = self.metric
+            && !(m > 0.0 && m <= MAX_METRIC)
+        {
+            return Err(("metric", format!("must be above 0 and at most {MAX_METRIC}, got {m}")));
         }
         for (key, v) in [("frequency", self.frequency), ("phase", self.phase)] {
             if let Some(v) = v {
@@ -309,7 +344,7 @@ impl Normal {
             ("vector", self.vector.is_some()),
             ("arms", self.arms.is_some()),
             ("form", self.form.is_some()),
-            ("metric", self.metric.is_some()),
+            ("metric", self.metric.is_some() && kind != NormalKind::Facets),
             ("offset", self.offset.is_some()),
             ("solid", self.solid.is_some()),
         ];
@@ -384,8 +419,25 @@ impl NormalField {
             q += dturbulence(q, &self.octaves) * amount;
         }
         let n_pattern = ((self.normal_in * n) * MIRROR).normalize();
-        let tilted = n_pattern + self.offset(q);
+        let tilted =
+            if self.spec.pattern == NormalKind::Facets { self.facet(q, n_pattern) } else { n_pattern + self.offset(q) };
         (self.normal_out * (tilted * MIRROR)).normalize()
+    }
+
+    /// POV-Ray's `facets`: the normal (unit, pattern frame) replaced by the nearest cell point
+    /// to it scaled by 1 / size, or with `coords` by the one nearest the point, whose noise
+    /// gradient (less its part along the normal) tilts the normal.
+    fn facet(&self, q: DVec3, n: DVec3) -> DVec3 {
+        let spec = &self.spec;
+        let size = spec.size.unwrap_or(DEFAULT_FACET_SIZE);
+        let scale = if size < 1e-6 { 1e6 } else { 1.0 / size };
+        let coords = spec.coords.unwrap_or(0.0);
+        let metric = spec.metric.unwrap_or(2.0);
+        if coords == 0.0 {
+            return nearest_facet_point(n * scale, metric);
+        }
+        let pert = dnoise(nearest_facet_point(q * scale, metric));
+        n + coords * (pert - n * pert.dot(n))
     }
 
     /// What the pattern adds to the unit normal at pattern point `q` (POV-Ray's frame).
@@ -402,6 +454,7 @@ impl NormalField {
                 PYRAMID.iter().map(|v| (pigment.value(q + delta * *v) * weight) * *v).sum()
             }
             NormalKind::Quilted => amount * quilt_vector(q, self.quilt_controls),
+            NormalKind::Facets => DVec3::ZERO,
             NormalKind::Bumps => amount * dnoise(q),
             NormalKind::Dents => noise(q).powi(3) * amount * dnoise(q),
             NormalKind::Ripples | NormalKind::Waves => {
@@ -584,6 +637,25 @@ mod tests {
     }
 
     #[test]
+    fn facets_point_the_normal_at_the_nearest_cell_point() {
+        let f = field("pattern = \"facets\"\nsize = 0.2");
+        let n = DVec3::new(0.3, 0.9, -0.2).normalize();
+        // The POV-Ray normal (x, y, -z), scaled by 1 / size, picks its nearest cell point.
+        let c = nearest_facet_point(n * MIRROR * 5.0, 2.0);
+        assert!((f.perturb(DVec3::new(1.0, 2.0, 3.0), n) - (c * MIRROR).normalize()).length() < 1e-12);
+        // Nearby normals share the facet; the position does not matter.
+        let m = (n + DVec3::new(0.001, -0.002, 0.0)).normalize();
+        assert_eq!(f.perturb(DVec3::ZERO, m), f.perturb(DVec3::ONE, n));
+        // coords: the nearest point to the position tilts the normal by its noise gradient.
+        let f = field("pattern = \"facets\"\ncoords = 0.5\nmetric = 3");
+        let p = DVec3::new(0.4, -1.3, 2.2);
+        let pert = dnoise(nearest_facet_point(p * MIRROR * 10.0, 3.0));
+        let nq = n * MIRROR;
+        let expected = ((nq + 0.5 * (pert - nq * pert.dot(nq))) * MIRROR).normalize();
+        assert!((f.perturb(p, n) - expected).length() < 1e-12);
+    }
+
+    #[test]
     fn marble_as_a_normal_keeps_its_turbulence_out_of_the_warp() {
         let f = field("pattern = \"marble\"\nturbulence = 0.5");
         assert!(f.turbulence.is_none());
@@ -609,6 +681,11 @@ mod tests {
         assert_eq!(err("pattern = \"bumps\"\nsolid = true"), "solid");
         assert_eq!(err("pattern = \"gradient\""), "vector");
         assert_eq!(err("pattern = \"ripples\"\ncontrol0 = 1"), "control0");
+        assert_eq!(err("pattern = \"bumps\"\nsize = 0.1"), "size");
+        assert_eq!(err("pattern = \"granite\"\ncoords = 1"), "coords");
+        assert_eq!(err("pattern = \"facets\"\nsize = 0"), "size");
+        assert_eq!(err("pattern = \"facets\"\nmetric = -1"), "metric");
+        assert!(toml::from_str::<Normal>("pattern = \"facets\"\nmetric = 1\ncoords = 0.3").unwrap().check().is_ok());
         assert!(
             toml::from_str::<Normal>("pattern = \"granite\"\nfrequency = 2\nwave = \"sine\"").unwrap().check().is_ok()
         );

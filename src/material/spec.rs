@@ -169,6 +169,8 @@ fn normal_key(key: &str) -> &'static str {
         "solid" => "normal.solid",
         "control0" => "normal.control0",
         "control1" => "normal.control1",
+        "size" => "normal.size",
+        "coords" => "normal.coords",
         _ => "normal",
     }
 }
