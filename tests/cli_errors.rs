@@ -121,6 +121,51 @@ fn cases() -> Vec<Case> {
             &["scene.toml:5:", "object[0].material.normal.frequency", "ripples and waves"],
         ),
         case(
+            "crackle metric out of range",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"crackle\"\nmetric = 0\ncolor_map = [[0, [1, 1, 1]]]\n",
+            &["scene.toml:5:", "object[0].material.pigment.metric", "above 0 and at most 100"],
+        ),
+        case(
+            "negative crackle offset",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"crackle\"\noffset = -0.5\ncolor_map = [[0, [1, 1, 1]]]\n",
+            &["scene.toml:5:", "object[0].material.pigment.offset", "not negative"],
+        ),
+        case(
+            "crackle form on another pattern",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"granite\"\nform = [1, 0, 0]\ncolor_map = [[0, [1, 1, 1]]]\n",
+            &["scene.toml:5:", "object[0].material.pigment.form", "belongs to crackle"],
+        ),
+        case(
+            "misspelt crackle key",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"crackle\"\nmetrik = 1\n",
+            &["scene.toml:5:", "object[0].material.pigment.metrik", "did you mean `metric`"],
+        ),
+        case(
+            "normal accuracy out of range",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"granite\"\naccuracy = 0\n",
+            &["scene.toml:5:", "object[0].material.normal.accuracy", "at least 1e-6"],
+        ),
+        case(
+            "accuracy on a normal-only pattern",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bumps\"\naccuracy = 0.01\n",
+            &["scene.toml:5:", "object[0].material.normal.accuracy", "pigment patterns"],
+        ),
+        case(
+            "crackle normal metric out of range",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"crackle\"\nmetric = 1000\n",
+            &["scene.toml:5:", "object[0].material.normal.metric", "at most 100"],
+        ),
+        case(
+            "facets of size 0",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"facets\"\nsize = 0\n",
+            &["scene.toml:5:", "object[0].material.normal.size", "above 0"],
+        ),
+        case(
+            "a discrete pattern as a normal",
+            "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"checker\" } }\n",
+            &["scene.toml:3:", "object[0].material.normal.pattern", "list of normals"],
+        ),
+        case(
             "color beside a pigment",
             "[[object]]\nshape = \"sphere\"\n[object.material]\ncolor = [1, 0, 0]\npigment = { pattern = \"checker\", colors = [[1, 1, 1], [0, 0, 0]] }\n",
             &["scene.toml:4:", "object[0].material.color", "beside `pigment`"],

@@ -85,6 +85,26 @@ fn writes_one_texture_per_layer_bottom_first() {
 }
 
 #[test]
+fn writes_crackle_quilted_and_pattern_normals() {
+    let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/crackle.toml")).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = String::from_utf8(run.stdout).unwrap();
+    for needle in [
+        "    pigment {\n      crackle solid\n      color_map {",
+        "      crackle\n      form <0.8, 0.4, 0.0> metric 3.0 offset 0.3\n",
+        "      quilted control0 0.2 control1 0.9\n",
+        "      granite bump_size 0.4 accuracy 0.05\n",
+        "      quilted 0.8 control0 0.3 control1 0.8\n",
+        "      gradient <1.0, 1.0, -0.0> bump_size -0.7\n      frequency 3.0\n      triangle_wave\n",
+        "      facets 0.5 size 0.15\n",
+        "      facets 0.5 coords 0.6 metric 3.0\n",
+        "      crackle bump_size 1.2 accuracy 0.01\n      form <0.0, 1.0, -0.5> metric 2.5\n      turbulence <0.2, 0.2, 0.2>\n",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+}
+
+#[test]
 fn writes_the_file_given_with_o() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("room.pov");

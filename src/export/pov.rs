@@ -599,7 +599,7 @@ fn rgbft(c: &crate::material::pattern::MapColor) -> String {
 /// A pigment pattern in POV-Ray SDL: the pattern and its colours, its modifiers, its own
 /// transform and then the object's (both mirrored into POV-Ray's frame like every matrix).
 fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DAffine3) -> String {
-    use crate::material::pattern::{DEFAULT_BRICK_SIZE, DEFAULT_MORTAR, MapEntry, PatternKind, Wave};
+    use crate::material::pattern::{DEFAULT_BRICK_SIZE, DEFAULT_MORTAR, MapEntry, PatternKind};
     let Some(kind) = p.pattern else {
         let mut sdl = String::from("pigment {\n      ");
         if let Some(map) = &p.image_map {
@@ -609,17 +609,7 @@ fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DA
         matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object);
         return sdl;
     };
-    let mut sdl = format!("pigment {{\n      {kind}");
-    match kind {
-        PatternKind::Gradient => {
-            let v = p.vector.unwrap_or([0.0, 1.0, 0.0]);
-            let _ = write!(sdl, " {}", vector(DVec3::from_array(v)));
-        }
-        PatternKind::Spiral1 | PatternKind::Spiral2 => {
-            let _ = write!(sdl, " {}", p.arms.unwrap_or(0));
-        }
-        _ => {}
-    }
+    let mut sdl = format!("pigment {{\n      {}", pattern_arguments(kind, p));
     if !p.colors.is_empty() {
         let colors: Vec<String> = p.colors.iter().map(|c| format!("color {}", rgbft(c))).collect();
         let _ = write!(sdl, " {}", colors.join(", "));
@@ -636,6 +626,7 @@ fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DA
             number(p.mortar.unwrap_or(DEFAULT_MORTAR))
         );
     }
+    pattern_keys_sdl(&mut sdl, p);
     turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves);
     if !p.color_map.is_empty() {
         sdl.push_str("\n      color_map {");
@@ -644,6 +635,47 @@ fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DA
         }
         sdl.push_str("\n      }");
     }
+    wave_sdl(&mut sdl, p);
+    matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object);
+    sdl
+}
+
+/// A pattern's keyword with the arguments that follow it (`gradient`'s vector, the spirals'
+/// arms).
+fn pattern_arguments(kind: crate::material::pattern::PatternKind, p: &crate::material::pattern::Pigment) -> String {
+    use crate::material::pattern::PatternKind;
+    match kind {
+        PatternKind::Gradient => format!("gradient {}", vector(DVec3::from_array(p.vector.unwrap_or([0.0, 1.0, 0.0])))),
+        PatternKind::Spiral1 | PatternKind::Spiral2 => format!("{kind} {}", p.arms.unwrap_or(0)),
+        kind => kind.to_string(),
+    }
+}
+
+/// `crackle`'s and `quilted`'s own keys, as written.
+fn pattern_keys_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment) {
+    if let Some(f) = p.form {
+        // Weights of distances, not a direction: not mirrored.
+        let _ = write!(sdl, "\n      form <{}, {}, {}>", number(f[0]), number(f[1]), number(f[2]));
+    }
+    if let Some(m) = p.metric {
+        let _ = write!(sdl, " metric {}", number(m));
+    }
+    if let Some(o) = p.offset {
+        let _ = write!(sdl, " offset {}", number(o));
+    }
+    if p.solid == Some(true) {
+        sdl.push_str(" solid");
+    }
+    for (keyword, value) in [("control0", p.control0), ("control1", p.control1)] {
+        if let Some(v) = value {
+            let _ = write!(sdl, " {keyword} {}", number(v));
+        }
+    }
+}
+
+/// A pattern's `frequency`, `phase` and wave type, when written.
+fn wave_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment) {
+    use crate::material::pattern::Wave;
     if let Some(f) = p.frequency {
         let _ = write!(sdl, "\n      frequency {}", number(f));
     }
@@ -660,8 +692,6 @@ fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DA
         };
         let _ = write!(sdl, "\n      {keyword}");
     }
-    matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object);
-    sdl
 }
 
 /// An image map in POV-Ray SDL: the file as the scene wrote it (relative to the scene file,
@@ -689,7 +719,33 @@ fn image_map_sdl(map: &crate::material::image_map::ImageMap) -> String {
 /// transform and then the object's.
 fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffine3) -> String {
     use crate::material::normal::DEFAULT_BUMP_SIZE;
-    let mut sdl = format!("normal {{\n      {} {}", n.pattern, number(n.bump_size.unwrap_or(DEFAULT_BUMP_SIZE)));
+    let bump_size = number(n.bump_size.unwrap_or(DEFAULT_BUMP_SIZE));
+    if let Some(kind) = n.pattern.pigment_pattern() {
+        let p = n.as_pigment().expect("a pigment pattern");
+        // `bump_size` as a keyword: a negative amount right after a vector or the arms would
+        // be read as part of their expression.
+        let mut sdl = format!("normal {{\n      {} bump_size {bump_size}", pattern_arguments(kind, &p));
+        if let Some(a) = n.accuracy {
+            let _ = write!(sdl, " accuracy {}", number(a));
+        }
+        pattern_keys_sdl(&mut sdl, &p);
+        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves);
+        wave_sdl(&mut sdl, &p);
+        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object);
+        return sdl;
+    }
+    let mut sdl = format!("normal {{\n      {} {bump_size}", n.pattern);
+    for (keyword, value) in [
+        ("control0", n.control0),
+        ("control1", n.control1),
+        ("size", n.size),
+        ("coords", n.coords),
+        ("metric", n.metric),
+    ] {
+        if let Some(v) = value {
+            let _ = write!(sdl, " {keyword} {}", number(v));
+        }
+    }
     turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves);
     if let Some(f) = n.frequency {
         let _ = write!(sdl, "\n      frequency {}", number(f));

@@ -7,6 +7,7 @@
 //! reads the model. The scene file's form is [`spec::MaterialSpec`]; importers build
 //! materials directly. `docs/meshes.md` documents the mappings.
 
+pub mod crackle;
 pub mod image_map;
 pub mod metals;
 pub mod noise;

@@ -318,6 +318,13 @@ static TABLES: LazyLock<Tables> = LazyLock::new(|| {
     Tables { hash, random }
 });
 
+/// POV-Ray's `Hash3d`: the lattice hash of an integer cell, each coordinate taken modulo
+/// 4096 (its low twelve bits, as a two's complement `& 0xfff`), in 0..4096.
+pub fn hash3d(x: i32, y: i32, z: i32) -> usize {
+    let h = &TABLES.hash;
+    h[h[h[(x & 0xFFF) as usize] as usize ^ (y & 0xFFF) as usize] as usize ^ (z & 0xFFF) as usize] as usize
+}
+
 /// A coordinate's lattice cell (hash index) and its offset in the cell, as POV-Ray takes
 /// them.
 fn cell(v: f64) -> (usize, f64) {

@@ -7,6 +7,11 @@
 //! the ray goes into the pattern's frame (object space, the inverse pattern transform, then
 //! POV-Ray's mirrored `(x, y, -z)` frame) and is normalised, the pattern adds its vector
 //! there at the point (turbulence applied first), and the sum goes back and is normalised.
+//!
+//! Any continuous pigment pattern also serves as a normal (`normal { granite 0.5 }`): as in
+//! `Perturb_Normal`'s last branch, the pattern is read at four points around the point, a
+//! tetrahedron of radius `accuracy`, and each value pushes the normal along its vertex, so the
+//! normal leans down the pattern's numerical gradient.
 
 use std::fmt;
 use std::sync::OnceLock;
@@ -15,19 +20,40 @@ use glam::{DMat3, DVec3};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::crackle::nearest_facet_point;
 use super::noise::{Octaves, dnoise, dturbulence, noise};
 use super::pattern::{
-    PatternScale, TurbulenceAmount, check_transform, check_turbulence, cycloidal, octaves_of, pattern_transform,
+    MAX_METRIC, PatternKind, PatternScale, Pigment, PigmentField, TurbulenceAmount, Wave, check_transform,
+    check_turbulence, cycloidal, octaves_of, pattern_transform, quilt_vector, warps_with_turbulence,
 };
 
 /// POV-Ray's default `bump_size` (`Create_Tnormal`).
 pub const DEFAULT_BUMP_SIZE: f64 = 0.5;
 
+/// POV-Ray's default `accuracy` (`Create_Tnormal`'s `Delta`): the radius of the points a
+/// pigment pattern is read at.
+pub const DEFAULT_ACCURACY: f64 = 0.02;
+
+/// POV-Ray's default facet `size`.
+pub const DEFAULT_FACET_SIZE: f64 = 0.1;
+
+/// The smallest `accuracy`: closer points differ from the centre only by rounding.
+pub const MIN_ACCURACY: f64 = 1.0e-6;
+
+/// POV-Ray's `Pyramid_Vect`: the vertices of a regular tetrahedron about the origin.
+const PYRAMID: [DVec3; 4] = [
+    DVec3::new(0.942809041, -0.333333333, 0.0),
+    DVec3::new(-0.471404521, -0.333333333, 0.816496581),
+    DVec3::new(-0.471404521, -0.333333333, -0.816496581),
+    DVec3::new(0.0, 1.0, 0.0),
+];
+
 /// POV-Ray's default number of wave sources for `ripples` and `waves` (`global_settings {
 /// number_of_waves }`, which Prism does not expose).
 const NUMBER_OF_WAVES: usize = 10;
 
-/// A normal pattern's name, as POV-Ray spells it.
+/// A normal pattern's name, as POV-Ray spells it: one of its normal-only patterns or a
+/// continuous pigment pattern read through its gradient.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NormalKind {
     /// The gradient of solid noise.
@@ -40,25 +66,57 @@ pub enum NormalKind {
     Waves,
     /// Ten octaves of absolute noise gradients.
     Wrinkles,
+    /// The offset from each unit cube's centre, rounded by two control points.
+    Quilted,
+    /// Flat facets: the normal replaced by the direction of the nearest crackle cell point.
+    Facets,
+    /// A continuous pigment pattern (not `wrinkles` or `quilted`, whose normal forms
+    /// above take their names), read through its numerical gradient.
+    Pattern(PatternKind),
 }
 
 impl NormalKind {
-    /// Every normal pattern with its name.
-    pub const ALL: [(NormalKind, &'static str); 5] = [
+    /// POV-Ray's normal-only patterns with their names.
+    pub const NORMAL_ONLY: [(NormalKind, &'static str); 7] = [
         (NormalKind::Bumps, "bumps"),
         (NormalKind::Dents, "dents"),
         (NormalKind::Ripples, "ripples"),
         (NormalKind::Waves, "waves"),
         (NormalKind::Wrinkles, "wrinkles"),
+        (NormalKind::Quilted, "quilted"),
+        (NormalKind::Facets, "facets"),
     ];
 
     /// The scene file's (and POV-Ray's) name.
     pub fn name(self) -> &'static str {
-        Self::ALL.iter().find(|(k, _)| *k == self).map_or("", |(_, n)| n)
+        match self {
+            NormalKind::Pattern(kind) => kind.name(),
+            _ => Self::NORMAL_ONLY.iter().find(|(k, _)| *k == self).map_or("", |(_, n)| n),
+        }
+    }
+
+    /// Every name a normal pattern takes: the normal-only ones, then the continuous
+    /// pigment patterns.
+    pub fn names() -> Vec<&'static str> {
+        let mut names: Vec<&str> = Self::NORMAL_ONLY.iter().map(|(_, n)| *n).collect();
+        for (kind, name) in PatternKind::ALL {
+            if kind.discrete_colors().is_none() && !names.contains(&name) {
+                names.push(name);
+            }
+        }
+        names
     }
 
     fn has_waves(self) -> bool {
         matches!(self, NormalKind::Ripples | NormalKind::Waves)
+    }
+
+    /// The pigment pattern read through its gradient, if this is one.
+    pub fn pigment_pattern(self) -> Option<PatternKind> {
+        match self {
+            NormalKind::Pattern(kind) => Some(kind),
+            _ => None,
+        }
     }
 }
 
@@ -77,10 +135,19 @@ impl Serialize for NormalKind {
 impl<'de> Deserialize<'de> for NormalKind {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         let name = String::deserialize(d)?;
-        if let Some((kind, _)) = Self::ALL.iter().find(|(_, n)| *n == name) {
+        if let Some((kind, _)) = Self::NORMAL_ONLY.iter().find(|(_, n)| *n == name) {
             return Ok(*kind);
         }
-        let names: Vec<&str> = Self::ALL.iter().map(|(_, n)| *n).collect();
+        if let Some((kind, _)) = PatternKind::ALL.iter().find(|(_, n)| *n == name) {
+            if kind.discrete_colors().is_some() {
+                return Err(serde::de::Error::custom(format!(
+                    "`{name}` as a normal takes a list of normals in POV-Ray, which Prism does not support; \
+                     use a continuous pattern"
+                )));
+            }
+            return Ok(NormalKind::Pattern(*kind));
+        }
+        let names = Self::names();
         let hint = crate::diagnostics::nearest_name(&name, names.iter().copied())
             .map_or(String::new(), |n| format!("did you mean `{n}`? "));
         Err(serde::de::Error::custom(format!(
@@ -96,8 +163,11 @@ impl JsonSchema for NormalKind {
     }
 
     fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
-        let names: Vec<&str> = Self::ALL.iter().map(|(_, n)| *n).collect();
-        schemars::json_schema!({ "description": "A POV-Ray normal pattern.", "enum": names })
+        let names = Self::names();
+        schemars::json_schema!({
+            "description": "A POV-Ray normal pattern, or a continuous pigment pattern read through its gradient.",
+            "enum": names
+        })
     }
 }
 
@@ -111,12 +181,51 @@ pub struct Normal {
     /// pattern's keyword; default 0.5; negative inverts).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bump_size: Option<f64>,
-    /// `ripples`, `waves`: rings per unit of distance from a source (default 1).
+    /// Pigment patterns: the radius of the four points the pattern is read at around the
+    /// point (POV-Ray's default 0.02; at least 1e-6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<f64>,
+    /// `ripples`, `waves`: rings per unit of distance from a source (default 1); pigment
+    /// patterns: as in a pigment.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frequency: Option<f64>,
-    /// `ripples`, `waves`: shifts the rings (default 0).
+    /// `ripples`, `waves`: shifts the rings (default 0); pigment patterns: as in a pigment.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub phase: Option<f64>,
+    /// Pigment patterns: the wave type, as in a pigment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wave: Option<Wave>,
+    /// `gradient`: its direction, as in a pigment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vector: Option<[f64; 3]>,
+    /// `spiral1` / `spiral2`: the number of arms.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arms: Option<i32>,
+    /// `crackle`: the distance weights, as in a pigment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub form: Option<[f64; 3]>,
+    /// `crackle`: the metric, as in a pigment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub metric: Option<f64>,
+    /// `crackle`: the offset, as in a pigment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset: Option<f64>,
+    /// `crackle`: one value per cell, as in a pigment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solid: Option<bool>,
+    /// `facets`: the size of the facets (default 0.1; above 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<f64>,
+    /// `facets`: 0 (default) facets the normal's directions; otherwise facets by position,
+    /// tilting each by this much of the noise gradient at its cell point.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coords: Option<f64>,
+    /// `quilted`: the first control point (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub control0: Option<f64>,
+    /// `quilted`: the second control point (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub control1: Option<f64>,
     /// POV-Ray's classic `turbulence`: displaces the point before the pattern reads it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub turbulence: Option<TurbulenceAmount>,
@@ -149,6 +258,38 @@ impl Normal {
         pattern_transform(self.scale, self.rotate, self.translate, self.matrix)
     }
 
+    /// The pigment pattern's keys as a pigment (no colours), when the pattern is one.
+    pub fn as_pigment(&self) -> Option<Pigment> {
+        let pattern = self.pattern.pigment_pattern()?;
+        Some(Pigment {
+            pattern: Some(pattern),
+            image_map: None,
+            colors: Vec::new(),
+            color_map: Vec::new(),
+            vector: self.vector,
+            arms: self.arms,
+            brick_size: None,
+            mortar: None,
+            form: self.form,
+            metric: self.metric,
+            offset: self.offset,
+            solid: self.solid,
+            control0: self.control0,
+            control1: self.control1,
+            frequency: self.frequency,
+            phase: self.phase,
+            wave: self.wave,
+            turbulence: self.turbulence,
+            octaves: self.octaves,
+            omega: self.omega,
+            lambda: self.lambda,
+            scale: self.scale,
+            rotate: self.rotate,
+            translate: self.translate,
+            matrix: self.matrix,
+        })
+    }
+
     /// The first out-of-range or misplaced parameter, as (key under `normal`, message).
     pub fn check(&self) -> Result<(), (&'static str, String)> {
         if let Some(b) = self.bump_size
@@ -156,10 +297,65 @@ impl Normal {
         {
             return Err(("bump_size", format!("must be a finite number, got {b}")));
         }
+        let kind = self.pattern;
+        if let Some(a) = self.accuracy {
+            if kind.pigment_pattern().is_none() {
+                return Err(("accuracy", format!("belongs to pigment patterns, not `{kind}`")));
+            }
+            if !(a.is_finite() && a >= MIN_ACCURACY) {
+                return Err(("accuracy", format!("must be finite and at least {MIN_ACCURACY:e}, got {a}")));
+            }
+        }
+        for (key, v) in [("size", self.size), ("coords", self.coords)] {
+            if let Some(v) = v {
+                if kind != NormalKind::Facets {
+                    return Err((key, format!("belongs to facets, not `{kind}`")));
+                }
+                if !v.is_finite() {
+                    return Err((key, format!("must be finite, got {v}")));
+                }
+            }
+        }
+        if let Some(size) = self.size
+            && size <= 0.0
+        {
+            return Err(("size", format!("must be above 0, got {size}")));
+        }
+        if let Some(pigment) = self.as_pigment() {
+            return pigment.check_keys();
+        }
+        if kind == NormalKind::Facets
+            && let Some(m) = self.metric
+            && !(m > 0.0 && m <= MAX_METRIC)
+        {
+            return Err(("metric", format!("must be above 0 and at most {MAX_METRIC}, got {m}")));
+        }
         for (key, v) in [("frequency", self.frequency), ("phase", self.phase)] {
             if let Some(v) = v {
-                if !self.pattern.has_waves() {
-                    return Err((key, format!("belongs to ripples and waves, not `{}`", self.pattern)));
+                if !kind.has_waves() {
+                    return Err((key, format!("belongs to ripples and waves (and pigment patterns), not `{kind}`")));
+                }
+                if !v.is_finite() {
+                    return Err((key, format!("must be finite, got {v}")));
+                }
+            }
+        }
+        let pigment_keys = [
+            ("wave", self.wave.is_some()),
+            ("vector", self.vector.is_some()),
+            ("arms", self.arms.is_some()),
+            ("form", self.form.is_some()),
+            ("metric", self.metric.is_some() && kind != NormalKind::Facets),
+            ("offset", self.offset.is_some()),
+            ("solid", self.solid.is_some()),
+        ];
+        if let Some((key, _)) = pigment_keys.iter().find(|(_, given)| *given) {
+            return Err((key, format!("belongs to pigment patterns, not `{kind}`")));
+        }
+        for (key, v) in [("control0", self.control0), ("control1", self.control1)] {
+            if let Some(v) = v {
+                if kind != NormalKind::Quilted {
+                    return Err((key, format!("belongs to quilted, not `{kind}`")));
                 }
                 if !v.is_finite() {
                     return Err((key, format!("must be finite, got {v}")));
@@ -184,6 +380,10 @@ pub struct NormalField {
     normal_out: DMat3,
     turbulence: Option<DVec3>,
     octaves: Octaves,
+    /// A pigment pattern's values (its own transform unused: this field's is applied).
+    pigment: Option<PigmentField>,
+    /// `quilted`'s control points, in single precision as POV-Ray holds them.
+    quilt_controls: (f64, f64),
 }
 
 /// POV-Ray's `(x, y, -z)` mirror between Prism's frame and its own.
@@ -194,13 +394,21 @@ impl NormalField {
     pub fn new(spec: &Normal) -> Self {
         let object_from_pattern = spec.object_from_pattern();
         let normal_in = object_from_pattern.matrix3.transpose();
+        let single = |v: Option<f64>| f64::from(v.unwrap_or(1.0) as f32);
+        // Marble and wood turn their turbulence into their own value, not a warp.
+        let warp = match spec.pattern {
+            NormalKind::Pattern(kind) => warps_with_turbulence(kind, spec.turbulence.is_some()),
+            _ => spec.turbulence.is_some(),
+        };
         Self {
             spec: spec.clone(),
             pattern_from_object: object_from_pattern.inverse(),
             normal_in,
             normal_out: normal_in.inverse(),
-            turbulence: spec.turbulence.map(|t| t.vector()),
+            turbulence: spec.turbulence.filter(|_| warp).map(|t| t.vector()),
             octaves: octaves_of(spec.octaves, spec.omega, spec.lambda),
+            pigment: spec.as_pigment().map(|p| PigmentField::new(&p)),
+            quilt_controls: (single(spec.control0), single(spec.control1)),
         }
     }
 
@@ -212,15 +420,42 @@ impl NormalField {
             q += dturbulence(q, &self.octaves) * amount;
         }
         let n_pattern = ((self.normal_in * n) * MIRROR).normalize();
-        let tilted = n_pattern + self.offset(q);
+        let tilted =
+            if self.spec.pattern == NormalKind::Facets { self.facet(q, n_pattern) } else { n_pattern + self.offset(q) };
         (self.normal_out * (tilted * MIRROR)).normalize()
+    }
+
+    /// POV-Ray's `facets`: the normal (unit, pattern frame) replaced by the nearest cell point
+    /// to it scaled by 1 / size, or with `coords` by the one nearest the point, whose noise
+    /// gradient (less its part along the normal) tilts the normal.
+    fn facet(&self, q: DVec3, n: DVec3) -> DVec3 {
+        let spec = &self.spec;
+        let size = spec.size.unwrap_or(DEFAULT_FACET_SIZE);
+        let scale = if size < 1e-6 { 1e6 } else { 1.0 / size };
+        let coords = spec.coords.unwrap_or(0.0);
+        let metric = spec.metric.unwrap_or(2.0);
+        if coords == 0.0 {
+            return nearest_facet_point(n * scale, metric);
+        }
+        let pert = dnoise(nearest_facet_point(q * scale, metric));
+        n + coords * (pert - n * pert.dot(n))
     }
 
     /// What the pattern adds to the unit normal at pattern point `q` (POV-Ray's frame).
     fn offset(&self, q: DVec3) -> DVec3 {
         let spec = &self.spec;
-        let amount = spec.bump_size.unwrap_or(DEFAULT_BUMP_SIZE);
+        // POV-Ray holds bump_size (and accuracy) in single precision.
+        let amount = f64::from(spec.bump_size.unwrap_or(DEFAULT_BUMP_SIZE) as f32);
         match spec.pattern {
+            NormalKind::Pattern(_) => {
+                let Some(pigment) = &self.pigment else { return DVec3::ZERO };
+                let delta = f64::from(spec.accuracy.unwrap_or(DEFAULT_ACCURACY) as f32);
+                // POV-Ray's fudge factor -5, and 0.02 / accuracy to keep the slope's scale.
+                let weight = amount * -5.0 * (0.02 / delta);
+                PYRAMID.iter().map(|v| (pigment.value(q + delta * *v) * weight) * *v).sum()
+            }
+            NormalKind::Quilted => amount * quilt_vector(q, self.quilt_controls),
+            NormalKind::Facets => DVec3::ZERO,
             NormalKind::Bumps => amount * dnoise(q),
             NormalKind::Dents => noise(q).powi(3) * amount * dnoise(q),
             NormalKind::Ripples | NormalKind::Waves => {
@@ -339,7 +574,8 @@ mod tests {
         for s in sources {
             let v = q - *s;
             let l = v.length();
-            offset += (0.6 * ((l * 2.0 + 0.1) * std::f64::consts::TAU).sin() / (l * 10.0)) * v;
+            // bump_size in single precision, as POV-Ray holds it.
+            offset += (f64::from(0.6f32) * ((l * 2.0 + 0.1) * std::f64::consts::TAU).sin() / (l * 10.0)) * v;
         }
         let expected = ((DVec3::Y + offset) * MIRROR).normalize();
         assert!((f.perturb(p, DVec3::Y) - expected).length() < 1e-12);
@@ -358,6 +594,77 @@ mod tests {
     }
 
     #[test]
+    fn a_linear_gradient_tilts_the_normal_down_its_slope() {
+        // Four samples on a regular tetrahedron of radius d: sum of v v^T is 4/3 I, so a
+        // linear value g.q gives the offset -5 bump_size (0.02 / d) d (4/3) g, whatever d.
+        for accuracy in [0.02, 0.05, 0.003] {
+            for (vector, slope) in [([1.0, 0.0, 0.0], DVec3::X), ([0.0, 0.0, 2.0], DVec3::Z)] {
+                let f = field(&format!(
+                    "pattern = \"gradient\"\nvector = {vector:?}\nbump_size = 0.6\naccuracy = {accuracy}"
+                ));
+                let p = DVec3::new(0.25, 0.3, 0.2);
+                let k = f64::from(0.6f32) * 5.0 * 0.02 * 4.0 / 3.0;
+                let expected = (DVec3::Y - k * slope).normalize();
+                let got = f.perturb(p, DVec3::Y);
+                assert!((got - expected).length() < 1e-8, "{vector:?} at accuracy {accuracy}: {got} vs {expected}");
+            }
+        }
+    }
+
+    #[test]
+    fn pigment_patterns_as_normals_read_the_pattern_at_four_points() {
+        let f = field("pattern = \"crackle\"\nbump_size = 0.3\nscale = 0.5\nmetric = 1");
+        let pigment = PigmentField::new(&f.spec.as_pigment().unwrap());
+        let p = DVec3::new(0.37, -0.21, 0.64);
+        // No transform but the scale: the POV-Ray point is (2 x, 2 y, -2 z).
+        let q = p * 2.0 * MIRROR;
+        let delta = f64::from(0.02f32);
+        let weight = f64::from(0.3f32) * -5.0 * (0.02 / delta);
+        let offset: DVec3 = PYRAMID.iter().map(|v| (pigment.value(q + delta * *v) * weight) * *v).sum();
+        // The normal's transform: scale 0.5, so its inverse transpose scales normals by 2.
+        let expected = ((DVec3::Y + offset) * MIRROR * 0.5).normalize();
+        assert!((f.perturb(p, DVec3::Y) - expected).length() < 1e-12);
+        assert!((f.perturb(p, DVec3::Y) - DVec3::Y).length() > 1e-4, "crackle tilts the normal");
+    }
+
+    #[test]
+    fn quilted_normal_adds_the_quilting_vector() {
+        let f = field("pattern = \"quilted\"\nbump_size = 0.8\ncontrol0 = 0.3\ncontrol1 = 0.9");
+        let p = DVec3::new(0.2, 1.7, -0.35);
+        let q = p * MIRROR;
+        let c = (f64::from(0.3f32), f64::from(0.9f32));
+        let expected = ((DVec3::Y + f64::from(0.8f32) * quilt_vector(q, c)) * MIRROR).normalize();
+        assert!((f.perturb(p, DVec3::Y) - expected).length() < 1e-12);
+    }
+
+    #[test]
+    fn facets_point_the_normal_at_the_nearest_cell_point() {
+        let f = field("pattern = \"facets\"\nsize = 0.2");
+        let n = DVec3::new(0.3, 0.9, -0.2).normalize();
+        // The POV-Ray normal (x, y, -z), scaled by 1 / size, picks its nearest cell point.
+        let c = nearest_facet_point(n * MIRROR * 5.0, 2.0);
+        assert!((f.perturb(DVec3::new(1.0, 2.0, 3.0), n) - (c * MIRROR).normalize()).length() < 1e-12);
+        // Nearby normals share the facet; the position does not matter.
+        let m = (n + DVec3::new(0.001, -0.002, 0.0)).normalize();
+        assert_eq!(f.perturb(DVec3::ZERO, m), f.perturb(DVec3::ONE, n));
+        // coords: the nearest point to the position tilts the normal by its noise gradient.
+        let f = field("pattern = \"facets\"\ncoords = 0.5\nmetric = 3");
+        let p = DVec3::new(0.4, -1.3, 2.2);
+        let pert = dnoise(nearest_facet_point(p * MIRROR * 10.0, 3.0));
+        let nq = n * MIRROR;
+        let expected = ((nq + 0.5 * (pert - nq * pert.dot(nq))) * MIRROR).normalize();
+        assert!((f.perturb(p, n) - expected).length() < 1e-12);
+    }
+
+    #[test]
+    fn marble_as_a_normal_keeps_its_turbulence_out_of_the_warp() {
+        let f = field("pattern = \"marble\"\nturbulence = 0.5");
+        assert!(f.turbulence.is_none());
+        let f = field("pattern = \"granite\"\nturbulence = 0.5");
+        assert!(f.turbulence.is_some());
+    }
+
+    #[test]
     fn bad_normals_name_their_key() {
         let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err().0;
         assert_eq!(err("pattern = \"bumps\"\nbump_size = nan"), "bump_size");
@@ -366,6 +673,27 @@ mod tests {
         assert_eq!(err("pattern = \"ripples\"\nphase = inf"), "phase");
         assert_eq!(err("pattern = \"dents\"\noctaves = 3"), "octaves");
         assert_eq!(err("pattern = \"dents\"\nscale = 0"), "scale");
+        assert_eq!(err("pattern = \"bumps\"\naccuracy = 0.01"), "accuracy");
+        assert_eq!(err("pattern = \"granite\"\naccuracy = 0"), "accuracy");
+        assert_eq!(err("pattern = \"granite\"\naccuracy = -0.1"), "accuracy");
+        assert_eq!(err("pattern = \"crackle\"\nmetric = 0"), "metric");
+        assert_eq!(err("pattern = \"crackle\"\noffset = -1"), "offset");
+        assert_eq!(err("pattern = \"granite\"\nform = [1, 0, 0]"), "form");
+        assert_eq!(err("pattern = \"bumps\"\nsolid = true"), "solid");
+        assert_eq!(err("pattern = \"gradient\""), "vector");
+        assert_eq!(err("pattern = \"ripples\"\ncontrol0 = 1"), "control0");
+        assert_eq!(err("pattern = \"bumps\"\nsize = 0.1"), "size");
+        assert_eq!(err("pattern = \"granite\"\ncoords = 1"), "coords");
+        assert_eq!(err("pattern = \"facets\"\nsize = 0"), "size");
+        assert_eq!(err("pattern = \"facets\"\nmetric = -1"), "metric");
+        assert!(toml::from_str::<Normal>("pattern = \"facets\"\nmetric = 1\ncoords = 0.3").unwrap().check().is_ok());
+        assert!(
+            toml::from_str::<Normal>("pattern = \"granite\"\nfrequency = 2\nwave = \"sine\"").unwrap().check().is_ok()
+        );
+        let e = toml::from_str::<Normal>("pattern = \"checker\"").unwrap_err().to_string();
+        assert!(e.contains("list of normals"), "{e}");
+        let e = toml::from_str::<Normal>("pattern = \"crakle\"").unwrap_err().to_string();
+        assert!(e.contains("did you mean `crackle`?"), "{e}");
         let e = toml::from_str::<Normal>("pattern = \"bumsp\"").unwrap_err().to_string();
         assert!(e.contains("did you mean `bumps`?"), "{e}");
         let e = toml::from_str::<Normal>("pattern = \"bumps\"\nbumpsize = 2").unwrap_err().to_string();

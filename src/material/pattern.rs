@@ -15,6 +15,7 @@ use glam::{DAffine3, DMat3, DMat4, DVec3, EulerRot};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
+use super::crackle::{CrackleParams, crackle};
 use super::image_map::ImageMap;
 use super::noise::{Octaves, dturbulence, noise, turbulence};
 use crate::color::Rgb;
@@ -57,11 +58,15 @@ pub enum PatternKind {
     Agate,
     /// Ten octaves of noise.
     Wrinkles,
+    /// Distances to the nearest random points of a cell field (a Voronoi diagram).
+    Crackle,
+    /// Rounded cubes, shaped by two control points.
+    Quilted,
 }
 
 impl PatternKind {
     /// Every pattern with its name.
-    pub const ALL: [(PatternKind, &'static str); 16] = [
+    pub const ALL: [(PatternKind, &'static str); 18] = [
         (PatternKind::Checker, "checker"),
         (PatternKind::Hexagon, "hexagon"),
         (PatternKind::Brick, "brick"),
@@ -78,6 +83,8 @@ impl PatternKind {
         (PatternKind::Wood, "wood"),
         (PatternKind::Agate, "agate"),
         (PatternKind::Wrinkles, "wrinkles"),
+        (PatternKind::Crackle, "crackle"),
+        (PatternKind::Quilted, "quilted"),
     ];
 
     /// The scene file's (and POV-Ray's) name.
@@ -91,6 +98,11 @@ impl PatternKind {
             PatternKind::Spiral1 | PatternKind::Spiral2 | PatternKind::Marble | PatternKind::Wood => Wave::Triangle,
             _ => Wave::Ramp,
         }
+    }
+
+    /// The frequency POV-Ray gives the pattern when none is written (`quilted`: 0, unwrapped).
+    pub fn default_frequency(self) -> f64 {
+        if self == PatternKind::Quilted { 0.0 } else { 1.0 }
     }
 
     /// The number of colours a discrete pattern lists (`None`: it takes a `color_map`).
@@ -259,7 +271,8 @@ pub struct Pigment {
     /// linearly (below the first entry its colour, above the last the last's).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub color_map: Vec<MapEntry>,
-    /// `gradient`'s direction (the pattern repeats every 1 / |vector| along it).
+    /// `gradient`'s direction (normalised, as POV-Ray's parser does: the pattern repeats every
+    /// unit along it whatever its length).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vector: Option<[f64; 3]>,
     /// `spiral1` / `spiral2`: the number of arms.
@@ -271,8 +284,28 @@ pub struct Pigment {
     /// `brick`: the mortar's width (POV-Ray's default 0.5).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mortar: Option<f64>,
+    /// `crackle`: the weights of the distances to the nearest, second and third nearest
+    /// cell points (POV-Ray's default [-1, 1, 0]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub form: Option<[f64; 3]>,
+    /// `crackle`: the exponent of the Minkowski metric distances are measured in (default 2,
+    /// Euclidean; 1 is Manhattan), above 0 and at most 100.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub metric: Option<f64>,
+    /// `crackle`: added to every distance (default 0; not negative).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset: Option<f64>,
+    /// `crackle`: one value per cell (the noise at its point) instead of the distances.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solid: Option<bool>,
+    /// `quilted`: the first control point of the cubic that rounds the cubes (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub control0: Option<f64>,
+    /// `quilted`: the second control point (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub control1: Option<f64>,
     /// Continuous patterns: how many times the colour map repeats per unit of the pattern
-    /// (POV-Ray's default 1; 0 leaves the value unwrapped).
+    /// (POV-Ray's default 1, `quilted`'s 0; 0 leaves the value unwrapped).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frequency: Option<f64>,
     /// Continuous patterns: added to the value before wrapping (default 0).
@@ -408,6 +441,15 @@ impl Pigment {
                 return Err(("color_map", "colours, filter and transmit must be finite".into()));
             }
         }
+        self.check_keys()
+    }
+
+    /// The first problem of the pattern's own keys, turbulence and transform (everything but
+    /// its colours), as (key, message): what a pattern read as a normal shares.
+    pub fn check_keys(&self) -> Result<(), (&'static str, String)> {
+        let Some(kind) = self.pattern else {
+            return Err(("pattern", "needs a `pattern`".into()));
+        };
         let only = |key: &'static str, given: bool, kinds: &[PatternKind]| {
             if given && !kinds.contains(&kind) {
                 let names: Vec<&str> = kinds.iter().map(|k| k.name()).collect();
@@ -419,6 +461,24 @@ impl Pigment {
         only("arms", self.arms.is_some(), &[PatternKind::Spiral1, PatternKind::Spiral2])?;
         only("brick_size", self.brick_size.is_some(), &[PatternKind::Brick])?;
         only("mortar", self.mortar.is_some(), &[PatternKind::Brick])?;
+        for (key, given) in [
+            ("form", self.form.is_some()),
+            ("metric", self.metric.is_some()),
+            ("offset", self.offset.is_some()),
+            ("solid", self.solid.is_some()),
+        ] {
+            only(key, given, &[PatternKind::Crackle])?;
+        }
+        only("control0", self.control0.is_some(), &[PatternKind::Quilted])?;
+        only("control1", self.control1.is_some(), &[PatternKind::Quilted])?;
+        check_crackle(self.form, self.metric, self.offset)?;
+        for (key, v) in [("control0", self.control0), ("control1", self.control1)] {
+            if let Some(v) = v
+                && !v.is_finite()
+            {
+                return Err((key, format!("must be finite, got {v}")));
+            }
+        }
         if kind == PatternKind::Gradient && self.vector.is_none() {
             return Err(("vector", "`gradient` needs its direction `vector = [x, y, z]`".into()));
         }
@@ -461,6 +521,12 @@ impl Pigment {
             ("arms", self.arms.is_some()),
             ("brick_size", self.brick_size.is_some()),
             ("mortar", self.mortar.is_some()),
+            ("form", self.form.is_some()),
+            ("metric", self.metric.is_some()),
+            ("offset", self.offset.is_some()),
+            ("solid", self.solid.is_some()),
+            ("control0", self.control0.is_some()),
+            ("control1", self.control1.is_some()),
             ("frequency", self.frequency.is_some()),
             ("phase", self.phase.is_some()),
             ("wave", self.wave.is_some()),
@@ -481,6 +547,34 @@ impl Pigment {
         check_transform(self.scale, self.rotate, self.translate, self.matrix)
     }
 }
+
+/// The first out-of-range crackle key, as (key, message).
+fn check_crackle(
+    form: Option<[f64; 3]>,
+    metric: Option<f64>,
+    offset: Option<f64>,
+) -> Result<(), (&'static str, String)> {
+    if let Some(f) = form
+        && !f.iter().all(|v| v.is_finite())
+    {
+        return Err(("form", format!("must be finite, got {f:?}")));
+    }
+    if let Some(m) = metric
+        && !(m > 0.0 && m <= MAX_METRIC)
+    {
+        return Err(("metric", format!("must be above 0 and at most {MAX_METRIC}, got {m}")));
+    }
+    if let Some(o) = offset
+        && !(o.is_finite() && o >= 0.0)
+    {
+        return Err(("offset", format!("must be finite and not negative, got {o}")));
+    }
+    Ok(())
+}
+
+/// The largest crackle `metric`: beyond it the powered distances of neighbouring cells
+/// (below 3) overflow or vanish.
+pub const MAX_METRIC: f64 = 100.0;
 
 /// The transform `scale`, `rotate` (degrees about x, then y, then z), `translate` (or
 /// `matrix`) of a pattern: pattern space to object space, Prism's frame.
@@ -585,17 +679,31 @@ pub struct PigmentField {
     turbulence: DVec3,
     /// The turbulence octaves.
     octaves: Octaves,
+    /// `crackle`'s parameters with POV-Ray's defaults.
+    crackle: CrackleParams,
+    /// `quilted`'s control points, in single precision as POV-Ray holds them.
+    quilt_controls: (f64, f64),
 }
 
 impl PigmentField {
-    /// The field of `spec` (which passed [`Pigment::check`]).
+    /// The field of `spec` (which passed [`Pigment::check`], or for a normal
+    /// [`Pigment::check_keys`]).
     pub fn new(spec: &Pigment) -> Self {
+        let d = CrackleParams::default();
+        let single = |v: Option<f64>| f64::from(v.unwrap_or(1.0) as f32);
         Self {
             spec: spec.clone(),
             kind: spec.pattern.unwrap_or(PatternKind::Checker),
             pattern_from_object: spec.object_from_pattern().inverse(),
             turbulence: spec.turbulence.map_or(DVec3::ZERO, |t| t.vector()),
             octaves: octaves_of(spec.octaves, spec.omega, spec.lambda),
+            crackle: CrackleParams {
+                form: spec.form.map_or(d.form, DVec3::from_array),
+                metric: spec.metric.unwrap_or(d.metric),
+                offset: spec.offset.unwrap_or(d.offset),
+                solid: spec.solid.unwrap_or(d.solid),
+            },
+            quilt_controls: (single(spec.control0), single(spec.control1)),
         }
     }
 
@@ -608,9 +716,8 @@ impl PigmentField {
     pub fn at(&self, p: DVec3) -> Rgbft {
         let mut q = self.pattern_from_object.transform_point3(p) * DVec3::new(1.0, 1.0, -1.0);
         let spec = &self.spec;
-        // POV-Ray's classic turbulence warp; marble and wood apply their turbulence themselves.
-        let plain_warp = spec.image_map.is_some() || !matches!(self.kind, PatternKind::Marble | PatternKind::Wood);
-        if spec.turbulence.is_some() && plain_warp {
+        // An image map's kind reads as checker here: it warps like every plain pattern.
+        if warps_with_turbulence(self.kind, spec.turbulence.is_some()) {
             q += dturbulence(q, &self.octaves) * self.turbulence;
         }
         if let Some(map) = &spec.image_map {
@@ -621,19 +728,19 @@ impl PigmentField {
                 let index = discrete_value(self.kind, spec, q);
                 spec.colors[index.min(spec.colors.len() - 1)].rgbft()
             }
-            None => map_lookup(&spec.color_map, self.continuous_value(q)),
+            None => map_lookup(&spec.color_map, self.value(q)),
         }
     }
 
-    /// A continuous pattern's value at `q` after frequency, phase and wave (POV-Ray's
-    /// `Evaluate_TPat`).
-    fn continuous_value(&self, q: DVec3) -> f64 {
+    /// A continuous pattern's value at the (warped) pattern point `q`, POV-Ray's frame, after
+    /// frequency, phase and wave (POV-Ray's `Evaluate_TPat`).
+    pub fn value(&self, q: DVec3) -> f64 {
         let spec = &self.spec;
         let turbulent = spec.turbulence.is_some();
         // Scalar turbulence, as marble and the spirals add it.
         let turb_x = || if turbulent { self.turbulence.x * turbulence(q, &self.octaves) } else { 0.0 };
         let raw = match self.kind {
-            PatternKind::Gradient => gradient(q, pov_vector(spec.vector.unwrap_or([0.0, 1.0, 0.0]))),
+            PatternKind::Gradient => gradient(q, pov_vector(spec.vector.unwrap_or([0.0, 1.0, 0.0])).normalize()),
             PatternKind::Radial => radial(q),
             PatternKind::Onion => onion(q),
             PatternKind::Leopard => leopard(q),
@@ -645,15 +752,23 @@ impl PigmentField {
             PatternKind::Wood => wood(q, turbulent.then_some((self.turbulence, &self.octaves))),
             PatternKind::Agate => agate(q, &self.octaves),
             PatternKind::Wrinkles => wrinkles(q),
+            PatternKind::Crackle => crackle(q, &self.crackle),
+            PatternKind::Quilted => quilted(q, self.quilt_controls),
             PatternKind::Checker | PatternKind::Hexagon | PatternKind::Brick => 0.0,
         };
         shape_wave(
             raw,
-            spec.frequency.unwrap_or(1.0),
+            spec.frequency.unwrap_or(self.kind.default_frequency()),
             spec.phase.unwrap_or(0.0),
             spec.wave.unwrap_or(self.kind.default_wave()),
         )
     }
+}
+
+/// True when POV-Ray's classic turbulence warp moves the point before `kind` reads it (with
+/// a turbulence amount written): `marble` and `wood` apply their turbulence themselves.
+pub fn warps_with_turbulence(kind: PatternKind, turbulent: bool) -> bool {
+    turbulent && !matches!(kind, PatternKind::Marble | PatternKind::Wood)
 }
 
 /// A discrete pattern's colour index at pattern-space point `q` (POV-Ray's frame).
@@ -865,6 +980,32 @@ fn granite(q: DVec3) -> f64 {
     value
 }
 
+/// POV-Ray's `quilt_cubic`: the Bezier cubic from 0 to 1 with control values `c0` and `c1`,
+/// over sqrt(3/4).
+pub fn quilt_cubic(t: f64, c0: f64, c1: f64) -> f64 {
+    const INV_SQRT_3_4: f64 = 1.154700538;
+    let it = 1.0 - t;
+    (t * t * t + 3.0 * t * it * it * c0 + 3.0 * t * t * it * c1) * INV_SQRT_3_4
+}
+
+/// POV-Ray's `FLOOR`: one below at negative integers (`0 - floor(-x) - 1`).
+fn pov_floor(x: f64) -> f64 {
+    if x >= 0.0 { x.floor() } else { 0.0 - (0.0 - x).floor() - 1.0 }
+}
+
+/// The offset of `q` from the centre of its unit cube, scaled by the quilting cubic of its
+/// length (POV-Ray's quilted pattern and normal share it).
+pub fn quilt_vector(q: DVec3, (c0, c1): (f64, f64)) -> DVec3 {
+    let v = DVec3::new(q.x - pov_floor(q.x) - 0.5, q.y - pov_floor(q.y) - 0.5, q.z - pov_floor(q.z) - 0.5);
+    v * quilt_cubic(v.length(), c0, c1)
+}
+
+/// POV-Ray's quilted pigment: the mean absolute component of the quilting vector.
+fn quilted(q: DVec3, controls: (f64, f64)) -> f64 {
+    let v = quilt_vector(q, controls);
+    (v.x.abs() + v.y.abs() + v.z.abs()) / 3.0
+}
+
 /// POV-Ray's wood: the distance from the z axis, its x and y bent by vector turbulence
 /// through a sine when the pigment has turbulence (`amount` and octaves).
 fn wood(q: DVec3, turbulence: Option<(DVec3, &Octaves)>) -> f64 {
@@ -987,6 +1128,9 @@ mod tests {
         // A gradient along Prism's z is along POV-Ray's -z, so the ramp follows Prism's z.
         let f = PigmentField::new(&pigment(&format!("pattern = \"gradient\"\nvector = [0, 0, 1]\n{BW}")));
         assert!((f.at(DVec3::new(0.0, 0.0, 0.3)).rgb - DVec3::splat(0.3)).abs().max_element() < 1e-12);
+        // POV-Ray normalises the vector: its length does not change the period.
+        let f = PigmentField::new(&pigment(&format!("pattern = \"gradient\"\nvector = [0, 3, 4]\n{BW}")));
+        assert!((f.at(DVec3::new(0.0, 0.3, 0.4)).rgb - DVec3::splat(0.5)).abs().max_element() < 1e-12);
     }
 
     #[test]
@@ -1127,6 +1271,42 @@ mod tests {
     }
 
     #[test]
+    fn crackle_pigment_reads_the_cell_field_with_its_keys() {
+        use crate::material::crackle::{CrackleParams, crackle};
+        let f = PigmentField::new(&pigment(&format!(
+            "pattern = \"crackle\"\nform = [0.5, 0.25, 0.1]\nmetric = 3\noffset = 0.2\nscale = 0.5\n{BW}"
+        )));
+        let params = CrackleParams { form: DVec3::new(0.5, 0.25, 0.1), metric: 3.0, offset: 0.2, solid: false };
+        let p = DVec3::new(0.3, -0.8, 1.4);
+        let expected = crackle(prism(0.6, -1.6, 2.8), &params);
+        assert!((f.at(p).rgb.x - expected).abs() < 1e-12);
+        // The defaults: form [-1, 1, 0], metric 2, offset 0.
+        let f = PigmentField::new(&pigment(&format!("pattern = \"crackle\"\n{BW}")));
+        assert_eq!(f.at(prism(0.3, 0.4, 0.5)).rgb.x, crackle(DVec3::new(0.3, 0.4, 0.5), &CrackleParams::default()));
+        // Solid: one colour per cell.
+        let f = PigmentField::new(&pigment(&format!("pattern = \"crackle\"\nsolid = true\n{BW}")));
+        let a = crate::material::crackle::cell_point(1, 2, -3);
+        assert_eq!(f.at(a * DVec3::new(1.0, 1.0, -1.0)).rgb.x, noise(a));
+    }
+
+    #[test]
+    fn quilted_follows_povray_and_is_unwrapped_by_default() {
+        // At a cube's centre the vector is zero; along an axis it is (t, 0, 0) scaled by the
+        // cubic of |t|, so the value is |t| quilt_cubic(|t|) / 3.
+        assert_eq!(quilted(DVec3::splat(0.5), (1.0, 1.0)), 0.0);
+        let t: f64 = 0.3;
+        let expected = t * quilt_cubic(t, 1.0, 1.0) / 3.0;
+        assert!((quilted(DVec3::new(0.8, 0.5, 0.5), (1.0, 1.0)) - expected).abs() < 1e-15);
+        // POV-Ray's FLOOR puts -1 in the cube below: -1 - (-2) - 0.5 = 0.5.
+        assert_eq!(pov_floor(-1.0), -2.0);
+        assert_eq!(pov_floor(-0.5), -1.0);
+        // quilt_cubic with both controls 0: t^3 / sqrt(3/4).
+        assert!((quilt_cubic(0.5, 0.0, 0.0) - 0.125 * 1.154700538).abs() < 1e-15);
+        assert_eq!(PatternKind::Quilted.default_frequency(), 0.0);
+        assert_eq!(PatternKind::Crackle.default_frequency(), 1.0);
+    }
+
+    #[test]
     fn bad_pigments_name_their_key() {
         let err = |text: &str| toml::from_str::<Pigment>(text).unwrap().check().unwrap_err();
         assert_eq!(err("pattern = \"onion\"").0, "color_map");
@@ -1141,6 +1321,15 @@ mod tests {
         assert_eq!(err(&format!("pattern = \"bozo\"\nturbulence = 1\noctaves = 11\n{BW}")).0, "octaves");
         assert_eq!(err(&format!("pattern = \"bozo\"\nturbulence = 1\noctaves = 0\n{BW}")).0, "octaves");
         assert_eq!(err(&format!("pattern = \"bozo\"\nomega = 0.3\n{BW}")).0, "omega");
+        assert_eq!(err(&format!("pattern = \"crackle\"\nmetric = 0\n{BW}")).0, "metric");
+        assert_eq!(err(&format!("pattern = \"crackle\"\nmetric = 101\n{BW}")).0, "metric");
+        assert_eq!(err(&format!("pattern = \"crackle\"\nmetric = nan\n{BW}")).0, "metric");
+        assert_eq!(err(&format!("pattern = \"crackle\"\noffset = -0.5\n{BW}")).0, "offset");
+        assert_eq!(err(&format!("pattern = \"crackle\"\nform = [1, inf, 0]\n{BW}")).0, "form");
+        assert_eq!(err(&format!("pattern = \"granite\"\nsolid = true\n{BW}")).0, "solid");
+        assert_eq!(err(&format!("pattern = \"granite\"\nmetric = 1\n{BW}")).0, "metric");
+        assert_eq!(err(&format!("pattern = \"crackle\"\ncontrol0 = 1\n{BW}")).0, "control0");
+        assert_eq!(err(&format!("pattern = \"quilted\"\ncontrol1 = nan\n{BW}")).0, "control1");
         let e = toml::from_str::<Pigment>("pattern = \"chekcer\"").unwrap_err().to_string();
         assert!(e.contains("did you mean `checker`?"), "{e}");
         let e = toml::from_str::<Pigment>("pattern = \"onion\"\nfrequncy = 2").unwrap_err().to_string();

@@ -169,6 +169,18 @@ fn normal_key(key: &str) -> &'static str {
         "octaves" => "normal.octaves",
         "omega" => "normal.omega",
         "lambda" => "normal.lambda",
+        "accuracy" => "normal.accuracy",
+        "wave" => "normal.wave",
+        "vector" => "normal.vector",
+        "arms" => "normal.arms",
+        "form" => "normal.form",
+        "metric" => "normal.metric",
+        "offset" => "normal.offset",
+        "solid" => "normal.solid",
+        "control0" => "normal.control0",
+        "control1" => "normal.control1",
+        "size" => "normal.size",
+        "coords" => "normal.coords",
         _ => "normal",
     }
 }
@@ -198,6 +210,12 @@ fn pigment_key(key: &str) -> &'static str {
         "image_map.file" => "pigment.image_map.file",
         "image_map.filter_all" => "pigment.image_map.filter_all",
         "image_map.transmit_all" => "pigment.image_map.transmit_all",
+        "form" => "pigment.form",
+        "metric" => "pigment.metric",
+        "offset" => "pigment.offset",
+        "solid" => "pigment.solid",
+        "control0" => "pigment.control0",
+        "control1" => "pigment.control1",
         _ => "pigment",
     }
 }
