@@ -200,8 +200,33 @@ fn a_shape_without_to_pov_is_named() {
     std::fs::write(&path, "[[object]]\nshape = \"sphere\"\n\n[[object]]\nname = \"odd\"\nshape = \"lump\"\n").unwrap();
     let mut scene = prism::scene::load::load_file(Path::new(&path), &registry).unwrap();
     prism::world::transforms::resolve_transforms(&mut scene).unwrap();
-    let error = prism::export::pov::export(&scene, "scene.toml").unwrap_err().to_string();
+    let error = prism::export::pov::export(&scene, "scene.toml", None).unwrap_err().to_string();
     for needle in ["scene.toml:4:", "object[1].shape", "shape `lump` has no POV-Ray equivalent", "Shape::to_pov"] {
         assert!(error.contains(needle), "missing `{needle}` in: {error}");
     }
+}
+
+/// A text's font is written relative to the exported file's folder (absolute without one),
+/// and a saved scene names it relative to the saved file, so both still find it.
+#[test]
+fn font_paths_follow_the_written_file() {
+    let scene_path = root().join("scenes/parity/text.toml");
+    let mut scene = prism::scene::load::load_file(&scene_path, &prism::plugins::registry()).unwrap();
+    prism::world::transforms::resolve_transforms(&mut scene).unwrap();
+    prism::world::validate::validate(&scene).unwrap();
+    let font = std::fs::canonicalize(root().join("assets/fonts/DejaVuSans.ttf")).unwrap();
+    let beside = prism::export::pov::export(&scene, "text.toml", Some(&root().join("scenes/parity"))).unwrap();
+    assert!(beside.contains("text { ttf \"../../assets/fonts/DejaVuSans.ttf\" \"Prism\" 0.3,"), "{beside}");
+    let absolute = prism::export::pov::export(&scene, "text.toml", None).unwrap();
+    assert!(absolute.contains(&format!("ttf \"{}\"", font.display())), "{absolute}");
+
+    let dir = tempfile::tempdir().unwrap();
+    let copy = dir.path().join("deeper/copy.toml");
+    std::fs::create_dir_all(copy.parent().unwrap()).unwrap();
+    let saved = prism::scene::save::save_for(&scene, &copy).unwrap();
+    std::fs::write(&copy, &saved).unwrap();
+    assert!(!saved.contains("\"../../assets/fonts"), "the scene's own relative path is not reused: {saved}");
+    let again =
+        prism::scene::load::load_file(&copy, &prism::plugins::registry()).unwrap_or_else(|e| panic!("{e}\n{saved}"));
+    assert_eq!(prism::scene::save::save_for(&again, &copy).unwrap(), saved);
 }

@@ -15,9 +15,10 @@
 //! `scripts/povray-references.sh` passes to `povray`.
 
 use std::fmt::Write;
+use std::path::{Path, PathBuf};
 
 use glam::{DAffine3, DVec3};
-use prism_api::pov::{number, vector};
+use prism_api::pov::{self, FilePaths, number, vector};
 
 use crate::color::Rgb;
 use crate::diagnostics::{Diagnostic, SceneError};
@@ -26,6 +27,7 @@ use crate::material::pov_view::{PovFinish, PovView};
 use crate::material::{Finish, Interior, Material, Reflection, SurfaceModel};
 use crate::render::camera::CameraFrame;
 use crate::render::integrators::classic::lights::pov_equivalent;
+use crate::scene::save::relative_path;
 use crate::world::Scene;
 use crate::world::components::{
     AdaptiveBlur, Antialias, Camera, CsgMaterials, Environment, IntegratorKind, Light, LightKind, MaterialComponent,
@@ -38,10 +40,13 @@ pub const MAX_TRACE_LEVEL: u32 = 256;
 /// The prefix of the comment line that holds the POV-Ray command-line options.
 pub const OPTIONS_PREFIX: &str = "// povray-options: ";
 
-/// The scene as POV-Ray 3.7 SDL. `source` names the scene in the header comment. The scene
-/// must have been through `resolve_transforms` and `validate`. Every feature that has no
-/// exact POV-Ray equivalent is reported, each naming the object, light or setting.
-pub fn export(scene: &Scene, source: &str) -> Result<String, SceneError> {
+/// The scene as POV-Ray 3.7 SDL. `source` names the scene in the header comment; the paths
+/// of files shapes read (a text's font) are written relative to `directory`, the folder the
+/// file goes to, when given and possible (POV-Ray then finds them run with `+L` that folder,
+/// or from it), absolute otherwise. The scene must have been through `resolve_transforms`
+/// and `validate`. Every feature that has no exact POV-Ray equivalent is reported, each
+/// naming the object, light or setting.
+pub fn export(scene: &Scene, source: &str, directory: Option<&Path>) -> Result<String, SceneError> {
     let mut errors = Vec::new();
     let mut out = String::new();
     let options = povray_options(scene, &mut errors);
@@ -55,11 +60,25 @@ pub fn export(scene: &Scene, source: &str) -> Result<String, SceneError> {
     globals(&mut out, scene, &mut errors);
     camera(&mut out, &scene.camera(), scene.render.samples);
     lights(&mut out, scene);
-    objects(&mut out, scene, &mut errors);
+    let base = directory.map(|d| std::fs::canonicalize(d).or_else(|_| std::path::absolute(d)).unwrap_or(d.into()));
+    objects(&mut out, scene, &PovFiles { base }, &mut errors);
     if errors.is_empty() {
         return Ok(out);
     }
     Err(super::in_file_order(errors))
+}
+
+/// How the paths of the files shapes read are written: relative to `base` (the exported
+/// file's folder) where a relative path exists, absolute otherwise.
+struct PovFiles {
+    base: Option<PathBuf>,
+}
+
+impl FilePaths for PovFiles {
+    fn path(&self, file: &Path) -> Option<String> {
+        let relative = self.base.as_deref().and_then(|base| relative_path(file, base));
+        pov::string(relative.as_deref().unwrap_or(file).to_str()?)
+    }
 }
 
 /// The POV-Ray options in the header line of an exported file, if it has one.
@@ -270,7 +289,7 @@ fn light_source(out: &mut String, light: &Light) {
     out.push_str("}\n\n");
 }
 
-fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
+fn objects(out: &mut String, scene: &Scene, files: &PovFiles, errors: &mut Vec<Diagnostic>) {
     let mut query = scene.world.query::<(
         hecs::Entity,
         Option<&ShapeComponent>,
@@ -299,7 +318,8 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
             Some(group) => {
                 let leaves = scene.world.get::<&CsgMaterials>(entity).ok();
                 let leaves = leaves.as_deref().map_or(&[][..], |l| &l.leaves[..]);
-                let mut csg = CsgSdl { leaves, group_material: &material.material, next_leaf: 0, problems: Vec::new() };
+                let mut csg =
+                    CsgSdl { leaves, group_material: &material.material, files, next_leaf: 0, problems: Vec::new() };
                 let sdl = csg.group(group);
                 if !csg.problems.is_empty() {
                     for (key, message) in csg.problems {
@@ -309,7 +329,7 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
                 }
                 sdl
             }
-            None => shape.geometry.to_pov(),
+            None => shape.geometry.to_pov_with(files),
         };
         let Some(sdl) = sdl else {
             errors.push(
@@ -356,6 +376,8 @@ struct CsgSdl<'a> {
     leaves: &'a [MaterialComponent],
     /// The whole object's material.
     group_material: &'a std::sync::Arc<Material>,
+    /// How file paths are written.
+    files: &'a PovFiles,
     /// The leaf the next plain member is.
     next_leaf: usize,
     /// Key paths and messages of what cannot be written.
@@ -371,7 +393,7 @@ impl CsgSdl<'_> {
             let body = match nested.downcast_ref::<CsgShape>() {
                 Some(nested) => self.group(nested)?,
                 None => {
-                    let sdl = member.shape.to_pov()?;
+                    let sdl = member.shape.to_pov_with(self.files)?;
                     let leaf = self.leaves.get(self.next_leaf);
                     self.next_leaf += 1;
                     let mut sdl = sdl.trim_end().strip_suffix('}')?.trim_end().to_string();
