@@ -23,7 +23,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use prism_api::math::solve_quadratic;
-use prism_api::{Aabb, DVec2, DVec3, FileReader, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
+use prism_api::{
+    Aabb, DAffine3, DMat3, DVec2, DVec3, FileReader, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov,
+};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -178,6 +180,11 @@ const GRAZING: f64 = 1e-10;
 pub struct Text {
     glyphs: Vec<Glyph>,
     thickness: f64,
+    /// POV-Ray's tilt (see [`pov_tilt`]): object space from the laid-out text, and back.
+    tilt: DMat3,
+    untilt: DMat3,
+    /// Bounds of the laid-out text, before the tilt.
+    flat_bounds: Aabb,
     bounds: Aabb,
     font: PathBuf,
     string: String,
@@ -193,13 +200,54 @@ impl Text {
     fn new(glyphs: Vec<Glyph>, thickness: f64, font: PathBuf, string: String, offset: DVec3) -> Self {
         let (min, max) =
             glyphs.iter().fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), g| (lo.min(g.min), hi.max(g.max)));
-        let bounds = if glyphs.is_empty() {
+        let flat_bounds = if glyphs.is_empty() {
             // Nothing to hit: an empty string or only spaces. A point-sized box keeps the BVH finite.
             Aabb::from_corners(DVec3::ZERO, DVec3::ZERO)
         } else {
             Aabb::from_corners(min.extend(-thickness), max.extend(0.0))
         };
-        Self { glyphs, thickness, bounds, font, string, offset }
+        let tilt = pov_tilt();
+        let bounds = flat_bounds.transformed(&DAffine3::from_mat3(tilt));
+        Self { glyphs, thickness, tilt, untilt: tilt.inverse(), flat_bounds, bounds, font, string, offset }
+    }
+
+    /// `ray` in the frame of the laid-out text (before the tilt); `t` is unchanged.
+    fn untilted(&self, ray: &Ray) -> Ray {
+        Ray::new(self.untilt * ray.origin, self.untilt * ray.direction)
+    }
+
+    /// The nearest hit in the frame of the laid-out text.
+    fn flat_intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        for index in 0..self.glyphs.len() {
+            let limit = best.map_or(t_max, |h| h.t);
+            if let Some(hit) = self.glyph_hit(index, ray, t_min, limit) {
+                best = Some(hit);
+            }
+        }
+        best
+    }
+
+    /// The surface at a hit in the frame of the laid-out text.
+    fn flat_surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let mut point = ray.at(hit.t);
+        point.z = point.z.clamp(-self.thickness, 0.0);
+        match hit.part {
+            FRONT | BACK => {
+                let (z, normal) = if hit.part == FRONT { (0.0, DVec3::Z) } else { (-self.thickness, DVec3::NEG_Z) };
+                point.z = z;
+                let width = (self.flat_bounds.max.x - self.flat_bounds.min.x).max(1e-300);
+                Surface::new(point, normal, DVec2::ZERO).with_dpdu(DVec3::new(width, 0.0, 0.0))
+            }
+            _ => {
+                let glyph = &self.glyphs[hit.scratch.x as usize];
+                let seg = &glyph.segments[hit.scratch.y as usize];
+                let n = seg.normal(hit.scratch.z);
+                let n = if n == DVec2::ZERO { DVec2::X } else { n };
+                let on_curve = seg.at(hit.scratch.z);
+                Surface::new(on_curve.extend(point.z), n.extend(0.0), DVec2::ZERO)
+            }
+        }
     }
 
     /// The nearest hit on glyph `index` with `t_min < t < best`.
@@ -270,46 +318,27 @@ impl Shape for Text {
     }
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        let mut best: Option<Hit> = None;
-        for index in 0..self.glyphs.len() {
-            let limit = best.map_or(t_max, |h| h.t);
-            if let Some(hit) = self.glyph_hit(index, ray, t_min, limit) {
-                best = Some(hit);
-            }
-        }
-        best
+        self.flat_intersect(&self.untilted(ray), t_min, t_max)
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
         let surface = self.surface_geometry(ray, hit);
-        let size = (self.bounds.max - self.bounds.min).truncate().max(DVec2::splat(1e-300));
-        let uv = ((surface.point.truncate() - self.bounds.min.truncate()) / size).clamp(DVec2::ZERO, DVec2::ONE);
+        let flat = self.untilt * surface.point;
+        let (min, max) = (self.flat_bounds.min.truncate(), self.flat_bounds.max.truncate());
+        let size = (max - min).max(DVec2::splat(1e-300));
+        let uv = ((flat.truncate() - min) / size).clamp(DVec2::ZERO, DVec2::ONE);
         Surface { uv, uv_density: 1.0 / size.max_element(), ..surface }
     }
 
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
-        let mut point = ray.at(hit.t);
-        point.z = point.z.clamp(-self.thickness, 0.0);
-        match hit.part {
-            FRONT | BACK => {
-                let (z, normal) = if hit.part == FRONT { (0.0, DVec3::Z) } else { (-self.thickness, DVec3::NEG_Z) };
-                point.z = z;
-                let width = (self.bounds.max.x - self.bounds.min.x).max(1e-300);
-                Surface::new(point, normal, DVec2::ZERO).with_dpdu(DVec3::new(width, 0.0, 0.0))
-            }
-            _ => {
-                let glyph = &self.glyphs[hit.scratch.x as usize];
-                let seg = &glyph.segments[hit.scratch.y as usize];
-                let n = seg.normal(hit.scratch.z);
-                let n = if n == DVec2::ZERO { DVec2::X } else { n };
-                let on_curve = seg.at(hit.scratch.z);
-                Surface::new(on_curve.extend(point.z), n.extend(0.0), DVec2::ZERO)
-            }
-        }
+        let flat = self.flat_surface(&self.untilted(ray), hit);
+        let normal = (self.tilt * flat.normal).normalize();
+        Surface { point: self.tilt * flat.point, normal, shading_normal: normal, dpdu: self.tilt * flat.dpdu, ..flat }
     }
 
     fn inside(&self, point: DVec3) -> bool {
-        point.z <= 0.0 && point.z >= -self.thickness && self.glyphs.iter().any(|g| g.contains(point.truncate()))
+        let p = self.untilt * point;
+        p.z <= 0.0 && p.z >= -self.thickness && self.glyphs.iter().any(|g| g.contains(p.truncate()))
     }
 
     /// Text cannot emit light: its area is exact but not sampled (POV-Ray's text is no light either).
@@ -326,6 +355,21 @@ impl Shape for Text {
     fn to_pov(&self) -> Option<String> {
         self.to_pov_with(&pov::AsGiven)
     }
+}
+
+/// POV-Ray's tilt of every text object: after laying the glyphs out, its parser turns the
+/// text by `rotate <0.001, 0.001, 0.001>` (degrees; "this tiny rotation should fix cracks in
+/// text that lies along an axis", `Parse_TrueType`), about x, then y, then z, in its
+/// left-handed frame. Here as a rotation of Prism's object space (the mirror S = diag(1, 1,
+/// -1) on both sides). It moves a point 1 em from the origin by about 2e-5 em: enough to
+/// flip a pixel where a ray grazes an edge, so parity needs it.
+fn pov_tilt() -> DMat3 {
+    let (s, c) = 0.001_f64.to_radians().sin_cos();
+    let x = DMat3::from_cols(DVec3::X, DVec3::new(0.0, c, s), DVec3::new(0.0, -s, c));
+    let y = DMat3::from_cols(DVec3::new(c, 0.0, -s), DVec3::Y, DVec3::new(s, 0.0, c));
+    let z = DMat3::from_cols(DVec3::new(c, s, 0.0), DVec3::new(-s, c, 0.0), DVec3::Z);
+    let mirror = DMat3::from_diagonal(DVec3::new(1.0, 1.0, -1.0));
+    mirror * (z * y * x) * mirror
 }
 
 /// Collects a glyph's contours from ttf-parser as lists of pieces (font units).

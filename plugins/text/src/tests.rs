@@ -42,10 +42,18 @@ fn metrics(c: char) -> ([f64; 4], f64) {
     (m, f64::from(face.units_per_em()))
 }
 
-fn hit_point(shape: &dyn Shape, origin: DVec3, direction: DVec3) -> Option<(DVec3, DVec3)> {
+/// The text laid out, without POV-Ray's tilt (see `flat_hit`).
+fn flat(string: &str, offset: DVec2) -> Text {
+    let glyphs = layout(&face_bytes(), FONT, string, offset).unwrap();
+    Text::new(glyphs, 0.25, fonts().join(FONT), string.into(), offset.extend(0.0))
+}
+
+/// The nearest hit and its normal in the frame of the laid-out text (before the tilt), where
+/// positions are exact.
+fn flat_hit(text: &Text, origin: DVec3, direction: DVec3) -> Option<(DVec3, DVec3)> {
     let ray = Ray::new(origin, direction);
-    let hit = shape.intersect(&ray, 0.0, f64::INFINITY)?;
-    let s = shape.surface(&ray, &hit);
+    let hit = text.flat_intersect(&ray, 0.0, f64::INFINITY)?;
+    let s = text.flat_surface(&ray, &hit);
     Some((s.point, s.normal))
 }
 
@@ -62,40 +70,61 @@ fn contract_holds() {
 fn a_ray_across_the_stem_of_an_l_hits_its_right_edge() {
     // `l` is one rectangle; as the first glyph its left edge is moved to x = 0.
     let ([x_min, x_max, ..], units) = metrics('l');
-    let shape = text("l");
-    let (p, n) = hit_point(shape.as_ref(), DVec3::new(5.0, 0.3, -0.1), DVec3::NEG_X).unwrap();
+    let text = flat("l", DVec2::ZERO);
+    let (p, n) = flat_hit(&text, DVec3::new(5.0, 0.3, -0.1), DVec3::NEG_X).unwrap();
     assert!((p.x - (x_max - x_min) / units).abs() < 1e-12, "hit at {p}");
     assert!((n - DVec3::X).length() < 1e-12, "normal {n}");
-    let (p, n) = hit_point(shape.as_ref(), DVec3::new(-5.0, 0.3, -0.1), DVec3::X).unwrap();
+    let (p, n) = flat_hit(&text, DVec3::new(-5.0, 0.3, -0.1), DVec3::X).unwrap();
     assert!(p.x.abs() < 1e-12 && (n + DVec3::X).length() < 1e-12, "hit at {p}, normal {n}");
+    // The shape itself is tilted as POV-Ray tilts it: the same hit, turned by 0.001 degrees.
+    let shape = self::text("l");
+    let ray = Ray::new(DVec3::new(5.0, 0.3, -0.1), DVec3::NEG_X);
+    let hit = shape.intersect(&ray, 0.0, f64::INFINITY).unwrap();
+    let s = shape.surface(&ray, &hit);
+    assert!((s.point.x - (x_max - x_min) / units).abs() < 1e-4 && (s.normal - DVec3::X).length() < 1e-4);
+    assert!((s.normal - DVec3::X).length() > 1e-6, "the tilt is there");
+}
+
+#[test]
+fn the_tilt_is_pov_rays_rotate_of_a_thousandth_degree() {
+    // POV-Ray's rotate <0.001, 0.001, 0.001> of (1, 0, 0) in its frame, mirrored in z.
+    let r = 0.001_f64.to_radians();
+    let (x, y, z) = (1.0_f64, 0.0_f64, 0.0_f64);
+    let (y, z) = (y * r.cos() - z * r.sin(), y * r.sin() + z * r.cos());
+    let (x, z) = (x * r.cos() + z * r.sin(), -x * r.sin() + z * r.cos());
+    let (x, y) = (x * r.cos() - y * r.sin(), x * r.sin() + y * r.cos());
+    let expected = DVec3::new(x, y, -z);
+    assert!((pov_tilt() * DVec3::X - expected).length() < 1e-15);
+    assert!((pov_tilt().determinant() - 1.0).abs() < 1e-12);
 }
 
 #[test]
 fn a_ray_through_the_hole_of_an_o_misses() {
-    let shape = text("O");
-    let b = shape.bounds();
+    let text = flat("O", DVec2::ZERO);
+    let b = text.flat_bounds;
     let centre = b.center();
-    assert!(hit_point(shape.as_ref(), DVec3::new(centre.x, centre.y, 5.0), DVec3::NEG_Z).is_none());
-    assert!(!shape.inside(DVec3::new(centre.x, centre.y, -0.1)));
+    assert!(flat_hit(&text, DVec3::new(centre.x, centre.y, 5.0), DVec3::NEG_Z).is_none());
+    assert!(!text.inside(DVec3::new(centre.x, centre.y, -0.1)));
     // The ring itself, just inside its left edge, is hit on the front face.
-    let (p, n) = hit_point(shape.as_ref(), DVec3::new(b.min.x + 0.02, centre.y, 5.0), DVec3::NEG_Z).unwrap();
+    let (p, n) = flat_hit(&text, DVec3::new(b.min.x + 0.02, centre.y, 5.0), DVec3::NEG_Z).unwrap();
     assert!(p.z.abs() < 1e-12 && n == DVec3::Z, "hit at {p}, normal {n}");
 }
 
 #[test]
 fn caps_face_out_and_sides_are_horizontal() {
-    let shape = text("H");
-    let b = shape.bounds();
+    let text = flat("H", DVec2::ZERO);
+    let b = text.flat_bounds;
     let stem = DVec3::new(b.min.x + 0.03, 0.3, 0.0);
-    let (p, n) = hit_point(shape.as_ref(), stem + DVec3::Z, DVec3::new(0.0, 0.0, -2.0)).unwrap();
+    let (p, n) = flat_hit(&text, stem + DVec3::Z, DVec3::new(0.0, 0.0, -2.0)).unwrap();
     assert!(p.z == 0.0 && n == DVec3::Z);
-    let (p, n) = hit_point(shape.as_ref(), stem - 3.0 * DVec3::Z, DVec3::Z).unwrap();
+    let (p, n) = flat_hit(&text, stem - 3.0 * DVec3::Z, DVec3::Z).unwrap();
     assert!(p.z == -0.25 && n == DVec3::NEG_Z);
     // From inside the solid the ray leaves through the back.
-    let (p, _) = hit_point(shape.as_ref(), stem - 0.1 * DVec3::Z, DVec3::NEG_Z).unwrap();
+    let (p, _) = flat_hit(&text, stem - 0.1 * DVec3::Z, DVec3::NEG_Z).unwrap();
     assert!((p.z + 0.25).abs() < 1e-12);
-    let (_, n) = hit_point(shape.as_ref(), DVec3::new(-1.0, 0.3, -0.1), DVec3::new(1.0, 0.01, 0.02)).unwrap();
+    let (_, n) = flat_hit(&text, DVec3::new(-1.0, 0.3, -0.1), DVec3::new(1.0, 0.01, 0.02)).unwrap();
     assert!(n.z == 0.0 && (n + DVec3::X).length() < 1e-9, "side normal {n}");
+    let shape = self::text("H");
     assert!(shape.inside(stem - 0.1 * DVec3::Z) && !shape.inside(stem + 0.1 * DVec3::Z));
 }
 
@@ -126,13 +155,13 @@ fn glyphs_are_placed_by_advance_kerning_and_offset() {
     let (a, v) = (face.glyph_index('A').unwrap(), face.glyph_index('V').unwrap());
     let kern = face.tables().kern.unwrap().subtables.into_iter().find_map(|s| s.glyphs_kerning(a, v)).unwrap();
     assert!(kern < 0, "DejaVu Sans kerns A-V");
-    let shape = text("AV");
+    let shape = flat("AV", DVec2::ZERO);
     let expected_v = (a_adv - a_lsb + v_lsb - v_min + f64::from(kern) + v_max) / units;
-    assert!((shape.bounds().max.x - expected_v).abs() < 1e-12, "{} vs {expected_v}", shape.bounds().max.x);
+    assert!((shape.flat_bounds.max.x - expected_v).abs() < 1e-12, "{} vs {expected_v}", shape.flat_bounds.max.x);
     assert!(a_min == a_lsb);
-    let offset = build(TextParams { offset: vec![0.5, 0.25], ..params("AV") }).unwrap();
-    assert!((offset.bounds().max.x - expected_v - 0.5).abs() < 1e-12);
-    assert!((offset.bounds().max.y - shape.bounds().max.y - 0.25).abs() < 1e-12);
+    let offset = flat("AV", DVec2::new(0.5, 0.25));
+    assert!((offset.flat_bounds.max.x - expected_v - 0.5).abs() < 1e-12);
+    assert!((offset.flat_bounds.max.y - shape.flat_bounds.max.y - 0.25).abs() < 1e-12);
 }
 
 #[test]
