@@ -25,7 +25,7 @@ fn rays(count: usize) -> Vec<Ray> {
 fn shape_from(kind: &str, params: &str) -> std::sync::Arc<dyn prism_api::Shape> {
     let registry = prism::plugins::registry();
     let table: toml::Table = toml::from_str(params).unwrap();
-    (registry.get(kind).unwrap().build)(table).unwrap()
+    (registry.get(kind).unwrap().build)(table, &mut prism_api::NoFiles).unwrap()
 }
 
 fn shapes(c: &mut Criterion) {

@@ -150,7 +150,7 @@ fn equal_error_samples(prism: &str, scene: &Path, work: &Path) -> Option<(u32, f
             .arg(pov)
             .args(&options)
             .args(["-D", "+WT2", "+FE"])
-            .arg(format!("+L{}", scene.parent().unwrap_or(Path::new(".")).display()))
+            .arg(format!("+L{}", work.display()))
             .arg(format!("+O{}", out.display()))
             .stdout(Stdio::null())
             .stderr(Stdio::null())
@@ -280,8 +280,8 @@ fn main() {
                             let mut c = Command::new("povray");
                             c.arg(&pov).args(pov_options.split_whitespace());
                             c.args(["-D", &format!("+WT{threads}"), "+FE"]).arg(format!("+O{}", theirs.display()));
-                            // Image map files are written relative to the scene's folder.
-                            c.arg(format!("+L{}", path.parent().unwrap_or(Path::new(".")).display()));
+                            // Files the scene reads are written relative to the .pov's folder.
+                            c.arg(format!("+L{}", pov.parent().unwrap_or(Path::new(".")).display()));
                             measure(c, &work.join(format!("{tag}.povray.log")))
                         })
                         .collect(),

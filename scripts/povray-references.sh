@@ -41,10 +41,10 @@ for name in $NAMES; do
     "$PRISM" export pov "$scene" -o "$pov"
     options=$(sed -n 's|^// povray-options: ||p' "$pov")
     log=$OUT/$name.povray.log
-    # -D: no preview window; -V: no verbose statistics; +FE: OpenEXR output; +L: files the
-    # scene reads (image_map PNGs) are written relative to the scene's folder.
+    # -D: no preview window; -V: no verbose statistics; +FE: OpenEXR output; +L: the .pov's
+    # folder, which the paths of files it reads (a text's font, image map PNGs) are relative to.
     # shellcheck disable=SC2086 # the options are words
-    if ! povray "$pov" $options -D +WT"$THREADS" +FE +L"$ROOT/scenes/parity" +O"$OUT/$name.exr" >"$log" 2>&1; then
+    if ! povray "$pov" $options -D +WT"$THREADS" +FE +L"$OUT" +O"$OUT/$name.exr" >"$log" 2>&1; then
         echo "error: povray failed on $pov ($options), see $log:" >&2
         tail -20 "$log" >&2
         exit 1

@@ -1,5 +1,6 @@
 //! `files`: the one door through which Prism reads a file (scenes and their includes, OBJ
-//! and MTL files, glTF files with their buffers and images, textures, environment maps).
+//! and MTL files, glTF files with their buffers and images, textures, environment maps, the
+//! files shape plugins name: fonts).
 //!
 //! [`FileAccess::read`] opens only regular files: a FIFO, a device (`/dev/stdin`,
 //! `/dev/zero`), a socket or a directory is refused after the open, which on Unix uses
@@ -31,6 +32,9 @@ pub const MAX_MESH_BYTES: u64 = 1 << 30;
 /// Largest encoded image file (textures, environment maps, glTF images): 256 MiB.
 pub const MAX_IMAGE_BYTES: u64 = 256 << 20;
 
+/// Largest file a shape plugin reads (a font): 256 MiB.
+pub const MAX_SHAPE_DATA_BYTES: u64 = 256 << 20;
+
 /// Longest file name or key echoed in a message, in characters; longer ones keep their end.
 pub const MAX_SHOWN_CHARS: usize = 64;
 
@@ -43,6 +47,8 @@ pub enum FileKind {
     Mesh,
     /// An image ([`MAX_IMAGE_BYTES`]).
     Image,
+    /// A file a shape plugin reads, such as a font ([`MAX_SHAPE_DATA_BYTES`]).
+    ShapeData,
 }
 
 impl FileKind {
@@ -52,6 +58,7 @@ impl FileKind {
             FileKind::Scene => MAX_SCENE_BYTES,
             FileKind::Mesh => MAX_MESH_BYTES,
             FileKind::Image => MAX_IMAGE_BYTES,
+            FileKind::ShapeData => MAX_SHAPE_DATA_BYTES,
         }
     }
 
@@ -60,6 +67,7 @@ impl FileKind {
             FileKind::Scene => "scene file",
             FileKind::Mesh => "mesh file",
             FileKind::Image => "image",
+            FileKind::ShapeData => "shape's file",
         }
     }
 }

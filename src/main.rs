@@ -1358,7 +1358,8 @@ fn export_pov_command(path: &Path, output: Option<&Path>, limits: &LimitArgs) ->
     prism::world::transforms::resolve_transforms(&mut scene)?;
     prism::world::validate::validate(&scene)?;
     let source = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
-    let text = prism::export::pov::export(&scene, &source)?;
+    let directory = output.map(|o| o.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")));
+    let text = prism::export::pov::export(&scene, &source, directory)?;
     match output {
         Some(out) => Ok(output::write_atomically(out, text.as_bytes())?),
         None => write_stdout(&text),

@@ -26,5 +26,9 @@ pub fn registry() -> ShapeRegistry {
     registry
         .add(shape_type::<prism_blob::BlobParams>("blob", "Metaballs: spherical field components around a threshold."));
     registry.add(shape_type::<prism_template::CapsuleParams>("capsule", "A capsule (pill) along the y axis."));
+    registry.add(shape_type::<prism_text::TextParams>(
+        "text",
+        "TrueType text extruded along -z (POV-Ray's text { ttf ... }).",
+    ));
     registry
 }

@@ -414,12 +414,36 @@ fn cases() -> Vec<Case> {
             &format!("{PLY_HEADER}0 0 0\n1 0 0\n"),
             &["bad.ply:3", "element `vertex`", "cannot hold them"],
         ),
+        case(
+            "missing font",
+            "[[object]]\nshape = \"text\"\nfont = \"nope.ttf\"\nstring = \"a\"\n",
+            &["scene.toml:3:", "font", "nope.ttf"],
+        ),
+        Case {
+            extra: vec![("bad.ttf", "not a font".into())],
+            ..case(
+                "a font that is not one",
+                "[[object]]\nshape = \"text\"\nfont = \"bad.ttf\"\nstring = \"a\"\n",
+                &["scene.toml:3:", "bad.ttf", "not a readable TrueType font"],
+            )
+        },
+        case("character without a glyph", &text_scene("string = \"a\\U0010FFFF\""), &["scene.toml:4:", "U+10FFFF"]),
+        case("text thickness NaN", &text_scene("thickness = nan"), &["scene.toml:4:", "thickness", "greater than 0"]),
+        case("text offset of one number", &text_scene("offset = [1.0]"), &["scene.toml:4:", "offset", "[x, y]"]),
         ply_case(
             "PLY count smaller than the data",
             &format!("{}0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", PLY_HEADER.replace("face 1", "face 0")),
             &["bad.ply:13", "data after the last element"],
         ),
     ]
+}
+
+/// A text object with the shipped font and `line` as its last key (line 4; the string is "a"
+/// unless `line` sets it).
+fn text_scene(line: &str) -> String {
+    let font = format!("{}/assets/fonts/DejaVuSans.ttf", env!("CARGO_MANIFEST_DIR"));
+    let string = if line.starts_with("string") { String::new() } else { "string = \"a\"\n".into() };
+    format!("[[object]]\nshape = \"text\"\nfont = \"{font}\"\n{line}\n{string}")
 }
 
 /// An ASCII PLY header: three vertices, one face.

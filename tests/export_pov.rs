@@ -238,7 +238,7 @@ fn a_shape_without_to_pov_is_named() {
     std::fs::write(&path, "[[object]]\nshape = \"sphere\"\n\n[[object]]\nname = \"odd\"\nshape = \"lump\"\n").unwrap();
     let mut scene = prism::scene::load::load_file(Path::new(&path), &registry).unwrap();
     prism::world::transforms::resolve_transforms(&mut scene).unwrap();
-    let error = prism::export::pov::export(&scene, "scene.toml").unwrap_err().to_string();
+    let error = prism::export::pov::export(&scene, "scene.toml", None).unwrap_err().to_string();
     for needle in ["scene.toml:4:", "object[1].shape", "shape `lump` has no POV-Ray equivalent", "Shape::to_pov"] {
         assert!(error.contains(needle), "missing `{needle}` in: {error}");
     }
@@ -259,17 +259,47 @@ fn writes_image_maps_with_the_file_as_written() {
     std::fs::create_dir(dir.path().join("tex")).unwrap();
     std::fs::write(dir.path().join("tex/img.png"), &png).unwrap();
     std::fs::write(dir.path().join("scene.toml"), map("tex/img.png")).unwrap();
-    let run = prism().current_dir(dir.path()).args(["export", "pov", "scene.toml"]).output().unwrap();
-    let pov = String::from_utf8_lossy(&run.stdout);
+    // Relative to the exported file's folder (here the scene's), absolute on standard output.
+    let run =
+        prism().current_dir(dir.path()).args(["export", "pov", "scene.toml", "-o", "scene.pov"]).output().unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = std::fs::read_to_string(dir.path().join("scene.pov")).unwrap();
     assert!(
         pov.contains("image_map { png \"tex/img.png\" map_type 1 interpolate 2 once filter all 0.2 transmit all 0.1 }"),
         "{pov}"
     );
+    let run = prism().current_dir(dir.path()).args(["export", "pov", "scene.toml"]).output().unwrap();
+    let absolute = std::fs::canonicalize(dir.path().join("tex/img.png")).unwrap();
+    assert!(String::from_utf8_lossy(&run.stdout).contains(&format!("png \"{}\" map_type", absolute.display())));
     std::fs::write(dir.path().join("q\"uote.png"), &png).unwrap();
     std::fs::write(dir.path().join("scene.toml"), map("q\"uote.png")).unwrap();
     let run = prism().current_dir(dir.path()).args(["export", "pov", "scene.toml"]).output().unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(!run.status.success() && stderr.contains("pigment.image_map.file"), "{stderr}");
     assert!(stderr.contains("cannot be written as a POV-Ray string"), "{stderr}");
+}
+
+/// A text's font is written relative to the exported file's folder (absolute without one),
+/// and a saved scene names it relative to the saved file, so both still find it.
+#[test]
+fn font_paths_follow_the_written_file() {
+    let scene_path = root().join("scenes/parity/text.toml");
+    let mut scene = prism::scene::load::load_file(&scene_path, &prism::plugins::registry()).unwrap();
+    prism::world::transforms::resolve_transforms(&mut scene).unwrap();
+    prism::world::validate::validate(&scene).unwrap();
+    let font = std::fs::canonicalize(root().join("assets/fonts/DejaVuSans.ttf")).unwrap();
+    let beside = prism::export::pov::export(&scene, "text.toml", Some(&root().join("scenes/parity"))).unwrap();
+    assert!(beside.contains("text { ttf \"../../assets/fonts/DejaVuSans.ttf\" \"Prism\" 0.3,"), "{beside}");
+    let absolute = prism::export::pov::export(&scene, "text.toml", None).unwrap();
+    assert!(absolute.contains(&format!("ttf \"{}\"", font.display())), "{absolute}");
+
+    let dir = tempfile::tempdir().unwrap();
+    let copy = dir.path().join("deeper/copy.toml");
+    std::fs::create_dir_all(copy.parent().unwrap()).unwrap();
+    let saved = prism::scene::save::save_for(&scene, &copy).unwrap();
+    std::fs::write(&copy, &saved).unwrap();
+    assert!(!saved.contains("\"../../assets/fonts"), "the scene's own relative path is not reused: {saved}");
+    let again =
+        prism::scene::load::load_file(&copy, &prism::plugins::registry()).unwrap_or_else(|e| panic!("{e}\n{saved}"));
+    assert_eq!(prism::scene::save::save_for(&again, &copy).unwrap(), saved);
 }

@@ -62,7 +62,7 @@ fn mkfifo(path: &Path) {
 }
 
 /// A FIFO (with no writer) or a device as the scene, an include, a mesh, a glTF buffer, a
-/// texture or an environment map: refused at once instead of blocking or reading forever.
+/// texture, an environment map or a font: refused at once instead of blocking or reading forever.
 #[cfg(unix)]
 #[test]
 fn non_regular_files_are_refused_without_blocking() {
@@ -73,6 +73,7 @@ fn non_regular_files_are_refused_without_blocking() {
     mkfifo(&d.join("fifo.bin"));
     mkfifo(&d.join("fifo.png"));
     mkfifo(&d.join("fifo.hdr"));
+    mkfifo(&d.join("fifo.ttf"));
     let gltf = r#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[]}],"buffers":[{"byteLength":4,"uri":"fifo.bin"}]}"#;
     std::fs::write(d.join("buf.gltf"), gltf).unwrap();
     std::os::unix::fs::symlink("/dev/zero", d.join("zero.obj")).unwrap();
@@ -91,6 +92,7 @@ fn non_regular_files_are_refused_without_blocking() {
             "a FIFO",
         ),
         ("environment", "[world]\nenvironment = { file = \"fifo.hdr\" }\n".to_string(), "a FIFO"),
+        ("font", "[[object]]\nshape = \"text\"\nfont = \"fifo.ttf\"\nstring = \"a\"\n".to_string(), "a FIFO"),
     ];
     for (name, scene, expect) in cases {
         let file = if scene.contains('\n') {

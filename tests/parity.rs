@@ -320,7 +320,9 @@ fn committed_pov_files_are_current() {
         let mut scene = load_file(&path, &plugins::registry()).unwrap_or_else(|e| panic!("{e}"));
         prism::world::transforms::resolve_transforms(&mut scene).unwrap();
         prism::world::validate::validate(&scene).unwrap();
-        let exported = prism::export::pov::export(&scene, &format!("{name}.toml")).unwrap_or_else(|e| panic!("{e}"));
+        let folder = root().join(PARITY.dir);
+        let exported = prism::export::pov::export(&scene, &format!("{name}.toml"), Some(&folder))
+            .unwrap_or_else(|e| panic!("{e}"));
         let committed = std::fs::read_to_string(root().join(format!("scenes/parity/{name}.pov"))).unwrap_or_default();
         if exported != committed {
             stale.push(format!("{name}: scenes/parity/{name}.pov differs from what the exporter writes now"));

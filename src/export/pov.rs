@@ -15,9 +15,10 @@
 //! `scripts/povray-references.sh` passes to `povray`.
 
 use std::fmt::Write;
+use std::path::{Path, PathBuf};
 
 use glam::{DAffine3, DVec3};
-use prism_api::pov::{number, vector};
+use prism_api::pov::{self, FilePaths, number, vector};
 
 use crate::color::Rgb;
 use crate::diagnostics::{Diagnostic, SceneError};
@@ -26,6 +27,7 @@ use crate::material::pov_view::{PovFinish, PovView};
 use crate::material::{Finish, Interior, Material, Reflection, SurfaceModel};
 use crate::render::camera::CameraFrame;
 use crate::render::integrators::classic::lights::pov_equivalent;
+use crate::scene::save::relative_path;
 use crate::world::Scene;
 use crate::world::components::{
     AdaptiveBlur, Antialias, Camera, CsgMaterials, Environment, IntegratorKind, Light, LightKind, MaterialComponent,
@@ -38,10 +40,13 @@ pub const MAX_TRACE_LEVEL: u32 = 256;
 /// The prefix of the comment line that holds the POV-Ray command-line options.
 pub const OPTIONS_PREFIX: &str = "// povray-options: ";
 
-/// The scene as POV-Ray 3.7 SDL. `source` names the scene in the header comment. The scene
-/// must have been through `resolve_transforms` and `validate`. Every feature that has no
-/// exact POV-Ray equivalent is reported, each naming the object, light or setting.
-pub fn export(scene: &Scene, source: &str) -> Result<String, SceneError> {
+/// The scene as POV-Ray 3.7 SDL. `source` names the scene in the header comment; the paths
+/// of files shapes read (a text's font) are written relative to `directory`, the folder the
+/// file goes to, when given and possible (POV-Ray then finds them run with `+L` that folder,
+/// or from it), absolute otherwise. The scene must have been through `resolve_transforms`
+/// and `validate`. Every feature that has no exact POV-Ray equivalent is reported, each
+/// naming the object, light or setting.
+pub fn export(scene: &Scene, source: &str, directory: Option<&Path>) -> Result<String, SceneError> {
     let mut errors = Vec::new();
     let mut out = String::new();
     let options = povray_options(scene, &mut errors);
@@ -55,11 +60,25 @@ pub fn export(scene: &Scene, source: &str) -> Result<String, SceneError> {
     globals(&mut out, scene, &mut errors);
     camera(&mut out, &scene.camera(), scene.render.samples);
     lights(&mut out, scene);
-    objects(&mut out, scene, &mut errors);
+    let base = directory.map(|d| std::fs::canonicalize(d).or_else(|_| std::path::absolute(d)).unwrap_or(d.into()));
+    objects(&mut out, scene, &PovFiles { base }, &mut errors);
     if errors.is_empty() {
         return Ok(out);
     }
     Err(super::in_file_order(errors))
+}
+
+/// How the paths of the files shapes read are written: relative to `base` (the exported
+/// file's folder) where a relative path exists, absolute otherwise.
+struct PovFiles {
+    base: Option<PathBuf>,
+}
+
+impl FilePaths for PovFiles {
+    fn path(&self, file: &Path) -> Option<String> {
+        let relative = self.base.as_deref().and_then(|base| relative_path(file, base));
+        pov::path_string(relative.as_deref().unwrap_or(file).to_str()?)
+    }
 }
 
 /// The POV-Ray options in the header line of an exported file, if it has one.
@@ -270,7 +289,7 @@ fn light_source(out: &mut String, light: &Light) {
     out.push_str("}\n\n");
 }
 
-fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
+fn objects(out: &mut String, scene: &Scene, files: &PovFiles, errors: &mut Vec<Diagnostic>) {
     let mut query = scene.world.query::<(
         hecs::Entity,
         Option<&ShapeComponent>,
@@ -299,7 +318,8 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
             Some(group) => {
                 let leaves = scene.world.get::<&CsgMaterials>(entity).ok();
                 let leaves = leaves.as_deref().map_or(&[][..], |l| &l.leaves[..]);
-                let mut csg = CsgSdl { leaves, group_material: &material.material, next_leaf: 0, problems: Vec::new() };
+                let mut csg =
+                    CsgSdl { leaves, group_material: &material.material, files, next_leaf: 0, problems: Vec::new() };
                 let sdl = csg.group(group);
                 if !csg.problems.is_empty() {
                     for (key, message) in csg.problems {
@@ -309,7 +329,7 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
                 }
                 sdl
             }
-            None => shape.geometry.to_pov(),
+            None => shape.geometry.to_pov_with(files),
         };
         let Some(sdl) = sdl else {
             errors.push(
@@ -333,7 +353,7 @@ fn objects(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
         if world_from_object != DAffine3::IDENTITY {
             let _ = writeln!(modifiers, "  matrix {}", pov_matrix(&world_from_object));
         }
-        if let Err(problems) = texture(&mut modifiers, &material.material, &world_from_object) {
+        if let Err(problems) = texture(&mut modifiers, &material.material, &world_from_object, files) {
             for (key, message) in problems {
                 errors.push(Diagnostic::new(origin.0.child(&format!("material.{key}")), message));
             }
@@ -356,6 +376,8 @@ struct CsgSdl<'a> {
     leaves: &'a [MaterialComponent],
     /// The whole object's material.
     group_material: &'a std::sync::Arc<Material>,
+    /// How file paths are written.
+    files: &'a PovFiles,
     /// The leaf the next plain member is.
     next_leaf: usize,
     /// Key paths and messages of what cannot be written.
@@ -371,7 +393,7 @@ impl CsgSdl<'_> {
             let body = match nested.downcast_ref::<CsgShape>() {
                 Some(nested) => self.group(nested)?,
                 None => {
-                    let sdl = member.shape.to_pov()?;
+                    let sdl = member.shape.to_pov_with(self.files)?;
                     let leaf = self.leaves.get(self.next_leaf);
                     self.next_leaf += 1;
                     let mut sdl = sdl.trim_end().strip_suffix('}')?.trim_end().to_string();
@@ -380,7 +402,8 @@ impl CsgSdl<'_> {
                     // pattern with the member; Prism evaluates it in the group's space, which
                     // the inverse undoes.
                     if let Some(leaf) = leaf.filter(|l| !std::sync::Arc::ptr_eq(&l.material, self.group_material))
-                        && let Err(problems) = texture(&mut sdl, &leaf.material, &member.group_from_member.inverse())
+                        && let Err(problems) =
+                            texture(&mut sdl, &leaf.material, &member.group_from_member.inverse(), self.files)
                     {
                         let at = format!("members.leaf{}", self.next_leaf - 1);
                         self.problems.extend(problems.into_iter().map(|(key, m)| (format!("{at}.material.{key}"), m)));
@@ -429,17 +452,25 @@ pub fn pov_matrix(m: &DAffine3) -> String {
 /// express with messages. A pigment pattern carries
 /// the object's transform `world_from_object` itself: the texture is written after the
 /// object's `matrix`, which POV-Ray does not apply to textures added later.
-fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Result<(), Vec<(&'static str, String)>> {
+fn texture(
+    out: &mut String,
+    m: &Material,
+    world_from_object: &DAffine3,
+    files: &dyn FilePaths,
+) -> Result<(), Vec<(&'static str, String)>> {
     if let SurfaceModel::Layered(layers) = &m.surface {
         if layers.iter().any(|l| l.finish.texture.is_some()) {
             return Err(vec![("layers", "image textures are not exported to POV-Ray".to_string())]);
+        }
+        if layers.iter().any(|l| l.finish.pigment.as_ref().is_some_and(|p| image_map_file(&p.spec, files).is_none())) {
+            return Err(vec![("layers", UNWRITABLE_IMAGE_MAP.to_string())]);
         }
         // One `texture { }` per layer, bottom first: POV-Ray puts the last on top.
         let view = PovView::new(m);
         let views: Vec<&PovView> = view.layers().collect();
         for (layer, layer_view) in layers.iter().zip(views.into_iter().rev()) {
             let (pigment, normal) = (layer.finish.pigment.as_deref(), layer.finish.normal.as_deref());
-            texture_block(out, &layer_view.base, pigment, normal, world_from_object);
+            texture_block(out, &layer_view.base, pigment, normal, world_from_object, files);
         }
         interior_sdl(out, &view.base.interior);
         return Ok(());
@@ -461,14 +492,8 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
     if texture {
         problems.push(("texture", "image textures are not exported to POV-Ray".to_string()));
     }
-    if let Some(map) = pigment.as_ref().and_then(|p| p.spec.image_map.as_ref())
-        && map.file.chars().any(|c| c == '"' || c == '\\' || c.is_control())
-    {
-        problems.push((
-            "pigment.image_map.file",
-            "a file name with quotes, backslashes or control characters cannot be written as a POV-Ray string"
-                .to_string(),
-        ));
+    if pigment.as_ref().is_some_and(|p| image_map_file(&p.spec, files).is_none()) {
+        problems.push(("pigment.image_map.file", UNWRITABLE_IMAGE_MAP.to_string()));
     }
     if pbr {
         problems.push(("pbr", "glTF metallic-roughness materials have no POV-Ray finish equivalent".to_string()));
@@ -478,7 +503,7 @@ fn texture(out: &mut String, m: &Material, world_from_object: &DAffine3) -> Resu
     if !problems.is_empty() {
         return Err(problems);
     }
-    texture_block(out, &view.base, pigment.as_deref(), normal.as_deref(), world_from_object);
+    texture_block(out, &view.base, pigment.as_deref(), normal.as_deref(), world_from_object, files);
     interior_sdl(out, &view.base.interior);
     Ok(())
 }
@@ -491,6 +516,7 @@ fn texture_block(
     pigment: Option<&crate::material::pattern::PigmentField>,
     normal: Option<&crate::material::normal::NormalField>,
     world_from_object: &DAffine3,
+    files: &dyn FilePaths,
 ) {
     let PovFinish {
         finish:
@@ -517,7 +543,7 @@ fn texture_block(
     } = base;
     let c = color.0;
     let pigment_sdl = match pigment {
-        Some(p) => pigment_pattern(&p.spec, world_from_object),
+        Some(p) => pigment_pattern(&p.spec, world_from_object, files),
         None => format!(
             "pigment {{ rgbft <{}, {}, {}, {}, {}> }}",
             number(c.x),
@@ -598,12 +624,16 @@ fn rgbft(c: &crate::material::pattern::MapColor) -> String {
 
 /// A pigment pattern in POV-Ray SDL: the pattern and its colours, its modifiers, its own
 /// transform and then the object's (both mirrored into POV-Ray's frame like every matrix).
-fn pigment_pattern(p: &crate::material::pattern::Pigment, world_from_object: &DAffine3) -> String {
+fn pigment_pattern(
+    p: &crate::material::pattern::Pigment,
+    world_from_object: &DAffine3,
+    files: &dyn FilePaths,
+) -> String {
     use crate::material::pattern::{DEFAULT_BRICK_SIZE, DEFAULT_MORTAR, MapEntry, PatternKind};
     let Some(kind) = p.pattern else {
         let mut sdl = String::from("pigment {\n      ");
         if let Some(map) = &p.image_map {
-            sdl.push_str(&image_map_sdl(map));
+            sdl.push_str(&image_map_sdl(map, image_map_file(p, files).unwrap_or_default()));
         }
         turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves);
         matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object);
@@ -694,11 +724,25 @@ fn wave_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment) {
     }
 }
 
-/// An image map in POV-Ray SDL: the file as the scene wrote it (relative to the scene file,
-/// so POV-Ray finds it when run in, or with `+L`, the scene's folder) and POV-Ray's numbers.
-fn image_map_sdl(map: &crate::material::image_map::ImageMap) -> String {
+/// The message for an image map whose file POV-Ray's strings cannot name.
+const UNWRITABLE_IMAGE_MAP: &str =
+    "an image map's file name with quotes, backslashes or control characters cannot be written as a POV-Ray string";
+
+/// An image map's file as a POV-Ray string literal, written as every file a scene reads is
+/// (relative to the exported file's folder, else absolute): `Some` also for a pigment without
+/// an image map (nothing to write), `None` when the path cannot be written.
+fn image_map_file(p: &crate::material::pattern::Pigment, files: &dyn FilePaths) -> Option<String> {
+    let Some(map) = &p.image_map else { return Some(String::new()) };
+    match &map.path {
+        Some(path) => files.path(path),
+        None => pov::path_string(&map.file),
+    }
+}
+
+/// An image map in POV-Ray SDL: `file` (a POV-Ray string literal) and POV-Ray's numbers.
+fn image_map_sdl(map: &crate::material::image_map::ImageMap, file: String) -> String {
     use crate::material::image_map::Interpolate;
-    let mut sdl = format!("image_map {{ png \"{}\" map_type {}", map.file, map.map_type.pov_number());
+    let mut sdl = format!("image_map {{ png {file} map_type {}", map.map_type.pov_number());
     if map.interpolate != Interpolate::None {
         let _ = write!(sdl, " interpolate {}", map.interpolate.pov_number());
     }

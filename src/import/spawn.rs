@@ -64,7 +64,8 @@ pub fn spawn_model(
         };
         let material =
             replaced.unwrap_or_else(|| MaterialComponent { name: None, spec: None, material: part.material.clone() });
-        let shape = ShapeComponent { kind: MESH_SHAPE.to_string(), params: toml::Table::new(), geometry };
+        let shape =
+            ShapeComponent { kind: MESH_SHAPE.to_string(), params: toml::Table::new(), geometry, files: Vec::new() };
         world.spawn((
             shape,
             Transform::default(),

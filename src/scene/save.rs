@@ -1,7 +1,7 @@
 //! `save`: the inverse of `load`. Writes a world back as one self-contained TOML scene
 //! (includes are flattened) that loads to the identical image.
 //!
-//! Mesh and texture files are written as absolute paths ([`save`]), or relative to the
+//! Mesh, texture and shape files (a text's font) are written as absolute paths ([`save`]), or relative to the
 //! directory of the file being written ([`save_for`]) when such a path exists. What a mesh file
 //! brings (nodes, parts, imported lights and camera) is not written: the mesh object's keys
 //! (`import_lights`, `import_camera`) recreate it on load.
@@ -123,7 +123,11 @@ fn write_scene(scene: &Scene, paths: &FilePaths) -> Result<String, toml::ser::Er
         let common = CommonKeys { name, material: Some(material), transform, parent, flags };
         common.write(scene, paths, &mut t, &mut materials)?;
         for (k, v) in &shape.params {
-            t.insert(k.clone(), v.clone());
+            let v = match v.as_str() {
+                Some(path) if shape.files.contains(k) => paths.write(path).into(),
+                _ => v.clone(),
+            };
+            t.insert(k.clone(), v);
         }
         // CSG members name their materials in `members`; the tables go to [materials].
         if let Ok(csg) = scene.world.get::<&CsgMaterials>(entity) {

@@ -90,6 +90,9 @@ pub struct ShapeComponent {
     pub params: toml::Table,
     /// The geometry in object space.
     pub geometry: Arc<dyn prism_api::Shape>,
+    /// The keys of `params` that name files the shape read (a font), held as absolute paths
+    /// and saved relative to the written scene where possible.
+    pub files: Vec<String>,
 }
 
 /// The material of a shape, the name it was defined under and its authored form (for

@@ -16,6 +16,7 @@
 
 mod aabb;
 pub mod contract;
+pub mod files;
 pub mod math;
 pub mod mitsuba;
 pub mod pov;
@@ -24,6 +25,7 @@ mod registry;
 mod shape;
 
 pub use aabb::Aabb;
+pub use files::{FileReader, LocalFiles, NoFiles, ParamFile};
 pub use glam::{DAffine3, DMat3, DVec2, DVec3};
 pub use ray::Ray;
 pub use registry::{ParamError, ShapeParams, ShapeType, shape_type};

@@ -15,3 +15,68 @@ pub fn number(v: f64) -> String {
 pub fn vector(v: DVec3) -> String {
     format!("<{}, {}, {}>", number(v.x), number(v.y), number(-v.z))
 }
+
+/// A string as a POV-Ray SDL string literal: quoted, with `"` and `\` escaped and every
+/// character outside printable ASCII written as `\uXXXX`; `None` for a character beyond
+/// the Basic Multilingual Plane, which POV-Ray's UCS-2 strings cannot hold.
+pub fn string(text: &str) -> Option<String> {
+    let mut out = String::with_capacity(text.len() + 2);
+    out.push('"');
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            ' '..='~' => out.push(c),
+            _ => {
+                let code = u16::try_from(u32::from(c)).ok()?;
+                out.push_str(&format!("\\u{code:04X}"));
+            }
+        }
+    }
+    out.push('"');
+    Some(out)
+}
+
+/// A file path as a POV-Ray SDL string literal, `None` when POV-Ray cannot read it back: it
+/// parses file names with escapes off (`Parse_C_String(true)`), so a `"` ends the string, a
+/// `\` stays a backslash and `\uXXXX` is not decoded; only printable ASCII without quotes and
+/// backslashes survives.
+pub fn path_string(path: &str) -> Option<String> {
+    if !path.chars().all(|c| matches!(c, ' '..='~') && c != '"' && c != '\\') {
+        return None;
+    }
+    Some(format!("\"{path}\""))
+}
+
+/// How the exporter writes the path of a file a shape reads (a font): relative to the
+/// exported file's folder when it has one (POV-Ray is then run with that folder as a library
+/// path, `+L`), absolute otherwise. Passed to [`crate::Shape::to_pov_with`].
+pub trait FilePaths {
+    /// `file` (absolute) as a POV-Ray string literal, `None` when it cannot be written as one.
+    fn path(&self, file: &std::path::Path) -> Option<String>;
+}
+
+/// [`FilePaths`] that writes every path as it is (absolute paths stay absolute).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct AsGiven;
+
+impl FilePaths for AsGiven {
+    fn path(&self, file: &std::path::Path) -> Option<String> {
+        path_string(file.to_str()?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn path_strings_hold_only_what_povray_reads_back() {
+        assert_eq!(path_string("fonts/DejaVu Sans.ttf").as_deref(), Some("\"fonts/DejaVu Sans.ttf\""));
+        for unreadable in ["q\"uote.png", "back\\slash.png", "tab\t.png", "café.png"] {
+            assert_eq!(path_string(unreadable), None, "{unreadable}");
+        }
+        // A string keeps its escapes: POV-Ray decodes them outside file names.
+        assert_eq!(string("q\"é").as_deref(), Some("\"q\\\"\\u00E9\""));
+    }
+}

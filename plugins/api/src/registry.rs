@@ -3,7 +3,7 @@ use std::sync::Arc;
 use schemars::{JsonSchema, Schema, SchemaGenerator};
 use serde::de::DeserializeOwned;
 
-use crate::Shape;
+use crate::{FileReader, Shape};
 
 /// A problem with a shape's parameters: the key it concerns and what is wrong.
 #[derive(Clone, Debug, PartialEq)]
@@ -65,7 +65,19 @@ impl std::error::Error for ParamError {}
 pub trait ShapeParams: DeserializeOwned + JsonSchema {
     /// Checks the parameters and builds the shape.
     fn build(self) -> Result<Arc<dyn Shape>, ParamError>;
+
+    /// Checks the parameters and builds the shape, reading the files they name through
+    /// `files` (see [`crate::files`]). Prism calls this one; the default ignores `files` and
+    /// calls [`ShapeParams::build`], so only shapes that read files override it.
+    fn build_with_files(self, files: &mut dyn FileReader) -> Result<Arc<dyn Shape>, ParamError> {
+        let _ = files;
+        self.build()
+    }
 }
+
+/// Deserialises, validates and builds a shape from its parameters, reading the files they
+/// name through the reader ([`ShapeType::build`]).
+pub type BuildFn = fn(toml::Table, &mut dyn FileReader) -> Result<Arc<dyn Shape>, ParamError>;
 
 /// A registered shape type: its scene name, a description, its parameter schema and a builder.
 #[derive(Clone, Copy)]
@@ -76,8 +88,9 @@ pub struct ShapeType {
     pub description: &'static str,
     /// JSON schema of the parameters (generated from the parameter struct).
     pub schema: fn(&mut SchemaGenerator) -> Schema,
-    /// Deserialises, validates and builds the shape from its parameters.
-    pub build: fn(toml::Table) -> Result<Arc<dyn Shape>, ParamError>,
+    /// Deserialises, validates and builds the shape from its parameters, reading the files
+    /// they name through the reader.
+    pub build: BuildFn,
 }
 
 impl std::fmt::Debug for ShapeType {
@@ -91,11 +104,14 @@ pub fn shape_type<P: ShapeParams>(name: &'static str, description: &'static str)
     ShapeType { name, description, schema: P::json_schema, build: build_from_table::<P> }
 }
 
-fn build_from_table<P: ShapeParams>(params: toml::Table) -> Result<Arc<dyn Shape>, ParamError> {
+fn build_from_table<P: ShapeParams>(
+    params: toml::Table,
+    files: &mut dyn FileReader,
+) -> Result<Arc<dyn Shape>, ParamError> {
     let parsed: P = serde_path_to_error::deserialize(toml::Value::Table(params)).map_err(|e| {
         let key = e.path().to_string();
         let key = if key == "." { String::new() } else { key };
         ParamError::new(key, e.into_inner().message().to_string())
     })?;
-    parsed.build()
+    parsed.build_with_files(files)
 }

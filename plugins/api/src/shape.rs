@@ -265,6 +265,14 @@ pub trait Shape: Any + Send + Sync + Debug {
         None
     }
 
+    /// [`Shape::to_pov`] for shapes that read files (a font): `files` writes their paths as
+    /// the exported file must name them. The exporter calls this one; the default ignores
+    /// `files` and calls `to_pov`.
+    fn to_pov_with(&self, files: &dyn crate::pov::FilePaths) -> Option<String> {
+        let _ = files;
+        self.to_pov()
+    }
+
     /// The shape as canonical Mitsuba 3 shapes in object space (a closed cylinder is a tube
     /// and two disks), for `prism export mitsuba`. `None` when Mitsuba has no equivalent;
     /// the exporter then reports an error naming the shape.

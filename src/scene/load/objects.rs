@@ -17,6 +17,29 @@ pub const CSG_KEYS: [&str; 1] = ["members"];
 /// [`CSG_KEYS`]).
 pub const MEMBER_KEYS: [&str; 4] = ["shape", "material", "transform", "inverse"];
 
+/// The files a shape read: parameter key and canonical path.
+type ReadFiles = Vec<(String, PathBuf)>;
+
+/// The files a shape plugin reads, resolved relative to the scene file that names them and
+/// read through the scene's [`FileAccess`] (regular files, size cap, sandbox, watch log).
+struct ShapeFiles {
+    access: FileAccess,
+    directory: PathBuf,
+    /// What was read.
+    read: ReadFiles,
+}
+
+impl prism_api::FileReader for ShapeFiles {
+    fn read(&mut self, key: &str, written: &str) -> Result<prism_api::ParamFile, prism_api::ParamError> {
+        let failed = |e: crate::files::FileError| prism_api::ParamError::new(key, e.to_string());
+        let path = self.access.join(&self.directory, written).map_err(failed)?;
+        let bytes = self.access.read(&path, FileKind::ShapeData).map_err(failed)?;
+        let path = self.access.resolve(&path).unwrap_or(path);
+        self.read.push((key.to_string(), path.clone()));
+        Ok(prism_api::ParamFile { path, bytes })
+    }
+}
+
 /// A CSG group as loaded.
 struct CsgGroup {
     /// Its geometry.
@@ -141,8 +164,9 @@ impl<'a> Loader<'a> {
     }
 
     /// Builds a registered shape from its parameters `table` (the table at `key`, its other
-    /// keys removed); `None` after a diagnostic naming the key. `other_keys` are the keys
-    /// besides the shape's own that the table may hold (for suggestions).
+    /// keys removed), with the files it read (parameter key, canonical path); `None` after a
+    /// diagnostic naming the key. `other_keys` are the keys besides the shape's own that the
+    /// table may hold (for suggestions).
     fn build_shape(
         &mut self,
         file: usize,
@@ -151,9 +175,10 @@ impl<'a> Loader<'a> {
         shape_type: &ShapeType,
         table: &toml::Table,
         other_keys: &[&str],
-    ) -> Option<Arc<dyn prism_api::Shape>> {
-        match (shape_type.build)(table.clone()) {
-            Ok(g) => Some(g),
+    ) -> Option<(Arc<dyn prism_api::Shape>, ReadFiles)> {
+        let mut files = ShapeFiles { access: self.access.clone(), directory: self.directory(file), read: Vec::new() };
+        match (shape_type.build)(table.clone(), &mut files) {
+            Ok(g) => Some((g, files.read)),
             Err(e) => {
                 let d = if let Some((field, expected)) = crate::diagnostics::parse_unknown_field(&e.message) {
                     // The parameter path ends with the unknown key (`components[0].centre`).
@@ -339,7 +364,11 @@ impl<'a> Loader<'a> {
                 (group.shape, group.leaves)
             }
             ObjectKind::Plugin(shape_type) => {
-                let shape = self.build_shape(file, key, &kind, shape_type, &table, &MEMBER_KEYS)?;
+                let (shape, read) = self.build_shape(file, key, &kind, shape_type, &table, &MEMBER_KEYS)?;
+                // Saved as resolved, like a member's texture paths.
+                for (field, path) in read {
+                    as_written.insert(field, path.display().to_string().into());
+                }
                 (shape, vec![own.clone()])
             }
         };
@@ -450,16 +479,23 @@ impl<'a> Loader<'a> {
                 let Some(group) = self.csg_group(file, &key, operation, &table, &material, &mut named) else { return };
                 let mut params = table;
                 params.insert("members".into(), group.members);
-                let shape = ShapeComponent { kind, params, geometry: group.shape };
+                let shape = ShapeComponent { kind, params, geometry: group.shape, files: Vec::new() };
                 let materials = CsgMaterials { leaves: group.leaves, named };
                 world.spawn((shape, transform, material, flags, Origin(location.clone()), materials))
             }
             Some(ObjectKind::Plugin(shape_type)) => {
-                let Some(geometry) = self.build_shape(file, &key, &kind, shape_type, &table, &OBJECT_KEYS) else {
+                let Some((geometry, read)) = self.build_shape(file, &key, &kind, shape_type, &table, &OBJECT_KEYS)
+                else {
                     return;
                 };
                 let Some(material) = material else { return };
-                let shape = ShapeComponent { kind, params: table, geometry };
+                let mut params = table;
+                let mut files = Vec::with_capacity(read.len());
+                for (field, path) in read {
+                    params.insert(field.clone(), path.display().to_string().into());
+                    files.push(field);
+                }
+                let shape = ShapeComponent { kind, params, geometry, files };
                 world.spawn((shape, transform, material, flags, Origin(location.clone())))
             }
         };
