@@ -5,8 +5,10 @@
 //! difference between the two images.
 //!
 //! ```text
-//! cargo bench --bench pov_compare -- [--runs N] [--threads 1,2] [--size 1000x563] [NAME...]
+//! cargo bench --bench pov_compare -- [--runs N] [--threads 1,2] [--size 1000x563] [--aa-only] [NAME...]
 //! ```
+//!
+//! `--aa-only` times only the antialiased variant (the one the 4K comparison is about).
 //!
 //! Both write the same file: a half-float, ZIP-compressed OpenEXR (POV-Ray's `+FE`, Prism's
 //! `--half --exr`).
@@ -34,10 +36,11 @@ struct Options {
     threads: Vec<usize>,
     size: (u32, u32),
     names: Vec<String>,
+    aa_only: bool,
 }
 
 fn options() -> Options {
-    let mut o = Options { runs: 3, threads: vec![1, 2], size: (1000, 563), names: Vec::new() };
+    let mut o = Options { runs: 3, threads: vec![1, 2], size: (1000, 563), names: Vec::new(), aa_only: false };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let mut value = || args.next().unwrap_or_else(|| panic!("{a} needs a value"));
@@ -49,6 +52,7 @@ fn options() -> Options {
                 let (w, h) = v.split_once('x').expect("--size WxH");
                 o.size = (w.parse().expect("width"), h.parse().expect("height"));
             }
+            "--aa-only" => o.aa_only = true,
             // `cargo bench` passes --bench; other harness flags do not apply.
             flag if flag.starts_with("--") => {}
             name => o.names.push(name.to_string()),
@@ -230,7 +234,9 @@ fn main() {
             None => "antialias = { method = \"pov1\", threshold = 0.3, depth = 3 }".to_string(),
         };
         variants.push(("aa".into(), aa_line, None));
-        if text.contains("parity-tolerance")
+        if o.aa_only {
+            variants.remove(0);
+        } else if text.contains("parity-tolerance")
             && let Some((pov_samples, pov_error, prism_samples, prism_error)) = equal_error_samples(prism, path, &work)
         {
             println!(
