@@ -8,8 +8,10 @@
 //! * the first glyph is moved so that its left edge (the glyph's `xMin`) is at x = 0, and the
 //!   pen then advances by its advance width less its left side bearing; every later glyph is
 //!   placed at the pen plus its left side bearing less its `xMin` plus the horizontal kerning
-//!   of the pair (format 0 `kern` subtables, clamped below at -1 em), and the pen advances by
-//!   its advance width plus that kerning;
+//!   of the pair (format 0 `kern` subtables read as POV-Ray reads them, see `font.rs`; clamped
+//!   below at -1 em), and the pen advances by its advance width plus that kerning;
+//! * characters map to glyphs through the cmap table POV-Ray's default `ascii` charset picks
+//!   (Macintosh first, see `font.rs`);
 //! * after each glyph the pen moves by `offset` (x and y; POV-Ray ignores its z);
 //! * each glyph is extruded over the thickness, the front face in the plane z = 0 facing the
 //!   default camera (+z; POV-Ray's z = 0 facing -z after the exporter's mirror) and the back
@@ -18,6 +20,8 @@
 //!   union of its glyphs.
 
 #![forbid(unsafe_code)]
+
+mod font;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -494,7 +498,7 @@ fn layout(bytes: &[u8], name: &str, string: &str, offset: DVec2) -> Result<Vec<G
     let units = f64::from(face.units_per_em());
     let mut segments_total = 0usize;
     let mut font_glyph = |c: char| -> Result<FontGlyph, ParamError> {
-        let id = face.glyph_index(c).ok_or_else(|| {
+        let id = font::glyph_index(&face, c).ok_or_else(|| {
             ParamError::new("string", format!("has {c:?} (U+{:04X}), for which `{name}` has no glyph", u32::from(c)))
         })?;
         let mut outline = Outline::default();
@@ -531,16 +535,7 @@ fn layout(bytes: &[u8], name: &str, string: &str, offset: DVec2) -> Result<Vec<G
             lsb: f64::from(face.glyph_hor_side_bearing(id).unwrap_or(0)),
         })
     };
-    let kern = |left: ttf_parser::GlyphId, right: ttf_parser::GlyphId| -> f64 {
-        let Some(table) = face.tables().kern else { return 0.0 };
-        let mut value = 0.0;
-        for sub in table.subtables {
-            if sub.horizontal && !sub.has_cross_stream && matches!(sub.format, ttf_parser::kern::Format::Format0(_)) {
-                value += f64::from(sub.glyphs_kerning(left, right).unwrap_or(0));
-            }
-        }
-        value.max(-units)
-    };
+    let kerning = font::Kerning::read(&face).map_err(|e| font_error(&e.message))?;
 
     let mut glyphs = Vec::new();
     let mut pen = DVec2::ZERO;
@@ -553,9 +548,10 @@ fn layout(bytes: &[u8], name: &str, string: &str, offset: DVec2) -> Result<Vec<G
                 DVec2::new(-g.x_min / units, 0.0)
             }
             Some(left) => {
-                let k = kern(left, g.id);
-                let shift = DVec2::new(pen.x + (g.lsb - g.x_min + k) / units, pen.y);
-                pen.x += (g.advance + k) / units;
+                let (kx, ky) = kerning.between(left, g.id);
+                let (kx, ky) = (f64::from(kx), f64::from(ky));
+                let shift = DVec2::new(pen.x + (g.lsb - g.x_min + kx) / units, pen.y + ky / units);
+                pen.x += (g.advance + kx) / units;
                 shift
             }
         };

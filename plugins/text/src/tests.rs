@@ -252,3 +252,60 @@ fn exports_to_pov() {
     );
     assert!(shape.to_pov().unwrap().contains("DejaVuSans.ttf\""));
 }
+
+/// POV-Ray's own fonts (Debian's povray-includes), which CI installs: `None` where they are
+/// missing outside CI.
+fn povray_font(name: &str) -> Option<Vec<u8>> {
+    let path = Path::new("/usr/share/povray-3.7/include").join(name);
+    match std::fs::read(&path) {
+        Ok(bytes) => Some(bytes),
+        Err(e) if std::env::var_os("CI").is_some_and(|v| v == "true") => panic!("{}: {e}", path.display()),
+        Err(_) => None,
+    }
+}
+
+/// The x of the second glyph's left edge in `string` laid out in `bytes`.
+fn second_glyph_left(bytes: &[u8], string: &str) -> f64 {
+    let glyphs = layout(bytes, "font", string, DVec2::ZERO).unwrap();
+    glyphs[1].min.x
+}
+
+#[test]
+fn povray_fonts_kern_pairs_sorted_only_by_left_glyph() {
+    // timrom.ttf sorts its kern pairs by left glyph only: F-o (-28 units) lies where a binary
+    // search over (left, right) does not look. POV-Ray's linear scan finds it.
+    let Some(bytes) = povray_font("timrom.ttf") else { return };
+    let face = ttf_parser::Face::parse(&bytes, 0).unwrap();
+    let (f, o) = (face.glyph_index('F').unwrap(), face.glyph_index('o').unwrap());
+    let missed = face.tables().kern.unwrap().subtables.into_iter().find_map(|s| s.glyphs_kerning(f, o));
+    assert_eq!(missed, None, "the binary search misses the pair");
+    let units = f64::from(face.units_per_em());
+    let kerned = second_glyph_left(&bytes, "Fo");
+    let reference = {
+        let advance = f64::from(face.glyph_hor_advance(f).unwrap());
+        let lsb = f64::from(face.glyph_hor_side_bearing(f).unwrap());
+        let o_lsb = f64::from(face.glyph_hor_side_bearing(o).unwrap());
+        // The glyph's left edge sits at the pen plus its left side bearing.
+        (advance - lsb + o_lsb) / units
+    };
+    assert!((kerned - (reference - 28.0 / units)).abs() < 1e-9, "{kerned} vs {}", reference - 28.0 / units);
+}
+
+#[test]
+fn povray_fonts_map_characters_through_the_macintosh_table_first() {
+    // cyrvetic.ttf maps '-' to glyph 14 in its Macintosh table and to glyph 100 in its
+    // Unicode one; POV-Ray's default charset reads the Macintosh table.
+    if let Some(bytes) = povray_font("cyrvetic.ttf") {
+        let face = ttf_parser::Face::parse(&bytes, 0).unwrap();
+        assert_eq!(font::glyph_index(&face, '-'), Some(ttf_parser::GlyphId(14)));
+        assert_eq!(face.glyph_index('-'), Some(ttf_parser::GlyphId(100)));
+    }
+    // povlogo.ttf has its logo only in the Macintosh table ('P'; the Windows table is a
+    // symbol one at U+F050).
+    if let Some(bytes) = povray_font("povlogo.ttf") {
+        let face = ttf_parser::Face::parse(&bytes, 0).unwrap();
+        assert_eq!(font::glyph_index(&face, 'P'), Some(ttf_parser::GlyphId(4)));
+        assert!(layout(&bytes, "povlogo.ttf", "P", DVec2::ZERO).is_ok_and(|g| g.len() == 1));
+        assert!(layout(&bytes, "povlogo.ttf", "Q", DVec2::ZERO).is_err(), "no glyph for Q");
+    }
+}
