@@ -30,14 +30,20 @@ FRESH=$(mktemp -d "${TMPDIR:-/tmp}/prism-parity-refs.XXXXXX")
 scripts/povray-references.sh "$FRESH"
 scripts/povray-example-references.sh "$FRESH/povray-examples"
 
+# The committed .pov files name the files they read (fonts, image maps) relative to their own
+# folder, so each is compared with an export written into that folder.
+PRISM_BIN=${PRISM:-${CARGO_TARGET_DIR:-$ROOT/target}/release/prism}
 stale=0
 for pov in "$FRESH"/*.pov; do
-    name=$(basename "$pov")
-    if ! cmp -s "$pov" "scenes/parity/$name"; then
-        echo "error: scenes/parity/$name is not what the exporter writes now:" >&2
-        diff -u "scenes/parity/$name" "$pov" | head -40 >&2 || true
+    name=$(basename "$pov" .pov)
+    check=$(mktemp "$ROOT/scenes/parity/.$name.XXXXXX.pov")
+    "$PRISM_BIN" export pov "scenes/parity/$name.toml" -o "$check"
+    if ! cmp -s "$check" "scenes/parity/$name.pov"; then
+        echo "error: scenes/parity/$name.pov is not what the exporter writes now:" >&2
+        diff -u "scenes/parity/$name.pov" "$check" | head -40 >&2 || true
         stale=1
     fi
+    rm -f "$check"
 done
 if [ "$stale" = 1 ]; then
     echo "regenerate the committed files with: scripts/povray-references.sh" >&2
