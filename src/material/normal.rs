@@ -24,7 +24,7 @@ use super::crackle::nearest_facet_point;
 use super::noise::{Octaves, dnoise, dturbulence, noise};
 use super::pattern::{
     MAX_METRIC, PatternKind, PatternScale, Pigment, PigmentField, TurbulenceAmount, Wave, check_transform,
-    check_turbulence, cycloidal, octaves_of, pattern_transform, quilt_vector, warps_with_turbulence,
+    check_turbulence, cycloidal, octaves_of, pattern_transform, quilt_vector, single, warps_with_turbulence,
 };
 
 /// POV-Ray's default `bump_size` (`Create_Tnormal`).
@@ -459,8 +459,8 @@ impl NormalField {
             NormalKind::Bumps => amount * dnoise(q),
             NormalKind::Dents => noise(q).powi(3) * amount * dnoise(q),
             NormalKind::Ripples | NormalKind::Waves => {
-                let frequency = spec.frequency.unwrap_or(1.0);
-                let phase = spec.phase.unwrap_or(0.0);
+                let frequency = single(spec.frequency.unwrap_or(1.0));
+                let phase = single(spec.phase.unwrap_or(0.0));
                 let waves = spec.pattern == NormalKind::Waves;
                 let (sources, frequencies) = wave_sources();
                 let mut sum = DVec3::ZERO;
@@ -574,8 +574,9 @@ mod tests {
         for s in sources {
             let v = q - *s;
             let l = v.length();
-            // bump_size in single precision, as POV-Ray holds it.
-            offset += (f64::from(0.6f32) * ((l * 2.0 + 0.1) * std::f64::consts::TAU).sin() / (l * 10.0)) * v;
+            // bump_size and phase in single precision, as POV-Ray holds them.
+            let phase = f64::from(0.1f32);
+            offset += (f64::from(0.6f32) * ((l * 2.0 + phase) * std::f64::consts::TAU).sin() / (l * 10.0)) * v;
         }
         let expected = ((DVec3::Y + offset) * MIRROR).normalize();
         assert!((f.perturb(p, DVec3::Y) - expected).length() < 1e-12);

@@ -758,8 +758,8 @@ impl PigmentField {
         };
         shape_wave(
             raw,
-            spec.frequency.unwrap_or(self.kind.default_frequency()),
-            spec.phase.unwrap_or(0.0),
+            single(spec.frequency.unwrap_or(self.kind.default_frequency())),
+            single(spec.phase.unwrap_or(0.0)),
             spec.wave.unwrap_or(self.kind.default_wave()),
         )
     }
@@ -807,6 +807,13 @@ pub fn shape_wave(raw: f64, frequency: f64, phase: f64, wave: Wave) -> f64 {
         Wave::Scallop => cycloidal(value * 0.5).abs(),
         Wave::Cubic => value * value * (3.0 - 2.0 * value),
     }
+}
+
+/// `v` rounded to single precision, as POV-Ray stores a pattern's `frequency` and `phase`
+/// (`SNGL` fields of `TPATTERN`): with a large pattern value (far along a gradient, say)
+/// the rounding shows.
+pub(super) fn single(v: f64) -> f64 {
+    f64::from(v as f32)
 }
 
 /// POV-Ray's `cycloidal`: sin(2 pi v) of v's fractional part, odd in v.
@@ -1179,6 +1186,22 @@ mod tests {
         assert!((shape_wave(0.25, 1.0, 0.0, Wave::Scallop) - (std::f64::consts::FRAC_PI_4).sin()).abs() < 1e-12);
         assert!((shape_wave(0.5, 1.0, 0.0, Wave::Cubic) - 0.5).abs() < 1e-12);
         assert!((shape_wave(0.25, 1.0, 0.0, Wave::Cubic) - 0.15625).abs() < 1e-12);
+    }
+
+    #[test]
+    fn frequency_and_phase_are_single_precision_as_in_pov_ray() {
+        // Far along a gradient the rounding of 3.81 to f32 moves the wrapped value by ~1e-4:
+        // found by a random scene whose floor differed from POV-Ray at the horizon.
+        let field = PigmentField::new(&pigment(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\nfrequency = 3.81\nphase = 0.11\n\
+             color_map = [[0, [0, 0, 0]], [1, [1, 1, 1]]]",
+        ));
+        // A gradient only wraps values above 1: far on its negative side the value is large.
+        let x = -1234.5678;
+        let value = field.value(DVec3::new(x, 0.0, 0.0));
+        let pov = shape_wave(x, f64::from(3.81f32), f64::from(0.11f32), Wave::Ramp);
+        assert_eq!(value, pov);
+        assert!((value - shape_wave(x, 3.81, 0.11, Wave::Ramp)).abs() > 1e-5);
     }
 
     #[test]
