@@ -42,7 +42,8 @@ fn a_saved_scene_reloads_to_the_identical_image() {
     // The pattern parity scene (pigments with transforms), the CSG parity scene: groups
     // with member materials (named and inline), transforms, `inverse` and a nested group; the
     // layered-texture one (named materials of several layers, patterns in layers) and the
-    // image map one (PNG paths written absolute and read again).
+    // image map one (PNG paths written absolute and read again), and the pigment map one
+    // (nested pigments, an image map inside an entry).
     for name in [
         "room.toml",
         "snowman.toml",
@@ -50,6 +51,7 @@ fn a_saved_scene_reloads_to_the_identical_image() {
         "parity/csg.toml",
         "parity/layered.toml",
         "parity/image_map.toml",
+        "parity/pigment_map.toml",
     ] {
         let original = load(&scene_path(name));
         let text = prism::scene::save::save(&original).unwrap();
