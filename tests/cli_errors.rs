@@ -183,6 +183,12 @@ fn cases() -> Vec<Case> {
             &["scene.toml:6:", "object[0].material.pigment.pigment_map", "takes `colors`"],
         ),
         case(
+            "a discrete pattern with too few pigments",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"hexagon\"\n\
+             pigments = [{ color = [1, 1, 1] }, { color = [0, 0, 0] }]\n",
+            &["scene.toml:5:", "object[0].material.pigment.pigments", "takes 3 pigments"],
+        ),
+        case(
             "color_map and pigment_map",
             "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\n\
              color_map = [[0, [1, 1, 1]]]\npigment_map = [[0, { color = [1, 1, 1] }]]\n",

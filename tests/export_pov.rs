@@ -119,6 +119,9 @@ fn writes_pigment_maps_with_each_entry_in_its_own_frame() {
         "          pigment_map {\n            [0.0 color rgbft <0.8, 0.1, 0.1, 0.0, 0.0>]\n",
         // An image map entry, its file relative to the written file's folder.
         "[0.3 image_map { png \"",
+        // POV-Ray's list form of a discrete pattern's pigments.
+        "      checker\n        pigment {\n          gradient <1.0, 1.0, -0.0>\n",
+        "        },\n        pigment {\n          radial\n",
     ] {
         assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
     }

@@ -663,6 +663,16 @@ fn pigment_body(
         let colors: Vec<String> = p.colors.iter().map(|c| format!("color {}", rgbft(c))).collect();
         let _ = write!(sdl, " {}", colors.join(", "));
     }
+    if !p.pigments.is_empty() {
+        // POV-Ray's list form: every item a `pigment { }`, read as a map entry is.
+        let inner = format!("{indent}    ");
+        let list: Vec<String> = p
+            .pigments
+            .iter()
+            .map(|e| format!("pigment {{{inner}{}{indent}  }}", pigment_body(e, &DAffine3::IDENTITY, files, &inner)))
+            .collect();
+        let _ = write!(sdl, "{indent}  {}", list.join(&format!(",{indent}  ")));
+    }
     if kind == PatternKind::Brick {
         let size = p.brick_size.unwrap_or(DEFAULT_BRICK_SIZE);
         // Brick sizes are lengths along POV-Ray's own axes: not mirrored.

@@ -265,6 +265,7 @@ impl Normal {
             pattern: Some(pattern),
             image_map: None,
             colors: Vec::new(),
+            pigments: Vec::new(),
             color_map: Vec::new(),
             pigment_map: None,
             color: None,

@@ -277,6 +277,10 @@ pub struct Pigment {
     /// `checker`, `brick` (mortar first): two colours; `hexagon`: three.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub colors: Vec<MapColor>,
+    /// `checker`, `brick`, `hexagon`: whole pigments in place of `colors` (POV-Ray's
+    /// `checker pigment { } pigment { }`), each read as a `pigment_map` entry is.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pigments: Vec<Pigment>,
     /// The other patterns: `[value, colour]` entries, values in [0, 1] ascending, interpolated
     /// linearly (below the first entry its colour, above the last the last's).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -403,7 +407,7 @@ impl Pigment {
     /// an image map's clearest).
     pub fn colors(&self) -> Vec<Rgbft> {
         let mut out: Vec<Rgbft> = self.own_colors().collect();
-        for PigmentMapEntry(_, entry) in self.pigment_map() {
+        for entry in self.nested() {
             out.extend(entry.colors());
         }
         out
@@ -424,6 +428,12 @@ impl Pigment {
         self.pigment_map.as_deref().unwrap_or_default()
     }
 
+    /// The pigments this one holds: its `pigment_map` entries', or a discrete pattern's
+    /// `pigments`.
+    fn nested(&self) -> impl Iterator<Item = &Pigment> {
+        self.pigment_map().iter().map(|e| &e.1).chain(&self.pigments)
+    }
+
     /// Every image map of the pigment, its `pigment_map` entries' included, with its key path
     /// under `pigment` (`image_map`, `pigment_map[2][1].image_map`: the TOML path of its table).
     pub fn image_maps_mut(&mut self) -> Vec<(String, &mut ImageMap)> {
@@ -434,6 +444,9 @@ impl Pigment {
             for (i, PigmentMapEntry(_, entry)) in p.pigment_map.iter_mut().flatten().enumerate() {
                 collect(entry, format!("{prefix}pigment_map[{i}][1]."), out);
             }
+            for (i, entry) in p.pigments.iter_mut().enumerate() {
+                collect(entry, format!("{prefix}pigments[{i}]."), out);
+            }
         }
         let mut out = Vec::new();
         collect(self, String::new(), &mut out);
@@ -443,7 +456,7 @@ impl Pigment {
     /// Every image map of the pigment, its `pigment_map` entries' included.
     pub fn image_maps(&self) -> Vec<&ImageMap> {
         let mut out: Vec<&ImageMap> = self.image_map.iter().collect();
-        for PigmentMapEntry(_, entry) in self.pigment_map() {
+        for entry in self.nested() {
             out.extend(entry.image_maps());
         }
         out
@@ -472,14 +485,19 @@ impl Pigment {
             return self.check_plain(depth).map_err(owned);
         }
         self.check_own().map_err(owned)?;
-        if self.pigment_map().is_empty() {
+        let (key, nested): (&str, Vec<&Pigment>) = if self.pigments.is_empty() {
+            ("pigment_map", self.pigment_map().iter().map(|e| &e.1).collect())
+        } else {
+            ("pigments", self.pigments.iter().collect())
+        };
+        if nested.is_empty() {
             return Ok(());
         }
         if depth >= MAX_PIGMENT_MAP_DEPTH {
-            return Err(("pigment_map".into(), format!("`pigment_map`s nest at most {MAX_PIGMENT_MAP_DEPTH} deep")));
+            return Err((key.into(), format!("pigments in pigments nest at most {MAX_PIGMENT_MAP_DEPTH} deep")));
         }
-        for (i, PigmentMapEntry(_, entry)) in self.pigment_map().iter().enumerate() {
-            entry.check_at(depth + 1).map_err(|(key, message)| (format!("pigment_map[{i}].{key}"), message))?;
+        for (i, entry) in nested.into_iter().enumerate() {
+            entry.check_at(depth + 1).map_err(|(k, message)| (format!("{key}[{i}].{k}"), message))?;
         }
         Ok(())
     }
@@ -502,6 +520,7 @@ impl Pigment {
             ("pattern", self.pattern.is_some()),
             ("image_map", self.image_map.is_some()),
             ("colors", !self.colors.is_empty()),
+            ("pigments", !self.pigments.is_empty()),
             ("color_map", !self.color_map.is_empty()),
             ("pigment_map", self.pigment_map.is_some()),
             ("vector", self.vector.is_some()),
@@ -562,13 +581,17 @@ impl Pigment {
                 if self.pigment_map.is_some() {
                     return Err((
                         "pigment_map",
-                        format!(
-                            "`{kind}` takes `colors`, not a `pigment_map` (POV-Ray refuses it too; its \
-                             `{kind} pigment {{ }} pigment {{ }}` list form is not supported)"
-                        ),
+                        format!("`{kind}` takes `colors` or `pigments`, not a `pigment_map` (as in POV-Ray)"),
                     ));
                 }
-                if self.colors.len() != n {
+                if !self.pigments.is_empty() {
+                    if !self.colors.is_empty() {
+                        return Err(("pigments", "give either `colors` or `pigments`, not both".into()));
+                    }
+                    if self.pigments.len() != n {
+                        return Err(("pigments", format!("`{kind}` takes {n} pigments, got {}", self.pigments.len())));
+                    }
+                } else if self.colors.len() != n {
                     return Err(("colors", format!("`{kind}` takes {n} colours, got {}", self.colors.len())));
                 }
                 if !self.color_map.is_empty() {
@@ -587,6 +610,9 @@ impl Pigment {
             None => {
                 if !self.colors.is_empty() {
                     return Err(("colors", format!("`{kind}` takes a `color_map`, not `colors`")));
+                }
+                if !self.pigments.is_empty() {
+                    return Err(("pigments", format!("`{kind}` takes a `pigment_map`, not `pigments`")));
                 }
                 if let Some(pigment_map) = &self.pigment_map {
                     if !self.color_map.is_empty() {
@@ -696,6 +722,7 @@ impl Pigment {
     fn check_image_map(&self, map: &ImageMap) -> Result<(), (&'static str, String)> {
         let pattern_keys = [
             ("colors", !self.colors.is_empty()),
+            ("pigments", !self.pigments.is_empty()),
             ("color_map", !self.color_map.is_empty()),
             ("pigment_map", self.pigment_map.is_some()),
             ("vector", self.vector.is_some()),
@@ -884,7 +911,8 @@ pub struct PigmentField {
     quilt_controls: (f64, f64),
     /// A plain colour (a `pigment_map` entry without a pattern).
     plain: Option<Rgbft>,
-    /// The `pigment_map` entries' values and fields (empty without one).
+    /// The `pigment_map` entries' values and fields, or a discrete pattern's `pigments` at
+    /// their indices (empty without either).
     entries: Vec<(f64, PigmentField)>,
 }
 
@@ -908,7 +936,12 @@ impl PigmentField {
             },
             quilt_controls: (single(spec.control0), single(spec.control1)),
             plain: spec.plain_color(),
-            entries: spec.pigment_map().iter().map(|PigmentMapEntry(v, p)| (*v, PigmentField::new(p))).collect(),
+            entries: spec
+                .pigment_map()
+                .iter()
+                .map(|PigmentMapEntry(v, p)| (*v, PigmentField::new(p)))
+                .chain(spec.pigments.iter().enumerate().map(|(i, p)| (i as f64, PigmentField::new(p))))
+                .collect(),
         }
     }
 
@@ -934,6 +967,11 @@ impl PigmentField {
         match self.kind.discrete_colors() {
             Some(_) => {
                 let index = discrete_value(self.kind, spec, q);
+                if !self.entries.is_empty() {
+                    // POV-Ray's list of pigments: the entry at the index, read as a map's.
+                    let entry = &self.entries[index.min(self.entries.len() - 1)].1;
+                    return entry.at(q * DVec3::new(1.0, 1.0, -1.0));
+                }
                 spec.colors[index.min(spec.colors.len() - 1)].rgbft()
             }
             None if !self.entries.is_empty() => self.blend_entries(self.value(q), q),
@@ -1695,6 +1733,28 @@ mod tests {
         let e = err(&nested(MAX_PIGMENT_MAP_DEPTH));
         assert_eq!(e.0, format!("{}pigment_map", "pigment_map[0].".repeat(MAX_PIGMENT_MAP_DEPTH)));
         assert!(e.1.contains("at most 16"), "{}", e.1);
+    }
+
+    #[test]
+    fn discrete_patterns_take_pigments_as_their_list() {
+        let f = PigmentField::new(&pigment(&format!(
+            "pattern = \"checker\"\npigments = [{{ color = [1, 0, 0] }}, \
+             {{ pattern = \"gradient\", vector = [1, 0, 0], scale = 2, {BW} }}]"
+        )));
+        assert_eq!(f.at(prism(0.5, 0.5, 0.5)).rgb, DVec3::X);
+        // An odd cell: the gradient entry, scaled by 2, at x = 1.5.
+        assert!((f.at(prism(1.5, 0.5, 0.5)).rgb - DVec3::splat(0.75)).abs().max_element() < 1e-12);
+        let err = |text: &str| toml::from_str::<Pigment>(text).unwrap().check().unwrap_err();
+        let red = "{ color = [1, 0, 0] }";
+        let e = err(&format!("pattern = \"checker\"\npigments = [{red}]"));
+        assert!(e.0 == "pigments" && e.1.contains("takes 2 pigments"), "{e:?}");
+        let e = err(&format!("pattern = \"checker\"\ncolors = [[1, 1, 1], [0, 0, 0]]\npigments = [{red}, {red}]"));
+        assert!(e.0 == "pigments" && e.1.contains("not both"), "{e:?}");
+        assert_eq!(err(&format!("pattern = \"onion\"\npigments = [{red}]")).0, "pigments");
+        assert_eq!(
+            err(&format!("pattern = \"hexagon\"\npigments = [{red}, {red}, {{ pattern = \"onion\" }}]")).0,
+            "pigments[2].color_map"
+        );
     }
 
     #[test]
