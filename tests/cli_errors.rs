@@ -166,6 +166,52 @@ fn cases() -> Vec<Case> {
             &["scene.toml:3:", "object[0].material.normal.pattern", "list of normals"],
         ),
         case(
+            "pigment with an empty pigment_map",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\npigment_map = []\n",
+            &["scene.toml:5:", "object[0].material.pigment.pigment_map", "at least one"],
+        ),
+        case(
+            "pigment_map values out of order",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\n\
+             pigment_map = [[0.6, { color = [1, 1, 1] }], [0.2, { color = [0, 0, 0] }]]\n",
+            &["scene.toml:5:", "object[0].material.pigment.pigment_map", "entry 1", "ascending"],
+        ),
+        case(
+            "pigment_map on a discrete pattern",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"checker\"\n\
+             colors = [[1, 1, 1], [0, 0, 0]]\npigment_map = [[0, { color = [1, 1, 1] }]]\n",
+            &["scene.toml:6:", "object[0].material.pigment.pigment_map", "takes `colors`"],
+        ),
+        case(
+            "a discrete pattern with too few pigments",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"hexagon\"\n\
+             pigments = [{ color = [1, 1, 1] }, { color = [0, 0, 0] }]\n",
+            &["scene.toml:5:", "object[0].material.pigment.pigments", "takes 3 pigments"],
+        ),
+        case(
+            "color_map and pigment_map",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\n\
+             color_map = [[0, [1, 1, 1]]]\npigment_map = [[0, { color = [1, 1, 1] }]]\n",
+            &["scene.toml:6:", "object[0].material.pigment.pigment_map", "not both"],
+        ),
+        case(
+            "a broken pigment_map entry",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\npigment_map = [\n  \
+             [0, { color = [1, 1, 1] }],\n  [1, { pattern = \"onion\", color_map = [[2, [0, 0, 0]]] }],\n]\n",
+            &["scene.toml:7:", "object[0].material.pigment.pigment_map[1].color_map", "outside [0, 1]"],
+        ),
+        case(
+            "unknown key in a pigment_map entry",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\n\
+             pigment_map = [[0, { pattern = \"onion\", colour_map = [] }]]\n",
+            &["scene.toml:5:", "colour_map", "did you mean `color_map`"],
+        ),
+        case(
+            "a plain colour as a material's pigment",
+            "[[object]]\nshape = \"sphere\"\nmaterial = { pigment = { color = [1, 0, 0] } }\n",
+            &["scene.toml:3:", "object[0].material.pigment.color", "`pigment_map` entry"],
+        ),
+        case(
             "color beside a pigment",
             "[[object]]\nshape = \"sphere\"\n[object.material]\ncolor = [1, 0, 0]\npigment = { pattern = \"checker\", colors = [[1, 1, 1], [0, 0, 0]] }\n",
             &["scene.toml:4:", "object[0].material.color", "beside `pigment`"],
@@ -734,6 +780,13 @@ fn image_map_problems_name_the_file_and_key() {
             "color_map beside image_map",
             object("image_map = { file = \"ok.png\" }, color_map = [[0, [1, 1, 1]]]"),
             vec!["object[0].material.pigment.color_map", "belongs to a `pattern`"],
+        ),
+        (
+            "missing in a pigment_map entry",
+            object(
+                "pattern = \"onion\", pigment_map = [[0, { color = [1, 1, 1] }], [1, { image_map = { file = \"nothere.png\" } }]]",
+            ),
+            vec!["nothere.png", "object[0].material.pigment.pigment_map[1][1].image_map.file"],
         ),
         (
             "infinite transmit_all",

@@ -42,7 +42,8 @@ fn a_saved_scene_reloads_to_the_identical_image() {
     // The pattern parity scene (pigments with transforms), the CSG parity scene: groups
     // with member materials (named and inline), transforms, `inverse` and a nested group; the
     // layered-texture one (named materials of several layers, patterns in layers) and the
-    // image map one (PNG paths written absolute and read again).
+    // image map one (PNG paths written absolute and read again), and the pigment map one
+    // (nested pigments, an image map inside an entry).
     for name in [
         "room.toml",
         "snowman.toml",
@@ -50,6 +51,7 @@ fn a_saved_scene_reloads_to_the_identical_image() {
         "parity/csg.toml",
         "parity/layered.toml",
         "parity/image_map.toml",
+        "parity/pigment_map.toml",
     ] {
         let original = load(&scene_path(name));
         let text = prism::scene::save::save(&original).unwrap();
@@ -98,4 +100,30 @@ fn adaptive_focal_blur_is_bit_identical_for_any_thread_count() {
         assert!(one == two, "{antialias}: films differ between 1 and 2 threads");
         assert!(one.pixels.iter().any(|p| p[0] > 0.1), "{antialias}: image is black");
     }
+}
+
+/// An image map is loaded wherever a pigment holds it: a one-layer layered material and a
+/// one-entry `pigment_map` render the same image as the plain image map pigment.
+#[test]
+fn image_maps_in_layers_and_pigment_map_entries_are_loaded() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(scene_path("parity/image_map.png"), dir.path().join("map.png")).unwrap();
+    let map = "{ file = \"map.png\", map_type = \"spherical\" }";
+    let render = |material: String| {
+        let text = format!(
+            "[camera]\nposition = [0, 0, 3]\nlook_at = [0, 0, 0]\n[[light]]\nposition = [0, 3, 5]\n\
+             [[object]]\nshape = \"sphere\"\nmaterial = {material}\n"
+        );
+        let path = dir.path().join("scene.toml");
+        std::fs::write(&path, text).unwrap();
+        render_scene(load(&path), 48, 32, 1, 1)
+    };
+    let plain = render(format!("{{ diffuse = 0.7, pigment = {{ image_map = {map} }} }}"));
+    let layered = render(format!("{{ layers = [{{ diffuse = 0.7, pigment = {{ image_map = {map} }} }}] }}"));
+    let entry = render(format!(
+        "{{ diffuse = 0.7, pigment = {{ pattern = \"onion\", pigment_map = [[0.5, {{ image_map = {map} }}]] }} }}"
+    ));
+    assert!(plain.pixels.iter().any(|p| (p[0] - p[1]).abs() > 0.01), "the image map is not read");
+    assert!(layered == plain, "a layer's image map renders differently");
+    assert!(entry == plain, "a pigment_map entry's image map renders differently");
 }

@@ -105,6 +105,29 @@ fn writes_crackle_quilted_and_pattern_normals() {
 }
 
 #[test]
+fn writes_pigment_maps_with_each_entry_in_its_own_frame() {
+    let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/pigment_map.toml")).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = String::from_utf8(run.stdout).unwrap();
+    for needle in [
+        // Plain entries are colours; an entry has its own matrix only, the outer pigment the
+        // object's as well.
+        "      pigment_map {\n        [0.0 checker color rgbft <0.9, 0.88, 0.8, 0.0, 0.0>, color rgbft <0.25, 0.3, 0.4, 0.0, 0.0>\n          \
+         matrix <0.5, 0.0, -0.0, 0.0, 0.5, -0.0, -0.0, -0.0, 0.5, 0.0, 0.0, -0.0>]\n        [0.4 color rgbft <0.9, 0.2, 0.1, 0.0, 0.0>]\n",
+        "        [1.0 color rgbft <0.2, 0.9, 0.3, 0.5, 0.2>]\n      }\n",
+        // A nested map inside an entry.
+        "          pigment_map {\n            [0.0 color rgbft <0.8, 0.1, 0.1, 0.0, 0.0>]\n",
+        // An image map entry, its file relative to the written file's folder.
+        "[0.3 image_map { png \"",
+        // POV-Ray's list form of a discrete pattern's pigments.
+        "      checker\n        pigment {\n          gradient <1.0, 1.0, -0.0>\n",
+        "        },\n        pigment {\n          radial\n",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+}
+
+#[test]
 fn writes_the_file_given_with_o() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("room.pov");

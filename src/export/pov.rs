@@ -462,7 +462,7 @@ fn texture(
         if layers.iter().any(|l| l.finish.texture.is_some()) {
             return Err(vec![("layers", "image textures are not exported to POV-Ray".to_string())]);
         }
-        if layers.iter().any(|l| l.finish.pigment.as_ref().is_some_and(|p| image_map_file(&p.spec, files).is_none())) {
+        if layers.iter().any(|l| l.finish.pigment.as_ref().is_some_and(|p| unwritable_image_map(&p.spec, files))) {
             return Err(vec![("layers", UNWRITABLE_IMAGE_MAP.to_string())]);
         }
         // One `texture { }` per layer, bottom first: POV-Ray puts the last on top.
@@ -492,7 +492,7 @@ fn texture(
     if texture {
         problems.push(("texture", "image textures are not exported to POV-Ray".to_string()));
     }
-    if pigment.as_ref().is_some_and(|p| image_map_file(&p.spec, files).is_none()) {
+    if pigment.as_ref().is_some_and(|p| unwritable_image_map(&p.spec, files)) {
         problems.push(("pigment.image_map.file", UNWRITABLE_IMAGE_MAP.to_string()));
     }
     if pbr {
@@ -611,7 +611,11 @@ fn interior_sdl(out: &mut String, interior: &Interior) {
 
 /// POV-Ray's `rgbft` form of a pattern colour.
 fn rgbft(c: &crate::material::pattern::MapColor) -> String {
-    let c = c.rgbft();
+    rgbft_of(c.rgbft())
+}
+
+/// POV-Ray's `rgbft` form of a colour with filter and transmit.
+fn rgbft_of(c: crate::material::pattern::Rgbft) -> String {
     format!(
         "rgbft <{}, {}, {}, {}, {}>",
         number(c.rgb.x),
@@ -629,20 +633,45 @@ fn pigment_pattern(
     world_from_object: &DAffine3,
     files: &dyn FilePaths,
 ) -> String {
-    use crate::material::pattern::{DEFAULT_BRICK_SIZE, DEFAULT_MORTAR, MapEntry, PatternKind};
+    format!("pigment {{\n      {}\n    }}", pigment_body(p, world_from_object, files, "\n      "))
+}
+
+/// A pigment's body (what POV-Ray reads inside `pigment { }` and in a `pigment_map` entry),
+/// each modifier on a new line with `indent`. A `pigment_map` entry gets only its own
+/// transform: POV-Ray hands it the point the outer pigment's transform and turbulence made.
+fn pigment_body(
+    p: &crate::material::pattern::Pigment,
+    world_from_object: &DAffine3,
+    files: &dyn FilePaths,
+    indent: &str,
+) -> String {
+    use crate::material::pattern::{DEFAULT_BRICK_SIZE, DEFAULT_MORTAR, MapEntry, PatternKind, PigmentMapEntry};
+    if let Some(c) = p.plain_color() {
+        return format!("color {}", rgbft_of(c));
+    }
     let Some(kind) = p.pattern else {
-        let mut sdl = String::from("pigment {\n      ");
+        let mut sdl = String::new();
         if let Some(map) = &p.image_map {
-            sdl.push_str(&image_map_sdl(map, image_map_file(p, files).unwrap_or_default()));
+            sdl.push_str(&image_map_sdl(map, image_map_path(map, files).unwrap_or_default()));
         }
-        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves);
-        matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object);
+        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves, indent);
+        matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object, indent);
         return sdl;
     };
-    let mut sdl = format!("pigment {{\n      {}", pattern_arguments(kind, p));
+    let mut sdl = pattern_arguments(kind, p);
     if !p.colors.is_empty() {
         let colors: Vec<String> = p.colors.iter().map(|c| format!("color {}", rgbft(c))).collect();
         let _ = write!(sdl, " {}", colors.join(", "));
+    }
+    if !p.pigments.is_empty() {
+        // POV-Ray's list form: every item a `pigment { }`, read as a map entry is.
+        let inner = format!("{indent}    ");
+        let list: Vec<String> = p
+            .pigments
+            .iter()
+            .map(|e| format!("pigment {{{inner}{}{indent}  }}", pigment_body(e, &DAffine3::IDENTITY, files, &inner)))
+            .collect();
+        let _ = write!(sdl, "{indent}  {}", list.join(&format!(",{indent}  ")));
     }
     if kind == PatternKind::Brick {
         let size = p.brick_size.unwrap_or(DEFAULT_BRICK_SIZE);
@@ -656,17 +685,26 @@ fn pigment_pattern(
             number(p.mortar.unwrap_or(DEFAULT_MORTAR))
         );
     }
-    pattern_keys_sdl(&mut sdl, p);
-    turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves);
+    pattern_keys_sdl(&mut sdl, p, indent);
+    turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves, indent);
     if !p.color_map.is_empty() {
-        sdl.push_str("\n      color_map {");
+        let _ = write!(sdl, "{indent}color_map {{");
         for MapEntry(value, color) in &p.color_map {
-            let _ = write!(sdl, "\n        [{} color {}]", number(*value), rgbft(color));
+            let _ = write!(sdl, "{indent}  [{} color {}]", number(*value), rgbft(color));
         }
-        sdl.push_str("\n      }");
+        let _ = write!(sdl, "{indent}}}");
     }
-    wave_sdl(&mut sdl, p);
-    matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object);
+    if !p.pigment_map().is_empty() {
+        let _ = write!(sdl, "{indent}pigment_map {{");
+        let inner = format!("{indent}    ");
+        for PigmentMapEntry(value, entry) in p.pigment_map() {
+            let body = pigment_body(entry, &DAffine3::IDENTITY, files, &inner);
+            let _ = write!(sdl, "{indent}  [{} {body}]", number(*value));
+        }
+        let _ = write!(sdl, "{indent}}}");
+    }
+    wave_sdl(&mut sdl, p, indent);
+    matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object, indent);
     sdl
 }
 
@@ -682,10 +720,10 @@ fn pattern_arguments(kind: crate::material::pattern::PatternKind, p: &crate::mat
 }
 
 /// `crackle`'s and `quilted`'s own keys, as written.
-fn pattern_keys_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment) {
+fn pattern_keys_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment, indent: &str) {
     if let Some(f) = p.form {
         // Weights of distances, not a direction: not mirrored.
-        let _ = write!(sdl, "\n      form <{}, {}, {}>", number(f[0]), number(f[1]), number(f[2]));
+        let _ = write!(sdl, "{indent}form <{}, {}, {}>", number(f[0]), number(f[1]), number(f[2]));
     }
     if let Some(m) = p.metric {
         let _ = write!(sdl, " metric {}", number(m));
@@ -704,13 +742,13 @@ fn pattern_keys_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment) {
 }
 
 /// A pattern's `frequency`, `phase` and wave type, when written.
-fn wave_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment) {
+fn wave_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment, indent: &str) {
     use crate::material::pattern::Wave;
     if let Some(f) = p.frequency {
-        let _ = write!(sdl, "\n      frequency {}", number(f));
+        let _ = write!(sdl, "{indent}frequency {}", number(f));
     }
     if let Some(phase) = p.phase {
-        let _ = write!(sdl, "\n      phase {}", number(phase));
+        let _ = write!(sdl, "{indent}phase {}", number(phase));
     }
     if let Some(wave) = p.wave {
         let keyword = match wave {
@@ -720,23 +758,31 @@ fn wave_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment) {
             Wave::Scallop => "scallop_wave",
             Wave::Cubic => "cubic_wave",
         };
-        let _ = write!(sdl, "\n      {keyword}");
+        let _ = write!(sdl, "{indent}{keyword}");
     }
 }
+
+/// The line break and indent of a texture's pattern modifiers.
+const INDENT: &str = "\n      ";
 
 /// The message for an image map whose file POV-Ray's strings cannot name.
 const UNWRITABLE_IMAGE_MAP: &str =
     "an image map's file name with quotes, backslashes or control characters cannot be written as a POV-Ray string";
 
 /// An image map's file as a POV-Ray string literal, written as every file a scene reads is
-/// (relative to the exported file's folder, else absolute): `Some` also for a pigment without
-/// an image map (nothing to write), `None` when the path cannot be written.
-fn image_map_file(p: &crate::material::pattern::Pigment, files: &dyn FilePaths) -> Option<String> {
-    let Some(map) = &p.image_map else { return Some(String::new()) };
+/// (relative to the exported file's folder, else absolute); `None` when the path cannot be
+/// written.
+fn image_map_path(map: &crate::material::image_map::ImageMap, files: &dyn FilePaths) -> Option<String> {
     match &map.path {
         Some(path) => files.path(path),
         None => pov::path_string(&map.file),
     }
+}
+
+/// True when some image map of the pigment (its `pigment_map` entries' included) has a file
+/// POV-Ray's strings cannot name.
+fn unwritable_image_map(p: &crate::material::pattern::Pigment, files: &dyn FilePaths) -> bool {
+    p.image_maps().into_iter().any(|map| image_map_path(map, files).is_none())
 }
 
 /// An image map in POV-Ray SDL: `file` (a POV-Ray string literal) and POV-Ray's numbers.
@@ -772,10 +818,11 @@ fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffi
         if let Some(a) = n.accuracy {
             let _ = write!(sdl, " accuracy {}", number(a));
         }
-        pattern_keys_sdl(&mut sdl, &p);
-        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves);
-        wave_sdl(&mut sdl, &p);
-        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object);
+        pattern_keys_sdl(&mut sdl, &p, INDENT);
+        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves, INDENT);
+        wave_sdl(&mut sdl, &p, INDENT);
+        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, INDENT);
+        sdl.push_str("\n    }");
         return sdl;
     }
     let mut sdl = format!("normal {{\n      {} {bump_size}", n.pattern);
@@ -790,14 +837,15 @@ fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffi
             let _ = write!(sdl, " {keyword} {}", number(v));
         }
     }
-    turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves);
+    turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves, INDENT);
     if let Some(f) = n.frequency {
         let _ = write!(sdl, "\n      frequency {}", number(f));
     }
     if let Some(phase) = n.phase {
         let _ = write!(sdl, "\n      phase {}", number(phase));
     }
-    matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object);
+    matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, INDENT);
+    sdl.push_str("\n    }");
     sdl
 }
 
@@ -808,11 +856,12 @@ fn turbulence_sdl(
     omega: Option<f64>,
     lambda: Option<f64>,
     octaves: Option<u32>,
+    indent: &str,
 ) {
     if let Some(t) = turbulence {
         // Amounts per axis of the pattern's own (POV-Ray's) frame: not mirrored.
         let t = t.vector();
-        let _ = write!(sdl, "\n      turbulence <{}, {}, {}>", number(t.x), number(t.y), number(t.z));
+        let _ = write!(sdl, "{indent}turbulence <{}, {}, {}>", number(t.x), number(t.y), number(t.z));
     }
     for (keyword, value) in [("omega", omega), ("lambda", lambda)] {
         if let Some(v) = value {
@@ -824,16 +873,14 @@ fn turbulence_sdl(
     }
 }
 
-/// A pattern's own transform, then the object's (mirrored like every matrix), and the
-/// closing brace.
-fn matrices_sdl(sdl: &mut String, own: &DAffine3, world_from_object: &DAffine3) {
+/// A pattern's own transform, then the object's (mirrored like every matrix).
+fn matrices_sdl(sdl: &mut String, own: &DAffine3, world_from_object: &DAffine3, indent: &str) {
     if *own != DAffine3::IDENTITY {
-        let _ = write!(sdl, "\n      matrix {}", pov_matrix(own));
+        let _ = write!(sdl, "{indent}matrix {}", pov_matrix(own));
     }
     if *world_from_object != DAffine3::IDENTITY {
-        let _ = write!(sdl, "\n      matrix {}", pov_matrix(world_from_object));
+        let _ = write!(sdl, "{indent}matrix {}", pov_matrix(world_from_object));
     }
-    sdl.push_str("\n    }");
 }
 
 #[cfg(test)]

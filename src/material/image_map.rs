@@ -716,7 +716,7 @@ mod tests {
         // Prism's -z is POV-Ray's +z, a quarter turn: column 1 (any distance).
         assert_eq!(texel_of(f.at(DVec3::new(0.0, -0.1, -1.0))), (1, 1));
         // The pigment's colours include the map's clearest, for shading that does not look up.
-        assert_eq!(p.colors().count(), 1);
+        assert_eq!(p.colors().len(), 1);
         let err = |text: &str| toml::from_str::<Pigment>(text).unwrap().check().unwrap_err().0;
         assert_eq!(err("image_map = { file = \"t.png\" }\ncolor_map = [[0, [1, 1, 1]]]"), "color_map");
         assert_eq!(err("image_map = { file = \"t.png\" }\nwave = \"sine\""), "wave");

@@ -220,6 +220,16 @@ impl MapColor {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct MapEntry(pub f64, pub MapColor);
 
+/// One `pigment_map` entry: `[value, pigment]` with value in [0, 1].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PigmentMapEntry(pub f64, pub Pigment);
+
+/// How deeply `pigment_map`s may nest (an entry's map counts one more).
+pub const MAX_PIGMENT_MAP_DEPTH: usize = 16;
+
+/// The most entries a `pigment_map` takes (POV-Ray's `MAX_BLEND_MAP_ENTRIES`).
+pub const MAX_PIGMENT_MAP_ENTRIES: usize = 256;
+
 /// A pattern transform in the object's space, written and applied like an object's:
 /// `scale`, then `rotate` (degrees about x, y, z), then `translate`; or `matrix` (four rows)
 /// instead of the three.
@@ -267,10 +277,28 @@ pub struct Pigment {
     /// `checker`, `brick` (mortar first): two colours; `hexagon`: three.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub colors: Vec<MapColor>,
+    /// `checker`, `brick`, `hexagon`: whole pigments in place of `colors` (POV-Ray's
+    /// `checker pigment { } pigment { }`), each read as a `pigment_map` entry is.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pigments: Vec<Pigment>,
     /// The other patterns: `[value, colour]` entries, values in [0, 1] ascending, interpolated
     /// linearly (below the first entry its colour, above the last the last's).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub color_map: Vec<MapEntry>,
+    /// POV-Ray's `pigment_map` (instead of a `color_map`): `[value, pigment]` entries, each a
+    /// whole pigment (a pattern, an image map, another `pigment_map`, or a plain
+    /// `{ color = [r, g, b] }`), blended like colour map entries.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pigment_map: Option<Vec<PigmentMapEntry>>,
+    /// A plain colour (linear RGB): a `pigment_map` entry without a pattern.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub color: Option<Rgb>,
+    /// A plain colour's filter (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub filter: Option<f64>,
+    /// A plain colour's transmit (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transmit: Option<f64>,
     /// `gradient`'s direction (normalised, as POV-Ray's parser does: the pattern repeats every
     /// unit along it whatever its length).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -375,28 +403,195 @@ impl Pigment {
         pattern_transform(self.scale, self.rotate, self.translate, self.matrix)
     }
 
-    /// Every colour the pigment can give (its list or its map's; an image map's clearest).
-    pub fn colors(&self) -> impl Iterator<Item = Rgbft> + '_ {
+    /// Every colour the pigment can give (its list or its map's, its `pigment_map` entries',
+    /// an image map's clearest).
+    pub fn colors(&self) -> Vec<Rgbft> {
+        let mut out: Vec<Rgbft> = self.own_colors().collect();
+        for entry in self.nested() {
+            out.extend(entry.colors());
+        }
+        out
+    }
+
+    /// The colours written in this pigment itself (not in its `pigment_map` entries).
+    fn own_colors(&self) -> impl Iterator<Item = Rgbft> + '_ {
         self.colors
             .iter()
             .map(MapColor::rgbft)
             .chain(self.color_map.iter().map(|e| e.1.rgbft()))
             .chain(self.image_map.iter().map(ImageMap::clearest))
+            .chain(self.plain_color())
     }
 
-    /// The first out-of-range or contradictory parameter, as (key under `pigment`, message).
-    pub fn check(&self) -> Result<(), (&'static str, String)> {
+    /// The `pigment_map` entries (none without a map).
+    pub fn pigment_map(&self) -> &[PigmentMapEntry] {
+        self.pigment_map.as_deref().unwrap_or_default()
+    }
+
+    /// The pigments this one holds: its `pigment_map` entries', or a discrete pattern's
+    /// `pigments`.
+    fn nested(&self) -> impl Iterator<Item = &Pigment> {
+        self.pigment_map().iter().map(|e| &e.1).chain(&self.pigments)
+    }
+
+    /// Every image map of the pigment, its `pigment_map` entries' included, with its key path
+    /// under `pigment` (`image_map`, `pigment_map[2][1].image_map`: the TOML path of its table).
+    pub fn image_maps_mut(&mut self) -> Vec<(String, &mut ImageMap)> {
+        fn collect<'a>(p: &'a mut Pigment, prefix: String, out: &mut Vec<(String, &'a mut ImageMap)>) {
+            if let Some(map) = p.image_map.as_mut() {
+                out.push((format!("{prefix}image_map"), map));
+            }
+            for (i, PigmentMapEntry(_, entry)) in p.pigment_map.iter_mut().flatten().enumerate() {
+                collect(entry, format!("{prefix}pigment_map[{i}][1]."), out);
+            }
+            for (i, entry) in p.pigments.iter_mut().enumerate() {
+                collect(entry, format!("{prefix}pigments[{i}]."), out);
+            }
+        }
+        let mut out = Vec::new();
+        collect(self, String::new(), &mut out);
+        out
+    }
+
+    /// Every image map of the pigment, its `pigment_map` entries' included.
+    pub fn image_maps(&self) -> Vec<&ImageMap> {
+        let mut out: Vec<&ImageMap> = self.image_map.iter().collect();
+        for entry in self.nested() {
+            out.extend(entry.image_maps());
+        }
+        out
+    }
+
+    /// A plain pigment's colour (`color` with its filter and transmit), as a `pigment_map`
+    /// entry writes it.
+    pub fn plain_color(&self) -> Option<Rgbft> {
+        self.color.map(|c| Rgbft {
+            rgb: c.0,
+            filter: self.filter.unwrap_or(0.0),
+            transmit: self.transmit.unwrap_or(0.0),
+        })
+    }
+
+    /// The first out-of-range or contradictory parameter, as (key path under `pigment`, e.g.
+    /// `pigment_map[2].color_map`, message).
+    pub fn check(&self) -> Result<(), (String, String)> {
+        self.check_at(0)
+    }
+
+    /// [`Self::check`] of a pigment `depth` `pigment_map`s deep.
+    fn check_at(&self, depth: usize) -> Result<(), (String, String)> {
+        let owned = |(key, message): (&str, String)| (key.to_string(), message);
+        if self.color.is_some() || self.filter.is_some() || self.transmit.is_some() {
+            return self.check_plain(depth).map_err(owned);
+        }
+        self.check_own().map_err(owned)?;
+        let (key, nested): (&str, Vec<&Pigment>) = if self.pigments.is_empty() {
+            ("pigment_map", self.pigment_map().iter().map(|e| &e.1).collect())
+        } else {
+            ("pigments", self.pigments.iter().collect())
+        };
+        if nested.is_empty() {
+            return Ok(());
+        }
+        if depth >= MAX_PIGMENT_MAP_DEPTH {
+            return Err((key.into(), format!("pigments in pigments nest at most {MAX_PIGMENT_MAP_DEPTH} deep")));
+        }
+        for (i, entry) in nested.into_iter().enumerate() {
+            entry.check_at(depth + 1).map_err(|(k, message)| (format!("{key}[{i}].{k}"), message))?;
+        }
+        Ok(())
+    }
+
+    /// A plain colour pigment's first problem: it is a `pigment_map` entry's and has no
+    /// pattern keys.
+    fn check_plain(&self, depth: usize) -> Result<(), (&'static str, String)> {
+        if depth == 0 {
+            return Err((
+                "color",
+                "a plain colour pigment is a `pigment_map` entry's: give the material's `color`, `filter` \
+                 and `transmit` instead of a `pigment`"
+                    .into(),
+            ));
+        }
+        let Some(color) = self.color else {
+            return Err(("color", "`filter` and `transmit` belong to a plain `color`".into()));
+        };
+        let pattern_keys = [
+            ("pattern", self.pattern.is_some()),
+            ("image_map", self.image_map.is_some()),
+            ("colors", !self.colors.is_empty()),
+            ("pigments", !self.pigments.is_empty()),
+            ("color_map", !self.color_map.is_empty()),
+            ("pigment_map", self.pigment_map.is_some()),
+            ("vector", self.vector.is_some()),
+            ("arms", self.arms.is_some()),
+            ("brick_size", self.brick_size.is_some()),
+            ("mortar", self.mortar.is_some()),
+            ("form", self.form.is_some()),
+            ("metric", self.metric.is_some()),
+            ("offset", self.offset.is_some()),
+            ("solid", self.solid.is_some()),
+            ("control0", self.control0.is_some()),
+            ("control1", self.control1.is_some()),
+            ("frequency", self.frequency.is_some()),
+            ("phase", self.phase.is_some()),
+            ("wave", self.wave.is_some()),
+            ("turbulence", self.turbulence.is_some()),
+            ("octaves", self.octaves.is_some()),
+            ("omega", self.omega.is_some()),
+            ("lambda", self.lambda.is_some()),
+            ("scale", self.scale.is_some()),
+            ("rotate", self.rotate.is_some()),
+            ("translate", self.translate.is_some()),
+            ("matrix", self.matrix.is_some()),
+        ];
+        if let Some((key, _)) = pattern_keys.iter().find(|(_, given)| *given) {
+            return Err((key, "belongs to a pattern: a plain `color` has no pattern keys".into()));
+        }
+        if !color.0.is_finite() {
+            return Err(("color", "must be finite".into()));
+        }
+        for (key, v) in [("filter", self.filter), ("transmit", self.transmit)] {
+            if let Some(v) = v
+                && !v.is_finite()
+            {
+                return Err((key, format!("must be finite, got {v}")));
+            }
+        }
+        Ok(())
+    }
+
+    /// This pigment's own first problem (its `pigment_map` entries apart).
+    fn check_own(&self) -> Result<(), (&'static str, String)> {
         let kind = match (self.pattern, &self.image_map) {
             (Some(_), Some(_)) => {
                 return Err(("image_map", "give either a `pattern` or an `image_map`, not both".into()));
             }
             (None, Some(map)) => return self.check_image_map(map),
-            (None, None) => return Err(("pattern", "needs a `pattern` or an `image_map`".into())),
+            (None, None) => {
+                return Err((
+                    "pattern",
+                    "needs a `pattern` or an `image_map` (or, in a `pigment_map`, a `color`)".into(),
+                ));
+            }
             (Some(kind), None) => kind,
         };
         match kind.discrete_colors() {
             Some(n) => {
-                if self.colors.len() != n {
+                if self.pigment_map.is_some() {
+                    return Err((
+                        "pigment_map",
+                        format!("`{kind}` takes `colors` or `pigments`, not a `pigment_map` (as in POV-Ray)"),
+                    ));
+                }
+                if !self.pigments.is_empty() {
+                    if !self.colors.is_empty() {
+                        return Err(("pigments", "give either `colors` or `pigments`, not both".into()));
+                    }
+                    if self.pigments.len() != n {
+                        return Err(("pigments", format!("`{kind}` takes {n} pigments, got {}", self.pigments.len())));
+                    }
+                } else if self.colors.len() != n {
                     return Err(("colors", format!("`{kind}` takes {n} colours, got {}", self.colors.len())));
                 }
                 if !self.color_map.is_empty() {
@@ -416,27 +611,38 @@ impl Pigment {
                 if !self.colors.is_empty() {
                     return Err(("colors", format!("`{kind}` takes a `color_map`, not `colors`")));
                 }
-                if self.color_map.is_empty() {
-                    return Err(("color_map", format!("`{kind}` needs a `color_map` with at least one entry")));
+                if !self.pigments.is_empty() {
+                    return Err(("pigments", format!("`{kind}` takes a `pigment_map`, not `pigments`")));
                 }
-                let mut previous = 0.0;
-                for (i, MapEntry(value, _)) in self.color_map.iter().enumerate() {
-                    if !(0.0..=1.0).contains(value) {
-                        return Err(("color_map", format!("entry {i}: value {value} is outside [0, 1]")));
+                if let Some(pigment_map) = &self.pigment_map {
+                    if !self.color_map.is_empty() {
+                        return Err(("pigment_map", "give either a `color_map` or a `pigment_map`, not both".into()));
                     }
-                    if *value < previous {
+                    if pigment_map.is_empty() {
+                        return Err(("pigment_map", format!("`{kind}` needs at least one `pigment_map` entry")));
+                    }
+                    if pigment_map.len() > MAX_PIGMENT_MAP_ENTRIES {
                         return Err((
-                            "color_map",
+                            "pigment_map",
                             format!(
-                                "entry {i}: value {value} is below the previous entry's {previous} (ascending order)"
+                                "has {} entries; at most {MAX_PIGMENT_MAP_ENTRIES} (POV-Ray's limit)",
+                                pigment_map.len()
                             ),
                         ));
                     }
-                    previous = *value;
+                    check_map_values("pigment_map", pigment_map.iter().map(|e| e.0))?;
+                } else {
+                    if self.color_map.is_empty() {
+                        return Err((
+                            "color_map",
+                            format!("`{kind}` needs a `color_map` (or a `pigment_map`) with at least one entry"),
+                        ));
+                    }
+                    check_map_values("color_map", self.color_map.iter().map(|e| e.0))?;
                 }
             }
         }
-        for c in self.colors() {
+        for c in self.own_colors() {
             if !c.rgb.is_finite() || !c.filter.is_finite() || !c.transmit.is_finite() {
                 return Err(("color_map", "colours, filter and transmit must be finite".into()));
             }
@@ -516,7 +722,9 @@ impl Pigment {
     fn check_image_map(&self, map: &ImageMap) -> Result<(), (&'static str, String)> {
         let pattern_keys = [
             ("colors", !self.colors.is_empty()),
+            ("pigments", !self.pigments.is_empty()),
             ("color_map", !self.color_map.is_empty()),
+            ("pigment_map", self.pigment_map.is_some()),
             ("vector", self.vector.is_some()),
             ("arms", self.arms.is_some()),
             ("brick_size", self.brick_size.is_some()),
@@ -546,6 +754,24 @@ impl Pigment {
         check_turbulence(self.turbulence, self.octaves, self.omega, self.lambda, false)?;
         check_transform(self.scale, self.rotate, self.translate, self.matrix)
     }
+}
+
+/// The first problem of a map's entry values (under `key`): each in [0, 1], ascending.
+fn check_map_values(key: &'static str, values: impl Iterator<Item = f64>) -> Result<(), (&'static str, String)> {
+    let mut previous = 0.0;
+    for (i, value) in values.enumerate() {
+        if !(0.0..=1.0).contains(&value) {
+            return Err((key, format!("entry {i}: value {value} is outside [0, 1]")));
+        }
+        if value < previous {
+            return Err((
+                key,
+                format!("entry {i}: value {value} is below the previous entry's {previous} (ascending order)"),
+            ));
+        }
+        previous = value;
+    }
+    Ok(())
 }
 
 /// The first out-of-range crackle key, as (key, message).
@@ -683,6 +909,11 @@ pub struct PigmentField {
     crackle: CrackleParams,
     /// `quilted`'s control points, in single precision as POV-Ray holds them.
     quilt_controls: (f64, f64),
+    /// A plain colour (a `pigment_map` entry without a pattern).
+    plain: Option<Rgbft>,
+    /// The `pigment_map` entries' values and fields, or a discrete pattern's `pigments` at
+    /// their indices (empty without either).
+    entries: Vec<(f64, PigmentField)>,
 }
 
 impl PigmentField {
@@ -704,16 +935,26 @@ impl PigmentField {
                 solid: spec.solid.unwrap_or(d.solid),
             },
             quilt_controls: (single(spec.control0), single(spec.control1)),
+            plain: spec.plain_color(),
+            entries: spec
+                .pigment_map()
+                .iter()
+                .map(|PigmentMapEntry(v, p)| (*v, PigmentField::new(p)))
+                .chain(spec.pigments.iter().enumerate().map(|(i, p)| (i as f64, PigmentField::new(p))))
+                .collect(),
         }
     }
 
     /// True when some colour of the pigment lets light through.
     pub fn can_transmit(&self) -> bool {
-        self.spec.colors().any(|c| c.filter > 0.0 || c.transmit > 0.0)
+        self.spec.colors().iter().any(|c| c.filter > 0.0 || c.transmit > 0.0)
     }
 
     /// The colour at object-space point `p` (Prism's frame).
     pub fn at(&self, p: DVec3) -> Rgbft {
+        if let Some(c) = self.plain {
+            return c;
+        }
         let mut q = self.pattern_from_object.transform_point3(p) * DVec3::new(1.0, 1.0, -1.0);
         let spec = &self.spec;
         // An image map's kind reads as checker here: it warps like every plain pattern.
@@ -726,9 +967,44 @@ impl PigmentField {
         match self.kind.discrete_colors() {
             Some(_) => {
                 let index = discrete_value(self.kind, spec, q);
+                if !self.entries.is_empty() {
+                    // POV-Ray's list of pigments: the entry at the index, read as a map's.
+                    let entry = &self.entries[index.min(self.entries.len() - 1)].1;
+                    return entry.at(q * DVec3::new(1.0, 1.0, -1.0));
+                }
                 spec.colors[index.min(spec.colors.len() - 1)].rgbft()
             }
+            None if !self.entries.is_empty() => self.blend_entries(self.value(q), q),
             None => map_lookup(&spec.color_map, self.value(q)),
+        }
+    }
+
+    /// The `pigment_map` colour for pattern value `value` at the (warped) pattern point `q`:
+    /// POV-Ray's `Compute_Pigment` with a pigment blend map. The two neighbouring entries
+    /// (one where the value sits on an entry or outside the map) are evaluated at the point
+    /// as this pigment's transform and turbulence left it, each through its own, and blended
+    /// linearly in all five components.
+    fn blend_entries(&self, value: f64, q: DVec3) -> Rgbft {
+        let entries = &self.entries;
+        let last = entries.len() - 1;
+        let (prev, cur) = if value >= entries[last].0 {
+            (last, last)
+        } else {
+            let cur = entries.iter().position(|e| value <= e.0).unwrap_or(last);
+            if cur == 0 || value == entries[cur].0 { (cur, cur) } else { (cur - 1, cur) }
+        };
+        // Back to Prism's frame: each entry's `at` mirrors its own pattern point.
+        let p = q * DVec3::new(1.0, 1.0, -1.0);
+        let colour = entries[cur].1.at(p);
+        if prev == cur {
+            return colour;
+        }
+        let below = entries[prev].1.at(p);
+        let fraction = (value - entries[prev].0) / (entries[cur].0 - entries[prev].0);
+        Rgbft {
+            rgb: below.rgb + fraction * (colour.rgb - below.rgb),
+            filter: below.filter + fraction * (colour.filter - below.filter),
+            transmit: below.transmit + fraction * (colour.transmit - below.transmit),
         }
     }
 
@@ -1357,6 +1633,161 @@ mod tests {
         assert!(e.contains("did you mean `checker`?"), "{e}");
         let e = toml::from_str::<Pigment>("pattern = \"onion\"\nfrequncy = 2").unwrap_err().to_string();
         assert!(e.contains("unknown field `frequncy`"), "{e}");
+    }
+
+    /// Two plain entries, red below and see-through blue above, over a gradient along x.
+    const RED_TO_BLUE: &str =
+        "pigment_map = [[0.0, { color = [1, 0, 0] }], [1.0, { color = [0, 0, 1], transmit = 1 }]]";
+
+    #[test]
+    fn pigment_map_blends_neighbouring_entries_in_all_five_components() {
+        let f = PigmentField::new(&pigment(&format!("pattern = \"gradient\"\nvector = [1, 0, 0]\n{RED_TO_BLUE}")));
+        let c = f.at(DVec3::new(0.5, 0.0, 0.0));
+        assert!((c.rgb - DVec3::new(0.5, 0.0, 0.5)).abs().max_element() < 1e-12, "{c:?}");
+        assert!((c.transmit - 0.5).abs() < 1e-12 && c.filter == 0.0);
+        let c = f.at(DVec3::new(0.25, 0.0, 0.0));
+        assert!((c.rgb - DVec3::new(0.75, 0.0, 0.25)).abs().max_element() < 1e-12, "{c:?}");
+        assert!(f.can_transmit());
+    }
+
+    #[test]
+    fn pigment_map_entries_at_equal_values_give_a_sharp_edge() {
+        let f = PigmentField::new(&pigment(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\npigment_map = [[0.2, { color = [1, 0, 0] }], \
+             [0.5, { color = [0, 1, 0] }], [0.5, { color = [0, 0, 1] }], [0.8, { color = [1, 1, 1] }]]",
+        ));
+        let at = |x: f64| f.at(DVec3::new(x, 0.0, 0.0)).rgb;
+        // Below the first entry its colour, above the last the last's.
+        assert_eq!(at(0.1), DVec3::X);
+        assert_eq!(at(0.9), DVec3::ONE);
+        // Exactly 0.5 is the lower entry's; just above, the blend starts from the upper one.
+        assert_eq!(at(0.5), DVec3::Y);
+        assert!((at(0.5 + 1e-9) - DVec3::Z).abs().max_element() < 1e-6);
+        assert!((at(0.65) - DVec3::new(0.5, 0.5, 1.0)).abs().max_element() < 1e-12);
+        assert!((at(0.35) - DVec3::new(0.5, 0.5, 0.0)).abs().max_element() < 1e-12);
+    }
+
+    #[test]
+    fn pigment_map_entries_read_the_point_through_the_outer_transform_then_their_own() {
+        // The outer gradient is scaled by 2 and its checker entries by 0.25: the entries
+        // repeat every 0.5 in object space (POV-Ray hands an entry the outer pattern point).
+        let checker = "{ pattern = \"checker\", colors = [[1, 1, 1], [0, 0, 0]], scale = 0.25 }";
+        let f = PigmentField::new(&pigment(&format!(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\nscale = 2\npigment_map = [[0.0, {checker}], [1.0, {checker}]]"
+        )));
+        let direct = PigmentField::new(&pigment("pattern = \"checker\"\ncolors = [[1, 1, 1], [0, 0, 0]]\nscale = 0.5"));
+        for p in [
+            DVec3::new(0.1, 0.2, 0.3),
+            DVec3::new(0.6, 0.2, 0.3),
+            DVec3::new(0.3, -0.7, 1.2),
+            DVec3::new(1.3, 0.1, -0.4),
+        ] {
+            assert_eq!(f.at(p).rgb, direct.at(p).rgb, "{p}");
+        }
+    }
+
+    #[test]
+    fn pigment_map_entries_see_the_outer_turbulence_except_marble_and_wood() {
+        let entry = "{ pattern = \"gradient\", vector = [1, 0, 0], frequency = 0, color_map = [[0, [0, 0, 0]], [1, [1, 1, 1]]] }";
+        let map = format!("pigment_map = [[0.0, {entry}], [1.0, {entry}]]");
+        let p = prism(0.4, 0.2, 0.1);
+        let q = DVec3::new(0.4, 0.2, 0.1);
+        let o = Octaves { octaves: 3, ..Octaves::default() };
+        let f = PigmentField::new(&pigment(&format!("pattern = \"bozo\"\nturbulence = 0.3\noctaves = 3\n{map}")));
+        let expected = (q.x + 0.3 * dturbulence(q, &o).x).clamp(0.0, 1.0);
+        assert!((f.at(p).rgb.x - expected).abs() < 1e-12);
+        // Marble's turbulence bends its value, not the point its entries read.
+        let f = PigmentField::new(&pigment(&format!("pattern = \"marble\"\nturbulence = 0.3\noctaves = 3\n{map}")));
+        assert!((f.at(p).rgb.x - 0.4).abs() < 1e-12);
+    }
+
+    #[test]
+    fn pigment_maps_nest() {
+        let inner = format!("{{ pattern = \"gradient\", vector = [0, 1, 0], {RED_TO_BLUE} }}");
+        let f = PigmentField::new(&pigment(&format!(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\npigment_map = [[0.0, {{ color = [0, 1, 0] }}], [0.5, {inner}]]"
+        )));
+        // x = 0.75 is above the last entry: the inner map alone, read along y.
+        let c = f.at(DVec3::new(0.75, 0.5, 0.0));
+        assert!((c.rgb - DVec3::new(0.5, 0.0, 0.5)).abs().max_element() < 1e-12 && (c.transmit - 0.5).abs() < 1e-12);
+        // x = 0.25: halfway between green and the inner map's colour at y = 0.5.
+        let c = f.at(DVec3::new(0.25, 0.5, 0.0));
+        assert!((c.rgb - DVec3::new(0.25, 0.5, 0.25)).abs().max_element() < 1e-12, "{c:?}");
+        assert!((c.transmit - 0.25).abs() < 1e-12);
+        assert_eq!(f.spec.colors().len(), 3);
+    }
+
+    #[test]
+    fn bad_pigment_maps_name_their_key() {
+        let err = |text: &str| toml::from_str::<Pigment>(text).unwrap().check().unwrap_err();
+        let red = "{ color = [1, 0, 0] }";
+        let e = err("pattern = \"onion\"\npigment_map = []");
+        assert_eq!(e.0, "pigment_map");
+        assert!(e.1.contains("at least one"), "{}", e.1);
+        let e = err(&format!("pattern = \"onion\"\npigment_map = [[0.6, {red}], [0.2, {red}]]"));
+        assert_eq!(e.0, "pigment_map");
+        assert!(e.1.contains("entry 1") && e.1.contains("ascending"), "{}", e.1);
+        assert_eq!(err(&format!("pattern = \"onion\"\npigment_map = [[1.5, {red}]]")).0, "pigment_map");
+        let e = err(&format!("pattern = \"checker\"\ncolors = [[1, 1, 1], [0, 0, 0]]\npigment_map = [[0, {red}]]"));
+        assert_eq!(e.0, "pigment_map");
+        assert!(e.1.contains("takes `colors`"), "{}", e.1);
+        let e = err(&format!("pattern = \"onion\"\n{BW}\npigment_map = [[0, {red}]]"));
+        assert!(e.0 == "pigment_map" && e.1.contains("not both"), "{e:?}");
+        assert_eq!(err(&format!("image_map = {{ file = \"a.png\" }}\npigment_map = [[0, {red}]]")).0, "pigment_map");
+        // Entries' problems carry their path.
+        let e = err(&format!("pattern = \"onion\"\npigment_map = [[0, {red}], [1, {{ pattern = \"onion\" }}]]"));
+        assert_eq!(e.0, "pigment_map[1].color_map");
+        let e = err("pattern = \"onion\"\npigment_map = [[0, { color = [1, 0, 0], scale = 2 }]]");
+        assert!(e.0 == "pigment_map[0].scale" && e.1.contains("plain `color`"), "{e:?}");
+        assert_eq!(err("pattern = \"onion\"\npigment_map = [[0, { color = [1, 0, nan] }]]").0, "pigment_map[0].color");
+        assert_eq!(err("pattern = \"onion\"\npigment_map = [[0, { transmit = 0.5 }]]").0, "pigment_map[0].color");
+        assert_eq!(err("pattern = \"onion\"\npigment_map = [[0, { }]]").0, "pigment_map[0].pattern");
+        // A plain colour is an entry's, not a material's pigment.
+        assert_eq!(err("color = [1, 0, 0]").0, "color");
+        // Nesting is bounded: 16 maps deep pass, 17 do not.
+        let nested = |depth: usize| {
+            let mut text = red.to_string();
+            for _ in 0..depth {
+                text = format!("{{ pattern = \"onion\", pigment_map = [[0, {text}]] }}");
+            }
+            format!("pattern = \"onion\"\npigment_map = [[0, {text}]]")
+        };
+        assert!(toml::from_str::<Pigment>(&nested(MAX_PIGMENT_MAP_DEPTH - 1)).unwrap().check().is_ok());
+        let e = err(&nested(MAX_PIGMENT_MAP_DEPTH));
+        assert_eq!(e.0, format!("{}pigment_map", "pigment_map[0].".repeat(MAX_PIGMENT_MAP_DEPTH)));
+        assert!(e.1.contains("at most 16"), "{}", e.1);
+    }
+
+    #[test]
+    fn discrete_patterns_take_pigments_as_their_list() {
+        let f = PigmentField::new(&pigment(&format!(
+            "pattern = \"checker\"\npigments = [{{ color = [1, 0, 0] }}, \
+             {{ pattern = \"gradient\", vector = [1, 0, 0], scale = 2, {BW} }}]"
+        )));
+        assert_eq!(f.at(prism(0.5, 0.5, 0.5)).rgb, DVec3::X);
+        // An odd cell: the gradient entry, scaled by 2, at x = 1.5.
+        assert!((f.at(prism(1.5, 0.5, 0.5)).rgb - DVec3::splat(0.75)).abs().max_element() < 1e-12);
+        let err = |text: &str| toml::from_str::<Pigment>(text).unwrap().check().unwrap_err();
+        let red = "{ color = [1, 0, 0] }";
+        let e = err(&format!("pattern = \"checker\"\npigments = [{red}]"));
+        assert!(e.0 == "pigments" && e.1.contains("takes 2 pigments"), "{e:?}");
+        let e = err(&format!("pattern = \"checker\"\ncolors = [[1, 1, 1], [0, 0, 0]]\npigments = [{red}, {red}]"));
+        assert!(e.0 == "pigments" && e.1.contains("not both"), "{e:?}");
+        assert_eq!(err(&format!("pattern = \"onion\"\npigments = [{red}]")).0, "pigments");
+        assert_eq!(
+            err(&format!("pattern = \"hexagon\"\npigments = [{red}, {red}, {{ pattern = \"onion\" }}]")).0,
+            "pigments[2].color_map"
+        );
+    }
+
+    #[test]
+    fn pigment_map_round_trips_through_toml() {
+        let p = pigment(&format!(
+            "pattern = \"bozo\"\nturbulence = 0.4\npigment_map = [[0.2, {{ pattern = \"wrinkles\", scale = 0.3, {BW} }}], \
+             [0.7, {{ color = [0.2, 0.9, 0.3], filter = 0.5, transmit = 0.2 }}]]"
+        ));
+        let back: Pigment = toml::from_str(&toml::to_string(&p).unwrap()).unwrap();
+        assert_eq!(back, p);
     }
 
     #[test]

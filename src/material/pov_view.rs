@@ -111,10 +111,11 @@ impl PovView {
                 if let Some(p) = &f.pigment {
                     // What does not vary (transparency tests, interiors) sees the pigment's
                     // most transparent colours; every hit looks the pigment up.
-                    let first = p.spec.colors().next().map_or(DVec3::ONE, |c| c.rgb);
+                    let colors = p.spec.colors();
+                    let first = colors.first().map_or(DVec3::ONE, |c| c.rgb);
                     base.finish.color = Rgb(first);
-                    base.finish.filter = p.spec.colors().map(|c| c.filter).fold(0.0, f64::max);
-                    base.finish.transmit = p.spec.colors().map(|c| c.transmit).fold(0.0, f64::max);
+                    base.finish.filter = colors.iter().map(|c| c.filter).fold(0.0, f64::max);
+                    base.finish.transmit = colors.iter().map(|c| c.transmit).fold(0.0, f64::max);
                 }
                 Self { base, varying, normal: f.normal.clone(), below: Vec::new() }
             }

@@ -185,41 +185,6 @@ fn normal_key(key: &str) -> &'static str {
     }
 }
 
-/// A key under `pigment` as the material's key path.
-fn pigment_key(key: &str) -> &'static str {
-    match key {
-        "colors" => "pigment.colors",
-        "color_map" => "pigment.color_map",
-        "vector" => "pigment.vector",
-        "arms" => "pigment.arms",
-        "brick_size" => "pigment.brick_size",
-        "mortar" => "pigment.mortar",
-        "frequency" => "pigment.frequency",
-        "phase" => "pigment.phase",
-        "wave" => "pigment.wave",
-        "scale" => "pigment.scale",
-        "rotate" => "pigment.rotate",
-        "translate" => "pigment.translate",
-        "matrix" => "pigment.matrix",
-        "turbulence" => "pigment.turbulence",
-        "octaves" => "pigment.octaves",
-        "omega" => "pigment.omega",
-        "lambda" => "pigment.lambda",
-        "pattern" => "pigment.pattern",
-        "image_map" => "pigment.image_map",
-        "image_map.file" => "pigment.image_map.file",
-        "image_map.filter_all" => "pigment.image_map.filter_all",
-        "image_map.transmit_all" => "pigment.image_map.transmit_all",
-        "form" => "pigment.form",
-        "metric" => "pigment.metric",
-        "offset" => "pigment.offset",
-        "solid" => "pigment.solid",
-        "control0" => "pigment.control0",
-        "control1" => "pigment.control1",
-        _ => "pigment",
-    }
-}
-
 fn glass_ior() -> f64 {
     1.5
 }
@@ -321,7 +286,8 @@ impl MaterialSpec {
     pub fn check(&self) -> Result<(), (String, String)> {
         let owned = |(key, message): (&str, String)| (key.to_string(), message);
         let Some(layers) = &self.layers else {
-            return self.check_single().map_err(owned);
+            self.check_single().map_err(owned)?;
+            return self.check_pigment();
         };
         if layers.is_empty() {
             return Err((
@@ -363,6 +329,7 @@ impl MaterialSpec {
                 return Err((at(key), "is the object's, shared by every layer: write it beside `layers`".into()));
             }
             layer.check_single().map_err(|(key, message)| (at(key), message))?;
+            layer.check_pigment().map_err(|(key, message)| (at(&key), message))?;
         }
         Ok(())
     }
@@ -396,7 +363,7 @@ impl MaterialSpec {
         .collect()
     }
 
-    /// [`Self::check`] of a material without layers.
+    /// [`Self::check`] of a material without layers, its pigment apart.
     fn check_single(&self) -> Result<(), (&'static str, String)> {
         let finish = self.finish();
         super::check_finish(&finish)?;
@@ -409,9 +376,6 @@ impl MaterialSpec {
                 "ior",
                 format!("must be greater than 0 and at most {}, got {}", crate::limits::MAX_IOR, self.ior),
             ));
-        }
-        if let Some(pigment) = &self.pigment {
-            self.check_pigment(pigment)?;
         }
         if let Some(normal) = &self.normal {
             self.check_normal(normal)?;
@@ -442,9 +406,10 @@ impl MaterialSpec {
         Ok(())
     }
 
-    /// The pigment's first problem, or a key written beside it that it replaces or that
-    /// belongs to another surface model.
-    fn check_pigment(&self, pigment: &Pigment) -> Result<(), (&'static str, String)> {
+    /// The pigment's first problem (its key path, e.g. `pigment.pigment_map[1].color_map`),
+    /// or a key written beside it that it replaces or that belongs to another surface model.
+    fn check_pigment(&self) -> Result<(), (String, String)> {
+        let Some(pigment) = &self.pigment else { return Ok(()) };
         let d = Self::default();
         let beside = [
             ("color", self.color != d.color, "the pigment gives the colour"),
@@ -455,9 +420,9 @@ impl MaterialSpec {
             ("pbr", self.pbr.is_some(), "a pigment pattern needs a POV-Ray finish, not `pbr`"),
         ];
         if let Some((key, _, why)) = beside.iter().find(|(_, written, _)| *written) {
-            return Err((key, format!("cannot be written beside `pigment`: {why}")));
+            return Err((key.to_string(), format!("cannot be written beside `pigment`: {why}")));
         }
-        pigment.check().map_err(|(key, message)| (pigment_key(key), message))
+        pigment.check().map_err(|(key, message)| (format!("pigment.{key}"), message))
     }
 
     /// The normal pattern's first problem, or a surface model it does not apply to.
@@ -503,6 +468,20 @@ impl MaterialSpec {
             )),
             None => Ok(()),
         }
+    }
+
+    /// Every image map of the material's pigments (its layers' and `pigment_map` entries'
+    /// included), with its key path under the material (`pigment.image_map`,
+    /// `layers[1].pigment.pigment_map[0][1].image_map`).
+    pub fn image_maps_mut(&mut self) -> Vec<(String, &mut super::image_map::ImageMap)> {
+        let mut out = Vec::new();
+        if let Some(p) = self.pigment.as_mut() {
+            out.extend(p.image_maps_mut().into_iter().map(|(key, map)| (format!("pigment.{key}"), map)));
+        }
+        for (i, layer) in self.layers.iter_mut().flatten().enumerate() {
+            out.extend(layer.image_maps_mut().into_iter().map(|(key, map)| (format!("layers[{i}].{key}"), map)));
+        }
+        out
     }
 
     /// Every texture reference of the material with the colour space of its image, for

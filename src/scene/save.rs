@@ -60,10 +60,10 @@ impl FilePaths {
         for (texture, _) in material.textures_mut() {
             texture.file = self.write(&texture.file);
         }
-        if let Some(map) = material.pigment.as_mut().and_then(|p| p.image_map.as_mut())
-            && let Some(path) = &map.path
-        {
-            map.file = self.write(&path.display().to_string());
+        for (_, map) in material.image_maps_mut() {
+            if let Some(path) = &map.path {
+                map.file = self.write(&path.display().to_string());
+            }
         }
         toml::Value::try_from(&material)
     }

@@ -33,13 +33,20 @@ impl Loader<'_> {
         (textures && image_map).then(|| MaterialComponent::authored(None, std::sync::Arc::new(material)))
     }
 
-    /// Resolves and decodes the PNG of a material's `pigment.image_map` (relative to scene
-    /// file `index`), as every image a scene names is read; reports a problem at its `file`.
+    /// Resolves and decodes the PNGs of a material's image maps (`pigment.image_map`, in
+    /// layers and `pigment_map` entries too; relative to scene file `index`), as every image a
+    /// scene names is read; reports a problem at its `file`.
     fn material_image_map(&mut self, index: usize, key: &str, material: &mut MaterialSpec) -> bool {
-        let Some(map) = material.pigment.as_mut().and_then(|p| p.image_map.as_mut()) else {
-            return true;
-        };
-        let at = self.files[index].locate(&format!("{key}.pigment.image_map.file"));
+        let mut ok = true;
+        for (path, map) in material.image_maps_mut() {
+            ok &= self.image_map(index, &format!("{key}.{path}.file"), map);
+        }
+        ok
+    }
+
+    /// Resolves and decodes one image map's PNG; reports a problem at `file_key`.
+    fn image_map(&mut self, index: usize, file_key: &str, map: &mut crate::material::image_map::ImageMap) -> bool {
+        let at = self.files[index].locate(file_key);
         let path = match self.access.join(&self.directory(index), &map.file) {
             Ok(path) => path,
             Err(e) => {
