@@ -230,6 +230,11 @@ pub const MAX_PIGMENT_MAP_DEPTH: usize = 16;
 /// The most entries a `pigment_map` takes (POV-Ray's `MAX_BLEND_MAP_ENTRIES`).
 pub const MAX_PIGMENT_MAP_ENTRIES: usize = 256;
 
+/// The most pigments one pigment may hold in all, nested maps and lists included: a lookup
+/// evaluates at most every one of them, so this bounds the work per shading point (depth and
+/// entry limits alone allow 256^16).
+pub const MAX_NESTED_PIGMENTS: usize = 1024;
+
 /// A pattern transform in the object's space, written and applied like an object's:
 /// `scale`, then `rotate` (degrees about x, y, z), then `translate`; or `matrix` (four rows)
 /// instead of the three.
@@ -475,7 +480,34 @@ impl Pigment {
     /// The first out-of-range or contradictory parameter, as (key path under `pigment`, e.g.
     /// `pigment_map[2].color_map`, message).
     pub fn check(&self) -> Result<(), (String, String)> {
-        self.check_at(0)
+        self.check_at(0)?;
+        let total = self.nested_count();
+        if total > MAX_NESTED_PIGMENTS {
+            let key = if self.pigments.is_empty() { "pigment_map" } else { "pigments" };
+            return Err((
+                key.into(),
+                format!("holds {total} pigments in all (nested ones included); at most {MAX_NESTED_PIGMENTS}"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// How many pigments this one holds, nested ones included (after [`Self::check_at`] has
+    /// bounded the depth). Stops counting past [`MAX_NESTED_PIGMENTS`].
+    fn nested_count(&self) -> usize {
+        let nested: Box<dyn Iterator<Item = &Pigment>> = if self.pigments.is_empty() {
+            Box::new(self.pigment_map().iter().map(|e| &e.1))
+        } else {
+            Box::new(self.pigments.iter())
+        };
+        let mut total = 0;
+        for entry in nested {
+            total += 1 + entry.nested_count();
+            if total > MAX_NESTED_PIGMENTS {
+                break;
+            }
+        }
+        total
     }
 
     /// [`Self::check`] of a pigment `depth` `pigment_map`s deep.
@@ -1756,6 +1788,13 @@ mod tests {
         let e = err(&nested(MAX_PIGMENT_MAP_DEPTH));
         assert_eq!(e.0, format!("{}pigment_map", "pigment_map[0].".repeat(MAX_PIGMENT_MAP_DEPTH)));
         assert!(e.1.contains("at most 16"), "{}", e.1);
+        // So is the total: 200 entries of 5 each are 1200 pigments, past 1024.
+        let five = format!("{{ pattern = \"onion\", pigment_map = [{}] }}", vec![format!("[0, {red}]"); 5].join(", "));
+        let wide =
+            |n: usize| format!("pattern = \"onion\"\npigment_map = [{}]", vec![format!("[0, {five}]"); n].join(", "));
+        assert!(toml::from_str::<Pigment>(&wide(170)).unwrap().check().is_ok());
+        let e = err(&wide(200));
+        assert!(e.0 == "pigment_map" && e.1.contains("1024"), "{e:?}");
     }
 
     #[test]

@@ -21,6 +21,10 @@ use super::{
 use crate::color::Rgb;
 use crate::texture::{ColorSpace, TextureRef};
 
+/// The most layers a layered material takes: every layer is shaded at every hit (a stack of
+/// clear layers is walked to the bottom), so this bounds the work per hit.
+pub const MAX_LAYERS: usize = 64;
+
 /// A material as a scene file writes it (POV-Ray's meanings; see the module docs). The
 /// schema keeps the name `Material`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
@@ -293,6 +297,12 @@ impl MaterialSpec {
             return Err((
                 "layers".into(),
                 "needs at least one layer (POV-Ray's `texture { }` blocks, bottom first)".into(),
+            ));
+        }
+        if layers.len() > MAX_LAYERS {
+            return Err((
+                "layers".into(),
+                format!("has {} layers; at most {MAX_LAYERS} (each is shaded at every hit)", layers.len()),
             ));
         }
         if let Some(key) = self.layer_keys_written().first() {
@@ -755,6 +765,9 @@ mod tests {
         assert_eq!(err("layers = [{ pbr = {} }]"), "layers[0].pbr");
         assert_eq!(err("layers = [{ fade_distance = 2 }]"), "layers[0].fade_distance");
         assert_eq!(err("layers = [{ layers = [{}] }]"), "layers[0].layers");
+        let layers = |n: usize| format!("layers = [{}]", vec!["{ transmit = 1 }"; n].join(", "));
+        assert!(toml::from_str::<MaterialSpec>(&layers(MAX_LAYERS)).unwrap().check().is_ok());
+        assert_eq!(err(&layers(MAX_LAYERS + 1)), "layers");
         assert_eq!(err("layers = [{}, { reflection = { exponent = 0 } }]"), "layers[1].reflection.exponent");
         assert_eq!(err("layers = [{ normal = { pattern = \"bumps\", scale = 0 } }]"), "layers[0].normal.scale");
         assert_eq!(err("ior = -1\nlayers = [{}]"), "ior");
