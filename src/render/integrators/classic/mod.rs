@@ -822,7 +822,9 @@ fn fresnel(eta: f64, c: f64) -> f64 {
     let g = g2.sqrt();
     let a = (g - c) / (g + c);
     let b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
-    0.5 * a * a * (1.0 + b * b)
+    // A normal tilted by a pattern may face away from the ray (c < 0), where the formula
+    // leaves [0, 1] (57 at c = -0.9 for ior 1.32): POV-Ray clamps it.
+    (0.5 * a * a * (1.0 + b * b)).clamp(0.0, 1.0)
 }
 
 /// Interior attenuation over path length `s`. POV-Ray tests the two ray kinds differently:
@@ -889,6 +891,12 @@ mod tests {
         // REPORT.md 7: ior 1.5 at 60 degrees -> 0.08919.
         assert!((fresnel(1.5, 60f64.to_radians().cos()) - 0.08919).abs() < 1e-5);
         assert_eq!(fresnel(1.0 / 1.5, 0.1), 1.0, "total internal reflection");
+        // Facing away (a tilted normal): clamped to [0, 1] as in POV-Ray's ComputeReflectivity.
+        for c in [-0.9, -0.5, -0.1] {
+            let f = fresnel(1.32, c);
+            assert!((0.0..=1.0).contains(&f), "{c}: {f}");
+        }
+        assert_eq!(fresnel(1.32, -0.5), 1.0);
     }
 
     /// POV-Ray's recursive average over samples `value(u, v)` of an `n1` x `n2` grid.
