@@ -9,6 +9,7 @@
 //! The nearest points are searched, as POV-Ray does, among the point's own cube and its 80
 //! neighbours within a "3D knight move" (offsets of at most 2 with at most one 2).
 
+use std::cell::RefCell;
 use std::sync::LazyLock;
 
 use glam::DVec3;
@@ -102,6 +103,36 @@ pub fn cell_point(x: i32, y: i32, z: i32) -> DVec3 {
     DVec3::new(f64::from(x) + r[seed], f64::from(y) + r[seed + 1], f64::from(z) + r[seed + 2])
 }
 
+/// The 81 cell points searched around cube `cube`, in [`CUBE_OFFSETS`]' order.
+type CubeCells = [DVec3; 81];
+
+thread_local! {
+    /// The cells of the cube the last lookup on this thread fell in (POV-Ray keeps a
+    /// per-thread cache of cubes too): neighbouring shading points mostly share a cube, and
+    /// the points are a pure function of the cube, so the cache changes no result.
+    static LAST_CUBE: RefCell<Option<([i32; 3], Box<CubeCells>)>> = const { RefCell::new(None) };
+}
+
+/// Calls `f` with the 81 cell points around `cube`, computing them only when the last
+/// lookup on this thread was in another cube.
+fn with_cells<T>(cube: [i32; 3], f: impl FnOnce(&CubeCells) -> T) -> T {
+    LAST_CUBE.with(|last| {
+        let mut last = last.borrow_mut();
+        match &mut *last {
+            Some((at, cells)) if *at == cube => {}
+            slot => {
+                let mut cells = Box::new([DVec3::ZERO; 81]);
+                for (cell, [dx, dy, dz]) in cells.iter_mut().zip(CUBE_OFFSETS.iter()) {
+                    *cell = cell_point(cube[0] + dx, cube[1] + dy, cube[2] + dz);
+                }
+                *slot = Some((cube, cells));
+            }
+        }
+        let (_, cells) = last.as_ref().expect("filled above");
+        f(cells)
+    })
+}
+
 /// How a distance is measured: POV-Ray's three code paths for metric 2, 1 and the others.
 #[derive(Clone, Copy)]
 enum Metric {
@@ -150,10 +181,12 @@ pub fn crackle(q: DVec3, params: &CrackleParams) -> f64 {
     };
     let cube =
         [(q.x - POV_EPSILON).floor() as i32, (q.y - POV_EPSILON).floor() as i32, (q.z - POV_EPSILON).floor() as i32];
-    let point = |i: usize| {
-        let [dx, dy, dz] = CUBE_OFFSETS[i];
-        cell_point(cube[0] + dx, cube[1] + dy, cube[2] + dz)
-    };
+    with_cells(cube, |cells| crackle_in(q, cells, metric, params))
+}
+
+/// [`crackle`] with the cells around `q`'s cube given.
+fn crackle_in(q: DVec3, cells: &CubeCells, metric: Metric, params: &CrackleParams) -> f64 {
+    let point = |i: usize| cells[i];
     // The three smallest sums, ordered, and the index of the nearest point, exactly as
     // POV-Ray sorts the first three and then walks the rest.
     let (mut s1, mut s2, mut s3) = (metric.sum(point(0) - q), metric.sum(point(1) - q), metric.sum(point(2) - q));
@@ -169,7 +202,7 @@ pub fn crackle(q: DVec3, params: &CrackleParams) -> f64 {
     if s3 < s2 {
         std::mem::swap(&mut s2, &mut s3);
     }
-    for i in 3..CUBE_OFFSETS.len() {
+    for i in 3..cells.len() {
         let sum = metric.sum(point(i) - q);
         if sum < s1 {
             s3 = s2;
@@ -213,17 +246,18 @@ pub fn nearest_facet_point(tv: DVec3, metric: f64) -> DVec3 {
     };
     let cube =
         [(tv.x - POV_EPSILON).floor() as i32, (tv.y - POV_EPSILON).floor() as i32, (tv.z - POV_EPSILON).floor() as i32];
-    let mut best = DVec3::ZERO;
-    let mut best_sum = f64::INFINITY;
-    for (i, [dx, dy, dz]) in CUBE_OFFSETS.iter().enumerate() {
-        let p = cell_point(cube[0] + dx, cube[1] + dy, cube[2] + dz);
-        let s = sum(p - tv);
-        if i == 0 || s < best_sum {
-            best = p;
-            best_sum = s;
+    with_cells(cube, |cells| {
+        let mut best = DVec3::ZERO;
+        let mut best_sum = f64::INFINITY;
+        for (i, &p) in cells.iter().enumerate() {
+            let s = sum(p - tv);
+            if i == 0 || s < best_sum {
+                best = p;
+                best_sum = s;
+            }
         }
-    }
-    best
+        best
+    })
 }
 
 #[cfg(test)]
