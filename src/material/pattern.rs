@@ -548,26 +548,8 @@ impl Pigment {
         let Some(color) = self.color else {
             return Err(("color", "`filter` and `transmit` belong to a plain `color`".into()));
         };
-        let pattern_keys = [
-            ("pattern", self.pattern.is_some()),
-            ("image_map", self.image_map.is_some()),
-            ("colors", !self.colors.is_empty()),
-            ("pigments", !self.pigments.is_empty()),
-            ("color_map", !self.color_map.is_empty()),
-            ("pigment_map", self.pigment_map.is_some()),
-            ("vector", self.vector.is_some()),
-            ("arms", self.arms.is_some()),
-            ("brick_size", self.brick_size.is_some()),
-            ("mortar", self.mortar.is_some()),
-            ("form", self.form.is_some()),
-            ("metric", self.metric.is_some()),
-            ("offset", self.offset.is_some()),
-            ("solid", self.solid.is_some()),
-            ("control0", self.control0.is_some()),
-            ("control1", self.control1.is_some()),
-            ("frequency", self.frequency.is_some()),
-            ("phase", self.phase.is_some()),
-            ("wave", self.wave.is_some()),
+        let source = [("pattern", self.pattern.is_some()), ("image_map", self.image_map.is_some())];
+        let warp_and_transform = [
             ("turbulence", self.turbulence.is_some()),
             ("octaves", self.octaves.is_some()),
             ("omega", self.omega.is_some()),
@@ -577,7 +559,8 @@ impl Pigment {
             ("translate", self.translate.is_some()),
             ("matrix", self.matrix.is_some()),
         ];
-        if let Some((key, _)) = pattern_keys.iter().find(|(_, given)| *given) {
+        let mut written = source.into_iter().chain(self.pattern_keys_written()).chain(warp_and_transform);
+        if let Some((key, _)) = written.find(|(_, given)| *given) {
             return Err((key, "belongs to a pattern: a plain `color` has no pattern keys".into()));
         }
         if !color.0.is_finite() {
@@ -750,9 +733,10 @@ impl Pigment {
         Ok(())
     }
 
-    /// An image map's first problem, or a pattern key written beside it.
-    fn check_image_map(&self, map: &ImageMap) -> Result<(), (&'static str, String)> {
-        let pattern_keys = [
+    /// The keys only a pattern takes (its colours and its own parameters), each with whether
+    /// it is written.
+    fn pattern_keys_written(&self) -> [(&'static str, bool); 17] {
+        [
             ("colors", !self.colors.is_empty()),
             ("pigments", !self.pigments.is_empty()),
             ("color_map", !self.color_map.is_empty()),
@@ -770,8 +754,12 @@ impl Pigment {
             ("frequency", self.frequency.is_some()),
             ("phase", self.phase.is_some()),
             ("wave", self.wave.is_some()),
-        ];
-        if let Some((key, _)) = pattern_keys.iter().find(|(_, given)| *given) {
+        ]
+    }
+
+    /// An image map's first problem, or a pattern key written beside it.
+    fn check_image_map(&self, map: &ImageMap) -> Result<(), (&'static str, String)> {
+        if let Some((key, _)) = self.pattern_keys_written().into_iter().find(|(_, given)| *given) {
             return Err((key, "belongs to a `pattern`, not to an `image_map`".into()));
         }
         map.check().map_err(|(key, message)| {
