@@ -36,19 +36,38 @@ pub fn to_unit(h: u64) -> f64 {
     (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-/// The random stream of one sample of one pixel: dimension `d` is `uniform(d)`, equal to
-/// `to_unit(hash4(pixel, sample, d, seed))`. The dimension-free part of the hash is mixed
-/// once, when the stream is made, so each number costs one mix.
+/// The random stream of one sample of one pixel, in two kinds of numbers.
+///
+/// `uniform(d)` is white noise: dimension `d` equals `to_unit(hash4(pixel, sample, d, seed))`
+/// (the dimension-free part of the hash is mixed once, when the stream is made, so each
+/// number costs one mix).
+///
+/// `stratified(d)` and `stratified2(d)` are a padded, shuffled and Owen-scrambled Sobol
+/// sequence over the pixel's samples (Burley, "Practical Hash-based Owen Scrambling", 2020;
+/// pbrt-v4's padded Sobol sampler): each dimension (or pair) of each pixel draws from its own
+/// scrambled copy of Sobol's first two dimensions, a (0, 2)-sequence, at a sample index
+/// shuffled per dimension by a nested scramble. The shuffle maps every aligned block of 2^k
+/// sample indices onto an aligned block of 2^k Sobol points, so the first 2^k samples of a
+/// pixel (or any aligned 2^k of them) hold one point in each elementary interval of area
+/// 2^-k in every pair of a dimension, a stratification that lowers the variance of smooth
+/// integrands well below white noise's, while distinct dimensions stay independent. Each
+/// point is uniform over [0, 1)^2 on its own, so estimates stay unbiased, and it is a pure
+/// function of (pixel, sample, dimension, seed) like the rest.
 #[derive(Clone, Copy, Debug)]
 pub struct SampleStream {
     key: u64,
+    /// Hash of the pixel and seed, without the sample: the scrambles of a dimension are the
+    /// same for all samples of a pixel, as a stratified sequence needs.
+    pixel_key: u64,
+    /// The sample index within the pixel (its low 32 bits index the Sobol sequence).
+    sample: u32,
 }
 
 impl SampleStream {
     /// The stream of sample `sample` of pixel `pixel` (any 64-bit pixel key) under `seed`.
     #[inline]
     pub fn new(pixel: u64, sample: u64, seed: u64) -> Self {
-        Self { key: stream_key(pixel, sample, seed) }
+        Self { key: stream_key(pixel, sample, seed), pixel_key: stream_key(pixel, u64::MAX, seed), sample: sample as u32 }
     }
 
     /// Uniform in [0, 1) for dimension `d`.
@@ -62,6 +81,48 @@ impl SampleStream {
     pub fn uniform2(&self, d: u64) -> DVec2 {
         DVec2::new(self.uniform(d), self.uniform(d + 1))
     }
+
+    /// The Sobol index of this sample in dimension `d`'s shuffle, and the dimension's hash.
+    #[inline]
+    fn shuffled(&self, d: u64) -> (u32, u64) {
+        let hash = hash_dimension(self.pixel_key, d);
+        (nested_uniform_scramble(self.sample, hash as u32), hash)
+    }
+
+    /// Uniform in [0, 1) for dimension `d`, stratified over the pixel's samples: the scrambled
+    /// van der Corput sequence.
+    #[inline]
+    pub fn stratified(&self, d: u64) -> f64 {
+        let (index, hash) = self.shuffled(d);
+        // The van der Corput point of `index` has the bits of `index` reversed.
+        fraction(owen_scramble_reversed(index, (hash >> 32) as u32))
+    }
+
+    /// A point of [0, 1)^2 for dimensions `d` and `d + 1`, stratified over the pixel's
+    /// samples as a pair: the scrambled (0, 2)-sequence.
+    #[inline]
+    pub fn stratified2(&self, d: u64) -> DVec2 {
+        let (index, hash) = self.shuffled(d);
+        let y_seed = mix64(hash) as u32;
+        DVec2::new(
+            fraction(owen_scramble_reversed(index, (hash >> 32) as u32)),
+            fraction(owen_scramble_reversed(sobol(index, 1).reverse_bits(), y_seed)),
+        )
+    }
+}
+
+/// A nested uniform (Owen) scramble of the bits of `x` keyed by `seed`: each output bit is
+/// its input bit flipped by a function of the bits above it. Applied to sample indices, it
+/// permutes every aligned block of 2^k indices among the aligned blocks of 2^k.
+#[inline]
+fn nested_uniform_scramble(x: u32, seed: u32) -> u32 {
+    owen_scramble_reversed(x.reverse_bits(), seed)
+}
+
+/// A 32-bit fraction to [0, 1).
+#[inline]
+fn fraction(bits: u32) -> f64 {
+    f64::from(bits) * FRACTION_SCALE
 }
 
 /// Kensler's permutation of `i` in [0, l) keyed by `p` ("Correlated Multi-Jittered
@@ -388,17 +449,13 @@ const fn sobol_directions() -> [[u32; 32]; 4] {
 
 /// Coordinate `dimension` (0..4) of point `index` of the Sobol sequence, as 32 bits of a
 /// fraction.
+#[inline]
 fn sobol(index: u32, dimension: usize) -> u32 {
     let columns = &SOBOL_DIRECTIONS[dimension];
-    let mut bits = index;
     let mut value = 0;
-    let mut column = 0;
-    while bits != 0 {
-        if bits & 1 == 1 {
-            value ^= columns[column];
-        }
-        bits >>= 1;
-        column += 1;
+    for (bit, column) in columns.iter().enumerate() {
+        // Branch-free: scrambled indices have about half their 32 bits set, at random.
+        value ^= column & 0u32.wrapping_sub((index >> bit) & 1);
     }
     value
 }
@@ -469,7 +526,7 @@ impl ProgressivePattern {
 
     #[inline]
     fn coordinate(&self, dimension: usize) -> f64 {
-        f64::from(owen_scramble_reversed(self.sobol_reversed[dimension], self.seeds[dimension])) * FRACTION_SCALE
+        fraction(owen_scramble_reversed(self.sobol_reversed[dimension], self.seeds[dimension]))
     }
 
     /// The offset of the current point in [0, 1)^2.
@@ -714,6 +771,91 @@ mod tests {
                 assert_eq!(fresh.sobol_reversed, stepped.sobol_reversed, "point {i}");
             }
             assert_eq!((stepped.offset(), stepped.lens()), (fresh.offset(), fresh.lens()), "point {i}");
+        }
+    }
+
+    /// Whether `points` hold exactly one point in each elementary interval of area
+    /// 1 / points.len() (a power of two): a (0, k, 2)-net.
+    fn is_net(points: &[DVec2]) -> bool {
+        let n = points.len() as u32;
+        let k = n.trailing_zeros();
+        (0..=k).all(|columns_log| {
+            let (columns, rows) = (1u32 << columns_log, 1u32 << (k - columns_log));
+            let mut cells = vec![0u32; n as usize];
+            for p in points {
+                let cell = (p.x * f64::from(columns)) as u32 * rows + (p.y * f64::from(rows)) as u32;
+                cells[cell as usize] += 1;
+            }
+            cells.iter().all(|&c| c == 1)
+        })
+    }
+
+    /// In every dimension pair of every pixel, the first 2^k samples and every aligned block
+    /// of 2^k are a (0, k, 2)-net, and in every single dimension they fill the 2^k strata of
+    /// [0, 1) once each.
+    #[test]
+    fn stratified_streams_are_nets_at_every_power_of_two() {
+        for pixel in 0..12u64 {
+            for d in [0u64, 5, 13, 1000] {
+                for k in 0..=9u32 {
+                    let n = 1u64 << k;
+                    for start in [0, n, 5 * n] {
+                        let streams: Vec<SampleStream> = (start..start + n).map(|s| SampleStream::new(pixel, s, 3)).collect();
+                        let pairs: Vec<DVec2> = streams.iter().map(|s| s.stratified2(d)).collect();
+                        assert!(pairs.iter().all(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y)));
+                        assert!(is_net(&pairs), "pixel {pixel}, dimension {d}, 2^{k} samples from {start}");
+                        let mut strata = vec![0u32; n as usize];
+                        for s in &streams {
+                            strata[(s.stratified(d) * n as f64) as usize] += 1;
+                        }
+                        assert!(strata.iter().all(|&c| c == 1), "pixel {pixel}, dimension {d}, 2^{k} from {start}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Distinct dimensions of a pixel are independent: over 4,096 samples of one pixel, pairs
+    /// of stratified numbers from two dimensions (and a number against a pair's coordinate)
+    /// fill a grid as independent uniforms would. Scrambling without the per-dimension shuffle
+    /// would fail: every dimension would share its first bits' strata.
+    #[test]
+    fn stratified_dimensions_are_independent() {
+        use crate::test_support::chi2::assert_fits;
+        let cells = 8usize;
+        let samples = 4096u64;
+        for pixel in [0u64, 17, 999] {
+            let mut ones = vec![0f64; cells * cells];
+            let mut pairs = vec![0f64; cells * cells];
+            for s in 0..samples {
+                let stream = SampleStream::new(pixel, s, 11);
+                let cell = |u: f64| (u * cells as f64) as usize;
+                ones[cell(stream.stratified(4)) * cells + cell(stream.stratified(7))] += 1.0;
+                pairs[cell(stream.stratified2(8).y) * cells + cell(stream.stratified2(12).x)] += 1.0;
+            }
+            let expected = vec![samples as f64 / (cells * cells) as f64; cells * cells];
+            assert_fits(&format!("pixel {pixel}, dimensions 4 and 7"), &ones, &expected, 1e-4);
+            assert_fits(&format!("pixel {pixel}, pairs 8 and 12"), &pairs, &expected, 1e-4);
+        }
+    }
+
+    /// Over pixels, each sample's stratified numbers are uniform (chi-square over a grid).
+    #[test]
+    fn stratified_samples_are_uniform_over_pixels() {
+        use crate::test_support::chi2::assert_fits;
+        let cells = 8usize;
+        let pixels = 20_000u64;
+        for sample in [0u64, 1, 6, 255] {
+            let mut pairs = vec![0f64; cells * cells];
+            let mut ones = vec![0f64; cells];
+            for pixel in 0..pixels {
+                let stream = SampleStream::new(pixel, sample, 5);
+                let p = stream.stratified2(20);
+                pairs[(p.x * cells as f64) as usize * cells + (p.y * cells as f64) as usize] += 1.0;
+                ones[(stream.stratified(21) * cells as f64) as usize] += 1.0;
+            }
+            assert_fits(&format!("sample {sample}'s pair"), &pairs, &vec![pixels as f64 / 64.0; 64], 1e-4);
+            assert_fits(&format!("sample {sample}'s number"), &ones, &vec![pixels as f64 / 8.0; 8], 1e-4);
         }
     }
 

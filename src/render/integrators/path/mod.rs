@@ -5,7 +5,8 @@
 //! Path length follows Mitsuba 3: `max_depth` counts segments, the camera ray's being the
 //! first, so `max_depth = 1` shows only emitters seen directly. Every random number of a
 //! path comes from its sample's stream at fixed dimensions per bounce, so the image is a pure
-//! function of (pixel, sample, dimension, seed).
+//! function of (pixel, sample, dimension, seed); the numbers are stratified over each pixel's
+//! samples (padded Owen-scrambled Sobol, [`SampleStream::stratified2`]).
 
 pub mod light_sampler;
 pub mod scatter;
@@ -211,8 +212,8 @@ impl<'a> Path<'a> {
                     scene,
                     &self.environment,
                     reference,
-                    stream.uniform(base),
-                    stream.uniform2(base + 1),
+                    stream.stratified(base),
+                    stream.stratified2(base + 1),
                 );
                 if let Some(sample) = sample {
                     rays += 1;
@@ -221,7 +222,7 @@ impl<'a> Path<'a> {
             }
 
             // Continue the path by sampling the scattering.
-            let Some(s) = scatter.sample(wo, stream.uniform(base + 3), stream.uniform2(base + 4)) else { break };
+            let Some(s) = scatter.sample(wo, stream.stratified(base + 3), stream.stratified2(base + 4)) else { break };
             if !(s.weight.is_finite() && s.weight.max_element() > 0.0) {
                 break;
             }
@@ -234,7 +235,7 @@ impl<'a> Path<'a> {
             depth += 1;
             if depth > rr_depth {
                 let survival = throughput.max_element().min(MAX_SURVIVAL);
-                if stream.uniform(base + 6) >= survival {
+                if stream.stratified(base + 6) >= survival {
                     break;
                 }
                 throughput /= survival;
