@@ -5,7 +5,11 @@
 use std::sync::{Arc, OnceLock};
 
 use glam::{DVec2, DVec3, Vec2, Vec3, Vec4};
-use prism_api::{Aabb, AreaSample, Hit, Ray, Shape, Surface};
+use prism_api::math::area_to_solid_angle;
+use prism_api::{
+    Aabb, AreaSample, DirectionSample, Hit, Ray, Shape, Surface, pdf_toward_by_area, sample_toward_by_area,
+    sample_toward_flat,
+};
 
 use crate::accel::mesh_bvh::TriangleBvh;
 use crate::accel::triangle::{WatertightRay, mesh_hit, plane_t};
@@ -158,6 +162,7 @@ impl MeshBuilder {
             }
             area += 0.5 * (t[1] - t[0]).as_dvec3().cross((t[2] - t[0]).as_dvec3()).length();
         }
+        let plane_normal = plane_normal(&corners);
         Ok(MeshData {
             positions: self.positions,
             normals: self.normals,
@@ -167,9 +172,23 @@ impl MeshBuilder {
             bvh,
             bounds,
             area,
+            plane_normal,
             area_cdf: OnceLock::new(),
         })
     }
+}
+
+/// The unit normal of the plane through every corner of `corners`, if there is one: the
+/// largest triangle's normal, when every corner lies within rounding (1e-6 of the largest
+/// coordinate, well above f32 positions' 6e-8) of its plane.
+fn plane_normal(corners: &[[Vec3; 3]]) -> Option<DVec3> {
+    let cross = |t: &[Vec3; 3]| (t[1] - t[0]).as_dvec3().cross((t[2] - t[0]).as_dvec3());
+    let largest = corners.iter().max_by(|a, b| cross(a).length_squared().total_cmp(&cross(b).length_squared()))?;
+    let normal = cross(largest).try_normalize()?;
+    let offset = normal.dot(largest[0].as_dvec3());
+    let scale = corners.iter().flatten().fold(0f64, |m, p| m.max(f64::from(p.abs().max_element())));
+    let tolerance = 1e-6 * scale;
+    corners.iter().flatten().all(|p| (normal.dot(p.as_dvec3()) - offset).abs() <= tolerance).then_some(normal)
 }
 
 /// An immutable triangle mesh with its BVH: shared (`Arc`) by every instance.
@@ -184,6 +203,9 @@ pub struct MeshData {
     bvh: TriangleBvh,
     bounds: Aabb,
     area: f64,
+    /// The unit normal of the plane holding every triangle, when the mesh is flat (a quad
+    /// light): a ray then crosses it at most once.
+    plane_normal: Option<DVec3>,
     /// Cumulative triangle areas, built the first time a point is sampled.
     area_cdf: OnceLock<Vec<f64>>,
 }
@@ -338,6 +360,11 @@ impl MeshShape {
     /// surface (the shading-normal terminator; see `shading_normal_for_view`).
     fn shading_normal(&self, ray: &Ray, tri: &[u32; 3], b: (f64, f64), ng: DVec3, uv: DVec2) -> DVec3 {
         let d = &self.data;
+        let normal_map = self.maps.as_ref().and_then(|m| m.normal_map.as_ref());
+        if d.normals.is_empty() && normal_map.is_none() {
+            // Flat shading: the view cannot bend a normal that is the geometric one.
+            return ng;
+        }
         let (b1, b2) = b;
         let b0 = 1.0 - b1 - b2;
         let mut ns = if d.normals.is_empty() {
@@ -352,7 +379,7 @@ impl MeshShape {
         if ns.dot(ng) < 0.0 {
             ns = -ns;
         }
-        if let Some(map) = self.maps.as_ref().and_then(|m| m.normal_map.as_ref())
+        if let Some(map) = normal_map
             && let Some(perturbed) = self.normal_mapped(map, tri, b, ns, uv)
         {
             ns = perturbed;
@@ -546,7 +573,25 @@ impl Shape for MeshShape {
         let su = ux.sqrt();
         let point = a * (1.0 - su) + b * (su * (1.0 - u.y)) + c * (su * u.y);
         let normal = (b - a).cross(c - a).normalize_or(DVec3::Z);
-        Some(AreaSample { point, normal, pdf_area: 1.0 / total })
+        // The density `pdf_area` and `pdf_toward` report, from the same total.
+        Some(AreaSample { point, normal, pdf_area: 1.0 / self.data.area })
+    }
+
+    fn sample_toward(&self, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
+        if self.data.plane_normal.is_some() {
+            sample_toward_flat(self, reference, u)
+        } else {
+            sample_toward_by_area(self, reference, u)
+        }
+    }
+
+    fn pdf_toward(&self, reference: DVec3, direction: DVec3) -> f64 {
+        let Some(normal) = self.data.plane_normal else { return pdf_toward_by_area(self, reference, direction) };
+        // One crossing at most: the density of the point it hits.
+        let ray = Ray::new(reference, direction);
+        self.intersect(&ray, 0.0, f64::INFINITY).map_or(0.0, |hit| {
+            area_to_solid_angle(1.0 / self.data.area, reference, ray.at(hit.t), normal)
+        })
     }
 
     fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
@@ -725,6 +770,45 @@ mod tests {
         assert!(shape.intersect(&Ray::new(DVec3::new(0.25, 0.5, 1.0), down), 1e-9, f64::INFINITY).is_none());
         assert!(shape.intersect(&Ray::new(DVec3::new(0.75, 0.5, 1.0), down), 1e-9, f64::INFINITY).is_some());
         assert!(!shape.occluded(&Ray::new(DVec3::new(0.25, 0.5, 1.0), down), 1e-9, f64::INFINITY));
+    }
+
+    /// A flat mesh (a quad light, here tilted so that f32 rounding leaves its corners off
+    /// the exact plane) samples directions as a flat shape, with the densities the general
+    /// crossing-by-crossing sum gives; a closed or bent mesh is not flat.
+    #[test]
+    fn flat_meshes_sample_directions_as_flat_shapes() {
+        let (u, v) = (DVec3::new(0.8, 0.36, -0.48), DVec3::new(0.0, 0.8, 0.6));
+        let corner = |a: f64, b: f64| (DVec3::new(1.0, 2.0, 3.0) + u * a + v * b).as_vec3();
+        let quad = MeshBuilder {
+            positions: vec![corner(0.0, 0.0), corner(2.0, 0.0), corner(2.0, 1.5), corner(0.0, 1.5)],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            ..MeshBuilder::default()
+        }
+        .build()
+        .unwrap();
+        let normal = quad.plane_normal.expect("flat");
+        assert!(normal.dot(u.cross(v)).abs() > 1.0 - 1e-6);
+        let shape = MeshShape::new(Arc::new(quad));
+        for (i, reference) in [DVec3::new(0.0, 0.0, 10.0), DVec3::new(3.0, -2.0, -4.0)].into_iter().enumerate() {
+            for k in 0..50 {
+                let sample_u = DVec2::new(f64::from(k) / 50.0 + 0.01, f64::from(k * 7 % 50) / 50.0 + 0.01);
+                let sample = shape.sample_toward(reference, sample_u).expect("visible");
+                let direction = sample.point - reference;
+                let general = pdf_toward_by_area(&shape, reference, direction);
+                for pdf in [sample.pdf_solid_angle, shape.pdf_toward(reference, direction)] {
+                    assert!((pdf / general - 1.0).abs() < 1e-6, "reference {i}, sample {k}: {pdf} vs {general}");
+                }
+            }
+            assert_eq!(shape.pdf_toward(reference, DVec3::new(0.0, 0.0, 1.0) - reference * 2.0), 0.0);
+        }
+        let bent = MeshBuilder {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.01), Vec3::Y],
+            triangles: vec![[0, 1, 2], [0, 2, 3]],
+            ..MeshBuilder::default()
+        }
+        .build()
+        .unwrap();
+        assert!(bent.plane_normal.is_none() && square().plane_normal.is_some());
     }
 
     #[test]

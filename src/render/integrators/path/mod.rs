@@ -273,7 +273,7 @@ impl<'a> Path<'a> {
                 }
                 f * irradiance
             }
-            LightSample::Emitter { primitive, direction, pdf } => {
+            LightSample::Emitter { primitive, direction, normal, pdf } => {
                 let wi = frame.to_local(direction);
                 let f = scatter.eval(wo, wi);
                 if f.max_element() <= 0.0 {
@@ -292,8 +292,14 @@ impl<'a> Path<'a> {
                 if hit.primitive != primitive {
                     return DVec3::ZERO;
                 }
-                let light_vertex = self.vertex(&ray, &hit);
-                let emitted = self.emitted(&light_vertex, -direction);
+                let material = &self.materials[self.scene.primitives[primitive as usize].material_at(&hit.hit) as usize];
+                let emitted = match material.uniform_emission() {
+                    // The sampled point is the nearest crossing the ray hit: its normal tells
+                    // the side.
+                    Some(radiance) if material.emits_both_sides() || normal.dot(direction) < 0.0 => radiance,
+                    Some(_) => return DVec3::ZERO,
+                    None => self.emitted(&self.vertex(&ray, &hit), -direction),
+                };
                 let weight = power_heuristic(pdf, scatter.pdf(wo, wi));
                 f * emitted * (weight / pdf)
             }

@@ -209,6 +209,9 @@ fn oriented(two_sided: bool, wo: DVec3, wi: DVec3) -> (DVec3, DVec3) {
 #[derive(Clone, Debug)]
 pub struct PathMaterial {
     material: Material,
+    /// The emitted radiance when it is the same at every point (see
+    /// [`PathMaterial::uniform_emission`]).
+    uniform_emission: Option<DVec3>,
 }
 
 /// What a hit needs to know besides the scattering: the surface colour (for emission).
@@ -231,7 +234,19 @@ fn rgb_of(v: glam::Vec4) -> DVec3 {
 impl PathMaterial {
     /// The path integrator's view of `material`.
     pub fn new(material: &Material) -> Self {
-        Self { material: material.clone() }
+        let mut path_material = Self { material: material.clone(), uniform_emission: None };
+        let e = &material.emission;
+        let patterned = match &material.surface {
+            SurfaceModel::Finish(f) => f.pigment.is_some(),
+            SurfaceModel::Layered(_) => true,
+            _ => false,
+        };
+        let uniform_color = !patterned && !material.is_textured();
+        if e.texture.is_none() && (e.times_color.0 == DVec3::ZERO || uniform_color) {
+            let anywhere = SurfacePoint { uv: DVec2::ZERO, object_point: DVec3::ZERO };
+            path_material.uniform_emission = Some(path_material.emitted(&anywhere));
+        }
+        path_material
     }
 
     /// True when shading reads the surface's uv (an image drives some parameter).
@@ -242,6 +257,13 @@ impl PathMaterial {
     /// True when a surface of this material may emit.
     pub fn can_emit(&self) -> bool {
         self.material.emission.can_emit()
+    }
+
+    /// The emitted radiance, W/(m^2 sr), when it is the same all over the surface (no
+    /// emission texture and no pattern or texture in a colour it is a multiple of): emitter
+    /// hits then need no surface point.
+    pub fn uniform_emission(&self) -> Option<DVec3> {
+        self.uniform_emission
     }
 
     /// True when the surface emits from both sides.
