@@ -589,9 +589,8 @@ impl Shape for MeshShape {
         let Some(normal) = self.data.plane_normal else { return pdf_toward_by_area(self, reference, direction) };
         // One crossing at most: the density of the point it hits.
         let ray = Ray::new(reference, direction);
-        self.intersect(&ray, 0.0, f64::INFINITY).map_or(0.0, |hit| {
-            area_to_solid_angle(1.0 / self.data.area, reference, ray.at(hit.t), normal)
-        })
+        self.intersect(&ray, 0.0, f64::INFINITY)
+            .map_or(0.0, |hit| area_to_solid_angle(1.0 / self.data.area, reference, ray.at(hit.t), normal))
     }
 
     fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {

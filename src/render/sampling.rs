@@ -67,7 +67,11 @@ impl SampleStream {
     /// The stream of sample `sample` of pixel `pixel` (any 64-bit pixel key) under `seed`.
     #[inline]
     pub fn new(pixel: u64, sample: u64, seed: u64) -> Self {
-        Self { key: stream_key(pixel, sample, seed), pixel_key: stream_key(pixel, u64::MAX, seed), sample: sample as u32 }
+        Self {
+            key: stream_key(pixel, sample, seed),
+            pixel_key: stream_key(pixel, u64::MAX, seed),
+            sample: sample as u32,
+        }
     }
 
     /// Uniform in [0, 1) for dimension `d`.
@@ -800,7 +804,8 @@ mod tests {
                 for k in 0..=9u32 {
                     let n = 1u64 << k;
                     for start in [0, n, 5 * n] {
-                        let streams: Vec<SampleStream> = (start..start + n).map(|s| SampleStream::new(pixel, s, 3)).collect();
+                        let streams: Vec<SampleStream> =
+                            (start..start + n).map(|s| SampleStream::new(pixel, s, 3)).collect();
                         let pairs: Vec<DVec2> = streams.iter().map(|s| s.stratified2(d)).collect();
                         assert!(pairs.iter().all(|p| (0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y)));
                         assert!(is_net(&pairs), "pixel {pixel}, dimension {d}, 2^{k} samples from {start}");
@@ -854,8 +859,8 @@ mod tests {
                 pairs[(p.x * cells as f64) as usize * cells + (p.y * cells as f64) as usize] += 1.0;
                 ones[(stream.stratified(21) * cells as f64) as usize] += 1.0;
             }
-            assert_fits(&format!("sample {sample}'s pair"), &pairs, &vec![pixels as f64 / 64.0; 64], 1e-4);
-            assert_fits(&format!("sample {sample}'s number"), &ones, &vec![pixels as f64 / 8.0; 8], 1e-4);
+            assert_fits(&format!("sample {sample}'s pair"), &pairs, &[pixels as f64 / 64.0; 64], 1e-4);
+            assert_fits(&format!("sample {sample}'s number"), &ones, &[pixels as f64 / 8.0; 8], 1e-4);
         }
     }
 

@@ -292,7 +292,8 @@ impl<'a> Path<'a> {
                 if hit.primitive != primitive {
                     return DVec3::ZERO;
                 }
-                let material = &self.materials[self.scene.primitives[primitive as usize].material_at(&hit.hit) as usize];
+                let material =
+                    &self.materials[self.scene.primitives[primitive as usize].material_at(&hit.hit) as usize];
                 let emitted = match material.uniform_emission() {
                     // The sampled point is the nearest crossing the ray hit: its normal tells
                     // the side.
