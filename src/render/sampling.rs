@@ -110,7 +110,7 @@ impl SampleStream {
         let y_seed = mix64(hash) as u32;
         DVec2::new(
             fraction(owen_scramble_reversed(index, (hash >> 32) as u32)),
-            fraction(owen_scramble_reversed(sobol(index, 1).reverse_bits(), y_seed)),
+            fraction(owen_scramble_reversed(sobol_second(index).reverse_bits(), y_seed)),
         )
     }
 }
@@ -462,6 +462,42 @@ fn sobol(index: u32, dimension: usize) -> u32 {
         value ^= column & 0u32.wrapping_sub((index >> bit) & 1);
     }
     value
+}
+
+/// [`sobol`]`(index, 1)` from four table lookups, one per byte of the index: the sequence
+/// is linear over GF(2), so each byte's share is a fixed XOR of its direction numbers.
+#[inline]
+fn sobol_second(index: u32) -> u32 {
+    let [b0, b1, b2, b3] = index.to_le_bytes();
+    SOBOL_SECOND_BYTES[0][b0 as usize]
+        ^ SOBOL_SECOND_BYTES[1][b1 as usize]
+        ^ SOBOL_SECOND_BYTES[2][b2 as usize]
+        ^ SOBOL_SECOND_BYTES[3][b3 as usize]
+}
+
+/// `SOBOL_SECOND_BYTES[k][b]`: Sobol's second coordinate of the index `b << 8k`.
+const SOBOL_SECOND_BYTES: [[u32; 256]; 4] = sobol_second_bytes();
+
+const fn sobol_second_bytes() -> [[u32; 256]; 4] {
+    let mut table = [[0u32; 256]; 4];
+    let mut k = 0;
+    while k < 4 {
+        let mut b = 0;
+        while b < 256 {
+            let mut value = 0;
+            let mut bit = 0;
+            while bit < 8 {
+                if (b >> bit) & 1 == 1 {
+                    value ^= SOBOL_DIRECTIONS[1][8 * k + bit];
+                }
+                bit += 1;
+            }
+            table[k][b] = value;
+            b += 1;
+        }
+        k += 1;
+    }
+    table
 }
 
 /// An Owen (nested uniform) scramble, keyed by `seed`, of a 32-bit fraction given with its
@@ -861,6 +897,14 @@ mod tests {
             }
             assert_fits(&format!("sample {sample}'s pair"), &pairs, &[pixels as f64 / 64.0; 64], 1e-4);
             assert_fits(&format!("sample {sample}'s number"), &ones, &[pixels as f64 / 8.0; 8], 1e-4);
+        }
+    }
+
+    #[test]
+    fn second_sobol_dimension_from_bytes_equals_the_sum_over_bits() {
+        for i in (0..100_000u32).chain([u32::MAX, 0x8000_0000, 0x1234_5678]) {
+            let index = i.wrapping_mul(0x9E37_79B9);
+            assert_eq!(sobol_second(index), sobol(index, 1), "{index:#x}");
         }
     }
 
