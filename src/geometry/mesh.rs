@@ -458,6 +458,30 @@ impl MeshShape {
         }
     }
 
+    /// The surface at a hit; its uv and uv density only `with_uv` (the shading normal reads
+    /// the uv of a normal map either way).
+    fn surface_at(&self, ray: &Ray, hit: &Hit, with_uv: bool) -> Surface {
+        let d = &self.data;
+        let slot = (hit.part as usize).min(d.triangles.len() - 1);
+        let tri = d.triangles[slot];
+        let [p0, p1, p2] = tri.map(|i| d.positions[i as usize].as_dvec3());
+        let cross = (p1 - p0).cross(p2 - p0);
+        let ng = cross.normalize_or(DVec3::Z);
+        let (b1, b2) = (hit.scratch.x, hit.scratch.y);
+        let normal_mapped = self.maps.as_ref().is_some_and(|m| m.normal_map.is_some());
+        let uv = if with_uv || normal_mapped { d.uv(&tri, b1, b2) } else { DVec2::ZERO };
+        let uv_density = if !with_uv || d.uvs.is_empty() {
+            0.0
+        } else {
+            let [t0, t1, t2] = tri.map(|i| d.uvs[i as usize].as_dvec2());
+            let (e1, e2) = (t1 - t0, t2 - t0);
+            let uv_area = (e1.x * e2.y - e1.y * e2.x).abs();
+            (uv_area / cross.length()).sqrt()
+        };
+        let shading_normal = self.shading_normal(ray, &tri, (b1, b2), ng, uv);
+        Surface { point: ray.at(hit.t), normal: ng, shading_normal, uv, uv_density, dpdu: prism_api::math::tangent(ng) }
+    }
+
     fn area_cdf(&self) -> &[f64] {
         self.data.area_cdf.get_or_init(|| {
             let mut sum = 0.0;
@@ -536,24 +560,11 @@ impl Shape for MeshShape {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
-        let d = &self.data;
-        let slot = (hit.part as usize).min(d.triangles.len() - 1);
-        let tri = d.triangles[slot];
-        let [p0, p1, p2] = tri.map(|i| d.positions[i as usize].as_dvec3());
-        let cross = (p1 - p0).cross(p2 - p0);
-        let ng = cross.normalize_or(DVec3::Z);
-        let (b1, b2) = (hit.scratch.x, hit.scratch.y);
-        let uv = d.uv(&tri, b1, b2);
-        let uv_density = if d.uvs.is_empty() {
-            0.0
-        } else {
-            let [t0, t1, t2] = tri.map(|i| d.uvs[i as usize].as_dvec2());
-            let (e1, e2) = (t1 - t0, t2 - t0);
-            let uv_area = (e1.x * e2.y - e1.y * e2.x).abs();
-            (uv_area / cross.length()).sqrt()
-        };
-        let shading_normal = self.shading_normal(ray, &tri, (b1, b2), ng, uv);
-        Surface { point: ray.at(hit.t), normal: ng, shading_normal, uv, uv_density, dpdu: prism_api::math::tangent(ng) }
+        self.surface_at(ray, hit, true)
+    }
+
+    fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
+        self.surface_at(ray, hit, false)
     }
 
     fn area(&self) -> Option<f64> {
