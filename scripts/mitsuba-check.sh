@@ -7,7 +7,8 @@
 # writes its Mitsuba 3 XML afresh in place (git must see no change to the committed
 # scenes/mitsuba/NAME.xml and NAME_meshes/),
 # Mitsuba renders it with K seeds (scalar_rgb; llvm_ad_rgb for a scene that uses the glTF
-# metallic-roughness plugin of scripts/mitsuba_gltf_bsdf.py) and Prism renders it with K other
+# metallic-roughness plugin of scripts/mitsuba_gltf_bsdf.py or a non-box pixel filter, which
+# the scalar variants discretise) and Prism renders it with K other
 # seeds, both at SPP samples per pixel and the scene's size, and scripts/mitsuba_compare.py
 # decides with a per-pixel Welch t-test (Sidak-corrected) and a whole-image bias bound.
 # A failure leaves the mean, reference, difference and p-value images in the work folder

@@ -6,7 +6,8 @@ Usage: python3 scripts/mitsuba-references.py [--seeds K] [--spp S] [SCENE.xml ..
 For every scenes/mitsuba/NAME.xml (written by `prism export mitsuba`; run
 scripts/mitsuba-check.sh or the exporter first), renders K seeds at S samples per pixel with
 Mitsuba 3 (scalar_rgb, or llvm_ad_rgb for scenes that use the glTF metallic-roughness plugin
-of scripts/mitsuba_gltf_bsdf.py, registered before loading) and writes scenes/mitsuba/refs/NAME.exr (the mean over seeds,
+of scripts/mitsuba_gltf_bsdf.py, registered before loading, and for scenes with a non-box
+pixel filter, which the scalar variants discretise) and writes scenes/mitsuba/refs/NAME.exr (the mean over seeds,
 linear RGB) and scenes/mitsuba/refs/NAME_stderr.exr (the standard error of that mean per
 pixel channel: the sample standard deviation over seeds / sqrt(K)). tests/mitsuba.rs
 compares Prism's renders with them, so `cargo test` checks the path integrator against

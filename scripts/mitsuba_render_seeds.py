@@ -12,7 +12,7 @@ by the pixel count before seeding each pixel's sampler, so consecutive seeds
 give non-overlapping random streams: the K images are independent estimates
 of the same expected image. --spp overrides the scene's sample_count. The
 variant is per scene (`auto`, scripts/mitsuba_gltf_bsdf.py's variant_for):
-scalar_rgb, or llvm_ad_rgb for scenes that use the glTF metallic-roughness
+scalar_rgb, or llvm_ad_rgb for scenes with a non-box pixel filter or that use the glTF metallic-roughness
 plugin, which is registered before loading. Prints the time of each render.
 Exit 2 when the scene cannot be loaded.
 """
