@@ -15,6 +15,7 @@ use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::builder::build_bvh2;
 
+use super::pages::PageArray;
 use super::simd::{self, BoxRay, Dispatch, Kernels};
 use super::triangle::{PACKET, PacketHits, TriangleHit, TrianglePacket, WatertightRay};
 use super::wide::{EMPTY, LeafVisitor, Node, StackEntry, WideTree, with_traversal_stack};
@@ -22,8 +23,8 @@ use super::wide::{EMPTY, LeafVisitor, Node, StackEntry, WideTree, with_traversal
 /// A BVH over triangles.
 #[derive(Clone)]
 pub struct TriangleBvh {
-    nodes: Vec<Node>,
-    packets: Vec<TrianglePacket>,
+    nodes: PageArray<Node>,
+    packets: PageArray<TrianglePacket>,
     /// Vertices of each triangle, in input order (for refining hits in f64).
     triangles: Vec<[Vec3; 3]>,
     /// Deepest stack a traversal can need.
@@ -97,7 +98,7 @@ impl TriangleBvh {
             ..BvhBuildParams::medium_build()
         };
         let bvh2 = build_bvh2(&boxes, params, &mut build_time);
-        // Leaves hold about six triangles; the spare capacity is returned below.
+        // Leaves hold about six triangles.
         let mut packets = Vec::with_capacity(triangles.len() / 2 + 1);
         let tree = WideTree::collapse(&bvh2, PACKET * LEAF_PACKETS, |prims| {
             let first = packets.len() as u32;
@@ -106,8 +107,12 @@ impl TriangleBvh {
             }
             leaf_reference(first, packets.len() as u32 - first)
         });
-        packets.shrink_to_fit();
-        TriangleBvh { nodes: tree.nodes, packets, triangles: triangles.to_vec(), stack_size: tree.stack_size }
+        TriangleBvh {
+            nodes: PageArray::new(tree.nodes),
+            packets: PageArray::new(packets),
+            triangles: triangles.to_vec(),
+            stack_size: tree.stack_size,
+        }
     }
 
     /// Number of triangles.

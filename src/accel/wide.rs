@@ -271,6 +271,7 @@ impl WideTree {
         let estimate = bvh2.primitive_indices.len() / (WIDTH * leaf_size.max(1)) * 2 + 1;
         let mut collapse = Collapse {
             bvh2,
+            counts: subtree_counts(bvh2),
             leaf_size,
             make_leaf,
             prims: Vec::with_capacity(leaf_size.max(8)),
@@ -293,6 +294,8 @@ impl WideTree {
 /// The state of one collapse: the binary tree, the leaf policy, and the wide nodes so far.
 struct Collapse<'a, F> {
     bvh2: &'a obvhs::bvh2::Bvh2,
+    /// Primitives under each binary node.
+    counts: Vec<u32>,
     leaf_size: usize,
     make_leaf: F,
     /// Scratch: the primitives of the leaf being made.
@@ -306,7 +309,7 @@ impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
     /// True when binary node `index` is an inner node over more than `leaf_size` primitives
     /// (a binary leaf is never opened: its `first_index` points at primitives).
     fn openable(&self, index: usize) -> bool {
-        self.bvh2.nodes[index].prim_count == 0 && count_above(self.bvh2, index, self.leaf_size) > self.leaf_size
+        self.bvh2.nodes[index].prim_count == 0 && self.counts[index] as usize > self.leaf_size
     }
 
     /// Makes the leaf of the primitives under binary node `index`.
@@ -358,19 +361,30 @@ impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
     }
 }
 
-/// The number of primitives under BVH2 node `index` if at most `cap`, else some number
-/// above `cap` (counting stops there, so small subtrees are cheap to test).
-fn count_above(bvh2: &obvhs::bvh2::Bvh2, index: usize, cap: usize) -> usize {
-    let node = &bvh2.nodes[index];
-    if node.prim_count > 0 {
-        return node.prim_count as usize;
+/// The number of primitives under each node of `bvh2`, in one pass: nodes in depth-first
+/// order, then counted from the last (whose children all come after it) to the first.
+fn subtree_counts(bvh2: &obvhs::bvh2::Bvh2) -> Vec<u32> {
+    let nodes = &bvh2.nodes;
+    let mut counts = vec![0u32; nodes.len()];
+    let mut order = Vec::with_capacity(nodes.len());
+    let mut stack = vec![0u32];
+    while let Some(index) = stack.pop() {
+        order.push(index);
+        let node = &nodes[index as usize];
+        if node.prim_count == 0 {
+            stack.push(node.first_index);
+            stack.push(node.first_index + 1);
+        }
     }
-    let first = node.first_index as usize;
-    let a = count_above(bvh2, first, cap);
-    if a > cap {
-        return a;
+    for &index in order.iter().rev() {
+        let node = &nodes[index as usize];
+        counts[index as usize] = if node.prim_count > 0 {
+            node.prim_count
+        } else {
+            counts[node.first_index as usize] + counts[node.first_index as usize + 1]
+        };
     }
-    a + count_above(bvh2, first + 1, cap - a)
+    counts
 }
 
 /// Appends the primitives under BVH2 node `index` to `out`.

@@ -1,0 +1,169 @@
+//! Large read-only arrays on 2 MiB pages: the nodes and leaves of a mesh BVH.
+//!
+//! Incoherent rays touch a tree of tens of megabytes at random, and with 4 KiB pages
+//! nearly every node they load also misses the TLB (a few thousand entries cover a few
+//! megabytes), so each cache miss costs a page walk too. Embree asks Linux for
+//! transparent huge pages for its BVH memory; [`PageArray`] does the same: on Linux, an
+//! array of at least [`HUGE_PAGE`] bytes is copied into its own anonymous mapping, marked
+//! `MADV_HUGEPAGE` before it is first touched, so the kernel backs it with 2 MiB pages
+//! where transparent huge pages are enabled (`always` or `madvise`). Elsewhere, when the
+//! mapping fails, and for small arrays it is a plain `Vec`. The contents are the same
+//! either way: only the speed differs.
+
+use std::ops::Deref;
+
+/// The huge page size the mapping is aligned to (x86-64 and aarch64 with 4 KiB base pages).
+pub const HUGE_PAGE: usize = 2 << 20;
+
+/// An immutable array of `T`, on huge pages where the system gives them.
+pub struct PageArray<T: Copy> {
+    storage: Storage<T>,
+}
+
+enum Storage<T: Copy> {
+    Heap(Vec<T>),
+    #[cfg(target_os = "linux")]
+    Mapped(mapped::Mapping<T>),
+}
+
+impl<T: Copy> PageArray<T> {
+    /// The array holding `items` (copied to huge pages when it is large, kept otherwise).
+    pub fn new(items: Vec<T>) -> Self {
+        #[cfg(target_os = "linux")]
+        if std::mem::size_of_val(items.as_slice()) >= HUGE_PAGE
+            && let Some(mapping) = mapped::Mapping::copy_of(&items)
+        {
+            return Self { storage: Storage::Mapped(mapping) };
+        }
+        Self { storage: Storage::Heap(items) }
+    }
+
+    /// True when the array lives in its own huge-page mapping.
+    #[cfg(test)]
+    pub fn is_mapped(&self) -> bool {
+        !matches!(self.storage, Storage::Heap(_))
+    }
+}
+
+impl<T: Copy> Deref for PageArray<T> {
+    type Target = [T];
+
+    #[inline(always)]
+    fn deref(&self) -> &[T] {
+        match &self.storage {
+            Storage::Heap(items) => items,
+            #[cfg(target_os = "linux")]
+            Storage::Mapped(mapping) => mapping.as_slice(),
+        }
+    }
+}
+
+impl<T: Copy> Clone for PageArray<T> {
+    fn clone(&self) -> Self {
+        Self::new(self.to_vec())
+    }
+}
+
+impl<T: Copy + std::fmt::Debug> std::fmt::Debug for PageArray<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+#[cfg(target_os = "linux")]
+mod mapped {
+    use std::ptr::NonNull;
+
+    use super::HUGE_PAGE;
+
+    /// `len` values of `T` at the start of an anonymous private mapping of `bytes` bytes.
+    pub struct Mapping<T> {
+        ptr: NonNull<T>,
+        len: usize,
+        bytes: usize,
+    }
+
+    // SAFETY: the mapping is owned by this value alone and never written after `copy_of`
+    // returns, so sharing or moving it across threads is as safe as for a `Box<[T]>`.
+    unsafe impl<T: Send> Send for Mapping<T> {}
+    // SAFETY: as above; shared access is read-only.
+    unsafe impl<T: Sync> Sync for Mapping<T> {}
+
+    impl<T: Copy> Mapping<T> {
+        /// A new mapping holding a copy of `items`; `None` when the system refuses one.
+        pub fn copy_of(items: &[T]) -> Option<Self> {
+            let size = std::mem::size_of_val(items);
+            if size == 0 || std::mem::align_of::<T>() > 4096 {
+                return None;
+            }
+            // Whole huge pages, plus one so a 2 MiB-aligned start can be chosen.
+            let bytes = size.div_ceil(HUGE_PAGE).checked_add(1)?.checked_mul(HUGE_PAGE)?;
+            // SAFETY: an anonymous private mapping at an address of the kernel's choosing
+            // touches no existing memory; failure is reported as MAP_FAILED.
+            let base = unsafe {
+                libc::mmap(
+                    std::ptr::null_mut(),
+                    bytes,
+                    libc::PROT_READ | libc::PROT_WRITE,
+                    libc::MAP_PRIVATE | libc::MAP_ANONYMOUS,
+                    -1,
+                    0,
+                )
+            };
+            if base == libc::MAP_FAILED {
+                return None;
+            }
+            // Give the unaligned head back, so the array starts on a huge page boundary.
+            let head = (HUGE_PAGE - base as usize % HUGE_PAGE) % HUGE_PAGE;
+            let start = base.cast::<u8>().wrapping_add(head);
+            let bytes = bytes - head;
+            if head > 0 {
+                // SAFETY: `base..base + head` is the start of the mapping made above, which
+                // nothing refers to. A failed unmap only leaves those pages mapped.
+                unsafe { libc::munmap(base, head) };
+            }
+            // SAFETY: `start..start + bytes` is mapped and ours. The advice is a hint: when
+            // transparent huge pages are off it fails and the array keeps 4 KiB pages.
+            unsafe { libc::madvise(start.cast(), bytes, libc::MADV_HUGEPAGE) };
+            let ptr = NonNull::new(start.cast::<T>())?;
+            // SAFETY: the mapping holds at least `size` writable bytes at `start`, which is
+            // aligned to 2 MiB (so to `T`), and does not overlap `items`.
+            unsafe { std::ptr::copy_nonoverlapping(items.as_ptr(), ptr.as_ptr(), items.len()) };
+            Some(Self { ptr, len: items.len(), bytes })
+        }
+
+        #[inline(always)]
+        pub fn as_slice(&self) -> &[T] {
+            // SAFETY: `ptr` points at `len` initialised values of `T` that live as long as
+            // `self` and are never written again.
+            unsafe { std::slice::from_raw_parts(self.ptr.as_ptr(), self.len) }
+        }
+    }
+
+    impl<T> Drop for Mapping<T> {
+        fn drop(&mut self) {
+            // SAFETY: `ptr..ptr + bytes` is the part of the mapping `copy_of` kept, and no
+            // reference into it outlives `self`. `T: Copy` has no destructor to run.
+            unsafe { libc::munmap(self.ptr.as_ptr().cast(), self.bytes) };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_and_large_arrays_keep_their_contents() {
+        for len in [0usize, 1, 1000, 3 * HUGE_PAGE / 8 + 5] {
+            let items: Vec<u64> = (0..len as u64).map(|i| i.wrapping_mul(0x9E37_79B9_7F4A_7C15)).collect();
+            let array = PageArray::new(items.clone());
+            assert_eq!(&array[..], &items[..]);
+            assert_eq!(&array.clone()[..], &items[..]);
+            if cfg!(target_os = "linux") && len * 8 >= HUGE_PAGE {
+                assert!(array.is_mapped());
+                assert_eq!(array.as_ptr() as usize % HUGE_PAGE, 0);
+            }
+        }
+    }
+}
