@@ -6,9 +6,10 @@
 //! transparent huge pages for its BVH memory; [`PageArray`] does the same: on Linux, an
 //! array of at least [`HUGE_PAGE`] bytes is copied into its own anonymous mapping, marked
 //! `MADV_HUGEPAGE` before it is first touched, so the kernel backs it with 2 MiB pages
-//! where transparent huge pages are enabled (`always` or `madvise`). Elsewhere, when the
-//! mapping fails, and for small arrays it is a plain `Vec`. The contents are the same
-//! either way: only the speed differs.
+//! where transparent huge pages are enabled (`always` or `madvise`). A [`PageBuffer`]
+//! fills such a mapping directly, push by push, so a large array is written once, with no
+//! 4 KiB page faults and no copy. Elsewhere, when the mapping fails, and for small arrays
+//! it is a plain `Vec`. The contents are the same either way: only the speed differs.
 
 use std::ops::Deref;
 
@@ -45,6 +46,65 @@ impl<T: Copy> PageArray<T> {
     }
 }
 
+/// A growable array that becomes a [`PageArray`]: when its expected size is at least
+/// [`HUGE_PAGE`] bytes it writes straight into a huge-page mapping reserved for `capacity`
+/// items (address space only: untouched pages cost no memory).
+pub struct PageBuffer<T: Copy> {
+    storage: Storage<T>,
+}
+
+impl<T: Copy> PageBuffer<T> {
+    /// An empty buffer for up to `capacity` items (more may be pushed, at the cost of a copy
+    /// to the heap).
+    pub fn with_capacity(capacity: usize) -> Self {
+        #[cfg(target_os = "linux")]
+        if capacity.saturating_mul(std::mem::size_of::<T>()) >= HUGE_PAGE
+            && let Some(mapping) = mapped::Mapping::with_capacity(capacity)
+        {
+            return Self { storage: Storage::Mapped(mapping) };
+        }
+        Self { storage: Storage::Heap(Vec::with_capacity(capacity)) }
+    }
+
+    /// Number of items pushed.
+    #[inline]
+    pub fn len(&self) -> usize {
+        match &self.storage {
+            Storage::Heap(items) => items.len(),
+            #[cfg(target_os = "linux")]
+            Storage::Mapped(mapping) => mapping.as_slice().len(),
+        }
+    }
+
+    /// Appends `item`.
+    #[inline]
+    pub fn push(&mut self, item: T) {
+        match &mut self.storage {
+            Storage::Heap(items) => items.push(item),
+            #[cfg(target_os = "linux")]
+            Storage::Mapped(mapping) => {
+                if !mapping.push(item) {
+                    let mut items = mapping.as_slice().to_vec();
+                    items.push(item);
+                    self.storage = Storage::Heap(items);
+                }
+            }
+        }
+    }
+
+    /// The finished array.
+    pub fn finish(self) -> PageArray<T> {
+        match self.storage {
+            Storage::Heap(mut items) => {
+                items.shrink_to_fit();
+                PageArray::new(items)
+            }
+            #[cfg(target_os = "linux")]
+            mapped @ Storage::Mapped(_) => PageArray { storage: mapped },
+        }
+    }
+}
+
 impl<T: Copy> Deref for PageArray<T> {
     type Target = [T];
 
@@ -76,15 +136,17 @@ mod mapped {
 
     use super::HUGE_PAGE;
 
-    /// `len` values of `T` at the start of an anonymous private mapping of `bytes` bytes.
+    /// `len` values of `T` at the start of an anonymous private mapping of `bytes` bytes,
+    /// with room for `capacity`.
     pub struct Mapping<T> {
         ptr: NonNull<T>,
         len: usize,
+        capacity: usize,
         bytes: usize,
     }
 
-    // SAFETY: the mapping is owned by this value alone and never written after `copy_of`
-    // returns, so sharing or moving it across threads is as safe as for a `Box<[T]>`.
+    // SAFETY: the mapping is owned by this value alone and written only through `&mut
+    // self`, so sharing or moving it across threads is as safe as for a `Vec<T>`.
     unsafe impl<T: Send> Send for Mapping<T> {}
     // SAFETY: as above; shared access is read-only.
     unsafe impl<T: Sync> Sync for Mapping<T> {}
@@ -92,20 +154,32 @@ mod mapped {
     impl<T: Copy> Mapping<T> {
         /// A new mapping holding a copy of `items`; `None` when the system refuses one.
         pub fn copy_of(items: &[T]) -> Option<Self> {
-            let size = std::mem::size_of_val(items);
-            if size == 0 || std::mem::align_of::<T>() > 4096 {
+            let mut mapping = Self::with_capacity(items.len())?;
+            // SAFETY: the mapping has room for `items.len()` values of `T` at `ptr`, aligned
+            // to 2 MiB (so to `T`), and does not overlap `items`.
+            unsafe { std::ptr::copy_nonoverlapping(items.as_ptr(), mapping.ptr.as_ptr(), items.len()) };
+            mapping.len = items.len();
+            Some(mapping)
+        }
+
+        /// An empty mapping with room for `capacity` values; `None` when the system refuses
+        /// one.
+        pub fn with_capacity(capacity: usize) -> Option<Self> {
+            let size = capacity.checked_mul(std::mem::size_of::<T>())?;
+            if size == 0 || std::mem::align_of::<T>() > HUGE_PAGE {
                 return None;
             }
             // Whole huge pages, plus one so a 2 MiB-aligned start can be chosen.
             let bytes = size.div_ceil(HUGE_PAGE).checked_add(1)?.checked_mul(HUGE_PAGE)?;
             // SAFETY: an anonymous private mapping at an address of the kernel's choosing
-            // touches no existing memory; failure is reported as MAP_FAILED.
+            // touches no existing memory; failure is reported as MAP_FAILED. No swap is
+            // reserved for the part never written.
             let base = unsafe {
                 libc::mmap(
                     std::ptr::null_mut(),
                     bytes,
                     libc::PROT_READ | libc::PROT_WRITE,
-                    libc::MAP_PRIVATE | libc::MAP_ANONYMOUS,
+                    libc::MAP_PRIVATE | libc::MAP_ANONYMOUS | libc::MAP_NORESERVE,
                     -1,
                     0,
                 )
@@ -126,16 +200,26 @@ mod mapped {
             // transparent huge pages are off it fails and the array keeps 4 KiB pages.
             unsafe { libc::madvise(start.cast(), bytes, libc::MADV_HUGEPAGE) };
             let ptr = NonNull::new(start.cast::<T>())?;
-            // SAFETY: the mapping holds at least `size` writable bytes at `start`, which is
-            // aligned to 2 MiB (so to `T`), and does not overlap `items`.
-            unsafe { std::ptr::copy_nonoverlapping(items.as_ptr(), ptr.as_ptr(), items.len()) };
-            Some(Self { ptr, len: items.len(), bytes })
+            Some(Self { ptr, len: 0, capacity, bytes })
+        }
+
+        /// Appends `item`; false (and nothing written) when the mapping is full.
+        #[inline]
+        pub fn push(&mut self, item: T) -> bool {
+            if self.len == self.capacity {
+                return false;
+            }
+            // SAFETY: `len < capacity`, so slot `len` lies inside the mapping, and nothing
+            // refers to it yet.
+            unsafe { self.ptr.as_ptr().add(self.len).write(item) };
+            self.len += 1;
+            true
         }
 
         #[inline(always)]
         pub fn as_slice(&self) -> &[T] {
             // SAFETY: `ptr` points at `len` initialised values of `T` that live as long as
-            // `self` and are never written again.
+            // `self` and are written only through `&mut self`.
             unsafe { std::slice::from_raw_parts(self.ptr.as_ptr(), self.len) }
         }
     }
@@ -164,6 +248,19 @@ mod tests {
                 assert!(array.is_mapped());
                 assert_eq!(array.as_ptr() as usize % HUGE_PAGE, 0);
             }
+        }
+    }
+
+    #[test]
+    fn buffers_keep_every_push_within_and_beyond_their_capacity() {
+        for (capacity, len) in [(0usize, 3usize), (10, 10), (HUGE_PAGE / 8, 1000), (HUGE_PAGE / 8, HUGE_PAGE / 8 + 7)] {
+            let mut buffer = PageBuffer::with_capacity(capacity);
+            for i in 0..len as u64 {
+                buffer.push(i * 3);
+                assert_eq!(buffer.len(), i as usize + 1);
+            }
+            let array = buffer.finish();
+            assert!(array.iter().copied().eq((0..len as u64).map(|i| i * 3)), "capacity {capacity}, {len} pushed");
         }
     }
 }
