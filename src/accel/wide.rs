@@ -181,7 +181,7 @@ pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
                     m &= m - 1;
                     if child & LEAF == 0 {
                         let p: *const Node = nodes.as_ptr().wrapping_add(child as usize);
-                        kernels.prefetch(p.cast(), std::mem::size_of::<BoxLanes>());
+                        kernels.prefetch(p.cast(), std::mem::size_of::<Node>());
                     } else if child != EMPTY {
                         leaf.prefetch(kernels, child & !LEAF);
                     }
