@@ -4,7 +4,7 @@
 //! nearly every node they load also misses the TLB (a few thousand entries cover a few
 //! megabytes), so each cache miss costs a page walk too. Embree asks Linux for
 //! transparent huge pages for its BVH memory; [`PageArray`] does the same: on Linux, an
-//! array of at least [`HUGE_PAGE`] bytes is copied into its own anonymous mapping, marked
+//! array of at least [`MIN_MAPPED`] bytes is copied into its own anonymous mapping, marked
 //! `MADV_HUGEPAGE` before it is first touched, so the kernel backs it with 2 MiB pages
 //! where transparent huge pages are enabled (`always` or `madvise`). A [`PageBuffer`]
 //! fills such a mapping directly, push by push, so a large array is written once, with no
@@ -15,6 +15,10 @@ use std::ops::Deref;
 
 /// The huge page size the mapping is aligned to (x86-64 and aarch64 with 4 KiB base pages).
 pub const HUGE_PAGE: usize = 2 << 20;
+
+/// The smallest array given its own mapping: a smaller one is covered by the TLB's 4 KiB
+/// entries anyway, and its last, partly used huge page would waste a larger share.
+pub const MIN_MAPPED: usize = 4 * HUGE_PAGE;
 
 /// An immutable array of `T`, on huge pages where the system gives them.
 pub struct PageArray<T: Copy> {
@@ -31,7 +35,7 @@ impl<T: Copy> PageArray<T> {
     /// The array holding `items` (copied to huge pages when it is large, kept otherwise).
     pub fn new(items: Vec<T>) -> Self {
         #[cfg(target_os = "linux")]
-        if std::mem::size_of_val(items.as_slice()) >= HUGE_PAGE
+        if std::mem::size_of_val(items.as_slice()) >= MIN_MAPPED
             && let Some(mapping) = mapped::Mapping::copy_of(&items)
         {
             return Self { storage: Storage::Mapped(mapping) };
@@ -46,9 +50,10 @@ impl<T: Copy> PageArray<T> {
     }
 }
 
-/// A growable array that becomes a [`PageArray`]: when its expected size is at least
-/// [`HUGE_PAGE`] bytes it writes straight into a huge-page mapping reserved for `capacity`
-/// items (address space only: untouched pages cost no memory).
+/// A growable array that becomes a [`PageArray`]: when `capacity` items would fill at
+/// least [`MIN_MAPPED`] bytes it writes straight into a huge-page mapping reserved for them
+/// (address space only: untouched pages cost no memory), and moves to the heap when it
+/// ends up smaller than that.
 pub struct PageBuffer<T: Copy> {
     storage: Storage<T>,
 }
@@ -58,7 +63,7 @@ impl<T: Copy> PageBuffer<T> {
     /// to the heap).
     pub fn with_capacity(capacity: usize) -> Self {
         #[cfg(target_os = "linux")]
-        if capacity.saturating_mul(std::mem::size_of::<T>()) >= HUGE_PAGE
+        if capacity.saturating_mul(std::mem::size_of::<T>()) >= MIN_MAPPED
             && let Some(mapping) = mapped::Mapping::with_capacity(capacity)
         {
             return Self { storage: Storage::Mapped(mapping) };
@@ -98,6 +103,10 @@ impl<T: Copy> PageBuffer<T> {
             Storage::Heap(mut items) => {
                 items.shrink_to_fit();
                 PageArray::new(items)
+            }
+            #[cfg(target_os = "linux")]
+            Storage::Mapped(mapping) if std::mem::size_of_val(mapping.as_slice()) < MIN_MAPPED => {
+                PageArray { storage: Storage::Heap(mapping.as_slice().to_vec()) }
             }
             #[cfg(target_os = "linux")]
             mapped @ Storage::Mapped(_) => PageArray { storage: mapped },
@@ -239,13 +248,13 @@ mod tests {
 
     #[test]
     fn small_and_large_arrays_keep_their_contents() {
-        for len in [0usize, 1, 1000, 3 * HUGE_PAGE / 8 + 5] {
+        for len in [0usize, 1, 1000, HUGE_PAGE / 8 + 5, MIN_MAPPED / 8 + 5] {
             let items: Vec<u64> = (0..len as u64).map(|i| i.wrapping_mul(0x9E37_79B9_7F4A_7C15)).collect();
             let array = PageArray::new(items.clone());
             assert_eq!(&array[..], &items[..]);
             assert_eq!(&array.clone()[..], &items[..]);
-            if cfg!(target_os = "linux") && len * 8 >= HUGE_PAGE {
-                assert!(array.is_mapped());
+            assert_eq!(array.is_mapped(), cfg!(target_os = "linux") && len * 8 >= MIN_MAPPED);
+            if array.is_mapped() {
                 assert_eq!(array.as_ptr() as usize % HUGE_PAGE, 0);
             }
         }
@@ -253,7 +262,8 @@ mod tests {
 
     #[test]
     fn buffers_keep_every_push_within_and_beyond_their_capacity() {
-        for (capacity, len) in [(0usize, 3usize), (10, 10), (HUGE_PAGE / 8, 1000), (HUGE_PAGE / 8, HUGE_PAGE / 8 + 7)] {
+        let big = MIN_MAPPED / 8;
+        for (capacity, len) in [(0usize, 3usize), (10, 10), (big, 1000), (big, big + 7), (2 * big, big + 7)] {
             let mut buffer = PageBuffer::with_capacity(capacity);
             for i in 0..len as u64 {
                 buffer.push(i * 3);
@@ -261,6 +271,8 @@ mod tests {
             }
             let array = buffer.finish();
             assert!(array.iter().copied().eq((0..len as u64).map(|i| i * 3)), "capacity {capacity}, {len} pushed");
+            // Only arrays that end up large keep their mapping.
+            assert!(!array.is_mapped() || len * 8 >= MIN_MAPPED);
         }
     }
 }
