@@ -4,6 +4,7 @@
 //! instruction set.
 
 pub mod mesh_bvh;
+pub(crate) mod pages;
 pub mod primitive;
 pub mod scene_bvh;
 pub(crate) mod simd;

@@ -181,7 +181,7 @@ pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
                     m &= m - 1;
                     if child & LEAF == 0 {
                         let p: *const Node = nodes.as_ptr().wrapping_add(child as usize);
-                        kernels.prefetch(p.cast(), std::mem::size_of::<BoxLanes>());
+                        kernels.prefetch(p.cast(), std::mem::size_of::<Node>());
                     } else if child != EMPTY {
                         leaf.prefetch(kernels, child & !LEAF);
                     }
@@ -271,9 +271,9 @@ impl WideTree {
         let estimate = bvh2.primitive_indices.len() / (WIDTH * leaf_size.max(1)) * 2 + 1;
         let mut collapse = Collapse {
             bvh2,
+            subtrees: Subtrees::of(bvh2),
             leaf_size,
             make_leaf,
-            prims: Vec::with_capacity(leaf_size.max(8)),
             nodes: Vec::with_capacity(estimate),
             depth: 1,
         };
@@ -293,10 +293,9 @@ impl WideTree {
 /// The state of one collapse: the binary tree, the leaf policy, and the wide nodes so far.
 struct Collapse<'a, F> {
     bvh2: &'a obvhs::bvh2::Bvh2,
+    subtrees: Subtrees,
     leaf_size: usize,
     make_leaf: F,
-    /// Scratch: the primitives of the leaf being made.
-    prims: Vec<u32>,
     nodes: Vec<Node>,
     /// Deepest level filled.
     depth: usize,
@@ -306,14 +305,14 @@ impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
     /// True when binary node `index` is an inner node over more than `leaf_size` primitives
     /// (a binary leaf is never opened: its `first_index` points at primitives).
     fn openable(&self, index: usize) -> bool {
-        self.bvh2.nodes[index].prim_count == 0 && count_above(self.bvh2, index, self.leaf_size) > self.leaf_size
+        self.bvh2.nodes[index].prim_count == 0 && self.subtrees.count[index] as usize > self.leaf_size
     }
 
     /// Makes the leaf of the primitives under binary node `index`.
     fn leaf(&mut self, index: usize) -> u32 {
-        self.prims.clear();
-        gather(self.bvh2, index, &mut self.prims);
-        (self.make_leaf)(&self.prims)
+        let start = self.subtrees.start[index] as usize;
+        let end = start + self.subtrees.count[index] as usize;
+        (self.make_leaf)(&self.subtrees.prims[start..end])
     }
 
     /// Fills wide node `index` from the binary inner node `bvh2_index`, at `level`.
@@ -358,30 +357,51 @@ impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
     }
 }
 
-/// The number of primitives under BVH2 node `index` if at most `cap`, else some number
-/// above `cap` (counting stops there, so small subtrees are cheap to test).
-fn count_above(bvh2: &obvhs::bvh2::Bvh2, index: usize, cap: usize) -> usize {
-    let node = &bvh2.nodes[index];
-    if node.prim_count > 0 {
-        return node.prim_count as usize;
-    }
-    let first = node.first_index as usize;
-    let a = count_above(bvh2, first, cap);
-    if a > cap {
-        return a;
-    }
-    a + count_above(bvh2, first + 1, cap - a)
+/// The primitives under every node of a binary tree, found in one depth-first pass (the
+/// tree's nodes lie in no useful order, so each visit is a cache miss: one pass, not one
+/// count per node and one walk per leaf).
+struct Subtrees {
+    /// The primitives in depth-first order, left child first: those under a node are
+    /// `prims[start..start + count]`.
+    prims: Vec<u32>,
+    /// Where each node's primitives begin in `prims`.
+    start: Vec<u32>,
+    /// How many primitives are under each node.
+    count: Vec<u32>,
 }
 
-/// Appends the primitives under BVH2 node `index` to `out`.
-fn gather(bvh2: &obvhs::bvh2::Bvh2, index: usize, out: &mut Vec<u32>) {
-    let node = &bvh2.nodes[index];
-    let first = node.first_index as usize;
-    if node.prim_count > 0 {
-        out.extend_from_slice(&bvh2.primitive_indices[first..first + node.prim_count as usize]);
-    } else {
-        gather(bvh2, first, out);
-        gather(bvh2, first + 1, out);
+impl Subtrees {
+    /// Marks a stack entry as the end of a node's subtree rather than the node itself.
+    const END: u32 = 1 << 31;
+
+    fn of(bvh2: &obvhs::bvh2::Bvh2) -> Self {
+        let nodes = &bvh2.nodes;
+        assert!(nodes.len() < Self::END as usize, "too many BVH2 nodes");
+        let mut subtrees = Subtrees {
+            prims: Vec::with_capacity(bvh2.primitive_indices.len()),
+            start: vec![0; nodes.len()],
+            count: vec![0; nodes.len()],
+        };
+        let mut stack = vec![0u32];
+        while let Some(entry) = stack.pop() {
+            let index = (entry & !Self::END) as usize;
+            let here = subtrees.prims.len() as u32;
+            if entry & Self::END != 0 {
+                subtrees.count[index] = here - subtrees.start[index];
+                continue;
+            }
+            subtrees.start[index] = here;
+            let node = &nodes[index];
+            let first = node.first_index;
+            if node.prim_count > 0 {
+                let range = first as usize..first as usize + node.prim_count as usize;
+                subtrees.prims.extend_from_slice(&bvh2.primitive_indices[range]);
+                subtrees.count[index] = node.prim_count;
+            } else {
+                stack.extend([index as u32 | Self::END, first + 1, first]);
+            }
+        }
+        subtrees
     }
 }
 

@@ -122,6 +122,10 @@ impl Kernels for Avx2 {
             let positive = any3!(_CMP_GT_OQ);
             let on_edge = any3!(_CMP_EQ_OQ);
             let outside = _mm_and_ps(negative, positive);
+            // Most packets a ray reaches lie beside it: stop before the division.
+            if _mm_movemask_ps(outside) == 0b1111 {
+                return 0;
+            }
             // Lanes with a zero edge function are left to the scalar test (which redoes them
             // in f64) unless they are already certainly outside.
             let edge = _mm_movemask_ps(_mm_andnot_ps(outside, on_edge)) as u32;
