@@ -12,9 +12,10 @@ once with Mitsuba (the first variant that loads) at --reference-spp and cached i
 folder. Then, for each sample count of the ladder, Prism and each Mitsuba variant render the
 scene; the time of each render and its RMSE against the reference are recorded. A variant
 `NAME:SAMPLER` renders with Mitsuba's SAMPLER (`ldsampler`, its low-discrepancy (0, 2)-
-sequences per dimension pair, the counterpart of Prism's padded Sobol points; `multijitter`
-and `stratified` round the ladder's counts up to their grids) instead of the exported
-`independent` one, for a comparison of stratified samplers on both sides. Prism's time is the wall time of the `prism render` process (scene loading included:
+sequences per dimension pair, the counterpart of Prism's padded Sobol points; `multijitter`,
+`stratified`) instead of the exported `independent` one, for a comparison of stratified
+samplers on both sides. These samplers round a sample count up to a square (ldsampler: a
+power of 4, so 32 spp renders 64), so they render only the ladder's squares. Prism's time is the wall time of the `prism render` process (scene loading included:
 a few milliseconds here); Mitsuba's is `mi.render` alone, after one warm-up render so that the
 llvm variant's kernel compilation is not counted.
 
@@ -184,6 +185,14 @@ def main():
         m.close()
     reference = read_exr(reference_path)
 
+    def renders(variant, spp):
+        """Whether the variant's sampler takes `spp` as it is (the stratified ones round a
+        count up to a square, ldsampler to a power of 4)."""
+        if ":" not in variant:
+            return True
+        root = math.isqrt(spp)
+        return root * root == spp and (variant.split(":")[1] != "ldsampler" or spp & (spp - 1) == 0)
+
     best = {}  # (renderer, spp) -> (fastest seconds, rmse)
 
     def record(name, spp, seconds, out):
@@ -205,6 +214,8 @@ def main():
             )
             record("Prism path", spp, time.perf_counter() - start, out)
             for v, m in mitsubas.items():
+                if not renders(v, spp):
+                    continue
                 out = work / f"{v.replace(':', '_')}_{spp}.exr"
                 record(f"Mitsuba {v}", spp, m.render(spp, spp, str(out)), out)
             print(f"round {round_index + 1}: {spp} spp done", file=sys.stderr, flush=True)
@@ -212,7 +223,7 @@ def main():
         m.close()
 
     names = ["Prism path"] + [f"Mitsuba {v}" for v in variants]
-    results = {name: [(spp, *best[(name, spp)]) for spp in ladder] for name in names}
+    results = {name: [(spp, *best[(name, spp)]) for spp in ladder if (name, spp) in best] for name in names}
     judge = "Mitsuba llvm_ad_rgb" if "Mitsuba llvm_ad_rgb" in results else f"Mitsuba {variants[0]}"
     target_spp = 256 if 256 in ladder else max(ladder)
     target = next(e for spp, _, e in results[judge] if spp == target_spp)
@@ -223,7 +234,8 @@ def main():
     print("| renderer | " + " | ".join(f"{s} spp: s / RMSE" for s in ladder) + " | spp to target | time to target |")
     print("| --- | " + " | ".join("---" for _ in ladder) + " | --- | --- |")
     for name, rows in results.items():
-        cells = " | ".join(f"{t:.2f} / {e:.5f}" for _, t, e in rows)
+        measured = {spp: (t, e) for spp, t, e in rows}
+        cells = " | ".join(f"{measured[s][0]:.2f} / {measured[s][1]:.5f}" if s in measured else "-" for s in ladder)
         seconds, spp = reached[name]
         print(f"| {name} | {cells} | {spp:.0f} | {seconds:.2f} s |")
     for name in names:
