@@ -594,8 +594,10 @@ fn sigint_mid_write_leaves_no_temporary_and_all_outputs_or_none() {
         let _ = std::fs::remove_file(&exr);
         let mut child = prism()
             .current_dir(dir.path())
-            .args(["render", "scene.toml", "-o", "out.png", "--exr", "out.exr", "--width", "1600", "--height"])
-            .arg("1200")
+            // Large enough that writing takes tens of milliseconds: on a loaded machine the
+            // poll below missed a smaller image's write window 40 times running.
+            .args(["render", "scene.toml", "-o", "out.png", "--exr", "out.exr", "--width", "3200", "--height"])
+            .arg("2400")
             .stdin(Stdio::null())
             .stdout(Stdio::null())
             .stderr(Stdio::piped())

@@ -25,13 +25,16 @@
 //! scene (under an orthographic camera, 2000 scene radii: Mitsuba places hit points in single
 //! precision relative to a shape's size, and such a camera sees no horizon).
 
+use std::collections::HashMap;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use glam::{DAffine3, DVec3};
 use prism_api::mitsuba::{MitsubaKind, MitsubaShape, TriangleList};
 
 use crate::diagnostics::{Diagnostic, SceneError};
+use crate::material::Material;
 use crate::render::bsdf::Bsdf;
 use crate::render::camera::CameraFrame;
 use crate::render::integrators::path::scatter::{Lobe, PathMaterial, SurfacePoint};
@@ -365,6 +368,8 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &P
         },
     );
     let orthographic = scene.camera().projection == Projection::Orthographic;
+    let mut meshes =
+        MeshFiles::counted(entries.iter().map(|(_, shape, _, material, _)| (&shape.geometry, &material.material)));
     for (_, shape, transform, material, origin) in entries {
         let at = |key: &str| origin.map_or_else(|| scene.render_origin.clone(), |o| o.0.child(key));
         let Some(parts) = shape.geometry.to_mitsuba() else {
@@ -416,19 +421,88 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &P
                 ));
                 continue;
             }
-            shape_xml(out, &part, &world_from_shape, &bsdf, emission.as_deref(), mesh_prefix);
+            let shape = ShapeXml { part: &part, world_from_shape: &world_from_shape, material: &material.material };
+            shape_xml(out, &mut meshes, &shape, &bsdf, emission.as_deref(), mesh_prefix);
         }
     }
 }
 
+/// The PLY files of an export: one per distinct triangle list, however many objects use it,
+/// and the Mitsuba shape groups that objects sharing a list and a material are instances of.
+struct MeshFiles {
+    /// The materials each triangle list (by the hash of its PLY bytes) is used with, and how
+    /// many parts use each pair.
+    uses: HashMap<u64, Vec<(Arc<Material>, usize)>>,
+    /// The file written for each list: hash -> index into `MitsubaScene::meshes`.
+    files: HashMap<u64, usize>,
+    /// The shape group of each (list, BSDF): its id.
+    groups: HashMap<(u64, String), String>,
+}
+
+impl MeshFiles {
+    /// Counts the (triangle list, material) pairs of the scene's objects: a pass before
+    /// writing, so that a pair used once is written as a plain shape and one used more often
+    /// as a shape group and its instances.
+    fn counted<'a>(objects: impl Iterator<Item = (&'a Arc<dyn prism_api::Shape>, &'a Arc<Material>)>) -> Self {
+        let mut uses: HashMap<u64, Vec<(Arc<Material>, usize)>> = HashMap::new();
+        for (geometry, material) in objects {
+            for part in geometry.to_mitsuba().into_iter().flatten() {
+                if let MitsubaKind::Triangles(triangles) = &part.kind {
+                    let pairs = uses.entry(hash_bytes(&ply(triangles))).or_default();
+                    match pairs.iter_mut().find(|(m, _)| **m == **material) {
+                        Some((_, count)) => *count += 1,
+                        None => pairs.push((material.clone(), 1)),
+                    }
+                }
+            }
+        }
+        Self { uses, files: HashMap::new(), groups: HashMap::new() }
+    }
+
+    /// True when more than one part carries the list with hash `hash` and `material`.
+    fn repeats(&self, hash: u64, material: &Material) -> bool {
+        self.uses.get(&hash).is_some_and(|pairs| pairs.iter().any(|(m, count)| **m == *material && *count > 1))
+    }
+
+    /// The file name of `bytes` (hash `hash`), written on first use; a list whose hash
+    /// collides with another's gets its own file.
+    fn file(&mut self, out: &mut MitsubaScene, hash: u64, bytes: Vec<u8>, mesh_prefix: &str) -> String {
+        if let Some(&index) = self.files.get(&hash)
+            && out.meshes[index].1 == bytes
+        {
+            return out.meshes[index].0.clone();
+        }
+        let count = out.meshes.iter().filter(|(n, _)| n.ends_with(".ply")).count();
+        let name = format!("{mesh_prefix}{count:03}.ply");
+        self.files.entry(hash).or_insert(out.meshes.len());
+        out.meshes.push((name.clone(), bytes));
+        name
+    }
+}
+
+/// One Mitsuba shape to write: a part of an object, placed, with the object's material.
+struct ShapeXml<'a> {
+    part: &'a MitsubaShape,
+    world_from_shape: &'a DAffine3,
+    material: &'a Material,
+}
+
+fn hash_bytes(bytes: &[u8]) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut hasher = std::collections::hash_map::DefaultHasher::new();
+    bytes.hash(&mut hasher);
+    hasher.finish()
+}
+
 fn shape_xml(
     out: &mut MitsubaScene,
-    part: &MitsubaShape,
-    world_from_shape: &DAffine3,
+    meshes: &mut MeshFiles,
+    shape: &ShapeXml,
     bsdf: &str,
     emission: Option<&str>,
     mesh_prefix: &str,
 ) {
+    let (part, world_from_shape) = (shape.part, shape.world_from_shape);
     let kind = match &part.kind {
         MitsubaKind::Sphere => "sphere",
         MitsubaKind::Rectangle => "rectangle",
@@ -437,14 +511,46 @@ fn shape_xml(
         MitsubaKind::Cylinder { .. } => "cylinder",
         MitsubaKind::Triangles(_) => "ply",
     };
+    let mut mesh_file = None;
+    if let MitsubaKind::Triangles(triangles) = &part.kind {
+        let bytes = ply(triangles);
+        let hash = hash_bytes(&bytes);
+        let name = meshes.file(out, hash, bytes, mesh_prefix);
+        let ply_lines = format!(
+            "    <string name=\"filename\" value=\"{}\"/>\n    <boolean name=\"face_normals\" value=\"{}\"/>\n",
+            escape(&name),
+            triangles.normals.is_empty()
+        );
+        // A list several objects share with one material becomes a shape group and an
+        // instance per object (Mitsuba then holds the triangles once); emitters cannot be
+        // instances.
+        if emission.is_none() && meshes.repeats(hash, shape.material) {
+            let key = (hash, bsdf.to_string());
+            let id = match meshes.groups.get(&key) {
+                Some(id) => id.clone(),
+                None => {
+                    let id = format!("mesh_group_{}", meshes.groups.len());
+                    let _ = write!(
+                        out.xml,
+                        "  <shape type=\"shapegroup\" id=\"{id}\">\n  <shape type=\"ply\">\n{ply_lines}{bsdf}  </shape>\n  </shape>\n"
+                    );
+                    meshes.groups.insert(key, id.clone());
+                    id
+                }
+            };
+            let _ = writeln!(
+                out.xml,
+                "  <shape type=\"instance\">\n    <ref id=\"{id}\"/>\n    <transform name=\"to_world\">\n      <matrix value=\"{}\"/>\n    </transform>\n  </shape>",
+                matrix(world_from_shape)
+            );
+            return;
+        }
+        mesh_file = Some(ply_lines);
+    }
     let xml = &mut out.xml;
     let _ = writeln!(xml, "  <shape type=\"{kind}\">");
-    if let MitsubaKind::Triangles(triangles) = &part.kind {
-        let meshes = out.meshes.iter().filter(|(n, _)| n.ends_with(".ply")).count();
-        let name = format!("{mesh_prefix}{meshes:03}.ply");
-        let _ = writeln!(xml, "    <string name=\"filename\" value=\"{}\"/>", escape(&name));
-        let _ = writeln!(xml, "    <boolean name=\"face_normals\" value=\"{}\"/>", triangles.normals.is_empty());
-        out.meshes.push((name, ply(triangles)));
+    if let Some(lines) = mesh_file {
+        xml.push_str(&lines);
     }
     if let MitsubaKind::Cylinder { radius, length } = part.kind {
         let _ = writeln!(
@@ -885,6 +991,29 @@ mod tests {
         assert_eq!(name, "s_meshes/000.ply");
         assert!(bytes.starts_with(b"ply\nformat binary_little_endian 1.0\nelement vertex 3\n"));
         assert!(out.xml.contains("s_meshes/000.ply"));
+    }
+
+    /// Objects that share a triangle list share its PLY file; those that also share a
+    /// material become instances of one shape group, the others stay plain shapes.
+    #[test]
+    fn shared_meshes_are_written_once_and_instanced_per_material() {
+        let triangle = |material: &str, x: i32| {
+            format!(
+                "[[object]]\nshape = \"triangle\"\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\nmaterial = \"{material}\"\ntransform = {{ translate = [{x}, 0, 0] }}\n"
+            )
+        };
+        let text = format!(
+            "[materials.a]\ncolor = 0.5\nbsdf = {{ type = \"diffuse\" }}\n[materials.b]\ncolor = 0.25\nbsdf = {{ type = \"diffuse\" }}\n{}{}{}",
+            triangle("a", 0),
+            triangle("a", 2),
+            triangle("b", 4)
+        );
+        let out = export_text(Box::leak(text.into_boxed_str())).unwrap();
+        assert_eq!(out.meshes.len(), 1, "one PLY for the three objects");
+        assert_eq!(out.xml.matches("<shape type=\"shapegroup\" id=\"mesh_group_0\">").count(), 1, "{}", out.xml);
+        assert_eq!(out.xml.matches("<ref id=\"mesh_group_0\"/>").count(), 2, "{}", out.xml);
+        assert_eq!(out.xml.matches("s_meshes/000.ply").count(), 2, "the group's shape and the plain one");
+        assert!(!out.xml.contains("mesh_group_1"), "material b is used once: a plain shape");
     }
 
     #[test]
