@@ -11,8 +11,7 @@
 //! - `samples` (u32): samples rendered into each pixel.
 //! - when the part has [`Partial::sums`]: `sum.R.hi`, `sum.R.lo`, ... `weight.hi`, `weight.lo`
 //!   (u32): the f64 weighted sum of each channel's samples and the f64 sum of their filter
-//!   weights' expected values (1 each: the sample count), as the high and low 32 bits of
-//!   each f64, so they round-trip exactly.
+//!   weights, as the high and low 32 bits of each f64, so they round-trip exactly.
 //! - AOV layers, when the part keeps them (checkpoints do): `albedo.R`, `depth.Z`, ... (f32).
 //!
 //! One header attribute, `prismPart` (text, `key=value` lines), says what the part is: the
@@ -281,14 +280,13 @@ pub fn parse_region(text: &str) -> Option<Region> {
 }
 
 /// One pixel's accumulated samples: the weighted sum of their radiance and the sum of their
-/// filter weights' expected values (1 per sample: filter weights are normalised, and
-/// box-filtered samples weigh exactly 1), in f64 as the renderer accumulates them.
-/// The pixel's value is `sum / weight` (black without samples).
+/// filter weights (box-filtered samples weigh 1), in f64 as the renderer accumulates them.
+/// The pixel's value is `sum / weight` (black when the weights sum to 0).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PixelSums {
     /// Weighted sum of linear RGB radiance.
     pub sum: [f64; 3],
-    /// Sum of the samples' filter weights' expected values: the sample count.
+    /// Sum of the samples' filter weights.
     pub weight: f64,
 }
 
@@ -303,7 +301,7 @@ impl PixelSums {
     }
 
     /// The pixel value, as the renderer computes it: `sum / weight` rounded to f32, black
-    /// without samples or when the value is not finite.
+    /// when the weights sum to 0 or the value is not finite.
     pub fn mean(&self) -> [f32; 3] {
         if self.weight == 0.0 {
             return [0.0; 3];

@@ -771,7 +771,7 @@ impl PixelSpread {
 
 /// Samples `range` (of the scene's `0..samples`, so with the full render's patterns) of one
 /// pixel: their weighted mean as [`render_pixel`] computes it, their weighted sum and
-/// count, accumulated in sample order from zero, and what they say about the pixel's
+/// weights, accumulated in sample order from zero, and what they say about the pixel's
 /// error. With `[render] noise` set and the whole range asked for, the pixel stops after the
 /// first whole batch, from [`MIN_BATCHES`] on, after which it has had its share
 /// (`PixelSpread::has_enough`: samples in proportion to the spread of its displayed values,
@@ -800,7 +800,7 @@ pub fn render_pixel_samples<I: Integrator>(
     let mut blur_test = adaptive_blur.map(focal_blur::BlurSchedule::test);
     let patterns = (samples > 1 && progressive.is_none()).then(|| scene.patterns.for_key(key));
     let mut sum = DVec3::ZERO;
-    let mut count = 0.0;
+    let mut weights = 0.0;
     let mut rays = 0;
     let mut first_hit = None;
     let mut spread = PixelSpread::new(settings);
@@ -843,10 +843,9 @@ pub fn render_pixel_samples<I: Integrator>(
             non_finite_samples += 1;
             DVec3::ZERO
         };
-        // Weights have expected value 1 (box-filtered samples weigh exactly 1), so the mean
-        // is the weighted sum over the sample count: unbiased, where sum(w L) / sum(w) is not.
+        // Box-filtered samples weigh 1, so their weighted mean is the plain mean, bit for bit.
         sum += weight * radiance;
-        count += 1.0;
+        weights += weight;
         spread.add(radiance);
         if let Some(noise) = adaptive
             && (s + 1) % SAMPLE_BATCH == 0
@@ -864,7 +863,8 @@ pub fn render_pixel_samples<I: Integrator>(
             break;
         }
     }
-    let radiance = if count != 0.0 { sum / count } else { DVec3::ZERO };
+    // Weights summing to 0 (a filter's negative lobes cancelling) give black.
+    let radiance = if weights != 0.0 { sum / weights } else { DVec3::ZERO };
     let variance = spread.variance_of_mean().0;
     let stats = PixelStats {
         samples: taken,
@@ -872,7 +872,7 @@ pub fn render_pixel_samples<I: Integrator>(
         display_error: spread.display_error() as f32,
         non_finite_samples,
     };
-    (PixelSample { radiance, first_hit, rays }, PixelSums { sum: sum.to_array(), weight: count }, stats)
+    (PixelSample { radiance, first_hit, rays }, PixelSums { sum: sum.to_array(), weight: weights }, stats)
 }
 
 #[cfg(test)]
