@@ -253,8 +253,10 @@ impl<A: Acceptor, const ANY: bool> Dispatch for Query<'_, A, ANY> {
 
 /// The leaves of a mesh BVH: packets of triangles, whose hits go to the acceptor.
 struct PacketLeaves<'a, A, const ANY: bool> {
-    bvh: &'a TriangleBvh,
-    ray: &'a WatertightRay,
+    /// The tree's packets, dereferenced once per query rather than once per leaf.
+    packets: &'a [TrianglePacket],
+    /// A copy of the ray, kept in registers.
+    ray: WatertightRay,
     hits: PacketHits,
     acceptor: &'a mut A,
 }
@@ -262,15 +264,15 @@ struct PacketLeaves<'a, A, const ANY: bool> {
 impl<A: Acceptor, const ANY: bool> LeafVisitor for PacketLeaves<'_, A, ANY> {
     #[inline(always)]
     fn prefetch<K: Kernels>(&self, kernels: K, leaf: u32) {
-        let packet: *const TrianglePacket = self.bvh.packets.as_ptr().wrapping_add((leaf >> 2) as usize);
+        let packet: *const TrianglePacket = self.packets.as_ptr().wrapping_add((leaf >> 2) as usize);
         kernels.prefetch(packet.cast(), std::mem::size_of::<TrianglePacket>() * ((leaf & 3) as usize + 1));
     }
 
     #[inline(always)]
     fn visit<K: Kernels>(&mut self, kernels: K, leaf: u32, t_max: &mut f32) -> bool {
         let first = (leaf >> 2) as usize;
-        for packet in &self.bvh.packets[first..=first + (leaf & 3) as usize] {
-            let mut mask = kernels.triangles(packet, self.ray, *t_max, &mut self.hits);
+        for packet in &self.packets[first..=first + (leaf & 3) as usize] {
+            let mut mask = kernels.triangles(packet, &self.ray, *t_max, &mut self.hits);
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -299,7 +301,8 @@ fn traverse<K: Kernels, const ANY: bool>(
     stack: &mut [StackEntry],
     acceptor: &mut impl Acceptor,
 ) -> bool {
-    let mut leaves = PacketLeaves::<_, ANY> { bvh, ray: &ray.triangle, hits: PacketHits::default(), acceptor };
+    let mut leaves =
+        PacketLeaves::<_, ANY> { packets: &bvh.packets, ray: ray.triangle, hits: PacketHits::default(), acceptor };
     super::wide::traverse::<K, true>(kernels, &bvh.nodes, &ray.boxes, t_max, stack, &mut leaves)
 }
 
