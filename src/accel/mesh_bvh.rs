@@ -170,9 +170,8 @@ impl TriangleBvh {
         t_max: f32,
         accept: impl FnMut(usize, TriangleHit, [Vec3; 3]) -> Option<f32>,
     ) {
-        let ray = TraversalRay::new(ray);
         with_traversal_stack(self.stack_size, |stack| {
-            simd::dispatch(Query::<_, false> { bvh: self, ray: &ray, t_max, stack, acceptor: AcceptClosest(accept) })
+            simd::dispatch(Query::<_, false> { bvh: self, ray, t_max, stack, acceptor: AcceptClosest(accept) })
         });
     }
 
@@ -184,9 +183,8 @@ impl TriangleBvh {
         t_max: f32,
         accept: impl FnMut(usize, TriangleHit, [Vec3; 3]) -> bool,
     ) -> bool {
-        let ray = TraversalRay::new(ray);
         with_traversal_stack(self.stack_size, |stack| {
-            simd::dispatch(Query::<_, true> { bvh: self, ray: &ray, t_max, stack, acceptor: AcceptAny(accept, false) })
+            simd::dispatch(Query::<_, true> { bvh: self, ray, t_max, stack, acceptor: AcceptAny(accept, false) })
         })
     }
 }
@@ -236,7 +234,7 @@ impl<F: FnMut(usize, TriangleHit, [Vec3; 3]) -> bool> Acceptor for AcceptAny<F> 
 /// One query (closest hit, or any hit when `ANY`), for [`simd::dispatch`].
 struct Query<'a, A, const ANY: bool> {
     bvh: &'a TriangleBvh,
-    ray: &'a TraversalRay,
+    ray: &'a WatertightRay,
     t_max: f32,
     stack: &'a mut [StackEntry],
     acceptor: A,
@@ -247,7 +245,9 @@ impl<A: Acceptor, const ANY: bool> Dispatch for Query<'_, A, ANY> {
 
     #[inline(always)]
     fn run<K: Kernels>(mut self, kernels: K) -> bool {
-        traverse::<K, ANY>(kernels, self.bvh, self.ray, self.t_max, self.stack, &mut self.acceptor)
+        // Prepared here, with the kernels' instructions and straight into registers.
+        let ray = TraversalRay::new(self.ray);
+        traverse::<K, ANY>(kernels, self.bvh, &ray, self.t_max, self.stack, &mut self.acceptor)
     }
 }
 

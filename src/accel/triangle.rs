@@ -42,6 +42,7 @@ pub struct TriangleHit {
 
 impl WatertightRay {
     /// Prepares a ray. Returns `None` for a zero or non-finite direction.
+    #[inline]
     pub fn new(origin: Vec3, direction: Vec3) -> Option<Self> {
         if !direction.is_finite() || !origin.is_finite() || direction == Vec3::ZERO {
             return None;
