@@ -170,9 +170,8 @@ impl TriangleBvh {
         t_max: f32,
         accept: impl FnMut(usize, TriangleHit, [Vec3; 3]) -> Option<f32>,
     ) {
-        let ray = TraversalRay::new(ray);
         with_traversal_stack(self.stack_size, |stack| {
-            simd::dispatch(Query::<_, false> { bvh: self, ray: &ray, t_max, stack, acceptor: AcceptClosest(accept) })
+            simd::dispatch(Query::<_, false> { bvh: self, ray, t_max, stack, acceptor: AcceptClosest(accept) })
         });
     }
 
@@ -184,9 +183,8 @@ impl TriangleBvh {
         t_max: f32,
         accept: impl FnMut(usize, TriangleHit, [Vec3; 3]) -> bool,
     ) -> bool {
-        let ray = TraversalRay::new(ray);
         with_traversal_stack(self.stack_size, |stack| {
-            simd::dispatch(Query::<_, true> { bvh: self, ray: &ray, t_max, stack, acceptor: AcceptAny(accept, false) })
+            simd::dispatch(Query::<_, true> { bvh: self, ray, t_max, stack, acceptor: AcceptAny(accept, false) })
         })
     }
 }
@@ -236,7 +234,7 @@ impl<F: FnMut(usize, TriangleHit, [Vec3; 3]) -> bool> Acceptor for AcceptAny<F> 
 /// One query (closest hit, or any hit when `ANY`), for [`simd::dispatch`].
 struct Query<'a, A, const ANY: bool> {
     bvh: &'a TriangleBvh,
-    ray: &'a TraversalRay,
+    ray: &'a WatertightRay,
     t_max: f32,
     stack: &'a mut [StackEntry],
     acceptor: A,
@@ -247,14 +245,18 @@ impl<A: Acceptor, const ANY: bool> Dispatch for Query<'_, A, ANY> {
 
     #[inline(always)]
     fn run<K: Kernels>(mut self, kernels: K) -> bool {
-        traverse::<K, ANY>(kernels, self.bvh, self.ray, self.t_max, self.stack, &mut self.acceptor)
+        // Prepared here, with the kernels' instructions and straight into registers.
+        let ray = TraversalRay::new(self.ray);
+        traverse::<K, ANY>(kernels, self.bvh, &ray, self.t_max, self.stack, &mut self.acceptor)
     }
 }
 
 /// The leaves of a mesh BVH: packets of triangles, whose hits go to the acceptor.
 struct PacketLeaves<'a, A, const ANY: bool> {
-    bvh: &'a TriangleBvh,
-    ray: &'a WatertightRay,
+    /// The tree's packets, dereferenced once per query rather than once per leaf.
+    packets: &'a [TrianglePacket],
+    /// A copy of the ray, kept in registers.
+    ray: WatertightRay,
     hits: PacketHits,
     acceptor: &'a mut A,
 }
@@ -262,15 +264,15 @@ struct PacketLeaves<'a, A, const ANY: bool> {
 impl<A: Acceptor, const ANY: bool> LeafVisitor for PacketLeaves<'_, A, ANY> {
     #[inline(always)]
     fn prefetch<K: Kernels>(&self, kernels: K, leaf: u32) {
-        let packet: *const TrianglePacket = self.bvh.packets.as_ptr().wrapping_add((leaf >> 2) as usize);
+        let packet: *const TrianglePacket = self.packets.as_ptr().wrapping_add((leaf >> 2) as usize);
         kernels.prefetch(packet.cast(), std::mem::size_of::<TrianglePacket>() * ((leaf & 3) as usize + 1));
     }
 
     #[inline(always)]
     fn visit<K: Kernels>(&mut self, kernels: K, leaf: u32, t_max: &mut f32) -> bool {
         let first = (leaf >> 2) as usize;
-        for packet in &self.bvh.packets[first..=first + (leaf & 3) as usize] {
-            let mut mask = kernels.triangles(packet, self.ray, *t_max, &mut self.hits);
+        for packet in &self.packets[first..=first + (leaf & 3) as usize] {
+            let mut mask = kernels.triangles(packet, &self.ray, *t_max, &mut self.hits);
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
@@ -299,7 +301,8 @@ fn traverse<K: Kernels, const ANY: bool>(
     stack: &mut [StackEntry],
     acceptor: &mut impl Acceptor,
 ) -> bool {
-    let mut leaves = PacketLeaves::<_, ANY> { bvh, ray: &ray.triangle, hits: PacketHits::default(), acceptor };
+    let mut leaves =
+        PacketLeaves::<_, ANY> { packets: &bvh.packets, ray: ray.triangle, hits: PacketHits::default(), acceptor };
     super::wide::traverse::<K, true>(kernels, &bvh.nodes, &ray.boxes, t_max, stack, &mut leaves)
 }
 

@@ -42,6 +42,9 @@ pub struct TriangleHit {
 
 impl WatertightRay {
     /// Prepares a ray. Returns `None` for a zero or non-finite direction.
+    // Always inlined: as a call, its result went through the stack and stalled on store
+    // forwarding in every mesh query.
+    #[inline(always)]
     pub fn new(origin: Vec3, direction: Vec3) -> Option<Self> {
         if !direction.is_finite() || !origin.is_finite() || direction == Vec3::ZERO {
             return None;

@@ -43,61 +43,79 @@ impl Node {
     }
 }
 
-/// Orders the children of `node` in `mask` (entry distances in `near`) for a depth-first,
-/// nearest-first traversal: returns the nearest, and pushes the others onto the stack so the
-/// next nearest is on top. `None` when the mask is empty.
+/// Hints the CPU to fetch `child` of a node (an inner node's four cache lines, or the leaf
+/// through `leaf`), which the traversal will reach from the stack.
 #[inline(always)]
-pub fn order_children(
-    node: &Node,
-    mut mask: u32,
-    near: &[f32; WIDTH],
-    stack: &mut [StackEntry],
-    sp: &mut usize,
-) -> Option<u32> {
-    match mask.count_ones() {
-        0 => None,
-        1 => Some(node.child[mask.trailing_zeros() as usize]),
-        2 => {
-            // The common case: go to the nearer child, keep the farther one.
-            let i = mask.trailing_zeros() as usize;
-            let j = (mask & (mask - 1)).trailing_zeros() as usize;
-            let (near_i, far_i) = if near[i] <= near[j] { (i, j) } else { (j, i) };
-            stack[*sp] = MaybeUninit::new((node.child[far_i], near[far_i]));
-            *sp += 1;
-            Some(node.child[near_i])
-        }
-        _ => {
-            // Push every hit child, farthest first, then continue with the nearest.
-            let base = *sp;
-            while mask != 0 {
-                let i = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let entry = (node.child[i], near[i]);
-                // Insertion sort by distance, descending (nearest on top). Slots below `sp`
-                // are initialised.
-                let mut j = *sp;
-                // SAFETY: j - 1 < sp, a slot written earlier.
-                while j > base && unsafe { stack[j - 1].assume_init() }.1 < entry.1 {
-                    stack[j] = stack[j - 1];
-                    j -= 1;
-                }
-                stack[j] = MaybeUninit::new(entry);
-                *sp += 1;
-            }
-            *sp -= 1;
-            // SAFETY: sp < the number of slots written.
-            Some(unsafe { stack[*sp].assume_init() }.0)
-        }
+fn prefetch_child<K: Kernels>(kernels: K, nodes: &[Node], child: u32, leaf: &impl LeafVisitor) {
+    if child & LEAF == 0 {
+        let p: *const Node = nodes.as_ptr().wrapping_add(child as usize);
+        kernels.prefetch(p.cast(), std::mem::size_of::<Node>());
+    } else if child != EMPTY {
+        leaf.prefetch(kernels, child & !LEAF);
     }
 }
 
-/// Pushes the children of `node` in `mask` but one, which it returns (`None` when the mask
-/// is empty): the order of an any-hit traversal, which need not visit the nearest first.
+/// Orders the children of `node` in `mask` (at least two; entry distances in `near`) for
+/// a depth-first, nearest-first traversal, prefetching each: returns the nearest and pushes
+/// the others onto the stack so that the next nearest is on top. One pass over the mask
+/// both prefetches and orders.
 #[inline(always)]
-pub fn push_children(node: &Node, mut mask: u32, stack: &mut [StackEntry], sp: &mut usize) -> Option<u32> {
-    if mask == 0 {
-        return None;
+#[allow(clippy::too_many_arguments, reason = "inlined into the traversal loop: its state, not an interface")]
+fn order_children<K: Kernels>(
+    kernels: K,
+    nodes: &[Node],
+    node: &Node,
+    mask: u32,
+    near: &[f32; WIDTH],
+    stack: &mut [StackEntry],
+    sp: &mut usize,
+    leaf: &impl LeafVisitor,
+) -> u32 {
+    let i = mask.trailing_zeros() as usize;
+    let mut rest = mask & (mask - 1);
+    let j = rest.trailing_zeros() as usize;
+    rest &= rest - 1;
+    let (a, b) = (node.child[i], node.child[j]);
+    prefetch_child(kernels, nodes, a, leaf);
+    prefetch_child(kernels, nodes, b, leaf);
+    if rest == 0 {
+        // The common case: go to the nearer child (the first on a tie), keep the other.
+        let (go, keep) = if near[i] <= near[j] { (a, (b, near[j])) } else { (b, (a, near[i])) };
+        stack[*sp] = MaybeUninit::new(keep);
+        *sp += 1;
+        return go;
     }
+    // Push every hit child, farthest first, then continue with the nearest: an insertion
+    // sort by distance, descending (nearest on top; on a tie the later slot above).
+    let base = *sp;
+    let mut insert = |entry: (u32, f32), sp: &mut usize| {
+        let mut k = *sp;
+        // SAFETY: k - 1 < sp, a slot written earlier.
+        while k > base && unsafe { stack[k - 1].assume_init() }.1 < entry.1 {
+            stack[k] = stack[k - 1];
+            k -= 1;
+        }
+        stack[k] = MaybeUninit::new(entry);
+        *sp += 1;
+    };
+    insert((a, near[i]), sp);
+    insert((b, near[j]), sp);
+    while rest != 0 {
+        let k = rest.trailing_zeros() as usize;
+        rest &= rest - 1;
+        let child = node.child[k];
+        prefetch_child(kernels, nodes, child, leaf);
+        insert((child, near[k]), sp);
+    }
+    *sp -= 1;
+    // SAFETY: sp < the number of slots written.
+    unsafe { stack[*sp].assume_init() }.0
+}
+
+/// Pushes the children of `node` in `mask` (not empty) but one, which it returns: the order
+/// of an any-hit traversal, which need not visit the nearest first.
+#[inline(always)]
+fn push_children(node: &Node, mut mask: u32, stack: &mut [StackEntry], sp: &mut usize) -> u32 {
     let first = mask.trailing_zeros() as usize;
     mask &= mask - 1;
     while mask != 0 {
@@ -107,7 +125,7 @@ pub fn push_children(node: &Node, mut mask: u32, stack: &mut [StackEntry], sp: &
         stack[*sp] = MaybeUninit::new((node.child[i], 0.0));
         *sp += 1;
     }
-    Some(node.child[first])
+    node.child[first]
 }
 
 /// Pops the stack down to the first node entered no farther than `t_max`; `None` when the
@@ -164,6 +182,10 @@ pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
     stack: &mut [StackEntry],
     leaf: &mut impl LeafVisitor,
 ) -> bool {
+    // A copy the optimiser keeps in registers: through the reference, every node reloaded
+    // the ray (the stack stores might alias it).
+    let r = *r;
+    let r = &r;
     let mut t_max = t_max;
     let mut sp = 0usize;
     let mut current = 0u32;
@@ -172,28 +194,21 @@ pub fn traverse<K: Kernels, const NEAREST_FIRST: bool>(
         if current & LEAF == 0 {
             let node = &nodes[current as usize];
             let mask = kernels.boxes(&node.bounds, r, t_max, &mut near);
-            // When the ray enters more than one child, all but the nearest wait on the stack:
-            // fetching them now hides part of the cache misses of incoherent rays.
-            if mask & mask.wrapping_sub(1) != 0 {
-                let mut m = mask;
-                while m != 0 {
-                    let child = node.child[m.trailing_zeros() as usize];
-                    m &= m - 1;
-                    if child & LEAF == 0 {
-                        let p: *const Node = nodes.as_ptr().wrapping_add(child as usize);
-                        kernels.prefetch(p.cast(), std::mem::size_of::<Node>());
-                    } else if child != EMPTY {
-                        leaf.prefetch(kernels, child & !LEAF);
+            if mask != 0 {
+                if mask & (mask - 1) == 0 {
+                    current = node.child[mask.trailing_zeros() as usize];
+                } else if NEAREST_FIRST {
+                    // All but the nearest wait on the stack: fetching them now hides part
+                    // of the cache misses of incoherent rays.
+                    current = order_children(kernels, nodes, node, mask, &near, stack, &mut sp, leaf);
+                } else {
+                    let mut m = mask;
+                    while m != 0 {
+                        prefetch_child(kernels, nodes, node.child[m.trailing_zeros() as usize], leaf);
+                        m &= m - 1;
                     }
+                    current = push_children(node, mask, stack, &mut sp);
                 }
-            }
-            let next = if NEAREST_FIRST {
-                order_children(node, mask, &near, stack, &mut sp)
-            } else {
-                push_children(node, mask, stack, &mut sp)
-            };
-            if let Some(next) = next {
-                current = next;
                 continue;
             }
         } else if current == EMPTY {

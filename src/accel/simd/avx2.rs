@@ -76,8 +76,14 @@ impl Kernels for Avx2 {
             let fy = plane!(ray.far[1], 1);
             let fz = plane!(ray.far[2], 2);
             let t0 = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, _mm256_setzero_ps()));
-            let t1 = _mm256_min_ps(_mm256_min_ps(fx, fy), fz);
-            let t1 = _mm256_min_ps(_mm256_mul_ps(t1, _mm256_set1_ps(FAR_SCALE)), _mm256_set1_ps(t_max));
+            // Each far distance scaled on its own (as the scalar kernel does; rounding is
+            // monotonic, so the minimum is the same), then a two-level tree of minima: the
+            // far side is the longer dependency chain from the node's loads to the mask.
+            let scale = _mm256_set1_ps(FAR_SCALE);
+            let t1 = _mm256_min_ps(
+                _mm256_min_ps(_mm256_mul_ps(fx, scale), _mm256_mul_ps(fy, scale)),
+                _mm256_min_ps(_mm256_mul_ps(fz, scale), _mm256_set1_ps(t_max)),
+            );
             _mm256_storeu_ps(near.as_mut_ptr(), t0);
             _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(t0, t1)) as u32
         }
