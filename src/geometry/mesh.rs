@@ -362,7 +362,8 @@ impl MeshShape {
         let d = &self.data;
         let normal_map = self.maps.as_ref().and_then(|m| m.normal_map.as_ref());
         if d.normals.is_empty() && normal_map.is_none() {
-            // Flat shading: the view cannot bend a normal that is the geometric one.
+            // Flat shading: the geometric normal, unbent. The terminator fix is for normals that
+            // differ from it; it would only tilt the true normal at grazing views.
             return ng;
         }
         let (b1, b2) = b;
