@@ -12,6 +12,13 @@ the PNGs pixel by pixel. A scene "differs" above RMSE 1e-3 or with more than 3 p
 
     PRISM=target/release/prism python3 scripts/pov-differential.py OUTDIR FIRST_SEED END_SEED
 
+With EDGES=1 in the environment, one material or light value of each scene is replaced by an
+edge value (0, negative, far above its usual range, or tiny; named on the scene's first line
+and in the output), or a spot light gets `radius >= falloff`, or a light points at its own
+position: the degenerate inputs of issue 17's audit.
+Prism may refuse such a scene (a `prism-error` line naming the key, which is then checked by
+hand against what POV-Ray does with it); when both render, the images must agree.
+
 Prints one line per seed: `ok`, `DIFF` (inspect OUTDIR/sSEED.{toml,pov,prism.png,pov.png})
 or an error. Known causes of differences that are POV-Ray's, not Prism's (see the session
 notes): its shadow cache double-filters transparent members of a CSG whose own texture is
@@ -258,9 +265,69 @@ def scene(seed):
         out.append('')
     return '\n'.join(out)
 
+# Keys whose values stay as generated under EDGES: geometry, placement and image size.
+KEEP = {'translate', 'rotate', 'scale', 'position', 'look_at', 'point_at', 'width', 'height', 'min', 'max',
+        'base', 'top', 'apex', 'normal', 'offset', 'radius', 'base_radius', 'apex_radius', 'major_radius',
+        'minor_radius', 'thickness', 'axis1', 'axis2', 'vfov', 'size1', 'size2', 'depth', 'threshold'}
+
+def edge_value(r, v):
+    if isinstance(v, bool):
+        return v
+    choice = r.choice(['zero', 'negative', 'large', 'tiny'])
+    if isinstance(v, int):
+        return {'zero': 0, 'negative': -max(abs(v), 1), 'large': abs(v) * 4 + 3, 'tiny': 1}[choice]
+    return {'zero': 0.0, 'negative': -round(abs(v) + 0.25, 3), 'large': round(abs(v) * 4 + 1.5, 3), 'tiny': 1e-6}[choice]
+
+def leaves(v, path, key=None):
+    """(container, index, path) of every number below `v`, except under KEEP keys."""
+    if key in KEEP:
+        return
+    items = v.items() if isinstance(v, dict) else enumerate(v) if isinstance(v, list) else ()
+    for k, x in items:
+        name = k if isinstance(k, str) else key
+        if isinstance(x, (dict, list)):
+            yield from leaves(x, f'{path}.{k}' if isinstance(k, str) else f'{path}[{k}]', name)
+        elif isinstance(x, (int, float)) and not isinstance(x, bool) and name not in KEEP:
+            yield (v, k, f'{path}.{k}' if isinstance(k, str) else f'{path}[{k}]')
+
+def edge_scene(seed):
+    """The scene of `seed` with one edge value in a material or light (named in its first line)."""
+    import tomllib
+    doc = tomllib.loads(scene(seed))
+    r = random.Random(seed * 7919 + 1)
+    spots = [L for L in doc.get('light', []) if L['kind'] == 'spot']
+    if spots and r.random() < 0.25:
+        L = r.choice(spots)
+        L['radius'], L['falloff'] = r.choice([(40, 30), (30, 30), (95, 100), (0, 0), (0, 20), (20, 95)])
+        what = f"spot radius {L['radius']} falloff {L['falloff']}"
+    elif r.random() < 0.05:
+        L = r.choice(doc['light'])
+        L['point_at'] = L['position']
+        what = f"light {L['kind']} point_at = position"
+    else:
+        candidates = [leaf for i, o in enumerate(doc.get('object', [])) if 'material' in o
+                      for leaf in leaves(o['material'], f'object[{i}].material')]
+        candidates += [leaf for i, L in enumerate(doc.get('light', []))
+                       for leaf in leaves({k: v for k, v in L.items() if k not in ('position', 'point_at', 'axis1', 'axis2')}, f'light[{i}]')
+                       if leaf[1] in L or isinstance(leaf[1], int)]
+        container, key, path = r.choice(candidates)
+        container[key] = edge_value(r, container[key])
+        what = f'{path} = {container[key]}'
+    out = [f'# differential scene {seed} with edge value: {what}']
+    for section in ('render', 'camera', 'world'):
+        out.append(f'[{section}]')
+        out += [f'{k} = {toml_value(v)}' for k, v in doc[section].items()]
+        out.append('')
+    for table, name in (('object', 'object'), ('light', 'light')):
+        for o in doc.get(table, []):
+            out.append(f'[[{name}]]')
+            out += [f'{k} = {toml_value(v)}' for k, v in o.items()]
+            out.append('')
+    return '\n'.join(out)
+
 def run(seed, d):
     name = f'{d}/s{seed}'
-    open(name + '.toml', 'w').write(scene(seed))
+    open(name + '.toml', 'w').write(edge_scene(seed) if os.environ.get('EDGES') else scene(seed))
     p = subprocess.run([PRISM, 'render', name + '.toml', '-o', name + '.prism.png'], capture_output=True, text=True)
     if p.returncode != 0:
         return ('prism-error', p.stderr.strip().splitlines()[-1] if p.stderr.strip() else '')
@@ -285,4 +352,5 @@ if __name__ == '__main__':
     os.makedirs(d, exist_ok=True)
     for seed in range(int(sys.argv[2]), int(sys.argv[3])):
         status, info = run(seed, d)
-        print(seed, status, info, flush=True)
+        edge = open(f'{d}/s{seed}.toml').readline().partition('edge value: ')[2].strip()
+        print(seed, status, info, edge, flush=True)

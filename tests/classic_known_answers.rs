@@ -82,6 +82,20 @@ fn specular_at_twenty_degrees() {
     assert_close(pixel(&scene), [0.51538; 3], 2e-5);
 }
 
+#[test]
+fn negative_diffuse_phong_and_specular_add_nothing() {
+    // POV-Ray 3.7 lights only positive terms (ComputeDiffuseColour returns for diffuse <= 0;
+    // ComputeOneDiffuseLight adds phong and specular only when > 0): what is left is the
+    // ambient term, 0.1 x colour. Measured with POV-Ray 3.7.0.10 on this scene: 0.05, 0.04, 0.03.
+    let (s, c) = (10f64.to_radians().sin(), 10f64.to_radians().cos());
+    let scene = wall("color = [0.5, 0.4, 0.3], ambient = 0.1, diffuse = -0.6, phong = -0.8, specular = -0.7")
+        + &light(10.0 * s, 0.0, 10.0 * c, "");
+    assert_close(pixel(&scene), [0.05, 0.04, 0.03], 1e-6);
+    // One negative term leaves the others whole.
+    let scene = wall("color = [0.5, 0.4, 0.3], ambient = 0, diffuse = 0.6, phong = -0.8") + &light(0.0, 0.0, 10.0, "");
+    assert_close(pixel(&scene), [0.3, 0.24, 0.18], 1e-6);
+}
+
 /// A floor seen at 60 degrees from its normal, reflecting a white sky.
 fn floor_at_sixty_degrees(material: &str) -> String {
     format!(

@@ -293,7 +293,7 @@ fn cases() -> Vec<Case> {
         case(
             "key for another light kind",
             "[[light]]\nkind = \"point\"\nradius = 10\n",
-            &["scene.toml:3:1", "does not apply to a point light"],
+            &["scene.toml:3:1", "does not apply to a point light", "`radius` belongs to kind = \"spot\" or \"area\""],
         ),
         case("missing shape", "[[object]]\nradius = 1\n", &["scene.toml:1:", "missing key `shape`", "known shapes"]),
         case(

@@ -13,17 +13,23 @@ impl Loader<'_> {
         let mut reported = Vec::new();
         for k in table.keys() {
             if k != "kind" && !kind.accepts(k) {
-                let message = if LIGHT_KEYS.iter().any(|(name, _)| name == k) {
-                    format!("key `{k}` does not apply to a {} light", kind.name())
+                let valid = || format!("valid keys here: kind, {}", kind.keys().collect::<Vec<_>>().join(", "));
+                let (message, help) = if let Some((_, kinds)) = LIGHT_KEYS.iter().find(|(name, _)| name == k) {
+                    // A real key on the wrong kind: say which kinds take it.
+                    let takers: Vec<String> = kinds.iter().map(|other| format!("\"{}\"", other.name())).collect();
+                    (
+                        format!("key `{k}` does not apply to a {} light", kind.name()),
+                        format!("`{k}` belongs to kind = {}; {}", takers.join(" or "), valid()),
+                    )
                 } else {
-                    format!("unknown key `{k}`")
-                };
-                // Suggest among every light's keys (a misspelt `tightness` on a point light is
-                // still most likely `tightness`), else list this kind's.
-                let every_key = LIGHT_KEYS.iter().map(|(name, _)| *name);
-                let help = match crate::diagnostics::nearest_name(k, every_key.chain(["kind"])) {
-                    Some(name) => format!("did you mean `{name}`?"),
-                    None => format!("valid keys here: kind, {}", kind.keys().collect::<Vec<_>>().join(", ")),
+                    // Suggest among every light's keys (a misspelt `tightness` on a point light
+                    // is still most likely `tightness`), else list this kind's.
+                    let every_key = LIGHT_KEYS.iter().map(|(name, _)| *name);
+                    let help = match crate::diagnostics::nearest_name(k, every_key.chain(["kind"])) {
+                        Some(name) => format!("did you mean `{name}`?"),
+                        None => valid(),
+                    };
+                    (format!("unknown key `{k}`"), help)
                 };
                 let d = Diagnostic::new(self.files[index].locate(&format!("{key}.{k}")), message).with_help(help);
                 self.diagnostics.push(d);

@@ -365,7 +365,9 @@ impl<'a> Classic<'a> {
         let pigment = m.finish.color.0;
         let opacity = m.opacity();
         let mut colour = pigment * opacity * (m.finish.ambient.0 * scene.environment.ambient_light.0 + m.emission.0);
-        if m.finish.diffuse == 0.0 && m.finish.phong == 0.0 && m.finish.specular == 0.0 {
+        // POV-Ray lights only the positive terms (ComputeDiffuseColour, ComputeOneDiffuseLight):
+        // a negative diffuse, phong or specular adds nothing rather than darkening.
+        if m.finish.diffuse <= 0.0 && m.finish.phong <= 0.0 && m.finish.specular <= 0.0 {
             return colour;
         }
         let mirror = d - 2.0 * d.dot(n) * n;
@@ -630,7 +632,7 @@ impl LitSurface<'_> {
         let m = self.finish;
         let pigment = m.finish.color.0;
         let mut colour = DVec3::ZERO;
-        if m.finish.diffuse != 0.0 {
+        if m.finish.diffuse > 0.0 {
             let cosine = if m.finish.brilliance == 1.0 { n_dot_l } else { pow(n_dot_l, m.finish.brilliance) };
             colour += m.finish.diffuse * m.opacity() * cosine * pigment * e;
         }
@@ -642,13 +644,13 @@ impl LitSurface<'_> {
         } else {
             e
         };
-        if m.finish.phong != 0.0 {
+        if m.finish.phong > 0.0 {
             let r_dot_l = self.mirror.dot(l);
             if r_dot_l > 0.0 && !(m.finish.phong_size >= 60.0 && r_dot_l <= 0.0008) {
                 colour += m.finish.phong * pow(r_dot_l, m.finish.phong_size) * highlight;
             }
         }
-        if m.finish.specular != 0.0 {
+        if m.finish.specular > 0.0 {
             let h = (l - self.view).normalize();
             let n_dot_h = self.normal.dot(h);
             if n_dot_h > 0.0 {

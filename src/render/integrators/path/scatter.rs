@@ -6,7 +6,7 @@
 //! - `bsdf` tables are Mitsuba 3's BSDFs of the same name;
 //! - glTF metallic-roughness is glTF 2.0's appendix B model; alpha blending is stochastic
 //!   coverage (light passes straight through with probability 1 - alpha);
-//! - a POV-Ray finish is a diffuse albedo `color` (0 when `diffuse` is 0), plus a mirror of
+//! - a POV-Ray finish is a diffuse albedo `color` (0 unless `diffuse` is positive), plus a mirror of
 //!   reflectivity `reflection` (the maximum of min and max), plus, when `filter` or
 //!   `transmit` let light through, a smooth dielectric of the interior's `ior` tinted by
 //!   `color * filter + transmit`; the opaque part is scaled by `1 - filter - transmit` and
