@@ -96,6 +96,19 @@ fn negative_diffuse_phong_and_specular_add_nothing() {
     assert_close(pixel(&scene), [0.3, 0.24, 0.18], 1e-6);
 }
 
+#[test]
+fn an_infinite_channel_saturates_and_a_nan_channel_is_black() {
+    // A negative phong_size 89.99 degrees off the mirror direction: cos^-100 overflows to
+    // infinity, and the light's zero green makes 0 x inf = NaN. POV-Ray 3.7.0.10 writes
+    // (inf, NaN, inf) to EXR and (255, 0, 255) to PNG: each channel on its own, not a black
+    // pixel. Prism keeps files finite: the infinite channels saturate.
+    let (s, c) = (89.99f64.to_radians().sin(), 89.99f64.to_radians().cos());
+    let scene = wall("color = 1, ambient = 0, diffuse = 0, phong = 0.5, phong_size = -100")
+        + &light(10.0 * s, 0.0, 10.0 * c, "color = [1, 0, 0.5]");
+    let got = pixel(&scene);
+    assert!(got[0] >= 1e30 && got[1] == 0.0 && got[2] >= 1e30, "{got:?}");
+}
+
 /// A floor seen at 60 degrees from its normal, reflecting a white sky.
 fn floor_at_sixty_degrees(material: &str) -> String {
     format!(

@@ -91,9 +91,18 @@ impl Integrator for Classic<'_> {
     fn sample(&self, ray: &Ray, stream: SampleStream) -> PixelSample {
         let interiors = self.pinhole_interiors.unwrap_or_else(|| self.interiors_at(ray.origin));
         let mut state = PathState { stream, dimension: 4, rays: 0, first_hit: None };
-        let radiance = self.trace(ray, 1, 1.0, interiors, &mut state);
+        let radiance = pov_output(self.trace(ray, 1, 1.0, interiors, &mut state));
         PixelSample { radiance, first_hit: state.first_hit, rays: state.rays }
     }
+}
+
+/// A traced colour as POV-Ray writes it, channel by channel: NaN (`pow` of a negative
+/// colour, `0 x inf`) becomes 0 and an infinite channel (a negative `phong_size` far from
+/// the highlight, a tiny reflection `exponent`) saturates, so that it clips to white in a
+/// PNG, where the renderer's guard would zero the whole sample.
+fn pov_output(colour: DVec3) -> DVec3 {
+    let limit = f64::from(f32::MAX);
+    DVec3::from_array(colour.to_array().map(|c| if c.is_nan() { 0.0 } else { c.clamp(-limit, limit) }))
 }
 
 /// The classic integrator over one render scene.
