@@ -166,6 +166,34 @@ fn cases() -> Vec<Case> {
             &["scene.toml:3:", "object[0].material.normal.pattern", "list of normals"],
         ),
         case(
+            "normal with an empty normal_map",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bozo\"\nnormal_map = []\n",
+            &["scene.toml:5:", "object[0].material.normal.normal_map", "at least one"],
+        ),
+        case(
+            "slope_map value out of range",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"granite\"\n\
+             slope_map = [[0, [0, 1]], [1.5, [1, 0]]]\n",
+            &["scene.toml:5:", "object[0].material.normal.slope_map", "entry 1", "outside [0, 1]"],
+        ),
+        case(
+            "slope_map on a normal-only pattern",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bumps\"\nslope_map = [[0, [0, 1]]]\n",
+            &["scene.toml:5:", "object[0].material.normal.slope_map", "pigment patterns"],
+        ),
+        case(
+            "a broken normal_map entry",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bozo\"\nnormal_map = [\n  \
+             [0, { pattern = \"bumps\" }],\n  [1, { pattern = \"ripples\", frequency = inf }],\n]\n",
+            &["scene.toml:7:", "object[0].material.normal.normal_map[1][1].frequency", "finite"],
+        ),
+        case(
+            "unknown key in a normal_map entry",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bozo\"\n\
+             normal_map = [[0, { pattern = \"bumps\", bumpsize = 1 }]]\n",
+            &["scene.toml:5:", "bumpsize", "did you mean `bump_size`"],
+        ),
+        case(
             "pigment with an empty pigment_map",
             "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\npigment_map = []\n",
             &["scene.toml:5:", "object[0].material.pigment.pigment_map", "at least one"],

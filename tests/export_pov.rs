@@ -105,6 +105,24 @@ fn writes_crackle_quilted_and_pattern_normals() {
 }
 
 #[test]
+fn writes_slope_and_normal_maps_with_each_entry_in_its_own_frame() {
+    let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/normal_maps.toml")).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = String::from_utf8(run.stdout).unwrap();
+    for needle in [
+        "      gradient <1.0, 0.0, -0.0> bump_size 0.5\n      slope_map {\n        [0.0 <0.0, 1.0>]\n        [0.5 <1.0, 0.0>]\n",
+        // A map's pattern has no bump size; each entry its own, and its own matrix only.
+        "      gradient <0.0, 1.0, -0.0>\n      normal_map {\n        [0.3 bumps 0.8\n          \
+         matrix <0.2, 0.0, -0.0, 0.0, 0.2, -0.0, -0.0, -0.0, 0.2, 0.0, 0.0, -0.0>]\n        [0.7 ripples 0.6\n          frequency 3.0]\n      }\n",
+        // A slope map inside an entry, and a nested map.
+        "        [0.5 granite bump_size 0.4\n          slope_map {\n            [0.0 <0.0, 1.0>]\n",
+        "        [1.0 onion\n          normal_map {\n            [0.0 quilted 0.6\n",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+}
+
+#[test]
 fn writes_pigment_maps_with_each_entry_in_its_own_frame() {
     let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/pigment_map.toml")).output().unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));

@@ -808,24 +808,49 @@ fn image_map_sdl(map: &crate::material::image_map::ImageMap, file: String) -> St
 /// A normal pattern in POV-Ray SDL: the pattern with its bump size, its modifiers, its own
 /// transform and then the object's.
 fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffine3) -> String {
-    use crate::material::normal::DEFAULT_BUMP_SIZE;
+    format!("normal {{{INDENT}{}\n    }}", normal_body(n, world_from_object, INDENT))
+}
+
+/// A normal's body (what POV-Ray reads inside `normal { }` and in a `normal_map` entry), each
+/// modifier on a new line with `indent`. A `normal_map` entry gets only its own transform:
+/// POV-Ray hands it the point and normal the outer normal's transform and turbulence made.
+fn normal_body(n: &crate::material::normal::Normal, world_from_object: &DAffine3, indent: &str) -> String {
+    use crate::material::normal::{DEFAULT_BUMP_SIZE, NormalMapEntry, SlopeMapEntry};
     let bump_size = number(n.bump_size.unwrap_or(DEFAULT_BUMP_SIZE));
     if let Some(kind) = n.pattern.pigment_pattern() {
         let p = n.as_pigment().expect("a pigment pattern");
-        // `bump_size` as a keyword: a negative amount right after a vector or the arms would
-        // be read as part of their expression.
-        let mut sdl = format!("normal {{\n      {} bump_size {bump_size}", pattern_arguments(kind, &p));
+        let mut sdl = pattern_arguments(kind, &p);
+        if n.normal_map.is_none() {
+            // `bump_size` as a keyword: a negative amount right after a vector or the arms
+            // would be read as part of their expression.
+            let _ = write!(sdl, " bump_size {bump_size}");
+        }
         if let Some(a) = n.accuracy {
             let _ = write!(sdl, " accuracy {}", number(a));
         }
-        pattern_keys_sdl(&mut sdl, &p, INDENT);
-        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves, INDENT);
-        wave_sdl(&mut sdl, &p, INDENT);
-        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, INDENT);
-        sdl.push_str("\n    }");
+        pattern_keys_sdl(&mut sdl, &p, indent);
+        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves, indent);
+        if let Some(map) = &n.slope_map {
+            let _ = write!(sdl, "{indent}slope_map {{");
+            for SlopeMapEntry(value, [height, slope]) in map {
+                let _ = write!(sdl, "{indent}  [{} <{}, {}>]", number(*value), number(*height), number(*slope));
+            }
+            let _ = write!(sdl, "{indent}}}");
+        }
+        if let Some(map) = &n.normal_map {
+            let _ = write!(sdl, "{indent}normal_map {{");
+            let inner = format!("{indent}    ");
+            for NormalMapEntry(value, entry) in map {
+                let body = normal_body(entry, &DAffine3::IDENTITY, &inner);
+                let _ = write!(sdl, "{indent}  [{} {body}]", number(*value));
+            }
+            let _ = write!(sdl, "{indent}}}");
+        }
+        wave_sdl(&mut sdl, &p, indent);
+        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
         return sdl;
     }
-    let mut sdl = format!("normal {{\n      {} {bump_size}", n.pattern);
+    let mut sdl = format!("{} {bump_size}", n.pattern);
     for (keyword, value) in [
         ("control0", n.control0),
         ("control1", n.control1),
@@ -837,15 +862,14 @@ fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffi
             let _ = write!(sdl, " {keyword} {}", number(v));
         }
     }
-    turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves, INDENT);
+    turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves, indent);
     if let Some(f) = n.frequency {
-        let _ = write!(sdl, "\n      frequency {}", number(f));
+        let _ = write!(sdl, "{indent}frequency {}", number(f));
     }
     if let Some(phase) = n.phase {
-        let _ = write!(sdl, "\n      phase {}", number(phase));
+        let _ = write!(sdl, "{indent}phase {}", number(phase));
     }
-    matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, INDENT);
-    sdl.push_str("\n    }");
+    matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
     sdl
 }
 

@@ -23,8 +23,9 @@ use serde::{Deserialize, Serialize};
 use super::crackle::nearest_facet_point;
 use super::noise::{Octaves, dnoise, dturbulence, noise};
 use super::pattern::{
-    MAX_METRIC, PatternKind, PatternScale, Pigment, PigmentField, TurbulenceAmount, Wave, check_transform,
-    check_turbulence, cycloidal, octaves_of, pattern_transform, quilt_vector, single, warps_with_turbulence,
+    MAX_METRIC, MAX_NESTED_PIGMENTS, MAX_PIGMENT_MAP_DEPTH, MAX_PIGMENT_MAP_ENTRIES, PatternKind, PatternScale,
+    Pigment, PigmentField, TurbulenceAmount, Wave, check_map_values, check_transform, check_turbulence, cycloidal,
+    octaves_of, pattern_transform, quilt_vector, search_blend_map, single, warps_with_turbulence,
 };
 
 /// POV-Ray's default `bump_size` (`Create_Tnormal`).
@@ -171,6 +172,14 @@ impl JsonSchema for NormalKind {
     }
 }
 
+/// One `slope_map` entry: `[value, [height, slope]]`, value in [0, 1].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SlopeMapEntry(pub f64, pub [f64; 2]);
+
+/// One `normal_map` entry: `[value, normal]`, value in [0, 1].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct NormalMapEntry(pub f64, pub Normal);
+
 /// A normal pattern as a scene file writes it (`normal = { pattern = "bumps", ... }`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -226,6 +235,18 @@ pub struct Normal {
     /// `quilted`: the second control point (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub control1: Option<f64>,
+    /// Pigment patterns: POV-Ray's `slope_map`, `[value, [height, slope]]` entries (values
+    /// in [0, 1] ascending) that reshape the pattern's value before its gradient is taken:
+    /// between two entries a cubic through both heights with both slopes (POV-Ray's
+    /// `Hermite_Cubic`), outside them the nearest entry's height.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slope_map: Option<Vec<SlopeMapEntry>>,
+    /// Pigment patterns: POV-Ray's `normal_map`, `[value, normal]` entries (values in [0, 1]
+    /// ascending), each a whole normal (another `normal_map` included); the pattern's value
+    /// picks the two entries around it and blends their perturbed normals linearly, as a
+    /// `pigment_map` blends pigments. The pattern's own `bump_size` and `accuracy` do not apply.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_map: Option<Vec<NormalMapEntry>>,
     /// POV-Ray's classic `turbulence`: displaces the point before the pattern reads it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub turbulence: Option<TurbulenceAmount>,
@@ -250,6 +271,17 @@ pub struct Normal {
     /// A 4x4 affine matrix (rows; the last [0, 0, 0, 1]) instead of scale, rotate, translate.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub matrix: Option<[[f64; 4]; 4]>,
+}
+
+/// The first problem of a map's number of entries (under `key`).
+fn check_map_len(key: &'static str, len: usize) -> Result<(), (&'static str, String)> {
+    if len == 0 {
+        return Err((key, "needs at least one entry".into()));
+    }
+    if len > MAX_PIGMENT_MAP_ENTRIES {
+        return Err((key, format!("has {len} entries; at most {MAX_PIGMENT_MAP_ENTRIES} (POV-Ray's limit)")));
+    }
+    Ok(())
 }
 
 impl Normal {
@@ -295,8 +327,98 @@ impl Normal {
         })
     }
 
-    /// The first out-of-range or misplaced parameter, as (key under `normal`, message).
-    pub fn check(&self) -> Result<(), (&'static str, String)> {
+    /// The first out-of-range or misplaced parameter, as (key path under `normal`, e.g.
+    /// `normal_map[1][1].bump_size`, message).
+    pub fn check(&self) -> Result<(), (String, String)> {
+        self.check_at(0)?;
+        let total = self.nested_count();
+        if total > MAX_NESTED_PIGMENTS {
+            return Err((
+                "normal_map".into(),
+                format!("holds {total} normals in all (nested ones included); at most {MAX_NESTED_PIGMENTS}"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The `normal_map` entries (none without a map).
+    pub fn normal_map(&self) -> &[NormalMapEntry] {
+        self.normal_map.as_deref().unwrap_or_default()
+    }
+
+    /// How many normals this one holds, nested ones included (after [`Self::check_at`] has
+    /// bounded the depth). Stops counting past [`MAX_NESTED_PIGMENTS`].
+    fn nested_count(&self) -> usize {
+        let mut total = 0;
+        for NormalMapEntry(_, entry) in self.normal_map() {
+            total += 1 + entry.nested_count();
+            if total > MAX_NESTED_PIGMENTS {
+                break;
+            }
+        }
+        total
+    }
+
+    /// [`Self::check`] of a normal `depth` `normal_map`s deep.
+    fn check_at(&self, depth: usize) -> Result<(), (String, String)> {
+        let owned = |(key, message): (&str, String)| (key.to_string(), message);
+        self.check_own().map_err(owned)?;
+        self.check_maps().map_err(owned)?;
+        if self.normal_map().is_empty() {
+            return Ok(());
+        }
+        if depth >= MAX_PIGMENT_MAP_DEPTH {
+            return Err((
+                "normal_map".into(),
+                format!("normals in normal maps nest at most {MAX_PIGMENT_MAP_DEPTH} deep"),
+            ));
+        }
+        for (i, NormalMapEntry(_, entry)) in self.normal_map().iter().enumerate() {
+            entry.check_at(depth + 1).map_err(|(k, message)| (format!("normal_map[{i}][1].{k}"), message))?;
+        }
+        Ok(())
+    }
+
+    /// The first problem of the `slope_map` or `normal_map` (their entries' normals apart).
+    fn check_maps(&self) -> Result<(), (&'static str, String)> {
+        let kind = self.pattern;
+        for (key, written) in [("slope_map", self.slope_map.is_some()), ("normal_map", self.normal_map.is_some())] {
+            if written && kind.pigment_pattern().is_none() {
+                return Err((
+                    key,
+                    format!(
+                        "belongs to pigment patterns read as normals (e.g. `bozo`, the noise of `bumps`), not `{kind}`"
+                    ),
+                ));
+            }
+        }
+        if let Some(map) = &self.slope_map {
+            if self.normal_map.is_some() {
+                return Err(("slope_map", "give either a `slope_map` or a `normal_map`, not both".into()));
+            }
+            check_map_len("slope_map", map.len())?;
+            check_map_values("slope_map", map.iter().map(|e| e.0))?;
+            if let Some(i) = map.iter().position(|e| !(e.1[0].is_finite() && e.1[1].is_finite())) {
+                return Err(("slope_map", format!("entry {i}: height and slope must be finite")));
+            }
+        }
+        if let Some(map) = &self.normal_map {
+            check_map_len("normal_map", map.len())?;
+            check_map_values("normal_map", map.iter().map(|e| e.0))?;
+            for (key, written) in [("bump_size", self.bump_size.is_some()), ("accuracy", self.accuracy.is_some())] {
+                if written {
+                    return Err((
+                        key,
+                        "has no effect with a `normal_map`: give it to the map's entries (POV-Ray ignores it)".into(),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// This normal's own first problem (its maps apart), as (key under `normal`, message).
+    fn check_own(&self) -> Result<(), (&'static str, String)> {
         if let Some(b) = self.bump_size
             && !b.is_finite()
         {
@@ -389,6 +511,11 @@ pub struct NormalField {
     pigment: Option<PigmentField>,
     /// `quilted`'s control points, in single precision as POV-Ray holds them.
     quilt_controls: (f64, f64),
+    /// The `slope_map` entries, values in single precision as POV-Ray holds them (empty
+    /// without a map).
+    slope_map: Vec<SlopeMapEntry>,
+    /// The `normal_map` entries' values (single precision) and fields (empty without a map).
+    entries: Vec<(f64, NormalField)>,
 }
 
 /// POV-Ray's `(x, y, -z)` mirror between Prism's frame and its own.
@@ -414,6 +541,8 @@ impl NormalField {
             octaves: octaves_of(spec.octaves, spec.omega, spec.lambda),
             pigment: spec.as_pigment().map(|p| PigmentField::new(&p)),
             quilt_controls: (single(spec.control0), single(spec.control1)),
+            slope_map: spec.slope_map.iter().flatten().map(|e| SlopeMapEntry(f64::from(e.0 as f32), e.1)).collect(),
+            entries: spec.normal_map().iter().map(|e| (f64::from(e.0 as f32), NormalField::new(&e.1))).collect(),
         }
     }
 
@@ -425,9 +554,46 @@ impl NormalField {
             q += dturbulence(q, &self.octaves) * amount;
         }
         let n_pattern = ((self.normal_in * n) * MIRROR).normalize();
-        let tilted =
-            if self.spec.pattern == NormalKind::Facets { self.facet(q, n_pattern) } else { n_pattern + self.offset(q) };
+        let tilted = if !self.entries.is_empty() {
+            self.blend_entries(q, n_pattern)
+        } else if self.spec.pattern == NormalKind::Facets {
+            self.facet(q, n_pattern)
+        } else {
+            n_pattern + self.offset(q)
+        };
         (self.normal_out * (tilted * MIRROR)).normalize()
+    }
+
+    /// POV-Ray's `normal_map` (`Perturb_Normal`'s blend map branch): the pattern's value at
+    /// the (warped) pattern point `q` picks the entries around it; each perturbs the unit
+    /// normal `n` (pattern frame) at `q` through its own transform, and the two results are
+    /// blended linearly (one where the value sits on an entry or outside the map).
+    fn blend_entries(&self, q: DVec3, n: DVec3) -> DVec3 {
+        let value = self.pigment.as_ref().map_or(0.0, |p| p.value(q));
+        let entries = &self.entries;
+        let (prev, cur, weight) = search_blend_map(entries.len(), |i| entries[i].0, value);
+        // Back to Prism's frame: each entry's `perturb` mirrors its own point and normal.
+        let (p, m) = (q * MIRROR, n * MIRROR);
+        let current = entries[cur].1.perturb(p, m) * MIRROR;
+        if prev == cur {
+            return current;
+        }
+        let below = entries[prev].1.perturb(p, m) * MIRROR;
+        (1.0 - weight) * below + weight * current
+    }
+
+    /// POV-Ray's `Do_Slope_Map`: a pattern value reshaped by the `slope_map` (unchanged
+    /// without one).
+    fn slope(&self, value: f64) -> f64 {
+        let map = &self.slope_map;
+        if map.is_empty() {
+            return value;
+        }
+        let (prev, cur, t) = search_blend_map(map.len(), |i| map[i].0, value);
+        if prev == cur {
+            return map[cur].1[0];
+        }
+        hermite_cubic(t, map[prev].1, map[cur].1)
     }
 
     /// POV-Ray's `facets`: the normal (unit, pattern frame) replaced by the nearest cell point
@@ -457,7 +623,7 @@ impl NormalField {
                 let delta = f64::from(spec.accuracy.unwrap_or(DEFAULT_ACCURACY) as f32);
                 // POV-Ray's fudge factor -5, and 0.02 / accuracy to keep the slope's scale.
                 let weight = amount * -5.0 * (0.02 / delta);
-                PYRAMID.iter().map(|v| (pigment.value(q + delta * *v) * weight) * *v).sum()
+                PYRAMID.iter().map(|v| (self.slope(pigment.value(q + delta * *v)) * weight) * *v).sum()
             }
             NormalKind::Quilted => amount * quilt_vector(q, self.quilt_controls),
             NormalKind::Facets => DVec3::ZERO,
@@ -495,6 +661,13 @@ impl NormalField {
             }
         }
     }
+}
+
+/// POV-Ray's `Hermite_Cubic`: the cubic from `a` = (height, slope) at t = 0 to `b` at t = 1
+/// (slopes per unit of t, not of the pattern value, as POV-Ray takes them).
+fn hermite_cubic(t: f64, a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (tt, ttt) = (t * t, t * t * t);
+    ttt * (a[1] + b[1] + 2.0 * (a[0] - b[0])) - tt * (2.0 * a[1] + b[1] + 3.0 * (a[0] - b[0])) + t * a[1] + a[0]
 }
 
 /// POV-Ray's wave sources and their frequencies (`Initialize_Waves`): source i is the unit
@@ -668,6 +841,100 @@ mod tests {
         assert!(f.turbulence.is_none());
         let f = field("pattern = \"granite\"\nturbulence = 0.5");
         assert!(f.turbulence.is_some());
+    }
+
+    #[test]
+    fn slope_map_known_values() {
+        // Heights 0 and 1 with slopes 0: the smoothstep 3t^2 - 2t^3 between the entries.
+        let f = field("pattern = \"granite\"\nslope_map = [[0.2, [0, 0]], [0.6, [1, 0]]]");
+        let t = (0.5 - f64::from(0.2f32)) / (f64::from(0.6f32) - f64::from(0.2f32));
+        assert!((f.slope(0.5) - (3.0 * t * t - 2.0 * t * t * t)).abs() < 1e-12);
+        // Outside the entries, and on one: that entry's height.
+        assert_eq!(f.slope(0.1), 0.0);
+        assert_eq!(f.slope(0.9), 1.0);
+        assert_eq!(f.slope(f64::from(0.6f32)), 1.0);
+        // POV-Ray's Hermite cubic: its slopes are per unit of t, and it meets both ends.
+        let (a, b) = ([0.3, 1.5], [0.8, -0.5]);
+        assert!((hermite_cubic(0.0, a, b) - 0.3).abs() < 1e-15);
+        assert!((hermite_cubic(1.0, a, b) - 0.8).abs() < 1e-15);
+        let h = 1e-6;
+        assert!(((hermite_cubic(h, a, b) - hermite_cubic(0.0, a, b)) / h - 1.5).abs() < 1e-5);
+        assert!(((hermite_cubic(1.0, a, b) - hermite_cubic(1.0 - h, a, b)) / h + 0.5).abs() < 1e-5);
+        // The identity map [0, <0, 1>] .. [1, <1, 1>] leaves a gradient normal as it was.
+        let plain = field("pattern = \"gradient\"\nvector = [1, 0, 0]\nbump_size = 0.6");
+        let mapped = field(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\nbump_size = 0.6\nslope_map = [[0, [0, 1]], [1, [1, 1]]]",
+        );
+        let p = DVec3::new(0.25, 0.3, 0.2);
+        assert!((plain.perturb(p, DVec3::Y) - mapped.perturb(p, DVec3::Y)).length() < 1e-12);
+    }
+
+    #[test]
+    fn a_one_entry_normal_map_is_its_entry() {
+        let entry = field("pattern = \"bumps\"\nbump_size = 0.7\nscale = 0.3\nrotate = [10, 0, 20]");
+        let map = field(
+            "pattern = \"bozo\"\nnormal_map = [[0.4, { pattern = \"bumps\", bump_size = 0.7, scale = 0.3, rotate = [10, 0, 20] }]]",
+        );
+        for p in POINTS {
+            let n = DVec3::new(0.3, 0.9, -0.2);
+            assert!((map.perturb(p, n) - entry.perturb(p, n)).length() < 1e-12, "at {p}");
+        }
+    }
+
+    #[test]
+    fn a_normal_map_blends_its_entries_by_the_value() {
+        // gradient x over [0, 1): the value is x's fraction; halfway between the entries the
+        // two perturbed normals are averaged, then normalised.
+        let f = field(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\n\
+             normal_map = [[0.2, { pattern = \"bumps\", bump_size = 0.8 }], [0.6, { pattern = \"dents\", bump_size = 2 }]]",
+        );
+        let bumps = field("pattern = \"bumps\"\nbump_size = 0.8");
+        let dents = field("pattern = \"dents\"\nbump_size = 2");
+        let p = DVec3::new(0.4, 0.35, -0.7);
+        let w = (0.4 - f64::from(0.2f32)) / (f64::from(0.6f32) - f64::from(0.2f32));
+        let expected = ((1.0 - w) * bumps.perturb(p, DVec3::Y) + w * dents.perturb(p, DVec3::Y)).normalize();
+        assert!((f.perturb(p, DVec3::Y) - expected).length() < 1e-12);
+        // Below the first entry only it applies; above the last only the last.
+        let low = DVec3::new(0.1, 0.35, -0.7);
+        assert!((f.perturb(low, DVec3::Y) - bumps.perturb(low, DVec3::Y)).length() < 1e-12);
+        let high = DVec3::new(0.9, 0.35, -0.7);
+        assert!((f.perturb(high, DVec3::Y) - dents.perturb(high, DVec3::Y)).length() < 1e-12);
+    }
+
+    #[test]
+    fn bad_maps_name_their_key() {
+        let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err();
+        let key = |text: &str| err(text).0;
+        assert_eq!(key("pattern = \"bumps\"\nslope_map = [[0, [0, 1]]]"), "slope_map");
+        assert_eq!(key("pattern = \"ripples\"\nnormal_map = [[0, { pattern = \"bumps\" }]]"), "normal_map");
+        assert_eq!(key("pattern = \"bozo\"\nnormal_map = []"), "normal_map");
+        assert!(err("pattern = \"bozo\"\nslope_map = []").1.contains("at least one entry"));
+        assert_eq!(key("pattern = \"bozo\"\nslope_map = [[0.5, [0, 1]], [0.2, [1, 0]]]"), "slope_map");
+        assert!(err("pattern = \"bozo\"\nslope_map = [[1.5, [0, 1]]]").1.contains("outside [0, 1]"));
+        assert_eq!(key("pattern = \"bozo\"\nslope_map = [[0.5, [nan, 1]]]"), "slope_map");
+        assert_eq!(
+            key("pattern = \"bozo\"\nslope_map = [[0, [0, 1]]]\nnormal_map = [[0, { pattern = \"bumps\" }]]"),
+            "slope_map"
+        );
+        assert_eq!(key("pattern = \"bozo\"\nbump_size = 1\nnormal_map = [[0, { pattern = \"bumps\" }]]"), "bump_size");
+        assert_eq!(
+            key(
+                "pattern = \"bozo\"\nnormal_map = [[0, { pattern = \"bumps\" }], [1, { pattern = \"dents\", scale = 0 }]]"
+            ),
+            "normal_map[1][1].scale"
+        );
+        let inner = (0..MAX_PIGMENT_MAP_DEPTH).fold("pattern = \"bumps\"".to_string(), |inner, _| {
+            format!("pattern = \"bozo\", normal_map = [[0, {{ {inner} }}]]")
+        });
+        assert!(err(&format!("pattern = \"bozo\"\nnormal_map = [[0, {{ {inner} }}]]")).1.contains("nest at most"));
+        let many: Vec<String> = (0..=MAX_PIGMENT_MAP_ENTRIES).map(|_| "[0, { pattern = \"bumps\" }]".into()).collect();
+        assert!(err(&format!("pattern = \"bozo\"\nnormal_map = [{}]", many.join(", "))).1.contains("at most"));
+        let e =
+            toml::from_str::<Normal>("pattern = \"bozo\"\nnormal_map = [[0, { pattern = \"bumps\", bumpsize = 1 }]]")
+                .unwrap_err()
+                .to_string();
+        assert!(e.contains("unknown field `bumpsize`"), "{e}");
     }
 
     #[test]

@@ -777,7 +777,10 @@ impl Pigment {
 }
 
 /// The first problem of a map's entry values (under `key`): each in [0, 1], ascending.
-fn check_map_values(key: &'static str, values: impl Iterator<Item = f64>) -> Result<(), (&'static str, String)> {
+pub(super) fn check_map_values(
+    key: &'static str,
+    values: impl Iterator<Item = f64>,
+) -> Result<(), (&'static str, String)> {
     let mut previous = 0.0;
     for (i, value) in values.enumerate() {
         if !(0.0..=1.0).contains(&value) {
@@ -1006,13 +1009,7 @@ impl PigmentField {
     /// linearly in all five components.
     fn blend_entries(&self, value: f64, q: DVec3) -> Rgbft {
         let entries = &self.entries;
-        let last = entries.len() - 1;
-        let (prev, cur) = if value >= entries[last].0 {
-            (last, last)
-        } else {
-            let cur = entries.iter().position(|e| value <= e.0).unwrap_or(last);
-            if cur == 0 || value == entries[cur].0 { (cur, cur) } else { (cur - 1, cur) }
-        };
+        let (prev, cur, fraction) = search_blend_map(entries.len(), |i| entries[i].0, value);
         // Back to Prism's frame: each entry's `at` mirrors its own pattern point.
         let p = q * DVec3::new(1.0, 1.0, -1.0);
         let colour = entries[cur].1.at(p);
@@ -1020,7 +1017,6 @@ impl PigmentField {
             return colour;
         }
         let below = entries[prev].1.at(p);
-        let fraction = (value - entries[prev].0) / (entries[cur].0 - entries[prev].0);
         Rgbft {
             rgb: below.rgb + fraction * (colour.rgb - below.rgb),
             filter: below.filter + fraction * (colour.filter - below.filter),
@@ -1059,6 +1055,22 @@ impl PigmentField {
             spec.wave.unwrap_or(self.kind.default_wave()),
         )
     }
+}
+
+/// POV-Ray's `Search_Blend_Map` over `len` (at least one) ascending entry values `value_at(i)`:
+/// the entries below and above `value` and the upper one's weight (where the value sits on an
+/// entry, or below the first or above the last, both are that entry, of weight 1).
+pub fn search_blend_map(len: usize, value_at: impl Fn(usize) -> f64, value: f64) -> (usize, usize, f64) {
+    let last = len - 1;
+    if value >= value_at(last) {
+        return (last, last, 1.0);
+    }
+    let cur = (0..len).find(|&i| value <= value_at(i)).unwrap_or(last);
+    if cur == 0 || value == value_at(cur) {
+        return (cur, cur, 1.0);
+    }
+    let (below, above) = (value_at(cur - 1), value_at(cur));
+    (cur - 1, cur, (value - below) / (above - below))
 }
 
 /// True when POV-Ray's classic turbulence warp moves the point before `kind` reads it (with
