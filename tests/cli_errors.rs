@@ -194,6 +194,28 @@ fn cases() -> Vec<Case> {
             &["scene.toml:5:", "bumpsize", "did you mean `bump_size`"],
         ),
         case(
+            "average without a map",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"average\"\n",
+            &["scene.toml:3:", "object[0].material.pigment.pigment_map", "`average` needs"],
+        ),
+        case(
+            "average normal with a negative weight",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"average\"\n\
+             normal_map = [[1, { pattern = \"bumps\" }], [-2, { pattern = \"dents\" }]]\n",
+            &["scene.toml:5:", "object[0].material.normal.normal_map", "entry 1", "not negative"],
+        ),
+        case(
+            "average pigment with weights adding up to 0",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"average\"\n\
+             pigment_map = [[0, { color = [1, 1, 1] }]]\n",
+            &["scene.toml:5:", "object[0].material.pigment.pigment_map", "above 0"],
+        ),
+        case(
+            "unknown pattern near average",
+            "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"averag\" } }\n",
+            &["scene.toml:3:", "object[0].material.normal.pattern", "did you mean `average`"],
+        ),
+        case(
             "pigment with an empty pigment_map",
             "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\npigment_map = []\n",
             &["scene.toml:5:", "object[0].material.pigment.pigment_map", "at least one"],

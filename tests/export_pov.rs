@@ -123,6 +123,23 @@ fn writes_slope_and_normal_maps_with_each_entry_in_its_own_frame() {
 }
 
 #[test]
+fn writes_averages_with_their_weights() {
+    let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/average.toml")).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = String::from_utf8(run.stdout).unwrap();
+    for needle in [
+        "      average\n      turbulence <0.3, 0.3, 0.3>\n      pigment_map {\n        [1.0 gradient <1.0, 0.0, -0.0>\n",
+        // A normal average has no bump size of its own.
+        "      average\n      normal_map {\n        [1.0 bumps 0.4\n",
+        "        [0.5 color rgbft <0.2, 0.9, 0.2, 0.0, 0.0>]\n",
+        // Inside a map entry.
+        "        [0.0 average\n          normal_map {\n",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+}
+
+#[test]
 fn writes_pigment_maps_with_each_entry_in_its_own_frame() {
     let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/pigment_map.toml")).output().unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));

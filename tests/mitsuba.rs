@@ -275,12 +275,14 @@ fn normal_patterns_are_refused_naming_the_key() {
     export_case(dir.path(), scene, "bumps", Some("material.normal"));
 }
 
-/// A `normal_map` or `slope_map` is a normal pattern too: refused the same way.
+/// A `normal_map`, a `slope_map` or an `average` is a pattern too: refused the same way.
 #[test]
 fn normal_maps_are_refused_naming_the_key() {
     let dir = tempfile::tempdir().unwrap();
     let scene = "[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"bozo\", normal_map = [[0, { pattern = \"bumps\" }], [1, { pattern = \"granite\", slope_map = [[0, [0, 1]]] }]] } }\n";
     export_case(dir.path(), scene, "normal_map", Some("material.normal"));
+    let scene = "[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = { pigment = { pattern = \"average\", pigment_map = [[1, { color = [1, 0, 0] }]] } }\n";
+    export_case(dir.path(), scene, "average", Some("material.pigment"));
 }
 
 /// A layered texture has no Mitsuba equivalent: refused the same way.

@@ -815,7 +815,7 @@ fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffi
 /// modifier on a new line with `indent`. A `normal_map` entry gets only its own transform:
 /// POV-Ray hands it the point and normal the outer normal's transform and turbulence made.
 fn normal_body(n: &crate::material::normal::Normal, world_from_object: &DAffine3, indent: &str) -> String {
-    use crate::material::normal::{DEFAULT_BUMP_SIZE, NormalMapEntry, SlopeMapEntry};
+    use crate::material::normal::{DEFAULT_BUMP_SIZE, NormalKind, SlopeMapEntry};
     let bump_size = number(n.bump_size.unwrap_or(DEFAULT_BUMP_SIZE));
     if let Some(kind) = n.pattern.pigment_pattern() {
         let p = n.as_pigment().expect("a pigment pattern");
@@ -837,16 +837,16 @@ fn normal_body(n: &crate::material::normal::Normal, world_from_object: &DAffine3
             }
             let _ = write!(sdl, "{indent}}}");
         }
-        if let Some(map) = &n.normal_map {
-            let _ = write!(sdl, "{indent}normal_map {{");
-            let inner = format!("{indent}    ");
-            for NormalMapEntry(value, entry) in map {
-                let body = normal_body(entry, &DAffine3::IDENTITY, &inner);
-                let _ = write!(sdl, "{indent}  [{} {body}]", number(*value));
-            }
-            let _ = write!(sdl, "{indent}}}");
-        }
+        normal_map_sdl(&mut sdl, n, indent);
         wave_sdl(&mut sdl, &p, indent);
+        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
+        return sdl;
+    }
+    if n.pattern == NormalKind::Average {
+        // No bump size: POV-Ray's `average` takes none.
+        let mut sdl = String::from("average");
+        turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves, indent);
+        normal_map_sdl(&mut sdl, n, indent);
         matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
         return sdl;
     }
@@ -871,6 +871,20 @@ fn normal_body(n: &crate::material::normal::Normal, world_from_object: &DAffine3
     }
     matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
     sdl
+}
+
+/// A normal's `normal_map { [v ENTRY] ... }`, when it has one: each entry's body with its own
+/// transform only.
+fn normal_map_sdl(sdl: &mut String, n: &crate::material::normal::Normal, indent: &str) {
+    use crate::material::normal::NormalMapEntry;
+    let Some(map) = &n.normal_map else { return };
+    let _ = write!(sdl, "{indent}normal_map {{");
+    let inner = format!("{indent}    ");
+    for NormalMapEntry(value, entry) in map {
+        let body = normal_body(entry, &DAffine3::IDENTITY, &inner);
+        let _ = write!(sdl, "{indent}  [{} {body}]", number(*value));
+    }
+    let _ = write!(sdl, "{indent}}}");
 }
 
 /// A pattern's `turbulence` with its octaves, when it has one.

@@ -24,8 +24,8 @@ use super::crackle::nearest_facet_point;
 use super::noise::{Octaves, dnoise, dturbulence, noise};
 use super::pattern::{
     MAX_METRIC, MAX_NESTED_PIGMENTS, MAX_PIGMENT_MAP_DEPTH, MAX_PIGMENT_MAP_ENTRIES, PatternKind, PatternScale,
-    Pigment, PigmentField, TurbulenceAmount, Wave, check_map_values, check_transform, check_turbulence, cycloidal,
-    octaves_of, pattern_transform, quilt_vector, search_blend_map, single, warps_with_turbulence,
+    Pigment, PigmentField, TurbulenceAmount, Wave, check_map_values, check_transform, check_turbulence, check_weights,
+    cycloidal, octaves_of, pattern_transform, quilt_vector, search_blend_map, single, warps_with_turbulence,
 };
 
 /// POV-Ray's default `bump_size` (`Create_Tnormal`).
@@ -71,6 +71,8 @@ pub enum NormalKind {
     Quilted,
     /// Flat facets: the normal replaced by the direction of the nearest crackle cell point.
     Facets,
+    /// The weighted mean of its `normal_map` entries' normals (weights in place of values).
+    Average,
     /// A continuous pigment pattern (not `wrinkles` or `quilted`, whose normal forms
     /// above take their names), read through its numerical gradient.
     Pattern(PatternKind),
@@ -78,7 +80,7 @@ pub enum NormalKind {
 
 impl NormalKind {
     /// POV-Ray's normal-only patterns with their names.
-    pub const NORMAL_ONLY: [(NormalKind, &'static str); 7] = [
+    pub const NORMAL_ONLY: [(NormalKind, &'static str); 8] = [
         (NormalKind::Bumps, "bumps"),
         (NormalKind::Dents, "dents"),
         (NormalKind::Ripples, "ripples"),
@@ -86,6 +88,7 @@ impl NormalKind {
         (NormalKind::Wrinkles, "wrinkles"),
         (NormalKind::Quilted, "quilted"),
         (NormalKind::Facets, "facets"),
+        (NormalKind::Average, "average"),
     ];
 
     /// The scene file's (and POV-Ray's) name.
@@ -245,6 +248,8 @@ pub struct Normal {
     /// ascending), each a whole normal (another `normal_map` included); the pattern's value
     /// picks the two entries around it and blends their perturbed normals linearly, as a
     /// `pigment_map` blends pigments. The pattern's own `bump_size` and `accuracy` do not apply.
+    /// `average`: `[weight, normal]` entries (weights not negative, their sum above 0), whose
+    /// normals are averaged with those weights.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal_map: Option<Vec<NormalMapEntry>>,
     /// POV-Ray's classic `turbulence`: displaces the point before the pattern reads it.
@@ -382,6 +387,18 @@ impl Normal {
     /// The first problem of the `slope_map` or `normal_map` (their entries' normals apart).
     fn check_maps(&self) -> Result<(), (&'static str, String)> {
         let kind = self.pattern;
+        if kind == NormalKind::Average {
+            if let Some(key) = [("slope_map", self.slope_map.is_some()), ("bump_size", self.bump_size.is_some())]
+                .into_iter()
+                .find_map(|(key, written)| written.then_some(key))
+            {
+                return Err((key, "has no effect on `average`: give it to the map's entries".into()));
+            }
+            let Some(map) = &self.normal_map else {
+                return Err(("normal_map", "`average` needs a `normal_map` of `[weight, normal]` entries".into()));
+            };
+            return check_weights("normal_map", map.iter().map(|e| e.0));
+        }
         for (key, written) in [("slope_map", self.slope_map.is_some()), ("normal_map", self.normal_map.is_some())] {
             if written && kind.pigment_pattern().is_none() {
                 return Err((
@@ -554,7 +571,9 @@ impl NormalField {
             q += dturbulence(q, &self.octaves) * amount;
         }
         let n_pattern = ((self.normal_in * n) * MIRROR).normalize();
-        let tilted = if !self.entries.is_empty() {
+        let tilted = if self.spec.pattern == NormalKind::Average {
+            self.average(q, n_pattern)
+        } else if !self.entries.is_empty() {
             self.blend_entries(q, n_pattern)
         } else if self.spec.pattern == NormalKind::Facets {
             self.facet(q, n_pattern)
@@ -580,6 +599,21 @@ impl NormalField {
         }
         let below = entries[prev].1.perturb(p, m) * MIRROR;
         (1.0 - weight) * below + weight * current
+    }
+
+    /// POV-Ray's `Do_Average_Normals`: every `normal_map` entry perturbs the unit normal `n`
+    /// (pattern frame) at the (warped) pattern point `q`; the results are weighted by the
+    /// entries' values and divided by the weights' sum (weights and sum in single precision).
+    fn average(&self, q: DVec3, n: DVec3) -> DVec3 {
+        let (p, m) = (q * MIRROR, n * MIRROR);
+        let mut sum = DVec3::ZERO;
+        let mut total = 0.0f32;
+        for (weight, entry) in &self.entries {
+            let weight = *weight as f32;
+            sum += f64::from(weight) * (entry.perturb(p, m) * MIRROR);
+            total += weight;
+        }
+        sum / f64::from(total)
     }
 
     /// POV-Ray's `Do_Slope_Map`: a pattern value reshaped by the `slope_map` (unchanged
@@ -626,7 +660,7 @@ impl NormalField {
                 PYRAMID.iter().map(|v| (self.slope(pigment.value(q + delta * *v)) * weight) * *v).sum()
             }
             NormalKind::Quilted => amount * quilt_vector(q, self.quilt_controls),
-            NormalKind::Facets => DVec3::ZERO,
+            NormalKind::Facets | NormalKind::Average => DVec3::ZERO,
             NormalKind::Bumps => amount * dnoise(q),
             NormalKind::Dents => noise(q).powi(3) * amount * dnoise(q),
             NormalKind::Ripples | NormalKind::Waves => {
@@ -900,6 +934,34 @@ mod tests {
         assert!((f.perturb(low, DVec3::Y) - bumps.perturb(low, DVec3::Y)).length() < 1e-12);
         let high = DVec3::new(0.9, 0.35, -0.7);
         assert!((f.perturb(high, DVec3::Y) - dents.perturb(high, DVec3::Y)).length() < 1e-12);
+    }
+
+    #[test]
+    fn average_weights_its_entries_normals() {
+        let f = field(
+            "pattern = \"average\"\nscale = 0.5\n\
+             normal_map = [[1, { pattern = \"bumps\", bump_size = 0.8 }], [3, { pattern = \"ripples\", bump_size = 0.5 }]]",
+        );
+        let bumps = field("pattern = \"bumps\"\nbump_size = 0.8\nscale = 0.5");
+        let ripples = field("pattern = \"ripples\"\nbump_size = 0.5\nscale = 0.5");
+        for p in POINTS {
+            let n = DVec3::new(0.2, 1.0, 0.4);
+            let expected = ((bumps.perturb(p, n) + 3.0 * ripples.perturb(p, n)) / 4.0).normalize();
+            assert!((f.perturb(p, n) - expected).length() < 1e-12, "at {p}");
+        }
+        let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err();
+        assert_eq!(err("pattern = \"average\"").0, "normal_map");
+        assert_eq!(
+            err("pattern = \"average\"\nbump_size = 1\nnormal_map = [[1, { pattern = \"bumps\" }]]").0,
+            "bump_size"
+        );
+        assert_eq!(err("pattern = \"average\"\nslope_map = [[0, [0, 1]]]").0, "slope_map");
+        assert!(err("pattern = \"average\"\nnormal_map = [[-1, { pattern = \"bumps\" }]]").1.contains("not negative"));
+        assert!(err("pattern = \"average\"\nnormal_map = [[0, { pattern = \"bumps\" }]]").1.contains("above 0"));
+        assert_eq!(
+            err("pattern = \"average\"\nnormal_map = [[1, { pattern = \"bumps\", scale = 0 }]]").0,
+            "normal_map[0][1].scale"
+        );
     }
 
     #[test]
