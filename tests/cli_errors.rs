@@ -804,11 +804,13 @@ fn grey_png(width: u32, height: u32) -> Vec<u8> {
     out
 }
 
-/// Every problem with an `image_map`'s file or keys names the scene file, line and key,
+/// Every problem with an `image_map`'s or a `bump_map`'s file or keys names the scene file,
+/// line and key,
 /// exits non-zero and writes nothing.
 #[test]
 fn image_map_problems_name_the_file_and_key() {
     let object = |map: &str| format!("[[object]]\nshape = \"sphere\"\nmaterial = {{ pigment = {{ {map} }} }}\n");
+    let bumped = |map: &str| format!("[[object]]\nshape = \"sphere\"\nmaterial = {{ normal = {{ {map} }} }}\n");
     let mut truncated = grey_png(4, 4);
     truncated.truncate(45);
     let cases: Vec<(&str, String, Vec<&str>)> = vec![
@@ -842,6 +844,38 @@ fn image_map_problems_name_the_file_and_key() {
             "infinite transmit_all",
             object("image_map = { file = \"ok.png\", transmit_all = inf }"),
             vec!["object[0].material.pigment.image_map.transmit_all", "finite"],
+        ),
+        (
+            "missing bump_map",
+            bumped("bump_map = { file = \"nothere.png\" }"),
+            vec!["nothere.png", "object[0].material.normal.bump_map.file"],
+        ),
+        (
+            "bump_map not a PNG",
+            bumped("bump_map = { file = \"text.png\" }, bump_size = 2"),
+            vec!["object[0].material.normal.bump_map.file", "PNG"],
+        ),
+        (
+            "missing bump_map in a normal_map entry",
+            bumped(
+                "pattern = \"bozo\", normal_map = [[0, { pattern = \"bumps\" }], [1, { bump_map = { file = \"nothere.png\" } }]]",
+            ),
+            vec!["nothere.png", "object[0].material.normal.normal_map[1][1].bump_map.file"],
+        ),
+        (
+            "filter_all on a bump_map",
+            bumped("bump_map = { file = \"ok.png\", filter_all = 0.5 }"),
+            vec!["object[0].material.normal.bump_map.filter_all", "`image_map` pigment"],
+        ),
+        (
+            "unknown key in a bump_map",
+            bumped("bump_map = { file = \"ok.png\", interpolat = \"bilinear\" }"),
+            vec!["interpolat", "did you mean `interpolate`"],
+        ),
+        (
+            "pattern and bump_map",
+            bumped("pattern = \"bumps\", bump_map = { file = \"ok.png\" }"),
+            vec!["object[0].material.normal.bump_map", "not both"],
         ),
     ];
     let dir = tempfile::tempdir().unwrap();

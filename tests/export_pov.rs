@@ -140,6 +140,31 @@ fn writes_averages_with_their_weights() {
 }
 
 #[test]
+fn writes_bump_maps_with_their_image_options() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bump_map.pov");
+    let run = prism()
+        .args(["export", "pov"])
+        .arg(root().join("scenes/parity/bump_map.toml"))
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = std::fs::read_to_string(&out).unwrap();
+    for needle in [
+        "image_map_grey.png\" map_type 1 interpolate 3 bump_size -4.0 }\n",
+        "image_map.png\" map_type 0 interpolate 2 once bump_size -2.0 }\n      turbulence <0.05, 0.05, 0.05>\n",
+        // Inside a normal_map entry, with the entry's own matrix.
+        "        [0.7 bump_map { png \"",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+    // No `gamma`: POV-Ray reads a bump map's samples as stored, as Prism does.
+    assert!(!pov.lines().any(|l| l.contains("bump_map") && l.contains(" gamma ")), "{pov}");
+}
+
+#[test]
 fn writes_pigment_maps_with_each_entry_in_its_own_frame() {
     let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/pigment_map.toml")).output().unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));

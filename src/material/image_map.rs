@@ -258,16 +258,29 @@ impl ImageMap {
         let Some(image) = self.image.as_deref() else {
             return Rgbft { rgb: DVec3::ONE, filter: 0.0, transmit: 0.0 };
         };
+        match self.image_coords(image, q) {
+            Some((x, y)) => self.colour_at(image, x, y),
+            None => clear,
+        }
+    }
+
+    /// POV-Ray's `map_pos`: the texel coordinates of pattern-space point `q` (POV-Ray's
+    /// frame) in `image` (x from the left, y from the top row, wrapped into the image), or
+    /// `None` off the image (`once`) or where the mapping gives no point.
+    pub fn image_coords(&self, image: &MapImage, q: DVec3) -> Option<(f64, f64)> {
         let (w, h) = (image.width as f64, image.height as f64);
-        let Some((x, y)) = self.project(q, w, h) else {
-            return clear;
-        };
+        let (x, y) = self.project(q, w, h)?;
         let (x, y) = (x + POV_EPSILON, y + POV_EPSILON);
         if self.once && (x >= w || y >= h || x < 0.0 || y < 0.0) {
-            return clear;
+            return None;
         }
         // Image rows count from the top: y is flipped.
-        let (x, y) = (wrap(x, w), wrap(-y, h));
+        Some((wrap(x, w), wrap(-y, h)))
+    }
+
+    /// POV-Ray's `image_colour_at`: the colour at texel coordinates (x, y) of `image`, with the
+    /// map's interpolation.
+    pub fn colour_at(&self, image: &MapImage, x: f64, y: f64) -> Rgbft {
         let texel = |ix: f64, iy: f64| self.texel(image, ix, iy);
         match self.interpolate {
             Interpolate::None => texel(x, y),
@@ -438,9 +451,11 @@ impl Decoding {
 }
 
 /// Reads and decodes the PNG at `path` through `access`, within `budget`.
-pub fn load(path: &Path, access: &FileAccess, budget: MemoryBudget) -> Result<MapImage, ImageMapError> {
+/// `raw` (a `bump_map`'s image, which POV-Ray reads without gamma) keeps the samples as
+/// stored, scaled to [0, 1].
+pub fn load(path: &Path, access: &FileAccess, budget: MemoryBudget, raw: bool) -> Result<MapImage, ImageMapError> {
     let bytes = access.read(path, FileKind::Image)?;
-    decode_png(path, &bytes, budget)
+    decode_png(path, &bytes, budget, raw)
 }
 
 /// Bytes a decoded `width` x `height` image map takes.
@@ -449,8 +464,9 @@ pub fn memory_estimate(width: u32, height: u32) -> u64 {
 }
 
 /// Decodes PNG `bytes` (`path` names it in errors): 1 to 16 bits, grey, grey with alpha,
-/// RGB, RGBA or palette, to linear RGB and alpha.
-pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<MapImage, ImageMapError> {
+/// RGB, RGBA or palette, to linear RGB and alpha (`raw`: the samples as stored, scaled to
+/// [0, 1], whatever the file's gamma).
+pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget, raw: bool) -> Result<MapImage, ImageMapError> {
     const SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a];
     if !bytes.starts_with(&SIGNATURE) {
         return Err(ImageMapError::NotPng(path.to_path_buf()));
@@ -474,6 +490,7 @@ pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<Map
         return Err(TextureError::Empty { path: path.to_path_buf(), width, height }.into());
     }
     let decoding = match (info.srgb, info.gama_chunk) {
+        _ if raw => Decoding::Power(1.0),
         (None, Some(g)) if g.into_value() > 0.0 => Decoding::Power(g.into_value()),
         _ => Decoding::Srgb,
     };
@@ -506,7 +523,16 @@ pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<Map
     };
     let decode = |v: f32| {
         let linear = decoding.decode(v);
-        if grey8 { (linear * 255.0).trunc() / 255.0 } else { linear }
+        if grey8 && raw {
+            // Undecoded, POV-Ray's palette entry goes through its single-precision RGB2Gray
+            // (whose weights add up to 1 only nearly) before the truncation.
+            let grey = linear * 0.297 + linear * 0.589 + linear * 0.114;
+            (grey * 255.0).trunc() / 255.0
+        } else if grey8 {
+            (linear * 255.0).trunc() / 255.0
+        } else {
+            linear
+        }
     };
     let mut texels = Vec::with_capacity(w * h);
     for t in 0..w * h {
@@ -675,32 +701,48 @@ mod tests {
         let budget = MemoryBudget::UNLIMITED;
         let p = Path::new("t.png");
         let srgb = |v: f32| Decoding::Srgb.decode(v);
-        let rgb =
-            decode_png(p, &encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[64, 128, 255], true), budget)
-                .unwrap();
+        let rgb = decode_png(
+            p,
+            &encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[64, 128, 255], true),
+            budget,
+            false,
+        )
+        .unwrap();
         assert_eq!(rgb.texels[0], [srgb(64.0 / 255.0), srgb(128.0 / 255.0), 1.0, 1.0]);
         // 8-bit grey is truncated to 8 bits after decoding: 64 -> 13.07 -> 13.
         let grey =
-            decode_png(p, &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Eight, &[64], true), budget).unwrap();
+            decode_png(p, &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Eight, &[64], true), budget, false)
+                .unwrap();
         assert_eq!(grey.texels[0][0], 13.0 / 255.0);
         // 16-bit grey keeps its precision.
-        let grey16 =
-            decode_png(p, &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Sixteen, &[64, 64], true), budget)
-                .unwrap();
+        let grey16 = decode_png(
+            p,
+            &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Sixteen, &[64, 64], true),
+            budget,
+            false,
+        )
+        .unwrap();
         assert_eq!(grey16.texels[0][0], srgb(f32::from(0x4040u16) / 65535.0));
         // RGBA: straight alpha; a gAMA of 1 decodes linearly.
-        let rgba =
-            decode_png(p, &encode(1, 1, png::ColorType::Rgba, png::BitDepth::Eight, &[64, 0, 0, 128], false), budget)
-                .unwrap();
+        let rgba = decode_png(
+            p,
+            &encode(1, 1, png::ColorType::Rgba, png::BitDepth::Eight, &[64, 0, 0, 128], false),
+            budget,
+            false,
+        )
+        .unwrap();
         assert_eq!(rgba.texels[0], [64.0 / 255.0, 0.0, 0.0, 128.0 / 255.0]);
         assert!(rgba.has_alpha);
-        assert!(matches!(decode_png(p, b"GIF89a", budget), Err(ImageMapError::NotPng(_))));
+        assert!(matches!(decode_png(p, b"GIF89a", budget, false), Err(ImageMapError::NotPng(_))));
         let mut broken = encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[1, 2, 3], true);
         broken.truncate(40);
-        assert!(matches!(decode_png(p, &broken, budget), Err(ImageMapError::Texture(TextureError::Decode { .. }))));
+        assert!(matches!(
+            decode_png(p, &broken, budget, false),
+            Err(ImageMapError::Texture(TextureError::Decode { .. }))
+        ));
         let huge = encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[1, 2, 3], true);
         assert!(matches!(
-            decode_png(p, &huge, MemoryBudget(10)),
+            decode_png(p, &huge, MemoryBudget(10), false),
             Err(ImageMapError::Texture(TextureError::OverBudget(_)))
         ));
     }

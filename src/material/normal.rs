@@ -12,6 +12,10 @@
 //! `Perturb_Normal`'s last branch, the pattern is read at four points around the point, a
 //! tetrahedron of radius `accuracy`, and each value pushes the normal along its vertex, so the
 //! normal leans down the pattern's numerical gradient.
+//!
+//! A `slope_map` reshapes those values; a `normal_map` (or `average`) blends whole normals; a
+//! `bump_map` replaces the normal by the normal of an image's height field (`bump_map` in
+//! `imageutil.cpp`), the image loaded and mapped as an `image_map`'s.
 
 use std::fmt;
 use std::sync::OnceLock;
@@ -21,6 +25,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::crackle::nearest_facet_point;
+use super::image_map::ImageMap;
 use super::noise::{Octaves, dnoise, dturbulence, noise};
 use super::pattern::{
     MAX_METRIC, MAX_NESTED_PIGMENTS, MAX_PIGMENT_MAP_DEPTH, MAX_PIGMENT_MAP_ENTRIES, PatternKind, PatternScale,
@@ -73,6 +78,8 @@ pub enum NormalKind {
     Facets,
     /// The weighted mean of its `normal_map` entries' normals (weights in place of values).
     Average,
+    /// An image read as a height field (`bump_map`, written in place of a `pattern`).
+    BumpMap,
     /// A continuous pigment pattern (not `wrinkles` or `quilted`, whose normal forms
     /// above take their names), read through its numerical gradient.
     Pattern(PatternKind),
@@ -95,6 +102,7 @@ impl NormalKind {
     pub fn name(self) -> &'static str {
         match self {
             NormalKind::Pattern(kind) => kind.name(),
+            NormalKind::BumpMap => "bump_map",
             _ => Self::NORMAL_ONLY.iter().find(|(k, _)| *k == self).map_or("", |(_, n)| n),
         }
     }
@@ -187,8 +195,15 @@ pub struct NormalMapEntry(pub f64, pub Normal);
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Normal {
-    /// The pattern's POV-Ray name.
+    /// The pattern's POV-Ray name (none with a `bump_map`).
+    #[serde(default = "bump_map_kind", skip_serializing_if = "is_bump_map")]
     pub pattern: NormalKind,
+    /// POV-Ray's `bump_map` (in place of a `pattern`): a PNG read as a height field, its
+    /// grey level (0.297 R + 0.589 G + 0.114 B of the samples as stored, no gamma) times
+    /// `bump_size` the height; the image is mapped as an `image_map` is (`map_type`,
+    /// `interpolate`, `once`; no `filter_all` or `transmit_all`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bump_map: Option<ImageMap>,
     /// How far the pattern tilts the normal (POV-Ray's `bump_size`, the number after the
     /// pattern's keyword; default 0.5; negative inverts).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -278,6 +293,14 @@ pub struct Normal {
     pub matrix: Option<[[f64; 4]; 4]>,
 }
 
+fn bump_map_kind() -> NormalKind {
+    NormalKind::BumpMap
+}
+
+fn is_bump_map(kind: &NormalKind) -> bool {
+    *kind == NormalKind::BumpMap
+}
+
 /// The first problem of a map's number of entries (under `key`).
 fn check_map_len(key: &'static str, len: usize) -> Result<(), (&'static str, String)> {
     if len == 0 {
@@ -344,6 +367,31 @@ impl Normal {
             ));
         }
         Ok(())
+    }
+
+    /// Every bump map of the normal, its `normal_map` entries' included, with its key path
+    /// under `normal` (`bump_map`, `normal_map[1][1].bump_map`: the TOML path of its table).
+    pub fn bump_maps_mut(&mut self) -> Vec<(String, &mut ImageMap)> {
+        fn collect<'a>(n: &'a mut Normal, prefix: String, out: &mut Vec<(String, &'a mut ImageMap)>) {
+            if let Some(map) = n.bump_map.as_mut() {
+                out.push((format!("{prefix}bump_map"), map));
+            }
+            for (i, NormalMapEntry(_, entry)) in n.normal_map.iter_mut().flatten().enumerate() {
+                collect(entry, format!("{prefix}normal_map[{i}][1]."), out);
+            }
+        }
+        let mut out = Vec::new();
+        collect(self, String::new(), &mut out);
+        out
+    }
+
+    /// Every bump map of the normal, its `normal_map` entries' included.
+    pub fn bump_maps(&self) -> Vec<&ImageMap> {
+        let mut out: Vec<&ImageMap> = self.bump_map.iter().collect();
+        for NormalMapEntry(_, entry) in self.normal_map() {
+            out.extend(entry.bump_maps());
+        }
+        out
     }
 
     /// The `normal_map` entries (none without a map).
@@ -436,6 +484,23 @@ impl Normal {
 
     /// This normal's own first problem (its maps apart), as (key under `normal`, message).
     fn check_own(&self) -> Result<(), (&'static str, String)> {
+        match (self.pattern, &self.bump_map) {
+            (NormalKind::BumpMap, None) => return Err(("pattern", "needs a `pattern` or a `bump_map`".into())),
+            (NormalKind::BumpMap, Some(map)) => {
+                for (key, given) in [
+                    ("bump_map.filter_all", map.filter_all.is_some()),
+                    ("bump_map.transmit_all", map.transmit_all.is_some()),
+                ] {
+                    if given {
+                        return Err((key, "belongs to an `image_map` pigment, not to a `bump_map`".into()));
+                    }
+                }
+                map.check()
+                    .map_err(|(key, message)| (if key == "file" { "bump_map.file" } else { "bump_map" }, message))?;
+            }
+            (_, Some(_)) => return Err(("bump_map", "give either a `pattern` or a `bump_map`, not both".into())),
+            (_, None) => {}
+        }
         if let Some(b) = self.bump_size
             && !b.is_finite()
         {
@@ -577,6 +642,8 @@ impl NormalField {
             self.blend_entries(q, n_pattern)
         } else if self.spec.pattern == NormalKind::Facets {
             self.facet(q, n_pattern)
+        } else if self.spec.pattern == NormalKind::BumpMap {
+            self.bump(q, n_pattern)
         } else {
             n_pattern + self.offset(q)
         };
@@ -614,6 +681,50 @@ impl NormalField {
             total += weight;
         }
         sum / f64::from(total)
+    }
+
+    /// POV-Ray's `bump_map` (`imageutil.cpp`): the heights (grey level times `bump_size`) at
+    /// the point's texel and at the texels one left and one right of it a row down make a
+    /// triangle, whose normal replaces the unit normal `n` (pattern frame) in a frame built
+    /// about `n` and the y axis. Off the image (`once`) the normal is left as it is.
+    fn bump(&self, q: DVec3, n: DVec3) -> DVec3 {
+        let Some(map) = &self.spec.bump_map else { return n };
+        let Some(image) = map.image.as_deref() else { return n };
+        let Some((x, y)) = map.image_coords(image, q) else { return n };
+        let (w, h) = (image.width as f64, image.height as f64);
+        let amount = f64::from(self.spec.bump_size.unwrap_or(DEFAULT_BUMP_SIZE) as f32);
+        let height = |x: f64, y: f64| {
+            let c = map.colour_at(image, x, y).rgb;
+            // POV-Ray's single-precision greyscale.
+            amount * f64::from((0.297 * c.x + 0.589 * c.y + 0.114 * c.z) as f32)
+        };
+        // POV-Ray steps one texel and wraps once by hand.
+        let wrap_once = |v: f64, size: f64| {
+            if v < 0.0 {
+                v + size
+            } else if v >= size {
+                v - size
+            } else {
+                v
+            }
+        };
+        let (x2, y2) = (wrap_once(x - 1.0, w), wrap_once(y + 1.0, h));
+        let x3 = wrap_once(x2 + 2.0, w);
+        let p1 = DVec3::new(0.0, height(x, y), 0.0);
+        let p2 = DVec3::new(-1.0, height(x2, y2), 1.0);
+        let p3 = DVec3::new(1.0, height(x3, y2), 1.0);
+        let bump = (p3 - p2).cross(p1 - p2).normalize();
+        let mut y_axis = n;
+        let mut x_axis = n.cross(DVec3::Y);
+        let mut length = x_axis.length();
+        if length < 1.0e-10 {
+            y_axis = if (n.y - 1.0).abs() < 1.0e-10 { DVec3::Y } else { DVec3::NEG_Y };
+            x_axis = DVec3::X;
+            length = 1.0;
+        }
+        x_axis /= length;
+        let z_axis = x_axis.cross(y_axis).normalize();
+        x_axis * bump.x + y_axis * bump.y - z_axis * bump.z
     }
 
     /// POV-Ray's `Do_Slope_Map`: a pattern value reshaped by the `slope_map` (unchanged
@@ -660,7 +771,7 @@ impl NormalField {
                 PYRAMID.iter().map(|v| (self.slope(pigment.value(q + delta * *v)) * weight) * *v).sum()
             }
             NormalKind::Quilted => amount * quilt_vector(q, self.quilt_controls),
-            NormalKind::Facets | NormalKind::Average => DVec3::ZERO,
+            NormalKind::Facets | NormalKind::Average | NormalKind::BumpMap => DVec3::ZERO,
             NormalKind::Bumps => amount * dnoise(q),
             NormalKind::Dents => noise(q).powi(3) * amount * dnoise(q),
             NormalKind::Ripples | NormalKind::Waves => {
@@ -962,6 +1073,60 @@ mod tests {
             err("pattern = \"average\"\nnormal_map = [[1, { pattern = \"bumps\", scale = 0 }]]").0,
             "normal_map[0][1].scale"
         );
+    }
+
+    /// A bump map over `texels` (grey levels, rows from the top) of a `width`-wide image.
+    fn bump_field(text: &str, width: usize, texels: &[f32]) -> NormalField {
+        let mut n: Normal = toml::from_str(text).unwrap();
+        n.check().unwrap();
+        let image = super::super::image_map::MapImage {
+            width,
+            height: texels.len() / width,
+            texels: texels.iter().map(|&g| [g, g, g, 1.0]).collect(),
+            indexed: false,
+            has_alpha: false,
+        };
+        n.bump_map.as_mut().unwrap().image = Some(std::sync::Arc::new(image));
+        NormalField::new(&n)
+    }
+
+    #[test]
+    fn a_flat_bump_map_leaves_the_normal_and_a_slope_tilts_it() {
+        let flat = bump_field("bump_map = { file = \"h.png\" }\nbump_size = 3", 2, &[0.4; 4]);
+        for p in POINTS {
+            let n = DVec3::new(0.3, 0.9, -0.2).normalize();
+            assert!((flat.perturb(p, n) - n).length() < 1e-12, "at {p}");
+        }
+        // Heights rising to the right (image x is POV-Ray's x): the triangle's normal, in the
+        // frame about +y, leans to -x; with the normal along -z (POV-Ray's +z), built from
+        // n x y = +x (POV-Ray) and z = x x n.
+        let ramp = bump_field("bump_map = { file = \"h.png\" }\nbump_size = 2", 4, &[0.0, 0.25, 0.5, 0.75].repeat(4));
+        let p = DVec3::new(0.3, 0.6, 0.0);
+        let m = ramp.perturb(p, DVec3::Y);
+        assert!((m.length() - 1.0).abs() < 1e-12);
+        assert!(m.x < -0.1 && m.y > 0.5 && m.z.abs() < 1e-12, "{m}");
+        // The triangle by hand: heights 2 * 0.25 at the texel, 2 * 0 and 2 * 0.5 at its
+        // neighbours; its normal (-1, 2, 0) / sqrt(5), about y = n, x = n x Y = 0: the
+        // degenerate frame takes x = +x, z = x x y = +z (POV-Ray), flipped.
+        assert!((m - DVec3::new(-1.0, 2.0, 0.0).normalize()).length() < 1e-6, "{m}");
+        // `once`: off the image the normal is left as it is.
+        let once = bump_field(
+            "bump_map = { file = \"h.png\", once = true }\nbump_size = 2",
+            4,
+            &[0.0, 0.25, 0.5, 0.75].repeat(4),
+        );
+        assert!((once.perturb(DVec3::new(1.5, 0.5, 0.0), DVec3::Y) - DVec3::Y).length() < 1e-12);
+        assert!((once.perturb(p, DVec3::Y) - m).length() < 1e-12);
+        let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err();
+        assert_eq!(err("bump_size = 1").0, "pattern");
+        assert_eq!(err("pattern = \"bumps\"\nbump_map = { file = \"h.png\" }").0, "bump_map");
+        assert_eq!(err("bump_map = { file = \"h.png\", filter_all = 0.5 }").0, "bump_map.filter_all");
+        assert_eq!(err("bump_map = { file = \"\" }").0, "bump_map.file");
+        assert_eq!(err("bump_map = { file = \"h.png\" }\nfrequency = 2").0, "frequency");
+        assert_eq!(err("bump_map = { file = \"h.png\" }\nslope_map = [[0, [0, 1]]]").0, "slope_map");
+        let e =
+            toml::from_str::<Normal>("bump_map = { file = \"h.png\", map_typ = \"planar\" }").unwrap_err().to_string();
+        assert!(e.contains("unknown field `map_typ`"), "{e}");
     }
 
     #[test]

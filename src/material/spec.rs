@@ -452,15 +452,22 @@ impl MaterialSpec {
     }
 
     /// Every image map of the material's pigments (its layers' and `pigment_map` entries'
-    /// included), with its key path under the material (`pigment.image_map`,
-    /// `layers[1].pigment.pigment_map[0][1].image_map`).
-    pub fn image_maps_mut(&mut self) -> Vec<(String, &mut super::image_map::ImageMap)> {
+    /// included) and every bump map of its normals (theirs and `normal_map` entries'), with
+    /// its key path under the material (`pigment.image_map`, `normal.bump_map`,
+    /// `layers[1].pigment.pigment_map[0][1].image_map`) and whether it is a bump map (read
+    /// without gamma, as POV-Ray reads one).
+    pub fn image_maps_mut(&mut self) -> Vec<(String, &mut super::image_map::ImageMap, bool)> {
         let mut out = Vec::new();
         if let Some(p) = self.pigment.as_mut() {
-            out.extend(p.image_maps_mut().into_iter().map(|(key, map)| (format!("pigment.{key}"), map)));
+            out.extend(p.image_maps_mut().into_iter().map(|(key, map)| (format!("pigment.{key}"), map, false)));
+        }
+        if let Some(n) = self.normal.as_mut() {
+            out.extend(n.bump_maps_mut().into_iter().map(|(key, map)| (format!("normal.{key}"), map, true)));
         }
         for (i, layer) in self.layers.iter_mut().flatten().enumerate() {
-            out.extend(layer.image_maps_mut().into_iter().map(|(key, map)| (format!("layers[{i}].{key}"), map)));
+            out.extend(
+                layer.image_maps_mut().into_iter().map(|(key, map, raw)| (format!("layers[{i}].{key}"), map, raw)),
+            );
         }
         out
     }
