@@ -846,6 +846,11 @@ fn image_map_problems_name_the_file_and_key() {
             vec!["object[0].material.pigment.image_map.transmit_all", "finite"],
         ),
         (
+            "use_index on an image_map pigment",
+            object("image_map = { file = \"ok.png\", use_index = true }"),
+            vec!["object[0].material.pigment.image_map.use_index", "`bump_map`"],
+        ),
+        (
             "missing bump_map",
             bumped("bump_map = { file = \"nothere.png\" }"),
             vec!["nothere.png", "object[0].material.normal.bump_map.file"],

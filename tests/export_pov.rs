@@ -157,6 +157,7 @@ fn writes_bump_maps_with_their_image_options() {
         "image_map.png\" map_type 0 interpolate 2 once bump_size -2.0 }\n      turbulence <0.05, 0.05, 0.05>\n",
         // Inside a normal_map entry, with the entry's own matrix.
         "        [0.7 bump_map { png \"",
+        "image_map_palette.png\" map_type 0 interpolate 2 use_index bump_size 0.3 }\n",
     ] {
         assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
     }

@@ -877,7 +877,8 @@ fn normal_body(
     if let Some(map) = &n.bump_map {
         // No `gamma`: POV-Ray reads a bump map's samples as stored, as Prism does.
         let file = image_map_path(map, files).unwrap_or_default();
-        let mut sdl = format!("bump_map {{ {} bump_size {bump_size} }}", image_options_sdl(map, file));
+        let use_index = if map.use_index { " use_index" } else { "" };
+        let mut sdl = format!("bump_map {{ {}{use_index} bump_size {bump_size} }}", image_options_sdl(map, file));
         turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves, indent);
         matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
         return sdl;

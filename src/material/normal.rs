@@ -693,10 +693,10 @@ impl NormalField {
         let Some((x, y)) = map.image_coords(image, q) else { return n };
         let (w, h) = (image.width as f64, image.height as f64);
         let amount = f64::from(self.spec.bump_size.unwrap_or(DEFAULT_BUMP_SIZE) as f32);
-        let height = |x: f64, y: f64| {
+        let grey = |x: f64, y: f64| {
             let c = map.colour_at(image, x, y).rgb;
             // POV-Ray's single-precision greyscale.
-            amount * f64::from((0.297 * c.x + 0.589 * c.y + 0.114 * c.z) as f32)
+            f64::from((0.297 * c.x + 0.589 * c.y + 0.114 * c.z) as f32)
         };
         // POV-Ray steps one texel and wraps once by hand.
         let wrap_once = |v: f64, size: f64| {
@@ -710,9 +710,18 @@ impl NormalField {
         };
         let (x2, y2) = (wrap_once(x - 1.0, w), wrap_once(y + 1.0, h));
         let x3 = wrap_once(x2 + 2.0, w);
-        let p1 = DVec3::new(0.0, height(x, y), 0.0);
-        let p2 = DVec3::new(-1.0, height(x2, y2), 1.0);
-        let p3 = DVec3::new(1.0, height(x3, y2), 1.0);
+        let points = [(x, y), (x2, y2), (x3, y2)];
+        // `use_index` reads a palette image's indices (all three must have one), else colours.
+        let indices: Option<Vec<f64>> =
+            if map.use_index { points.iter().map(|&(x, y)| map.index_at(image, x, y)).collect() } else { None };
+        let [h1, h2, h3] = match indices {
+            Some(i) => [i[0], i[1], i[2]],
+            None => points.map(|(x, y)| grey(x, y)),
+        }
+        .map(|v| amount * v);
+        let p1 = DVec3::new(0.0, h1, 0.0);
+        let p2 = DVec3::new(-1.0, h2, 1.0);
+        let p3 = DVec3::new(1.0, h3, 1.0);
         let bump = (p3 - p2).cross(p1 - p2).normalize();
         let mut y_axis = n;
         let mut x_axis = n.cross(DVec3::Y);
@@ -1085,6 +1094,7 @@ mod tests {
             texels: texels.iter().map(|&g| [g, g, g, 1.0]).collect(),
             indexed: false,
             has_alpha: false,
+            indices: Vec::new(),
         };
         n.bump_map.as_mut().unwrap().image = Some(std::sync::Arc::new(image));
         NormalField::new(&n)
@@ -1117,6 +1127,23 @@ mod tests {
         );
         assert!((once.perturb(DVec3::new(1.5, 0.5, 0.0), DVec3::Y) - DVec3::Y).length() < 1e-12);
         assert!((once.perturb(p, DVec3::Y) - m).length() < 1e-12);
+        // `use_index`: a palette image's indices are the heights (here the same ramp, 0 to 3,
+        // times bump_size / 4); an image without a palette is read by its colours.
+        let mut indexed = bump_field(
+            "bump_map = { file = \"h.png\", use_index = true }\nbump_size = 0.5",
+            4,
+            &[0.0, 0.25, 0.5, 0.75].repeat(4),
+        );
+        // No palette: the colours, a slope of 0.125 per texel.
+        let colours = indexed.perturb(p, DVec3::Y);
+        assert!((colours - DVec3::new(-0.125, 1.0, 0.0).normalize()).length() < 1e-6, "{colours}");
+        if let Some(map) = indexed.spec.bump_map.as_mut() {
+            let mut image = (**map.image.as_ref().unwrap()).clone();
+            image.indexed = true;
+            image.indices = [0, 1, 2, 3].repeat(4);
+            map.image = Some(std::sync::Arc::new(image));
+        }
+        assert!((indexed.perturb(p, DVec3::Y) - m).length() < 1e-6);
         let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err();
         assert_eq!(err("bump_size = 1").0, "pattern");
         assert_eq!(err("pattern = \"bumps\"\nbump_map = { file = \"h.png\" }").0, "bump_map");

@@ -790,6 +790,9 @@ impl Pigment {
         if let Some((key, _)) = self.pattern_keys_written().into_iter().find(|(_, given)| *given) {
             return Err((key, "belongs to a `pattern`, not to an `image_map`".into()));
         }
+        if map.use_index {
+            return Err(("image_map.use_index", "belongs to a `bump_map`, not to an `image_map` pigment".into()));
+        }
         map.check().map_err(|(key, message)| {
             let key = match key {
                 "filter_all" => "image_map.filter_all",
