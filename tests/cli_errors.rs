@@ -166,6 +166,56 @@ fn cases() -> Vec<Case> {
             &["scene.toml:3:", "object[0].material.normal.pattern", "list of normals"],
         ),
         case(
+            "normal with an empty normal_map",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bozo\"\nnormal_map = []\n",
+            &["scene.toml:5:", "object[0].material.normal.normal_map", "at least one"],
+        ),
+        case(
+            "slope_map value out of range",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"granite\"\n\
+             slope_map = [[0, [0, 1]], [1.5, [1, 0]]]\n",
+            &["scene.toml:5:", "object[0].material.normal.slope_map", "entry 1", "outside [0, 1]"],
+        ),
+        case(
+            "slope_map on a normal-only pattern",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bumps\"\nslope_map = [[0, [0, 1]]]\n",
+            &["scene.toml:5:", "object[0].material.normal.slope_map", "pigment patterns"],
+        ),
+        case(
+            "a broken normal_map entry",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bozo\"\nnormal_map = [\n  \
+             [0, { pattern = \"bumps\" }],\n  [1, { pattern = \"ripples\", frequency = inf }],\n]\n",
+            &["scene.toml:7:", "object[0].material.normal.normal_map[1][1].frequency", "finite"],
+        ),
+        case(
+            "unknown key in a normal_map entry",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bozo\"\n\
+             normal_map = [[0, { pattern = \"bumps\", bumpsize = 1 }]]\n",
+            &["scene.toml:5:", "bumpsize", "did you mean `bump_size`"],
+        ),
+        case(
+            "average without a map",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"average\"\n",
+            &["scene.toml:3:", "object[0].material.pigment.pigment_map", "`average` needs"],
+        ),
+        case(
+            "average normal with a negative weight",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"average\"\n\
+             normal_map = [[1, { pattern = \"bumps\" }], [-2, { pattern = \"dents\" }]]\n",
+            &["scene.toml:5:", "object[0].material.normal.normal_map", "entry 1", "not negative"],
+        ),
+        case(
+            "average pigment with weights adding up to 0",
+            "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"average\"\n\
+             pigment_map = [[0, { color = [1, 1, 1] }]]\n",
+            &["scene.toml:5:", "object[0].material.pigment.pigment_map", "above 0"],
+        ),
+        case(
+            "unknown pattern near average",
+            "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"averag\" } }\n",
+            &["scene.toml:3:", "object[0].material.normal.pattern", "did you mean `average`"],
+        ),
+        case(
             "pigment with an empty pigment_map",
             "[[object]]\nshape = \"sphere\"\n[object.material.pigment]\npattern = \"onion\"\npigment_map = []\n",
             &["scene.toml:5:", "object[0].material.pigment.pigment_map", "at least one"],
@@ -754,11 +804,13 @@ fn grey_png(width: u32, height: u32) -> Vec<u8> {
     out
 }
 
-/// Every problem with an `image_map`'s file or keys names the scene file, line and key,
+/// Every problem with an `image_map`'s or a `bump_map`'s file or keys names the scene file,
+/// line and key,
 /// exits non-zero and writes nothing.
 #[test]
 fn image_map_problems_name_the_file_and_key() {
     let object = |map: &str| format!("[[object]]\nshape = \"sphere\"\nmaterial = {{ pigment = {{ {map} }} }}\n");
+    let bumped = |map: &str| format!("[[object]]\nshape = \"sphere\"\nmaterial = {{ normal = {{ {map} }} }}\n");
     let mut truncated = grey_png(4, 4);
     truncated.truncate(45);
     let cases: Vec<(&str, String, Vec<&str>)> = vec![
@@ -792,6 +844,43 @@ fn image_map_problems_name_the_file_and_key() {
             "infinite transmit_all",
             object("image_map = { file = \"ok.png\", transmit_all = inf }"),
             vec!["object[0].material.pigment.image_map.transmit_all", "finite"],
+        ),
+        (
+            "use_index on an image_map pigment",
+            object("image_map = { file = \"ok.png\", use_index = true }"),
+            vec!["object[0].material.pigment.image_map.use_index", "`bump_map`"],
+        ),
+        (
+            "missing bump_map",
+            bumped("bump_map = { file = \"nothere.png\" }"),
+            vec!["nothere.png", "object[0].material.normal.bump_map.file"],
+        ),
+        (
+            "bump_map not a PNG",
+            bumped("bump_map = { file = \"text.png\" }, bump_size = 2"),
+            vec!["object[0].material.normal.bump_map.file", "PNG"],
+        ),
+        (
+            "missing bump_map in a normal_map entry",
+            bumped(
+                "pattern = \"bozo\", normal_map = [[0, { pattern = \"bumps\" }], [1, { bump_map = { file = \"nothere.png\" } }]]",
+            ),
+            vec!["nothere.png", "object[0].material.normal.normal_map[1][1].bump_map.file"],
+        ),
+        (
+            "filter_all on a bump_map",
+            bumped("bump_map = { file = \"ok.png\", filter_all = 0.5 }"),
+            vec!["object[0].material.normal.bump_map.filter_all", "`image_map` pigment"],
+        ),
+        (
+            "unknown key in a bump_map",
+            bumped("bump_map = { file = \"ok.png\", interpolat = \"bilinear\" }"),
+            vec!["interpolat", "did you mean `interpolate`"],
+        ),
+        (
+            "pattern and bump_map",
+            bumped("pattern = \"bumps\", bump_map = { file = \"ok.png\" }"),
+            vec!["object[0].material.normal.bump_map", "not both"],
         ),
     ];
     let dir = tempfile::tempdir().unwrap();

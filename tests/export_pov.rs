@@ -105,6 +105,67 @@ fn writes_crackle_quilted_and_pattern_normals() {
 }
 
 #[test]
+fn writes_slope_and_normal_maps_with_each_entry_in_its_own_frame() {
+    let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/normal_maps.toml")).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = String::from_utf8(run.stdout).unwrap();
+    for needle in [
+        "      gradient <1.0, 0.0, -0.0> bump_size 0.5\n      slope_map {\n        [0.0 <0.0, 1.0>]\n        [0.5 <1.0, 0.0>]\n",
+        // A map's pattern has no bump size; each entry its own, and its own matrix only.
+        "      gradient <0.0, 1.0, -0.0>\n      normal_map {\n        [0.3 bumps 0.8\n          \
+         matrix <0.2, 0.0, -0.0, 0.0, 0.2, -0.0, -0.0, -0.0, 0.2, 0.0, 0.0, -0.0>]\n        [0.7 ripples 0.6\n          frequency 3.0]\n      }\n",
+        // A slope map inside an entry, and a nested map.
+        "        [0.5 granite bump_size 0.4\n          slope_map {\n            [0.0 <0.0, 1.0>]\n",
+        "        [1.0 onion\n          normal_map {\n            [0.0 quilted 0.6\n",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+}
+
+#[test]
+fn writes_averages_with_their_weights() {
+    let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/average.toml")).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = String::from_utf8(run.stdout).unwrap();
+    for needle in [
+        "      average\n      turbulence <0.3, 0.3, 0.3>\n      pigment_map {\n        [1.0 gradient <1.0, 0.0, -0.0>\n",
+        // A normal average has no bump size of its own.
+        "      average\n      normal_map {\n        [1.0 bumps 0.4\n",
+        "        [0.5 color rgbft <0.2, 0.9, 0.2, 0.0, 0.0>]\n",
+        // Inside a map entry.
+        "        [0.0 average\n          normal_map {\n",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+}
+
+#[test]
+fn writes_bump_maps_with_their_image_options() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bump_map.pov");
+    let run = prism()
+        .args(["export", "pov"])
+        .arg(root().join("scenes/parity/bump_map.toml"))
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let pov = std::fs::read_to_string(&out).unwrap();
+    for needle in [
+        "image_map_grey.png\" map_type 1 interpolate 3 bump_size -4.0 }\n",
+        "image_map.png\" map_type 0 interpolate 2 once bump_size -2.0 }\n      turbulence <0.05, 0.05, 0.05>\n",
+        // Inside a normal_map entry, with the entry's own matrix.
+        "        [0.7 bump_map { png \"",
+        "image_map_palette.png\" map_type 0 interpolate 2 use_index bump_size 0.3 }\n",
+    ] {
+        assert!(pov.contains(needle), "missing `{needle}` in:\n{pov}");
+    }
+    // No `gamma`: POV-Ray reads a bump map's samples as stored, as Prism does.
+    assert!(!pov.lines().any(|l| l.contains("bump_map") && l.contains(" gamma ")), "{pov}");
+}
+
+#[test]
 fn writes_pigment_maps_with_each_entry_in_its_own_frame() {
     let run = prism().args(["export", "pov"]).arg(root().join("scenes/parity/pigment_map.toml")).output().unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));

@@ -275,6 +275,20 @@ fn normal_patterns_are_refused_naming_the_key() {
     export_case(dir.path(), scene, "bumps", Some("material.normal"));
 }
 
+/// A `normal_map`, a `slope_map`, an `average` or a `bump_map` is a pattern too: refused the
+/// same way.
+#[test]
+fn normal_maps_are_refused_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"bozo\", normal_map = [[0, { pattern = \"bumps\" }], [1, { pattern = \"granite\", slope_map = [[0, [0, 1]]] }]] } }\n";
+    export_case(dir.path(), scene, "normal_map", Some("material.normal"));
+    let scene = "[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = { pigment = { pattern = \"average\", pigment_map = [[1, { color = [1, 0, 0] }]] } }\n";
+    export_case(dir.path(), scene, "average", Some("material.pigment"));
+    std::fs::write(dir.path().join("h.png"), include_bytes!("../scenes/parity/image_map_grey.png")).unwrap();
+    let scene = "[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = { normal = { bump_map = { file = \"h.png\" } } }\n";
+    export_case(dir.path(), scene, "bump_map", Some("material.normal"));
+}
+
 /// A layered texture has no Mitsuba equivalent: refused the same way.
 #[test]
 fn layered_textures_are_refused_naming_the_key() {

@@ -52,6 +52,8 @@ fn broken_scenes_are_rejected() {
         "[[light]]\nkind = \"parallel\"\nsize1 = 3\n",
         "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"bumsp\" } }\n",
         "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"bumps\", bumpsize = 1 } }\n",
+        "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"bozo\", normal_map = [[0, { pattern = \"bumsp\" }]] } }\n",
+        "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"bozo\", slope_map = [[0, [0, 1, 2]]] } }\n",
         "[materials.m]\nlayers = { color = 1 }\n",
         "[materials.m]\n[[materials.m.layers]]\ncolr = 1\n",
     ] {

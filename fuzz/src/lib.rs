@@ -144,7 +144,7 @@ pub fn image(data: &[u8]) {
         let _ = textures.load_file(&path, ColorSpace::Linear);
     }
     if extension == "png" {
-        let _ = prism::material::image_map::decode_png(&path, bytes, FUZZ_BUDGET);
+        let _ = prism::material::image_map::decode_png(&path, bytes, FUZZ_BUDGET, false);
     }
     if matches!(extension, "hdr" | "exr") {
         let _ = EnvironmentMap::load_with(&path, &access, FUZZ_BUDGET);

@@ -462,7 +462,10 @@ fn texture(
         if layers.iter().any(|l| l.finish.texture.is_some()) {
             return Err(vec![("layers", "image textures are not exported to POV-Ray".to_string())]);
         }
-        if layers.iter().any(|l| l.finish.pigment.as_ref().is_some_and(|p| unwritable_image_map(&p.spec, files))) {
+        if layers.iter().any(|l| {
+            l.finish.pigment.as_ref().is_some_and(|p| unwritable_image_map(&p.spec, files))
+                || l.finish.normal.as_ref().is_some_and(|n| unwritable_bump_map(&n.spec, files))
+        }) {
             return Err(vec![("layers", UNWRITABLE_IMAGE_MAP.to_string())]);
         }
         // One `texture { }` per layer, bottom first: POV-Ray puts the last on top.
@@ -494,6 +497,9 @@ fn texture(
     }
     if pigment.as_ref().is_some_and(|p| unwritable_image_map(&p.spec, files)) {
         problems.push(("pigment.image_map.file", UNWRITABLE_IMAGE_MAP.to_string()));
+    }
+    if normal.as_ref().is_some_and(|n| unwritable_bump_map(&n.spec, files)) {
+        problems.push(("normal.bump_map.file", UNWRITABLE_IMAGE_MAP.to_string()));
     }
     if pbr {
         problems.push(("pbr", "glTF metallic-roughness materials have no POV-Ray finish equivalent".to_string()));
@@ -554,7 +560,7 @@ fn texture_block(
         ),
     };
     let normal_sdl = match normal {
-        Some(n) => format!("\n    {}", normal_pattern(&n.spec, world_from_object)),
+        Some(n) => format!("\n    {}", normal_pattern(&n.spec, world_from_object, files)),
         None => String::new(),
     };
     let _ = write!(
@@ -785,16 +791,15 @@ fn unwritable_image_map(p: &crate::material::pattern::Pigment, files: &dyn FileP
     p.image_maps().into_iter().any(|map| image_map_path(map, files).is_none())
 }
 
+/// True when some bump map of the normal (its `normal_map` entries' included) has a file
+/// POV-Ray's strings cannot name.
+fn unwritable_bump_map(n: &crate::material::normal::Normal, files: &dyn FilePaths) -> bool {
+    n.bump_maps().into_iter().any(|map| image_map_path(map, files).is_none())
+}
+
 /// An image map in POV-Ray SDL: `file` (a POV-Ray string literal) and POV-Ray's numbers.
 fn image_map_sdl(map: &crate::material::image_map::ImageMap, file: String) -> String {
-    use crate::material::image_map::Interpolate;
-    let mut sdl = format!("image_map {{ png {file} map_type {}", map.map_type.pov_number());
-    if map.interpolate != Interpolate::None {
-        let _ = write!(sdl, " interpolate {}", map.interpolate.pov_number());
-    }
-    if map.once {
-        sdl.push_str(" once");
-    }
+    let mut sdl = format!("image_map {{ {}", image_options_sdl(map, file));
     if let Some(f) = map.filter_all {
         let _ = write!(sdl, " filter all {}", number(f));
     }
@@ -805,27 +810,80 @@ fn image_map_sdl(map: &crate::material::image_map::ImageMap, file: String) -> St
     sdl
 }
 
+/// An image file with its mapping: `png FILE map_type N`, then `interpolate N` and `once`
+/// when written.
+fn image_options_sdl(map: &crate::material::image_map::ImageMap, file: String) -> String {
+    use crate::material::image_map::Interpolate;
+    let mut sdl = format!("png {file} map_type {}", map.map_type.pov_number());
+    if map.interpolate != Interpolate::None {
+        let _ = write!(sdl, " interpolate {}", map.interpolate.pov_number());
+    }
+    if map.once {
+        sdl.push_str(" once");
+    }
+    sdl
+}
+
 /// A normal pattern in POV-Ray SDL: the pattern with its bump size, its modifiers, its own
 /// transform and then the object's.
-fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffine3) -> String {
-    use crate::material::normal::DEFAULT_BUMP_SIZE;
+fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffine3, files: &dyn FilePaths) -> String {
+    format!("normal {{{INDENT}{}\n    }}", normal_body(n, world_from_object, files, INDENT))
+}
+
+/// A normal's body (what POV-Ray reads inside `normal { }` and in a `normal_map` entry), each
+/// modifier on a new line with `indent`. A `normal_map` entry gets only its own transform:
+/// POV-Ray hands it the point and normal the outer normal's transform and turbulence made.
+fn normal_body(
+    n: &crate::material::normal::Normal,
+    world_from_object: &DAffine3,
+    files: &dyn FilePaths,
+    indent: &str,
+) -> String {
+    use crate::material::normal::{DEFAULT_BUMP_SIZE, NormalKind, SlopeMapEntry};
     let bump_size = number(n.bump_size.unwrap_or(DEFAULT_BUMP_SIZE));
     if let Some(kind) = n.pattern.pigment_pattern() {
         let p = n.as_pigment().expect("a pigment pattern");
-        // `bump_size` as a keyword: a negative amount right after a vector or the arms would
-        // be read as part of their expression.
-        let mut sdl = format!("normal {{\n      {} bump_size {bump_size}", pattern_arguments(kind, &p));
+        let mut sdl = pattern_arguments(kind, &p);
+        if n.normal_map.is_none() {
+            // `bump_size` as a keyword: a negative amount right after a vector or the arms
+            // would be read as part of their expression.
+            let _ = write!(sdl, " bump_size {bump_size}");
+        }
         if let Some(a) = n.accuracy {
             let _ = write!(sdl, " accuracy {}", number(a));
         }
-        pattern_keys_sdl(&mut sdl, &p, INDENT);
-        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves, INDENT);
-        wave_sdl(&mut sdl, &p, INDENT);
-        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, INDENT);
-        sdl.push_str("\n    }");
+        pattern_keys_sdl(&mut sdl, &p, indent);
+        turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves, indent);
+        if let Some(map) = &n.slope_map {
+            let _ = write!(sdl, "{indent}slope_map {{");
+            for SlopeMapEntry(value, [height, slope]) in map {
+                let _ = write!(sdl, "{indent}  [{} <{}, {}>]", number(*value), number(*height), number(*slope));
+            }
+            let _ = write!(sdl, "{indent}}}");
+        }
+        normal_map_sdl(&mut sdl, n, files, indent);
+        wave_sdl(&mut sdl, &p, indent);
+        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
         return sdl;
     }
-    let mut sdl = format!("normal {{\n      {} {bump_size}", n.pattern);
+    if n.pattern == NormalKind::Average {
+        // No bump size: POV-Ray's `average` takes none.
+        let mut sdl = String::from("average");
+        turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves, indent);
+        normal_map_sdl(&mut sdl, n, files, indent);
+        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
+        return sdl;
+    }
+    if let Some(map) = &n.bump_map {
+        // No `gamma`: POV-Ray reads a bump map's samples as stored, as Prism does.
+        let file = image_map_path(map, files).unwrap_or_default();
+        let use_index = if map.use_index { " use_index" } else { "" };
+        let mut sdl = format!("bump_map {{ {}{use_index} bump_size {bump_size} }}", image_options_sdl(map, file));
+        turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves, indent);
+        matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
+        return sdl;
+    }
+    let mut sdl = format!("{} {bump_size}", n.pattern);
     for (keyword, value) in [
         ("control0", n.control0),
         ("control1", n.control1),
@@ -837,16 +895,29 @@ fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffi
             let _ = write!(sdl, " {keyword} {}", number(v));
         }
     }
-    turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves, INDENT);
+    turbulence_sdl(&mut sdl, n.turbulence, n.omega, n.lambda, n.octaves, indent);
     if let Some(f) = n.frequency {
-        let _ = write!(sdl, "\n      frequency {}", number(f));
+        let _ = write!(sdl, "{indent}frequency {}", number(f));
     }
     if let Some(phase) = n.phase {
-        let _ = write!(sdl, "\n      phase {}", number(phase));
+        let _ = write!(sdl, "{indent}phase {}", number(phase));
     }
-    matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, INDENT);
-    sdl.push_str("\n    }");
+    matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
     sdl
+}
+
+/// A normal's `normal_map { [v ENTRY] ... }`, when it has one: each entry's body with its own
+/// transform only.
+fn normal_map_sdl(sdl: &mut String, n: &crate::material::normal::Normal, files: &dyn FilePaths, indent: &str) {
+    use crate::material::normal::NormalMapEntry;
+    let Some(map) = &n.normal_map else { return };
+    let _ = write!(sdl, "{indent}normal_map {{");
+    let inner = format!("{indent}    ");
+    for NormalMapEntry(value, entry) in map {
+        let body = normal_body(entry, &DAffine3::IDENTITY, files, &inner);
+        let _ = write!(sdl, "{indent}  [{} {body}]", number(*value));
+    }
+    let _ = write!(sdl, "{indent}}}");
 }
 
 /// A pattern's `turbulence` with its octaves, when it has one.

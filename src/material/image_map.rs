@@ -146,6 +146,10 @@ pub struct ImageMap {
     /// Show the image once: outside its unit square the pigment is clear.
     #[serde(default, skip_serializing_if = "is_default")]
     pub once: bool,
+    /// `bump_map` only: a palette image's indices (0 to 255) as heights instead of its
+    /// colours' grey levels (POV-Ray's `use_index`; other images are read by their colours).
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub use_index: bool,
     /// POV-Ray's `filter all`: added to every texel's filter.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub filter_all: Option<f64>,
@@ -187,6 +191,7 @@ impl PartialEq for ImageMap {
             && self.map_type == other.map_type
             && self.interpolate == other.interpolate
             && self.once == other.once
+            && self.use_index == other.use_index
             && self.filter_all == other.filter_all
             && self.transmit_all == other.transmit_all
     }
@@ -206,6 +211,9 @@ pub struct MapImage {
     pub indexed: bool,
     /// Some texel is not fully opaque.
     pub has_alpha: bool,
+    /// A palette image's indices, per texel (read only for a bump map's `use_index`; empty
+    /// otherwise).
+    pub indices: Vec<u8>,
 }
 
 /// Why an `image_map` file cannot be used.
@@ -258,42 +266,91 @@ impl ImageMap {
         let Some(image) = self.image.as_deref() else {
             return Rgbft { rgb: DVec3::ONE, filter: 0.0, transmit: 0.0 };
         };
+        match self.image_coords(image, q) {
+            Some((x, y)) => self.colour_at(image, x, y),
+            None => clear,
+        }
+    }
+
+    /// POV-Ray's `map_pos`: the texel coordinates of pattern-space point `q` (POV-Ray's
+    /// frame) in `image` (x from the left, y from the top row, wrapped into the image), or
+    /// `None` off the image (`once`) or where the mapping gives no point.
+    pub fn image_coords(&self, image: &MapImage, q: DVec3) -> Option<(f64, f64)> {
         let (w, h) = (image.width as f64, image.height as f64);
-        let Some((x, y)) = self.project(q, w, h) else {
-            return clear;
-        };
+        let (x, y) = self.project(q, w, h)?;
         let (x, y) = (x + POV_EPSILON, y + POV_EPSILON);
         if self.once && (x >= w || y >= h || x < 0.0 || y < 0.0) {
-            return clear;
+            return None;
         }
         // Image rows count from the top: y is flipped.
-        let (x, y) = (wrap(x, w), wrap(-y, h));
-        let texel = |ix: f64, iy: f64| self.texel(image, ix, iy);
+        Some((wrap(x, w), wrap(-y, h)))
+    }
+
+    /// POV-Ray's `image_colour_at`: the colour at texel coordinates (x, y) of `image`, with the
+    /// map's interpolation.
+    pub fn colour_at(&self, image: &MapImage, x: f64, y: f64) -> Rgbft {
+        let (taps, n) = self.taps(x, y);
+        if n == 1 {
+            return self.texel(image, taps[0].0.0, taps[0].0.1);
+        }
+        let mut out = Rgbft { rgb: DVec3::ZERO, filter: 0.0, transmit: 0.0 };
+        for &((tx, ty), w) in &taps[..n] {
+            let c = self.texel(image, tx, ty);
+            out.rgb += c.rgb * w;
+            out.filter += c.filter * w;
+            out.transmit += c.transmit * w;
+        }
+        out
+    }
+
+    /// The palette index `image_colour_at` gives beside the colour: the texels' indices
+    /// blended with the interpolation's weights and truncated, as POV-Ray does (`None` for an
+    /// image without a palette).
+    pub fn index_at(&self, image: &MapImage, x: f64, y: f64) -> Option<f64> {
+        if image.indices.is_empty() {
+            return None;
+        }
+        let (taps, n) = self.taps(x, y);
+        let sum: f64 = taps[..n]
+            .iter()
+            .map(|&((tx, ty), w)| f64::from(image.indices[self.texel_position(image, tx, ty)]) * w)
+            .sum();
+        Some(sum.trunc())
+    }
+
+    /// The texels an interpolated lookup at (x, y) reads, with their weights (the first `n`).
+    fn taps(&self, x: f64, y: f64) -> (Taps, usize) {
+        let mut taps = [((0.0, 0.0), 0.0); 16];
         match self.interpolate {
-            Interpolate::None => texel(x, y),
+            Interpolate::None => {
+                taps[0] = ((x, y), 1.0);
+                (taps, 1)
+            }
             Interpolate::Bilinear | Interpolate::NormalizedDistance => {
                 let (x, y) = (x + 0.5, y + 0.5);
                 let (ix, iy) = (x.trunc(), y.trunc());
                 let (p, q) = (x - ix, y - iy);
-                let corners = [texel(ix, iy), texel(ix - 1.0, iy), texel(ix, iy - 1.0), texel(ix - 1.0, iy - 1.0)];
+                let corners = [(ix, iy), (ix - 1.0, iy), (ix, iy - 1.0), (ix - 1.0, iy - 1.0)];
                 let factors = if self.interpolate == Interpolate::Bilinear {
                     [p * q, (1.0 - p) * q, p * (1.0 - q), (1.0 - p) * (1.0 - q)]
                 } else {
                     normalized_distance(p, q)
                 };
-                blend(corners.iter().zip(factors))
+                for (k, (c, f)) in corners.into_iter().zip(factors).enumerate() {
+                    taps[k] = (c, f);
+                }
+                (taps, 4)
             }
             Interpolate::Bicubic => {
                 let (x, y) = (x + 0.5, y + 0.5);
                 let (ix, iy) = (x.trunc(), y.trunc());
                 let (fx, fy) = (cubic(x - ix), cubic(y - iy));
-                let mut samples = Vec::with_capacity(16);
                 for (i, wx) in fx.iter().enumerate() {
                     for (j, wy) in fy.iter().enumerate() {
-                        samples.push((texel(ix + i as f64 - 2.0, iy + j as f64 - 2.0), wx * wy));
+                        taps[i * 4 + j] = ((ix + i as f64 - 2.0, iy + j as f64 - 2.0), wx * wy);
                     }
                 }
-                blend(samples.iter().map(|(c, w)| (c, *w)))
+                (taps, 16)
             }
         }
     }
@@ -336,13 +393,7 @@ impl ImageMap {
     /// POV-Ray's `no_interpolation`: the texel at wrapped texel coordinates (clamped to the
     /// edge with `once`), with `filter all` and `transmit all`.
     fn texel(&self, image: &MapImage, x: f64, y: f64) -> Rgbft {
-        let (w, h) = (image.width as f64, image.height as f64);
-        let (ix, iy) = if self.once {
-            (x.clamp(0.0, w - 1.0) as usize, y.clamp(0.0, h - 1.0) as usize)
-        } else {
-            (wrap(x, w) as usize, wrap(y, h) as usize)
-        };
-        let [r, g, b, a] = image.texels[iy.min(image.height - 1) * image.width + ix.min(image.width - 1)];
+        let [r, g, b, a] = image.texels[self.texel_position(image, x, y)];
         let alpha_transmit = 1.0 - f64::from(a);
         let transmit = match (image.indexed, self.transmit_all) {
             (true, Some(t)) => t,
@@ -353,6 +404,23 @@ impl ImageMap {
             filter: self.filter_all.unwrap_or(0.0),
             transmit,
         }
+    }
+}
+
+/// Up to sixteen texel positions with their interpolation weights.
+type Taps = [((f64, f64), f64); 16];
+
+impl ImageMap {
+    /// The index into `image`'s texels of texel coordinates (x, y): wrapped, or with `once`
+    /// clamped to the edge (POV-Ray's `no_interpolation`).
+    fn texel_position(&self, image: &MapImage, x: f64, y: f64) -> usize {
+        let (w, h) = (image.width as f64, image.height as f64);
+        let (ix, iy) = if self.once {
+            (x.clamp(0.0, w - 1.0) as usize, y.clamp(0.0, h - 1.0) as usize)
+        } else {
+            (wrap(x, w) as usize, wrap(y, h) as usize)
+        };
+        iy.min(image.height - 1) * image.width + ix.min(image.width - 1)
     }
 }
 
@@ -403,16 +471,6 @@ fn cubic(x: f64) -> [f64; 4] {
     [-0.5 * p * q * q, 0.5 * q * (q * (3.0 * p + 1.0) + 1.0), 0.5 * p * (p * (3.0 * q + 1.0) + 1.0), -0.5 * q * p * p]
 }
 
-fn blend<'a>(samples: impl Iterator<Item = (&'a Rgbft, f64)>) -> Rgbft {
-    let mut out = Rgbft { rgb: DVec3::ZERO, filter: 0.0, transmit: 0.0 };
-    for (c, w) in samples {
-        out.rgb += c.rgb * w;
-        out.filter += c.filter * w;
-        out.transmit += c.transmit * w;
-    }
-    out
-}
-
 /// How a PNG's samples become linear values, as POV-Ray 3.7 reads PNG files.
 #[derive(Clone, Copy)]
 enum Decoding {
@@ -438,9 +496,11 @@ impl Decoding {
 }
 
 /// Reads and decodes the PNG at `path` through `access`, within `budget`.
-pub fn load(path: &Path, access: &FileAccess, budget: MemoryBudget) -> Result<MapImage, ImageMapError> {
+/// `raw` (a `bump_map`'s image, which POV-Ray reads without gamma) keeps the samples as
+/// stored, scaled to [0, 1].
+pub fn load(path: &Path, access: &FileAccess, budget: MemoryBudget, raw: bool) -> Result<MapImage, ImageMapError> {
     let bytes = access.read(path, FileKind::Image)?;
-    decode_png(path, &bytes, budget)
+    decode_png(path, &bytes, budget, raw)
 }
 
 /// Bytes a decoded `width` x `height` image map takes.
@@ -449,8 +509,9 @@ pub fn memory_estimate(width: u32, height: u32) -> u64 {
 }
 
 /// Decodes PNG `bytes` (`path` names it in errors): 1 to 16 bits, grey, grey with alpha,
-/// RGB, RGBA or palette, to linear RGB and alpha.
-pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<MapImage, ImageMapError> {
+/// RGB, RGBA or palette, to linear RGB and alpha (`raw`: the samples as stored, scaled to
+/// [0, 1], whatever the file's gamma).
+pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget, raw: bool) -> Result<MapImage, ImageMapError> {
     const SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a];
     if !bytes.starts_with(&SIGNATURE) {
         return Err(ImageMapError::NotPng(path.to_path_buf()));
@@ -474,6 +535,7 @@ pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<Map
         return Err(TextureError::Empty { path: path.to_path_buf(), width, height }.into());
     }
     let decoding = match (info.srgb, info.gama_chunk) {
+        _ if raw => Decoding::Power(1.0),
         (None, Some(g)) if g.into_value() > 0.0 => Decoding::Power(g.into_value()),
         _ => Decoding::Srgb,
     };
@@ -506,7 +568,16 @@ pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<Map
     };
     let decode = |v: f32| {
         let linear = decoding.decode(v);
-        if grey8 { (linear * 255.0).trunc() / 255.0 } else { linear }
+        if grey8 && raw {
+            // Undecoded, POV-Ray's palette entry goes through its single-precision RGB2Gray
+            // (whose weights add up to 1 only nearly) before the truncation.
+            let grey = linear * 0.297 + linear * 0.589 + linear * 0.114;
+            (grey * 255.0).trunc() / 255.0
+        } else if grey8 {
+            (linear * 255.0).trunc() / 255.0
+        } else {
+            linear
+        }
     };
     let mut texels = Vec::with_capacity(w * h);
     for t in 0..w * h {
@@ -526,7 +597,32 @@ pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget) -> Result<Map
         texels.push(texel);
     }
     let has_alpha = texels.iter().any(|t| t[3] < 1.0);
-    Ok(MapImage { width: w, height: h, texels, indexed, has_alpha })
+    let indices = if raw && indexed { palette_indices(bytes, w, h).map_err(corrupt)? } else { Vec::new() };
+    Ok(MapImage { width: w, height: h, texels, indexed, has_alpha, indices })
+}
+
+/// A palette PNG's `w` x `h` indices (1, 2, 4 or 8 bits each), decoded again without
+/// expanding the palette.
+fn palette_indices(bytes: &[u8], w: usize, h: usize) -> Result<Vec<u8>, png::DecodingError> {
+    let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+    decoder.set_transformations(png::Transformations::IDENTITY);
+    let mut reader = decoder.read_info()?;
+    let depth = reader.info().bit_depth as usize;
+    let mut buffer = vec![0; reader.output_buffer_size().unwrap_or(0)];
+    let frame = reader.next_frame(&mut buffer)?;
+    let line = frame.line_size;
+    if !matches!(depth, 1 | 2 | 4 | 8) || buffer.len() < h * line || line * 8 < w * depth {
+        return Err(png::DecodingError::LimitsExceeded);
+    }
+    let mask = ((1u16 << depth) - 1) as u8;
+    let mut indices = Vec::with_capacity(w * h);
+    for row in 0..h {
+        for col in 0..w {
+            let bit = col * depth;
+            indices.push((buffer[row * line + bit / 8] >> (8 - depth - bit % 8)) & mask);
+        }
+    }
+    Ok(indices)
 }
 
 #[cfg(test)]
@@ -541,7 +637,7 @@ mod tests {
                 texels.push([col as f32 / 4.0, row as f32 / 2.0, 0.0, 1.0]);
             }
         }
-        Arc::new(MapImage { width: 4, height: 2, texels, indexed: false, has_alpha: false })
+        Arc::new(MapImage { width: 4, height: 2, texels, indexed: false, has_alpha: false, indices: Vec::new() })
     }
 
     fn map(text: &str) -> ImageMap {
@@ -554,6 +650,21 @@ mod tests {
     /// The (column, row) of the texel an un-interpolated lookup gives.
     fn texel_of(c: Rgbft) -> (i32, i32) {
         ((c.rgb.x * 4.0).round() as i32, (c.rgb.y * 2.0).round() as i32)
+    }
+
+    #[test]
+    fn palette_indices_blend_like_colours_and_truncate() {
+        let mut image = (*image()).clone();
+        image.indices = vec![0, 1, 2, 3, 4, 5, 6, 7];
+        let image = Arc::new(image);
+        let mut m = map("interpolate = \"bilinear\"");
+        // Halfway between texel centres (1, 0) and (2, 0): indices 1 and 2 blend to 1.5,
+        // truncated to 1, as POV-Ray's `(int)` does.
+        assert_eq!(m.index_at(&image, 2.0, 0.5), Some(1.0));
+        m.interpolate = Interpolate::None;
+        assert_eq!(m.index_at(&image, 2.2, 1.7), Some(6.0));
+        // An image without a palette has no index.
+        assert_eq!(m.index_at(&self::image(), 2.2, 1.7), None);
     }
 
     #[test]
@@ -675,32 +786,48 @@ mod tests {
         let budget = MemoryBudget::UNLIMITED;
         let p = Path::new("t.png");
         let srgb = |v: f32| Decoding::Srgb.decode(v);
-        let rgb =
-            decode_png(p, &encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[64, 128, 255], true), budget)
-                .unwrap();
+        let rgb = decode_png(
+            p,
+            &encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[64, 128, 255], true),
+            budget,
+            false,
+        )
+        .unwrap();
         assert_eq!(rgb.texels[0], [srgb(64.0 / 255.0), srgb(128.0 / 255.0), 1.0, 1.0]);
         // 8-bit grey is truncated to 8 bits after decoding: 64 -> 13.07 -> 13.
         let grey =
-            decode_png(p, &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Eight, &[64], true), budget).unwrap();
+            decode_png(p, &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Eight, &[64], true), budget, false)
+                .unwrap();
         assert_eq!(grey.texels[0][0], 13.0 / 255.0);
         // 16-bit grey keeps its precision.
-        let grey16 =
-            decode_png(p, &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Sixteen, &[64, 64], true), budget)
-                .unwrap();
+        let grey16 = decode_png(
+            p,
+            &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Sixteen, &[64, 64], true),
+            budget,
+            false,
+        )
+        .unwrap();
         assert_eq!(grey16.texels[0][0], srgb(f32::from(0x4040u16) / 65535.0));
         // RGBA: straight alpha; a gAMA of 1 decodes linearly.
-        let rgba =
-            decode_png(p, &encode(1, 1, png::ColorType::Rgba, png::BitDepth::Eight, &[64, 0, 0, 128], false), budget)
-                .unwrap();
+        let rgba = decode_png(
+            p,
+            &encode(1, 1, png::ColorType::Rgba, png::BitDepth::Eight, &[64, 0, 0, 128], false),
+            budget,
+            false,
+        )
+        .unwrap();
         assert_eq!(rgba.texels[0], [64.0 / 255.0, 0.0, 0.0, 128.0 / 255.0]);
         assert!(rgba.has_alpha);
-        assert!(matches!(decode_png(p, b"GIF89a", budget), Err(ImageMapError::NotPng(_))));
+        assert!(matches!(decode_png(p, b"GIF89a", budget, false), Err(ImageMapError::NotPng(_))));
         let mut broken = encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[1, 2, 3], true);
         broken.truncate(40);
-        assert!(matches!(decode_png(p, &broken, budget), Err(ImageMapError::Texture(TextureError::Decode { .. }))));
+        assert!(matches!(
+            decode_png(p, &broken, budget, false),
+            Err(ImageMapError::Texture(TextureError::Decode { .. }))
+        ));
         let huge = encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[1, 2, 3], true);
         assert!(matches!(
-            decode_png(p, &huge, MemoryBudget(10)),
+            decode_png(p, &huge, MemoryBudget(10), false),
             Err(ImageMapError::Texture(TextureError::OverBudget(_)))
         ));
     }

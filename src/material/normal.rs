@@ -12,6 +12,10 @@
 //! `Perturb_Normal`'s last branch, the pattern is read at four points around the point, a
 //! tetrahedron of radius `accuracy`, and each value pushes the normal along its vertex, so the
 //! normal leans down the pattern's numerical gradient.
+//!
+//! A `slope_map` reshapes those values; a `normal_map` (or `average`) blends whole normals; a
+//! `bump_map` replaces the normal by the normal of an image's height field (`bump_map` in
+//! `imageutil.cpp`), the image loaded and mapped as an `image_map`'s.
 
 use std::fmt;
 use std::sync::OnceLock;
@@ -21,10 +25,12 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::crackle::nearest_facet_point;
+use super::image_map::ImageMap;
 use super::noise::{Octaves, dnoise, dturbulence, noise};
 use super::pattern::{
-    MAX_METRIC, PatternKind, PatternScale, Pigment, PigmentField, TurbulenceAmount, Wave, check_transform,
-    check_turbulence, cycloidal, octaves_of, pattern_transform, quilt_vector, single, warps_with_turbulence,
+    MAX_METRIC, MAX_NESTED_PIGMENTS, MAX_PIGMENT_MAP_DEPTH, MAX_PIGMENT_MAP_ENTRIES, PatternKind, PatternScale,
+    Pigment, PigmentField, TurbulenceAmount, Wave, check_map_values, check_transform, check_turbulence, check_weights,
+    cycloidal, octaves_of, pattern_transform, quilt_vector, search_blend_map, single, warps_with_turbulence,
 };
 
 /// POV-Ray's default `bump_size` (`Create_Tnormal`).
@@ -70,6 +76,10 @@ pub enum NormalKind {
     Quilted,
     /// Flat facets: the normal replaced by the direction of the nearest crackle cell point.
     Facets,
+    /// The weighted mean of its `normal_map` entries' normals (weights in place of values).
+    Average,
+    /// An image read as a height field (`bump_map`, written in place of a `pattern`).
+    BumpMap,
     /// A continuous pigment pattern (not `wrinkles` or `quilted`, whose normal forms
     /// above take their names), read through its numerical gradient.
     Pattern(PatternKind),
@@ -77,7 +87,7 @@ pub enum NormalKind {
 
 impl NormalKind {
     /// POV-Ray's normal-only patterns with their names.
-    pub const NORMAL_ONLY: [(NormalKind, &'static str); 7] = [
+    pub const NORMAL_ONLY: [(NormalKind, &'static str); 8] = [
         (NormalKind::Bumps, "bumps"),
         (NormalKind::Dents, "dents"),
         (NormalKind::Ripples, "ripples"),
@@ -85,12 +95,14 @@ impl NormalKind {
         (NormalKind::Wrinkles, "wrinkles"),
         (NormalKind::Quilted, "quilted"),
         (NormalKind::Facets, "facets"),
+        (NormalKind::Average, "average"),
     ];
 
     /// The scene file's (and POV-Ray's) name.
     pub fn name(self) -> &'static str {
         match self {
             NormalKind::Pattern(kind) => kind.name(),
+            NormalKind::BumpMap => "bump_map",
             _ => Self::NORMAL_ONLY.iter().find(|(k, _)| *k == self).map_or("", |(_, n)| n),
         }
     }
@@ -171,12 +183,27 @@ impl JsonSchema for NormalKind {
     }
 }
 
+/// One `slope_map` entry: `[value, [height, slope]]`, value in [0, 1].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct SlopeMapEntry(pub f64, pub [f64; 2]);
+
+/// One `normal_map` entry: `[value, normal]`, value in [0, 1].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct NormalMapEntry(pub f64, pub Normal);
+
 /// A normal pattern as a scene file writes it (`normal = { pattern = "bumps", ... }`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Normal {
-    /// The pattern's POV-Ray name.
+    /// The pattern's POV-Ray name (none with a `bump_map`).
+    #[serde(default = "bump_map_kind", skip_serializing_if = "is_bump_map")]
     pub pattern: NormalKind,
+    /// POV-Ray's `bump_map` (in place of a `pattern`): a PNG read as a height field, its
+    /// grey level (0.297 R + 0.589 G + 0.114 B of the samples as stored, no gamma) times
+    /// `bump_size` the height; the image is mapped as an `image_map` is (`map_type`,
+    /// `interpolate`, `once`; no `filter_all` or `transmit_all`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bump_map: Option<ImageMap>,
     /// How far the pattern tilts the normal (POV-Ray's `bump_size`, the number after the
     /// pattern's keyword; default 0.5; negative inverts).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -226,6 +253,20 @@ pub struct Normal {
     /// `quilted`: the second control point (default 1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub control1: Option<f64>,
+    /// Pigment patterns: POV-Ray's `slope_map`, `[value, [height, slope]]` entries (values
+    /// in [0, 1] ascending) that reshape the pattern's value before its gradient is taken:
+    /// between two entries a cubic through both heights with both slopes (POV-Ray's
+    /// `Hermite_Cubic`), outside them the nearest entry's height.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slope_map: Option<Vec<SlopeMapEntry>>,
+    /// Pigment patterns: POV-Ray's `normal_map`, `[value, normal]` entries (values in [0, 1]
+    /// ascending), each a whole normal (another `normal_map` included); the pattern's value
+    /// picks the two entries around it and blends their perturbed normals linearly, as a
+    /// `pigment_map` blends pigments. The pattern's own `bump_size` and `accuracy` do not apply.
+    /// `average`: `[weight, normal]` entries (weights not negative, their sum above 0), whose
+    /// normals are averaged with those weights.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_map: Option<Vec<NormalMapEntry>>,
     /// POV-Ray's classic `turbulence`: displaces the point before the pattern reads it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub turbulence: Option<TurbulenceAmount>,
@@ -250,6 +291,25 @@ pub struct Normal {
     /// A 4x4 affine matrix (rows; the last [0, 0, 0, 1]) instead of scale, rotate, translate.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub matrix: Option<[[f64; 4]; 4]>,
+}
+
+fn bump_map_kind() -> NormalKind {
+    NormalKind::BumpMap
+}
+
+fn is_bump_map(kind: &NormalKind) -> bool {
+    *kind == NormalKind::BumpMap
+}
+
+/// The first problem of a map's number of entries (under `key`).
+fn check_map_len(key: &'static str, len: usize) -> Result<(), (&'static str, String)> {
+    if len == 0 {
+        return Err((key, "needs at least one entry".into()));
+    }
+    if len > MAX_PIGMENT_MAP_ENTRIES {
+        return Err((key, format!("has {len} entries; at most {MAX_PIGMENT_MAP_ENTRIES} (POV-Ray's limit)")));
+    }
+    Ok(())
 }
 
 impl Normal {
@@ -295,8 +355,152 @@ impl Normal {
         })
     }
 
-    /// The first out-of-range or misplaced parameter, as (key under `normal`, message).
-    pub fn check(&self) -> Result<(), (&'static str, String)> {
+    /// The first out-of-range or misplaced parameter, as (key path under `normal`, e.g.
+    /// `normal_map[1][1].bump_size`, message).
+    pub fn check(&self) -> Result<(), (String, String)> {
+        self.check_at(0)?;
+        let total = self.nested_count();
+        if total > MAX_NESTED_PIGMENTS {
+            return Err((
+                "normal_map".into(),
+                format!("holds {total} normals in all (nested ones included); at most {MAX_NESTED_PIGMENTS}"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Every bump map of the normal, its `normal_map` entries' included, with its key path
+    /// under `normal` (`bump_map`, `normal_map[1][1].bump_map`: the TOML path of its table).
+    pub fn bump_maps_mut(&mut self) -> Vec<(String, &mut ImageMap)> {
+        fn collect<'a>(n: &'a mut Normal, prefix: String, out: &mut Vec<(String, &'a mut ImageMap)>) {
+            if let Some(map) = n.bump_map.as_mut() {
+                out.push((format!("{prefix}bump_map"), map));
+            }
+            for (i, NormalMapEntry(_, entry)) in n.normal_map.iter_mut().flatten().enumerate() {
+                collect(entry, format!("{prefix}normal_map[{i}][1]."), out);
+            }
+        }
+        let mut out = Vec::new();
+        collect(self, String::new(), &mut out);
+        out
+    }
+
+    /// Every bump map of the normal, its `normal_map` entries' included.
+    pub fn bump_maps(&self) -> Vec<&ImageMap> {
+        let mut out: Vec<&ImageMap> = self.bump_map.iter().collect();
+        for NormalMapEntry(_, entry) in self.normal_map() {
+            out.extend(entry.bump_maps());
+        }
+        out
+    }
+
+    /// The `normal_map` entries (none without a map).
+    pub fn normal_map(&self) -> &[NormalMapEntry] {
+        self.normal_map.as_deref().unwrap_or_default()
+    }
+
+    /// How many normals this one holds, nested ones included (after [`Self::check_at`] has
+    /// bounded the depth). Stops counting past [`MAX_NESTED_PIGMENTS`].
+    fn nested_count(&self) -> usize {
+        let mut total = 0;
+        for NormalMapEntry(_, entry) in self.normal_map() {
+            total += 1 + entry.nested_count();
+            if total > MAX_NESTED_PIGMENTS {
+                break;
+            }
+        }
+        total
+    }
+
+    /// [`Self::check`] of a normal `depth` `normal_map`s deep.
+    fn check_at(&self, depth: usize) -> Result<(), (String, String)> {
+        let owned = |(key, message): (&str, String)| (key.to_string(), message);
+        self.check_own().map_err(owned)?;
+        self.check_maps().map_err(owned)?;
+        if self.normal_map().is_empty() {
+            return Ok(());
+        }
+        if depth >= MAX_PIGMENT_MAP_DEPTH {
+            return Err((
+                "normal_map".into(),
+                format!("normals in normal maps nest at most {MAX_PIGMENT_MAP_DEPTH} deep"),
+            ));
+        }
+        for (i, NormalMapEntry(_, entry)) in self.normal_map().iter().enumerate() {
+            entry.check_at(depth + 1).map_err(|(k, message)| (format!("normal_map[{i}][1].{k}"), message))?;
+        }
+        Ok(())
+    }
+
+    /// The first problem of the `slope_map` or `normal_map` (their entries' normals apart).
+    fn check_maps(&self) -> Result<(), (&'static str, String)> {
+        let kind = self.pattern;
+        if kind == NormalKind::Average {
+            if let Some(key) = [("slope_map", self.slope_map.is_some()), ("bump_size", self.bump_size.is_some())]
+                .into_iter()
+                .find_map(|(key, written)| written.then_some(key))
+            {
+                return Err((key, "has no effect on `average`: give it to the map's entries".into()));
+            }
+            let Some(map) = &self.normal_map else {
+                return Err(("normal_map", "`average` needs a `normal_map` of `[weight, normal]` entries".into()));
+            };
+            return check_weights("normal_map", map.iter().map(|e| e.0));
+        }
+        for (key, written) in [("slope_map", self.slope_map.is_some()), ("normal_map", self.normal_map.is_some())] {
+            if written && kind.pigment_pattern().is_none() {
+                return Err((
+                    key,
+                    format!(
+                        "belongs to pigment patterns read as normals (e.g. `bozo`, the noise of `bumps`), not `{kind}`"
+                    ),
+                ));
+            }
+        }
+        if let Some(map) = &self.slope_map {
+            if self.normal_map.is_some() {
+                return Err(("slope_map", "give either a `slope_map` or a `normal_map`, not both".into()));
+            }
+            check_map_len("slope_map", map.len())?;
+            check_map_values("slope_map", map.iter().map(|e| e.0))?;
+            if let Some(i) = map.iter().position(|e| !(e.1[0].is_finite() && e.1[1].is_finite())) {
+                return Err(("slope_map", format!("entry {i}: height and slope must be finite")));
+            }
+        }
+        if let Some(map) = &self.normal_map {
+            check_map_len("normal_map", map.len())?;
+            check_map_values("normal_map", map.iter().map(|e| e.0))?;
+            for (key, written) in [("bump_size", self.bump_size.is_some()), ("accuracy", self.accuracy.is_some())] {
+                if written {
+                    return Err((
+                        key,
+                        "has no effect with a `normal_map`: give it to the map's entries (POV-Ray ignores it)".into(),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// This normal's own first problem (its maps apart), as (key under `normal`, message).
+    fn check_own(&self) -> Result<(), (&'static str, String)> {
+        match (self.pattern, &self.bump_map) {
+            (NormalKind::BumpMap, None) => return Err(("pattern", "needs a `pattern` or a `bump_map`".into())),
+            (NormalKind::BumpMap, Some(map)) => {
+                for (key, given) in [
+                    ("bump_map.filter_all", map.filter_all.is_some()),
+                    ("bump_map.transmit_all", map.transmit_all.is_some()),
+                ] {
+                    if given {
+                        return Err((key, "belongs to an `image_map` pigment, not to a `bump_map`".into()));
+                    }
+                }
+                map.check()
+                    .map_err(|(key, message)| (if key == "file" { "bump_map.file" } else { "bump_map" }, message))?;
+            }
+            (_, Some(_)) => return Err(("bump_map", "give either a `pattern` or a `bump_map`, not both".into())),
+            (_, None) => {}
+        }
         if let Some(b) = self.bump_size
             && !b.is_finite()
         {
@@ -389,6 +593,11 @@ pub struct NormalField {
     pigment: Option<PigmentField>,
     /// `quilted`'s control points, in single precision as POV-Ray holds them.
     quilt_controls: (f64, f64),
+    /// The `slope_map` entries, values in single precision as POV-Ray holds them (empty
+    /// without a map).
+    slope_map: Vec<SlopeMapEntry>,
+    /// The `normal_map` entries' values (single precision) and fields (empty without a map).
+    entries: Vec<(f64, NormalField)>,
 }
 
 /// POV-Ray's `(x, y, -z)` mirror between Prism's frame and its own.
@@ -414,6 +623,8 @@ impl NormalField {
             octaves: octaves_of(spec.octaves, spec.omega, spec.lambda),
             pigment: spec.as_pigment().map(|p| PigmentField::new(&p)),
             quilt_controls: (single(spec.control0), single(spec.control1)),
+            slope_map: spec.slope_map.iter().flatten().map(|e| SlopeMapEntry(f64::from(e.0 as f32), e.1)).collect(),
+            entries: spec.normal_map().iter().map(|e| (f64::from(e.0 as f32), NormalField::new(&e.1))).collect(),
         }
     }
 
@@ -425,9 +636,118 @@ impl NormalField {
             q += dturbulence(q, &self.octaves) * amount;
         }
         let n_pattern = ((self.normal_in * n) * MIRROR).normalize();
-        let tilted =
-            if self.spec.pattern == NormalKind::Facets { self.facet(q, n_pattern) } else { n_pattern + self.offset(q) };
+        let tilted = if self.spec.pattern == NormalKind::Average {
+            self.average(q, n_pattern)
+        } else if !self.entries.is_empty() {
+            self.blend_entries(q, n_pattern)
+        } else if self.spec.pattern == NormalKind::Facets {
+            self.facet(q, n_pattern)
+        } else if self.spec.pattern == NormalKind::BumpMap {
+            self.bump(q, n_pattern)
+        } else {
+            n_pattern + self.offset(q)
+        };
         (self.normal_out * (tilted * MIRROR)).normalize()
+    }
+
+    /// POV-Ray's `normal_map` (`Perturb_Normal`'s blend map branch): the pattern's value at
+    /// the (warped) pattern point `q` picks the entries around it; each perturbs the unit
+    /// normal `n` (pattern frame) at `q` through its own transform, and the two results are
+    /// blended linearly (one where the value sits on an entry or outside the map).
+    fn blend_entries(&self, q: DVec3, n: DVec3) -> DVec3 {
+        let value = self.pigment.as_ref().map_or(0.0, |p| p.value(q));
+        let entries = &self.entries;
+        let (prev, cur, weight) = search_blend_map(entries.len(), |i| entries[i].0, value);
+        // Back to Prism's frame: each entry's `perturb` mirrors its own point and normal.
+        let (p, m) = (q * MIRROR, n * MIRROR);
+        let current = entries[cur].1.perturb(p, m) * MIRROR;
+        if prev == cur {
+            return current;
+        }
+        let below = entries[prev].1.perturb(p, m) * MIRROR;
+        (1.0 - weight) * below + weight * current
+    }
+
+    /// POV-Ray's `Do_Average_Normals`: every `normal_map` entry perturbs the unit normal `n`
+    /// (pattern frame) at the (warped) pattern point `q`; the results are weighted by the
+    /// entries' values and divided by the weights' sum (weights and sum in single precision).
+    fn average(&self, q: DVec3, n: DVec3) -> DVec3 {
+        let (p, m) = (q * MIRROR, n * MIRROR);
+        let mut sum = DVec3::ZERO;
+        let mut total = 0.0f32;
+        for (weight, entry) in &self.entries {
+            let weight = *weight as f32;
+            sum += f64::from(weight) * (entry.perturb(p, m) * MIRROR);
+            total += weight;
+        }
+        sum / f64::from(total)
+    }
+
+    /// POV-Ray's `bump_map` (`imageutil.cpp`): the heights (grey level times `bump_size`) at
+    /// the point's texel and at the texels one left and one right of it a row down make a
+    /// triangle, whose normal replaces the unit normal `n` (pattern frame) in a frame built
+    /// about `n` and the y axis. Off the image (`once`) the normal is left as it is.
+    fn bump(&self, q: DVec3, n: DVec3) -> DVec3 {
+        let Some(map) = &self.spec.bump_map else { return n };
+        let Some(image) = map.image.as_deref() else { return n };
+        let Some((x, y)) = map.image_coords(image, q) else { return n };
+        let (w, h) = (image.width as f64, image.height as f64);
+        let amount = f64::from(self.spec.bump_size.unwrap_or(DEFAULT_BUMP_SIZE) as f32);
+        let grey = |x: f64, y: f64| {
+            let c = map.colour_at(image, x, y).rgb;
+            // POV-Ray's single-precision greyscale.
+            f64::from((0.297 * c.x + 0.589 * c.y + 0.114 * c.z) as f32)
+        };
+        // POV-Ray steps one texel and wraps once by hand.
+        let wrap_once = |v: f64, size: f64| {
+            if v < 0.0 {
+                v + size
+            } else if v >= size {
+                v - size
+            } else {
+                v
+            }
+        };
+        let (x2, y2) = (wrap_once(x - 1.0, w), wrap_once(y + 1.0, h));
+        let x3 = wrap_once(x2 + 2.0, w);
+        let points = [(x, y), (x2, y2), (x3, y2)];
+        // `use_index` reads a palette image's indices (all three must have one), else colours.
+        let indices: Option<Vec<f64>> =
+            if map.use_index { points.iter().map(|&(x, y)| map.index_at(image, x, y)).collect() } else { None };
+        let [h1, h2, h3] = match indices {
+            Some(i) => [i[0], i[1], i[2]],
+            None => points.map(|(x, y)| grey(x, y)),
+        }
+        .map(|v| amount * v);
+        let p1 = DVec3::new(0.0, h1, 0.0);
+        let p2 = DVec3::new(-1.0, h2, 1.0);
+        let p3 = DVec3::new(1.0, h3, 1.0);
+        let bump = (p3 - p2).cross(p1 - p2).normalize();
+        let mut y_axis = n;
+        let mut x_axis = n.cross(DVec3::Y);
+        let mut length = x_axis.length();
+        if length < 1.0e-10 {
+            y_axis = if (n.y - 1.0).abs() < 1.0e-10 { DVec3::Y } else { DVec3::NEG_Y };
+            x_axis = DVec3::X;
+            length = 1.0;
+        }
+        x_axis /= length;
+        let z_axis = x_axis.cross(y_axis).normalize();
+        x_axis * bump.x + y_axis * bump.y - z_axis * bump.z
+    }
+
+    /// POV-Ray's `Do_Slope_Map`: a pattern value reshaped by the `slope_map` (unchanged
+    /// without one).
+    fn slope(&self, value: f64) -> f64 {
+        let map = &self.slope_map;
+        if map.is_empty() {
+            return value;
+        }
+        let (prev, cur, t) = search_blend_map(map.len(), |i| map[i].0, value);
+        if prev == cur {
+            return map[cur].1[0];
+        }
+        hermite_cubic(t, map[prev].1, map[cur].1)
     }
 
     /// POV-Ray's `facets`: the normal (unit, pattern frame) replaced by the nearest cell point
@@ -457,10 +777,10 @@ impl NormalField {
                 let delta = f64::from(spec.accuracy.unwrap_or(DEFAULT_ACCURACY) as f32);
                 // POV-Ray's fudge factor -5, and 0.02 / accuracy to keep the slope's scale.
                 let weight = amount * -5.0 * (0.02 / delta);
-                PYRAMID.iter().map(|v| (pigment.value(q + delta * *v) * weight) * *v).sum()
+                PYRAMID.iter().map(|v| (self.slope(pigment.value(q + delta * *v)) * weight) * *v).sum()
             }
             NormalKind::Quilted => amount * quilt_vector(q, self.quilt_controls),
-            NormalKind::Facets => DVec3::ZERO,
+            NormalKind::Facets | NormalKind::Average | NormalKind::BumpMap => DVec3::ZERO,
             NormalKind::Bumps => amount * dnoise(q),
             NormalKind::Dents => noise(q).powi(3) * amount * dnoise(q),
             NormalKind::Ripples | NormalKind::Waves => {
@@ -495,6 +815,13 @@ impl NormalField {
             }
         }
     }
+}
+
+/// POV-Ray's `Hermite_Cubic`: the cubic from `a` = (height, slope) at t = 0 to `b` at t = 1
+/// (slopes per unit of t, not of the pattern value, as POV-Ray takes them).
+fn hermite_cubic(t: f64, a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (tt, ttt) = (t * t, t * t * t);
+    ttt * (a[1] + b[1] + 2.0 * (a[0] - b[0])) - tt * (2.0 * a[1] + b[1] + 3.0 * (a[0] - b[0])) + t * a[1] + a[0]
 }
 
 /// POV-Ray's wave sources and their frequencies (`Initialize_Waves`): source i is the unit
@@ -668,6 +995,200 @@ mod tests {
         assert!(f.turbulence.is_none());
         let f = field("pattern = \"granite\"\nturbulence = 0.5");
         assert!(f.turbulence.is_some());
+    }
+
+    #[test]
+    fn slope_map_known_values() {
+        // Heights 0 and 1 with slopes 0: the smoothstep 3t^2 - 2t^3 between the entries.
+        let f = field("pattern = \"granite\"\nslope_map = [[0.2, [0, 0]], [0.6, [1, 0]]]");
+        let t = (0.5 - f64::from(0.2f32)) / (f64::from(0.6f32) - f64::from(0.2f32));
+        assert!((f.slope(0.5) - (3.0 * t * t - 2.0 * t * t * t)).abs() < 1e-12);
+        // Outside the entries, and on one: that entry's height.
+        assert_eq!(f.slope(0.1), 0.0);
+        assert_eq!(f.slope(0.9), 1.0);
+        assert_eq!(f.slope(f64::from(0.6f32)), 1.0);
+        // POV-Ray's Hermite cubic: its slopes are per unit of t, and it meets both ends.
+        let (a, b) = ([0.3, 1.5], [0.8, -0.5]);
+        assert!((hermite_cubic(0.0, a, b) - 0.3).abs() < 1e-15);
+        assert!((hermite_cubic(1.0, a, b) - 0.8).abs() < 1e-15);
+        let h = 1e-6;
+        assert!(((hermite_cubic(h, a, b) - hermite_cubic(0.0, a, b)) / h - 1.5).abs() < 1e-5);
+        assert!(((hermite_cubic(1.0, a, b) - hermite_cubic(1.0 - h, a, b)) / h + 0.5).abs() < 1e-5);
+        // The identity map [0, <0, 1>] .. [1, <1, 1>] leaves a gradient normal as it was.
+        let plain = field("pattern = \"gradient\"\nvector = [1, 0, 0]\nbump_size = 0.6");
+        let mapped = field(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\nbump_size = 0.6\nslope_map = [[0, [0, 1]], [1, [1, 1]]]",
+        );
+        let p = DVec3::new(0.25, 0.3, 0.2);
+        assert!((plain.perturb(p, DVec3::Y) - mapped.perturb(p, DVec3::Y)).length() < 1e-12);
+    }
+
+    #[test]
+    fn a_one_entry_normal_map_is_its_entry() {
+        let entry = field("pattern = \"bumps\"\nbump_size = 0.7\nscale = 0.3\nrotate = [10, 0, 20]");
+        let map = field(
+            "pattern = \"bozo\"\nnormal_map = [[0.4, { pattern = \"bumps\", bump_size = 0.7, scale = 0.3, rotate = [10, 0, 20] }]]",
+        );
+        for p in POINTS {
+            let n = DVec3::new(0.3, 0.9, -0.2);
+            assert!((map.perturb(p, n) - entry.perturb(p, n)).length() < 1e-12, "at {p}");
+        }
+    }
+
+    #[test]
+    fn a_normal_map_blends_its_entries_by_the_value() {
+        // gradient x over [0, 1): the value is x's fraction; halfway between the entries the
+        // two perturbed normals are averaged, then normalised.
+        let f = field(
+            "pattern = \"gradient\"\nvector = [1, 0, 0]\n\
+             normal_map = [[0.2, { pattern = \"bumps\", bump_size = 0.8 }], [0.6, { pattern = \"dents\", bump_size = 2 }]]",
+        );
+        let bumps = field("pattern = \"bumps\"\nbump_size = 0.8");
+        let dents = field("pattern = \"dents\"\nbump_size = 2");
+        let p = DVec3::new(0.4, 0.35, -0.7);
+        let w = (0.4 - f64::from(0.2f32)) / (f64::from(0.6f32) - f64::from(0.2f32));
+        let expected = ((1.0 - w) * bumps.perturb(p, DVec3::Y) + w * dents.perturb(p, DVec3::Y)).normalize();
+        assert!((f.perturb(p, DVec3::Y) - expected).length() < 1e-12);
+        // Below the first entry only it applies; above the last only the last.
+        let low = DVec3::new(0.1, 0.35, -0.7);
+        assert!((f.perturb(low, DVec3::Y) - bumps.perturb(low, DVec3::Y)).length() < 1e-12);
+        let high = DVec3::new(0.9, 0.35, -0.7);
+        assert!((f.perturb(high, DVec3::Y) - dents.perturb(high, DVec3::Y)).length() < 1e-12);
+    }
+
+    #[test]
+    fn average_weights_its_entries_normals() {
+        let f = field(
+            "pattern = \"average\"\nscale = 0.5\n\
+             normal_map = [[1, { pattern = \"bumps\", bump_size = 0.8 }], [3, { pattern = \"ripples\", bump_size = 0.5 }]]",
+        );
+        let bumps = field("pattern = \"bumps\"\nbump_size = 0.8\nscale = 0.5");
+        let ripples = field("pattern = \"ripples\"\nbump_size = 0.5\nscale = 0.5");
+        for p in POINTS {
+            let n = DVec3::new(0.2, 1.0, 0.4);
+            let expected = ((bumps.perturb(p, n) + 3.0 * ripples.perturb(p, n)) / 4.0).normalize();
+            assert!((f.perturb(p, n) - expected).length() < 1e-12, "at {p}");
+        }
+        let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err();
+        assert_eq!(err("pattern = \"average\"").0, "normal_map");
+        assert_eq!(
+            err("pattern = \"average\"\nbump_size = 1\nnormal_map = [[1, { pattern = \"bumps\" }]]").0,
+            "bump_size"
+        );
+        assert_eq!(err("pattern = \"average\"\nslope_map = [[0, [0, 1]]]").0, "slope_map");
+        assert!(err("pattern = \"average\"\nnormal_map = [[-1, { pattern = \"bumps\" }]]").1.contains("not negative"));
+        assert!(err("pattern = \"average\"\nnormal_map = [[0, { pattern = \"bumps\" }]]").1.contains("above 0"));
+        assert_eq!(
+            err("pattern = \"average\"\nnormal_map = [[1, { pattern = \"bumps\", scale = 0 }]]").0,
+            "normal_map[0][1].scale"
+        );
+    }
+
+    /// A bump map over `texels` (grey levels, rows from the top) of a `width`-wide image.
+    fn bump_field(text: &str, width: usize, texels: &[f32]) -> NormalField {
+        let mut n: Normal = toml::from_str(text).unwrap();
+        n.check().unwrap();
+        let image = super::super::image_map::MapImage {
+            width,
+            height: texels.len() / width,
+            texels: texels.iter().map(|&g| [g, g, g, 1.0]).collect(),
+            indexed: false,
+            has_alpha: false,
+            indices: Vec::new(),
+        };
+        n.bump_map.as_mut().unwrap().image = Some(std::sync::Arc::new(image));
+        NormalField::new(&n)
+    }
+
+    #[test]
+    fn a_flat_bump_map_leaves_the_normal_and_a_slope_tilts_it() {
+        let flat = bump_field("bump_map = { file = \"h.png\" }\nbump_size = 3", 2, &[0.4; 4]);
+        for p in POINTS {
+            let n = DVec3::new(0.3, 0.9, -0.2).normalize();
+            assert!((flat.perturb(p, n) - n).length() < 1e-12, "at {p}");
+        }
+        // Heights rising to the right (image x is POV-Ray's x): the triangle's normal, in the
+        // frame about +y, leans to -x; with the normal along -z (POV-Ray's +z), built from
+        // n x y = +x (POV-Ray) and z = x x n.
+        let ramp = bump_field("bump_map = { file = \"h.png\" }\nbump_size = 2", 4, &[0.0, 0.25, 0.5, 0.75].repeat(4));
+        let p = DVec3::new(0.3, 0.6, 0.0);
+        let m = ramp.perturb(p, DVec3::Y);
+        assert!((m.length() - 1.0).abs() < 1e-12);
+        assert!(m.x < -0.1 && m.y > 0.5 && m.z.abs() < 1e-12, "{m}");
+        // The triangle by hand: heights 2 * 0.25 at the texel, 2 * 0 and 2 * 0.5 at its
+        // neighbours; its normal (-1, 2, 0) / sqrt(5), about y = n, x = n x Y = 0: the
+        // degenerate frame takes x = +x, z = x x y = +z (POV-Ray), flipped.
+        assert!((m - DVec3::new(-1.0, 2.0, 0.0).normalize()).length() < 1e-6, "{m}");
+        // `once`: off the image the normal is left as it is.
+        let once = bump_field(
+            "bump_map = { file = \"h.png\", once = true }\nbump_size = 2",
+            4,
+            &[0.0, 0.25, 0.5, 0.75].repeat(4),
+        );
+        assert!((once.perturb(DVec3::new(1.5, 0.5, 0.0), DVec3::Y) - DVec3::Y).length() < 1e-12);
+        assert!((once.perturb(p, DVec3::Y) - m).length() < 1e-12);
+        // `use_index`: a palette image's indices are the heights (here the same ramp, 0 to 3,
+        // times bump_size / 4); an image without a palette is read by its colours.
+        let mut indexed = bump_field(
+            "bump_map = { file = \"h.png\", use_index = true }\nbump_size = 0.5",
+            4,
+            &[0.0, 0.25, 0.5, 0.75].repeat(4),
+        );
+        // No palette: the colours, a slope of 0.125 per texel.
+        let colours = indexed.perturb(p, DVec3::Y);
+        assert!((colours - DVec3::new(-0.125, 1.0, 0.0).normalize()).length() < 1e-6, "{colours}");
+        if let Some(map) = indexed.spec.bump_map.as_mut() {
+            let mut image = (**map.image.as_ref().unwrap()).clone();
+            image.indexed = true;
+            image.indices = [0, 1, 2, 3].repeat(4);
+            map.image = Some(std::sync::Arc::new(image));
+        }
+        assert!((indexed.perturb(p, DVec3::Y) - m).length() < 1e-6);
+        let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err();
+        assert_eq!(err("bump_size = 1").0, "pattern");
+        assert_eq!(err("pattern = \"bumps\"\nbump_map = { file = \"h.png\" }").0, "bump_map");
+        assert_eq!(err("bump_map = { file = \"h.png\", filter_all = 0.5 }").0, "bump_map.filter_all");
+        assert_eq!(err("bump_map = { file = \"\" }").0, "bump_map.file");
+        assert_eq!(err("bump_map = { file = \"h.png\" }\nfrequency = 2").0, "frequency");
+        assert_eq!(err("bump_map = { file = \"h.png\" }\nslope_map = [[0, [0, 1]]]").0, "slope_map");
+        let e =
+            toml::from_str::<Normal>("bump_map = { file = \"h.png\", map_typ = \"planar\" }").unwrap_err().to_string();
+        assert!(e.contains("unknown field `map_typ`"), "{e}");
+    }
+
+    #[test]
+    fn bad_maps_name_their_key() {
+        let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err();
+        let key = |text: &str| err(text).0;
+        assert_eq!(key("pattern = \"bumps\"\nslope_map = [[0, [0, 1]]]"), "slope_map");
+        assert_eq!(key("pattern = \"ripples\"\nnormal_map = [[0, { pattern = \"bumps\" }]]"), "normal_map");
+        assert_eq!(key("pattern = \"bozo\"\nnormal_map = []"), "normal_map");
+        assert!(err("pattern = \"bozo\"\nslope_map = []").1.contains("at least one entry"));
+        assert_eq!(key("pattern = \"bozo\"\nslope_map = [[0.5, [0, 1]], [0.2, [1, 0]]]"), "slope_map");
+        assert!(err("pattern = \"bozo\"\nslope_map = [[1.5, [0, 1]]]").1.contains("outside [0, 1]"));
+        assert_eq!(key("pattern = \"bozo\"\nslope_map = [[0.5, [nan, 1]]]"), "slope_map");
+        assert_eq!(
+            key("pattern = \"bozo\"\nslope_map = [[0, [0, 1]]]\nnormal_map = [[0, { pattern = \"bumps\" }]]"),
+            "slope_map"
+        );
+        assert_eq!(key("pattern = \"bozo\"\nbump_size = 1\nnormal_map = [[0, { pattern = \"bumps\" }]]"), "bump_size");
+        assert_eq!(
+            key(
+                "pattern = \"bozo\"\nnormal_map = [[0, { pattern = \"bumps\" }], [1, { pattern = \"dents\", scale = 0 }]]"
+            ),
+            "normal_map[1][1].scale"
+        );
+        let inner = (0..MAX_PIGMENT_MAP_DEPTH).fold("pattern = \"bumps\"".to_string(), |inner, _| {
+            format!("pattern = \"bozo\", normal_map = [[0, {{ {inner} }}]]")
+        });
+        assert!(err(&format!("pattern = \"bozo\"\nnormal_map = [[0, {{ {inner} }}]]")).1.contains("nest at most"));
+        let many: Vec<String> = (0..=MAX_PIGMENT_MAP_ENTRIES).map(|_| "[0, { pattern = \"bumps\" }]".into()).collect();
+        assert!(err(&format!("pattern = \"bozo\"\nnormal_map = [{}]", many.join(", "))).1.contains("at most"));
+        let e =
+            toml::from_str::<Normal>("pattern = \"bozo\"\nnormal_map = [[0, { pattern = \"bumps\", bumpsize = 1 }]]")
+                .unwrap_err()
+                .to_string();
+        assert!(e.contains("unknown field `bumpsize`"), "{e}");
     }
 
     #[test]

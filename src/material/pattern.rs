@@ -62,11 +62,13 @@ pub enum PatternKind {
     Crackle,
     /// Rounded cubes, shaped by two control points.
     Quilted,
+    /// The weighted mean of its `pigment_map` entries (weights in place of values).
+    Average,
 }
 
 impl PatternKind {
     /// Every pattern with its name.
-    pub const ALL: [(PatternKind, &'static str); 18] = [
+    pub const ALL: [(PatternKind, &'static str); 19] = [
         (PatternKind::Checker, "checker"),
         (PatternKind::Hexagon, "hexagon"),
         (PatternKind::Brick, "brick"),
@@ -85,6 +87,7 @@ impl PatternKind {
         (PatternKind::Wrinkles, "wrinkles"),
         (PatternKind::Crackle, "crackle"),
         (PatternKind::Quilted, "quilted"),
+        (PatternKind::Average, "average"),
     ];
 
     /// The scene file's (and POV-Ray's) name.
@@ -292,7 +295,8 @@ pub struct Pigment {
     pub color_map: Vec<MapEntry>,
     /// POV-Ray's `pigment_map` (instead of a `color_map`): `[value, pigment]` entries, each a
     /// whole pigment (a pattern, an image map, another `pigment_map`, or a plain
-    /// `{ color = [r, g, b] }`), blended like colour map entries.
+    /// `{ color = [r, g, b] }`), blended like colour map entries. `average`: `[weight, pigment]`
+    /// entries (weights not negative, their sum above 0), averaged with those weights.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pigment_map: Option<Vec<PigmentMapEntry>>,
     /// A plain colour (linear RGB): a `pigment_map` entry without a pattern.
@@ -591,6 +595,9 @@ impl Pigment {
             }
             (Some(kind), None) => kind,
         };
+        if kind == PatternKind::Average {
+            return self.check_average();
+        }
         match kind.discrete_colors() {
             Some(n) => {
                 if self.pigment_map.is_some() {
@@ -662,6 +669,27 @@ impl Pigment {
                 return Err(("color_map", "colours, filter and transmit must be finite".into()));
             }
         }
+        self.check_keys()
+    }
+
+    /// `average`'s first problem: it takes a `pigment_map` of weighted pigments and no
+    /// colours or wave.
+    fn check_average(&self) -> Result<(), (&'static str, String)> {
+        let misplaced = [
+            ("colors", !self.colors.is_empty()),
+            ("pigments", !self.pigments.is_empty()),
+            ("color_map", !self.color_map.is_empty()),
+            ("frequency", self.frequency.is_some()),
+            ("phase", self.phase.is_some()),
+            ("wave", self.wave.is_some()),
+        ];
+        if let Some((key, _)) = misplaced.iter().find(|(_, given)| *given) {
+            return Err((key, "`average` takes a `pigment_map` of `[weight, pigment]` entries, not this".into()));
+        }
+        let Some(map) = &self.pigment_map else {
+            return Err(("pigment_map", "`average` needs a `pigment_map` of `[weight, pigment]` entries".into()));
+        };
+        check_weights("pigment_map", map.iter().map(|e| e.0))?;
         self.check_keys()
     }
 
@@ -762,6 +790,9 @@ impl Pigment {
         if let Some((key, _)) = self.pattern_keys_written().into_iter().find(|(_, given)| *given) {
             return Err((key, "belongs to a `pattern`, not to an `image_map`".into()));
         }
+        if map.use_index {
+            return Err(("image_map.use_index", "belongs to a `bump_map`, not to an `image_map` pigment".into()));
+        }
         map.check().map_err(|(key, message)| {
             let key = match key {
                 "filter_all" => "image_map.filter_all",
@@ -777,7 +808,10 @@ impl Pigment {
 }
 
 /// The first problem of a map's entry values (under `key`): each in [0, 1], ascending.
-fn check_map_values(key: &'static str, values: impl Iterator<Item = f64>) -> Result<(), (&'static str, String)> {
+pub(super) fn check_map_values(
+    key: &'static str,
+    values: impl Iterator<Item = f64>,
+) -> Result<(), (&'static str, String)> {
     let mut previous = 0.0;
     for (i, value) in values.enumerate() {
         if !(0.0..=1.0).contains(&value) {
@@ -790,6 +824,33 @@ fn check_map_values(key: &'static str, values: impl Iterator<Item = f64>) -> Res
             ));
         }
         previous = value;
+    }
+    Ok(())
+}
+
+/// The first problem of an `average`'s map of weights (under `key`): one to 256 entries, each
+/// weight finite and not negative, their sum above 0.
+pub(super) fn check_weights(
+    key: &'static str,
+    weights: impl Iterator<Item = f64>,
+) -> Result<(), (&'static str, String)> {
+    let mut total = 0.0f32;
+    let mut count = 0;
+    for (i, weight) in weights.enumerate() {
+        if !(weight.is_finite() && weight >= 0.0) {
+            return Err((key, format!("entry {i}: the weight must be finite and not negative, got {weight}")));
+        }
+        total += weight as f32;
+        count += 1;
+    }
+    if count == 0 {
+        return Err((key, "needs at least one entry".into()));
+    }
+    if count > MAX_PIGMENT_MAP_ENTRIES {
+        return Err((key, format!("has {count} entries; at most {MAX_PIGMENT_MAP_ENTRIES} (POV-Ray's limit)")));
+    }
+    if !(total > 0.0 && total.is_finite()) {
+        return Err((key, "the weights must add up to a finite number above 0".into()));
     }
     Ok(())
 }
@@ -984,6 +1045,9 @@ impl PigmentField {
         if let Some(map) = &spec.image_map {
             return map.at(q);
         }
+        if self.kind == PatternKind::Average {
+            return self.average(q);
+        }
         match self.kind.discrete_colors() {
             Some(_) => {
                 let index = discrete_value(self.kind, spec, q);
@@ -1006,13 +1070,7 @@ impl PigmentField {
     /// linearly in all five components.
     fn blend_entries(&self, value: f64, q: DVec3) -> Rgbft {
         let entries = &self.entries;
-        let last = entries.len() - 1;
-        let (prev, cur) = if value >= entries[last].0 {
-            (last, last)
-        } else {
-            let cur = entries.iter().position(|e| value <= e.0).unwrap_or(last);
-            if cur == 0 || value == entries[cur].0 { (cur, cur) } else { (cur - 1, cur) }
-        };
+        let (prev, cur, fraction) = search_blend_map(entries.len(), |i| entries[i].0, value);
         // Back to Prism's frame: each entry's `at` mirrors its own pattern point.
         let p = q * DVec3::new(1.0, 1.0, -1.0);
         let colour = entries[cur].1.at(p);
@@ -1020,12 +1078,27 @@ impl PigmentField {
             return colour;
         }
         let below = entries[prev].1.at(p);
-        let fraction = (value - entries[prev].0) / (entries[cur].0 - entries[prev].0);
         Rgbft {
             rgb: below.rgb + fraction * (colour.rgb - below.rgb),
             filter: below.filter + fraction * (colour.filter - below.filter),
             transmit: below.transmit + fraction * (colour.transmit - below.transmit),
         }
+    }
+
+    /// POV-Ray's `Do_Average_Pigments`: every `pigment_map` entry evaluated at the (warped)
+    /// pattern point `q`, weighted by its value, the sum divided by the weights' (weights and
+    /// their sum in single precision, as POV-Ray holds them).
+    fn average(&self, q: DVec3) -> Rgbft {
+        let p = q * DVec3::new(1.0, 1.0, -1.0);
+        let mut sum = Rgbft { rgb: DVec3::ZERO, filter: 0.0, transmit: 0.0 };
+        let mut total = 0.0f32;
+        for (weight, entry) in &self.entries {
+            let weight = *weight as f32;
+            sum = Rgbft::blend(sum, 1.0, entry.at(p), f64::from(weight));
+            total += weight;
+        }
+        let total = f64::from(total);
+        Rgbft { rgb: sum.rgb / total, filter: sum.filter / total, transmit: sum.transmit / total }
     }
 
     /// A continuous pattern's value at the (warped) pattern point `q`, POV-Ray's frame, after
@@ -1050,7 +1123,7 @@ impl PigmentField {
             PatternKind::Wrinkles => wrinkles(q),
             PatternKind::Crackle => crackle(q, &self.crackle),
             PatternKind::Quilted => quilted(q, self.quilt_controls),
-            PatternKind::Checker | PatternKind::Hexagon | PatternKind::Brick => 0.0,
+            PatternKind::Checker | PatternKind::Hexagon | PatternKind::Brick | PatternKind::Average => 0.0,
         };
         shape_wave(
             raw,
@@ -1059,6 +1132,22 @@ impl PigmentField {
             spec.wave.unwrap_or(self.kind.default_wave()),
         )
     }
+}
+
+/// POV-Ray's `Search_Blend_Map` over `len` (at least one) ascending entry values `value_at(i)`:
+/// the entries below and above `value` and the upper one's weight (where the value sits on an
+/// entry, or below the first or above the last, both are that entry, of weight 1).
+pub fn search_blend_map(len: usize, value_at: impl Fn(usize) -> f64, value: f64) -> (usize, usize, f64) {
+    let last = len - 1;
+    if value >= value_at(last) {
+        return (last, last, 1.0);
+    }
+    let cur = (0..len).find(|&i| value <= value_at(i)).unwrap_or(last);
+    if cur == 0 || value == value_at(cur) {
+        return (cur, cur, 1.0);
+    }
+    let (below, above) = (value_at(cur - 1), value_at(cur));
+    (cur - 1, cur, (value - below) / (above - below))
 }
 
 /// True when POV-Ray's classic turbulence warp moves the point before `kind` reads it (with
@@ -1719,6 +1808,39 @@ mod tests {
         // Marble's turbulence bends its value, not the point its entries read.
         let f = PigmentField::new(&pigment(&format!("pattern = \"marble\"\nturbulence = 0.3\noctaves = 3\n{map}")));
         assert!((f.at(p).rgb.x - 0.4).abs() < 1e-12);
+    }
+
+    #[test]
+    fn average_weights_its_entries_in_all_five_components() {
+        let f = PigmentField::new(&pigment(
+            "pattern = \"average\"\npigment_map = [\n  [1, { color = [1, 0, 0], transmit = 0.4 }],\n  \
+             [3, { color = [0, 0, 1], filter = 0.8 }],\n  [0, { color = [0, 1, 0] }],\n]",
+        ));
+        let c = f.at(DVec3::new(0.3, -2.0, 5.0));
+        assert!((c.rgb - DVec3::new(0.25, 0.0, 0.75)).length() < 1e-12, "{:?}", c.rgb);
+        assert!((c.filter - 0.6).abs() < 1e-12 && (c.transmit - 0.1).abs() < 1e-12);
+        // A one-entry average is its entry, read through the average's transform.
+        let entry = "{ pattern = \"bozo\", color_map = [[0, [0, 0, 0]], [1, [1, 1, 1]]], scale = 0.3 }";
+        let one =
+            PigmentField::new(&pigment(&format!("pattern = \"average\"\nscale = 2\npigment_map = [[0.5, {entry}]]")));
+        let alone = PigmentField::new(&pigment(
+            "pattern = \"bozo\"\ncolor_map = [[0, [0, 0, 0]], [1, [1, 1, 1]]]\nscale = 0.6",
+        ));
+        for p in [DVec3::new(0.3, 0.7, -1.1), DVec3::new(-4.0, 2.5, 0.25)] {
+            assert!((one.at(p).rgb - alone.at(p).rgb).length() < 1e-9, "at {p}");
+        }
+        let err = |text: &str| toml::from_str::<Pigment>(text).unwrap().check().unwrap_err();
+        assert_eq!(err("pattern = \"average\"").0, "pigment_map");
+        assert!(err("pattern = \"average\"\npigment_map = []").1.contains("at least one"));
+        assert!(err("pattern = \"average\"\npigment_map = [[-1, { color = [1, 1, 1] }]]").1.contains("not negative"));
+        assert!(err("pattern = \"average\"\npigment_map = [[0, { color = [1, 1, 1] }]]").1.contains("above 0"));
+        assert_eq!(err("pattern = \"average\"\ncolor_map = [[0, [1, 1, 1]]]").0, "color_map");
+        assert_eq!(
+            err("pattern = \"average\"\nfrequency = 2\npigment_map = [[1, { color = [1, 1, 1] }]]").0,
+            "frequency"
+        );
+        // Weights need not be ascending or at most 1.
+        pigment("pattern = \"average\"\npigment_map = [[5, { color = [1, 1, 1] }], [2, { color = [0, 0, 0] }]]");
     }
 
     #[test]

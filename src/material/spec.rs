@@ -159,36 +159,6 @@ pub enum BsdfSpec {
     },
 }
 
-/// A key under `normal` as the material's key path.
-fn normal_key(key: &str) -> &'static str {
-    match key {
-        "bump_size" => "normal.bump_size",
-        "frequency" => "normal.frequency",
-        "phase" => "normal.phase",
-        "scale" => "normal.scale",
-        "rotate" => "normal.rotate",
-        "translate" => "normal.translate",
-        "matrix" => "normal.matrix",
-        "turbulence" => "normal.turbulence",
-        "octaves" => "normal.octaves",
-        "omega" => "normal.omega",
-        "lambda" => "normal.lambda",
-        "accuracy" => "normal.accuracy",
-        "wave" => "normal.wave",
-        "vector" => "normal.vector",
-        "arms" => "normal.arms",
-        "form" => "normal.form",
-        "metric" => "normal.metric",
-        "offset" => "normal.offset",
-        "solid" => "normal.solid",
-        "control0" => "normal.control0",
-        "control1" => "normal.control1",
-        "size" => "normal.size",
-        "coords" => "normal.coords",
-        _ => "normal",
-    }
-}
-
 fn glass_ior() -> f64 {
     1.5
 }
@@ -291,7 +261,8 @@ impl MaterialSpec {
         let owned = |(key, message): (&str, String)| (key.to_string(), message);
         let Some(layers) = &self.layers else {
             self.check_single().map_err(owned)?;
-            return self.check_pigment();
+            self.check_pigment()?;
+            return self.check_normal();
         };
         if layers.is_empty() {
             return Err((
@@ -340,6 +311,7 @@ impl MaterialSpec {
             }
             layer.check_single().map_err(|(key, message)| (at(key), message))?;
             layer.check_pigment().map_err(|(key, message)| (at(&key), message))?;
+            layer.check_normal().map_err(|(key, message)| (at(&key), message))?;
         }
         Ok(())
     }
@@ -387,9 +359,6 @@ impl MaterialSpec {
                 format!("must be greater than 0 and at most {}, got {}", crate::limits::MAX_IOR, self.ior),
             ));
         }
-        if let Some(normal) = &self.normal {
-            self.check_normal(normal)?;
-        }
         if let Some(bsdf) = &self.bsdf {
             self.check_only_bsdf()?;
             bsdf.to_scattering()?.check()?;
@@ -435,15 +404,17 @@ impl MaterialSpec {
         pigment.check().map_err(|(key, message)| (format!("pigment.{key}"), message))
     }
 
-    /// The normal pattern's first problem, or a surface model it does not apply to.
-    fn check_normal(&self, normal: &Normal) -> Result<(), (&'static str, String)> {
+    /// The normal pattern's first problem (its key path, e.g. `normal.normal_map[0][1].scale`),
+    /// or a surface model it does not apply to.
+    fn check_normal(&self) -> Result<(), (String, String)> {
+        let Some(normal) = &self.normal else { return Ok(()) };
         if self.bsdf.is_some() {
-            return Err(("bsdf", "a normal pattern needs a POV-Ray finish, not a `bsdf`".into()));
+            return Err(("bsdf".into(), "a normal pattern needs a POV-Ray finish, not a `bsdf`".into()));
         }
         if self.pbr.is_some() {
-            return Err(("pbr", "a normal pattern needs a POV-Ray finish, not `pbr`".into()));
+            return Err(("pbr".into(), "a normal pattern needs a POV-Ray finish, not `pbr`".into()));
         }
-        normal.check().map_err(|(key, message)| (normal_key(key), message))
+        normal.check().map_err(|(key, message)| (format!("normal.{key}"), message))
     }
 
     /// With a `bsdf`, the first POV-Ray finish or interior key (or `pbr`) written beside it:
@@ -481,15 +452,22 @@ impl MaterialSpec {
     }
 
     /// Every image map of the material's pigments (its layers' and `pigment_map` entries'
-    /// included), with its key path under the material (`pigment.image_map`,
-    /// `layers[1].pigment.pigment_map[0][1].image_map`).
-    pub fn image_maps_mut(&mut self) -> Vec<(String, &mut super::image_map::ImageMap)> {
+    /// included) and every bump map of its normals (theirs and `normal_map` entries'), with
+    /// its key path under the material (`pigment.image_map`, `normal.bump_map`,
+    /// `layers[1].pigment.pigment_map[0][1].image_map`) and whether it is a bump map (read
+    /// without gamma, as POV-Ray reads one).
+    pub fn image_maps_mut(&mut self) -> Vec<(String, &mut super::image_map::ImageMap, bool)> {
         let mut out = Vec::new();
         if let Some(p) = self.pigment.as_mut() {
-            out.extend(p.image_maps_mut().into_iter().map(|(key, map)| (format!("pigment.{key}"), map)));
+            out.extend(p.image_maps_mut().into_iter().map(|(key, map)| (format!("pigment.{key}"), map, false)));
+        }
+        if let Some(n) = self.normal.as_mut() {
+            out.extend(n.bump_maps_mut().into_iter().map(|(key, map)| (format!("normal.{key}"), map, true)));
         }
         for (i, layer) in self.layers.iter_mut().flatten().enumerate() {
-            out.extend(layer.image_maps_mut().into_iter().map(|(key, map)| (format!("layers[{i}].{key}"), map)));
+            out.extend(
+                layer.image_maps_mut().into_iter().map(|(key, map, raw)| (format!("layers[{i}].{key}"), map, raw)),
+            );
         }
         out
     }

@@ -60,7 +60,7 @@ impl FilePaths {
         for (texture, _) in material.textures_mut() {
             texture.file = self.write(&texture.file);
         }
-        for (_, map) in material.image_maps_mut() {
+        for (_, map, _) in material.image_maps_mut() {
             if let Some(path) = &map.path {
                 map.file = self.write(&path.display().to_string());
             }

@@ -38,14 +38,21 @@ impl Loader<'_> {
     /// scene names is read; reports a problem at its `file`.
     fn material_image_map(&mut self, index: usize, key: &str, material: &mut MaterialSpec) -> bool {
         let mut ok = true;
-        for (path, map) in material.image_maps_mut() {
-            ok &= self.image_map(index, &format!("{key}.{path}.file"), map);
+        for (path, map, raw) in material.image_maps_mut() {
+            ok &= self.image_map(index, &format!("{key}.{path}.file"), map, raw);
         }
         ok
     }
 
-    /// Resolves and decodes one image map's PNG; reports a problem at `file_key`.
-    fn image_map(&mut self, index: usize, file_key: &str, map: &mut crate::material::image_map::ImageMap) -> bool {
+    /// Resolves and decodes one image map's PNG (`raw`: a bump map's, without gamma); reports
+    /// a problem at `file_key`.
+    fn image_map(
+        &mut self,
+        index: usize,
+        file_key: &str,
+        map: &mut crate::material::image_map::ImageMap,
+        raw: bool,
+    ) -> bool {
         let at = self.files[index].locate(file_key);
         let path = match self.access.join(&self.directory(index), &map.file) {
             Ok(path) => path,
@@ -61,13 +68,13 @@ impl Loader<'_> {
                 return false;
             }
         };
-        if let Some(image) = self.image_maps.get(&canonical) {
+        if let Some(image) = self.image_maps.get(&(canonical.clone(), raw)) {
             map.image = Some(image.clone());
             map.path = Some(canonical);
             return true;
         }
         let store = &mut self.meshes.textures;
-        let loaded = crate::material::image_map::load(&path, &self.access, store.budget());
+        let loaded = crate::material::image_map::load(&path, &self.access, store.budget(), raw);
         let loaded = match loaded {
             Err(crate::material::image_map::ImageMapError::Texture(crate::texture::TextureError::OverBudget(e))) => {
                 Err(crate::texture::TextureError::OverBudget(store.restate(e)).into())
@@ -84,7 +91,7 @@ impl Loader<'_> {
         match loaded {
             Ok(image) => {
                 let image = std::sync::Arc::new(image);
-                self.image_maps.insert(canonical.clone(), image.clone());
+                self.image_maps.insert((canonical.clone(), raw), image.clone());
                 map.path = Some(canonical);
                 map.image = Some(image);
                 true

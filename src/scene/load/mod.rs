@@ -186,8 +186,9 @@ struct Loader<'a> {
     lights: Vec<(Light, Location)>,
     /// Imported mesh files and decoded textures, shared by every object that uses them.
     meshes: MeshStore,
-    /// Decoded `image_map` PNGs by canonical path, shared by every material that names them.
-    image_maps: HashMap<PathBuf, std::sync::Arc<crate::material::image_map::MapImage>>,
+    /// Decoded `image_map` and `bump_map` PNGs by canonical path and whether read raw (a bump
+    /// map, without gamma), shared by every material that names them.
+    image_maps: HashMap<(PathBuf, bool), std::sync::Arc<crate::material::image_map::MapImage>>,
     /// Mesh objects whose file's lights are imported.
     light_imports: Vec<LightImport>,
     /// The mesh object whose file's camera is the scene's camera.
