@@ -285,6 +285,7 @@ pub fn render_resumable<E: From<RenderError>>(
         stats.total_rays += r.total_rays;
         stats.non_finite_pixels += r.non_finite_pixels;
         stats.non_finite_samples += r.non_finite_samples;
+        stats.saturated_pixels += r.saturated_pixels;
         squared_errors += r.noise * r.noise * rendered.sample_counts.len() as f64;
         counts.extend_from_slice(&rendered.sample_counts);
         if state.is_complete() {

@@ -953,6 +953,13 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
             stats.non_finite_samples
         ));
     }
+    if stats.saturated_pixels > 0 {
+        report(&format!(
+            "warning: {} pixels overflowed (products of extreme light, colour or finish values) and \
+             are saturated channel by channel, as POV-Ray writes an infinite channel",
+            stats.saturated_pixels
+        ));
+    }
     if stats.non_finite_pixels > 0 {
         report(&format!(
             "warning: {} pixels had a NaN or infinite value and are written black",

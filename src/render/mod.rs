@@ -111,6 +111,10 @@ pub struct RenderStats {
     /// Samples whose radiance was NaN or infinite, counted as black (see
     /// [`PixelStats::non_finite_samples`]).
     pub non_finite_samples: u64,
+    /// Pixels with a channel at f32's largest magnitude: an overflow the classic integrator
+    /// saturated channel by channel (as POV-Ray writes an infinite channel) instead of
+    /// counting the sample as black.
+    pub saturated_pixels: u64,
     /// True when `RenderOptions::cancel` stopped the render before every tile was done.
     pub cancelled: bool,
     /// Samples per pixel over the rendered pixels: fewest, median, 90th percentile, most
@@ -540,6 +544,7 @@ fn render_samples<I: Integrator>(
     let mut sums = if want_sums { vec![PixelSums::default(); region.pixel_count()] } else { Vec::new() };
     let mut non_finite = 0;
     let mut non_finite_samples = 0;
+    let mut saturated = 0;
     let mut counts = Vec::new();
     let mut squared_errors = 0.0;
     for tile in tiles {
@@ -552,6 +557,7 @@ fn render_samples<I: Integrator>(
                     sums[index] = tile.sums[i];
                 }
                 film.pixels[index] = if p.iter().all(|c| c.is_finite()) {
+                    saturated += u64::from(p.iter().any(|c| c.abs() == f32::MAX));
                     p
                 } else {
                     non_finite += 1;
@@ -577,6 +583,7 @@ fn render_samples<I: Integrator>(
         cancelled: cancelled.load(Ordering::Relaxed),
         non_finite_pixels: non_finite,
         non_finite_samples,
+        saturated_pixels: saturated,
         samples: SampleSpread::of(&mut counts),
         noise,
     };
