@@ -257,7 +257,7 @@ fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
     if !(camera.vfov.is_finite() && camera.vfov > 0.0 && camera.vfov < 180.0) {
         out.push(Diagnostic::new(
             origin.child("vfov"),
-            format!("vfov must be between 0 and 180 degrees, got {}", camera.vfov),
+            format!("vfov must be greater than 0 and less than 180 degrees, got {}", camera.vfov),
         ));
     }
     if let Some(a) = camera.aspect
