@@ -25,8 +25,8 @@ use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
-/// Largest scene file (TOML, each include counted alone): 64 MiB.
-pub const MAX_SCENE_BYTES: u64 = 64 << 20;
+/// Largest scene file (TOML, each include counted alone): 16 MiB (100,000 spheres take 9).
+pub const MAX_SCENE_BYTES: u64 = 16 << 20;
 /// Largest mesh file (OBJ, MTL, glTF, GLB) or glTF buffer: 1 GiB.
 pub const MAX_MESH_BYTES: u64 = 1 << 30;
 /// Largest encoded image file (textures, environment maps, glTF images): 256 MiB.
@@ -390,7 +390,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let big = dir.path().join("big.toml");
         let f = std::fs::File::create(&big).unwrap();
-        // Sparse: costs no disk, and reading it whole would cost 64 MiB + 1.
+        // Sparse: costs no disk, and reading it whole would cost 16 MiB + 1.
         f.set_len(MAX_SCENE_BYTES + 1).unwrap();
         let e = FileAccess::unrestricted().read(&big, FileKind::Scene).unwrap_err();
         assert!(matches!(e, FileError::TooLarge { cap: MAX_SCENE_BYTES, .. }), "{e}");

@@ -21,7 +21,7 @@ use crate::files::{FileAccess, FileError, FileKind, normalize};
 use crate::import::punctual::{self, CameraChoice};
 use crate::import::spawn::{MESH_KEYS, MESH_SHAPE};
 use crate::import::{CameraProjection, ImportOptions, Imported, MeshSource, MeshStore, Model};
-use crate::limits::{MAX_SCENE_FILES, MemoryBudget};
+use crate::limits::{MAX_SCENE_FILES, MemoryBudget, PARSED_BYTES_PER_SCENE_BYTE};
 use crate::material::MaterialSpec;
 use crate::registry::ShapeRegistry;
 use crate::world::Scene;
@@ -127,6 +127,7 @@ pub fn load_with(
         light_imports: Vec::new(),
         camera_import: None,
         imported_entities: 0,
+        scene_bytes: 0,
     };
     loader.load_all(path);
     loader.finish()
@@ -166,6 +167,9 @@ struct Loader<'a> {
     budget: MemoryBudget,
     /// Entities spawned for mesh files' nodes and parts so far (checked against `budget`).
     imported_entities: u64,
+    /// Bytes of scene TOML read so far: parsing them takes up to
+    /// [`PARSED_BYTES_PER_SCENE_BYTE`] each, checked against `budget`.
+    scene_bytes: u64,
     /// Canonical paths of the files whose includes are being loaded, outermost first.
     stack: Vec<PathBuf>,
     /// Canonical paths of every file read so far: each is loaded once.
@@ -254,6 +258,18 @@ impl Loader<'_> {
                 return None;
             }
         };
+        self.scene_bytes += text.len() as u64;
+        // The first MiB is parsed whatever the budget (at most 200 MiB, less than any render
+        // needs anyway), so that small budgets meant for meshes still load small scenes.
+        let estimate =
+            if self.scene_bytes > 1 << 20 { self.scene_bytes.saturating_mul(PARSED_BYTES_PER_SCENE_BYTE) } else { 0 };
+        if let Err(e) =
+            self.budget.check(|| format!("parsing {} KiB of scene TOML", self.scene_bytes.div_ceil(1024)), estimate)
+        {
+            let location = included_from.unwrap_or_else(|| Location::file_only(display.as_str(), ""));
+            self.diagnostics.push(Diagnostic::new(location, e.to_string()));
+            return None;
+        }
         let parsed = match ParsedFile::parse(&display, text) {
             Ok(p) => p,
             Err(d) => {
