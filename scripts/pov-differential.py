@@ -307,9 +307,7 @@ def edge_scene(seed):
     else:
         candidates = [leaf for i, o in enumerate(doc.get('object', [])) if 'material' in o
                       for leaf in leaves(o['material'], f'object[{i}].material')]
-        candidates += [leaf for i, L in enumerate(doc.get('light', []))
-                       for leaf in leaves({k: v for k, v in L.items() if k not in ('position', 'point_at', 'axis1', 'axis2')}, f'light[{i}]')
-                       if leaf[1] in L or isinstance(leaf[1], int)]
+        candidates += [leaf for i, L in enumerate(doc.get('light', [])) for leaf in leaves(L, f'light[{i}]')]
         container, key, path = r.choice(candidates)
         container[key] = edge_value(r, container[key])
         what = f'{path} = {container[key]}'
