@@ -48,6 +48,10 @@ pub const BYTES_PER_INSTANCE: u64 = 1024;
 /// while parsed, checked and indexed for error locations); flat scenes take about 80.
 pub const PARSED_BYTES_PER_SCENE_BYTE: u64 = 200;
 
+/// Scene TOML parsed whatever the memory budget (at most 200 MiB while parsed, less than
+/// any render needs), so that small budgets meant for meshes still load small scenes.
+pub const UNBUDGETED_SCENE_BYTES: u64 = 1 << 20;
+
 /// An estimate over the memory budget.
 #[derive(Debug, Clone, thiserror::Error, PartialEq, Eq)]
 #[error("{what} needs about {} MiB{}, over the memory budget of {} MiB (--max-memory)", mib(*.estimate), spent_before(*.spent), mib(*.budget))]

@@ -712,13 +712,11 @@ impl NormalField {
         let x3 = wrap_once(x2 + 2.0, w);
         let points = [(x, y), (x2, y2), (x3, y2)];
         // `use_index` reads a palette image's indices (all three must have one), else colours.
-        let indices: Option<Vec<f64>> =
-            if map.use_index { points.iter().map(|&(x, y)| map.index_at(image, x, y)).collect() } else { None };
-        let [h1, h2, h3] = match indices {
-            Some(i) => [i[0], i[1], i[2]],
-            None => points.map(|(x, y)| grey(x, y)),
-        }
-        .map(|v| amount * v);
+        let indices = match map.use_index.then(|| points.map(|(x, y)| map.index_at(image, x, y))) {
+            Some([Some(a), Some(b), Some(c)]) => Some([a, b, c]),
+            _ => None,
+        };
+        let [h1, h2, h3] = indices.unwrap_or_else(|| points.map(|(x, y)| grey(x, y))).map(|v| amount * v);
         let p1 = DVec3::new(0.0, h1, 0.0);
         let p2 = DVec3::new(-1.0, h2, 1.0);
         let p3 = DVec3::new(1.0, h3, 1.0);

@@ -21,7 +21,7 @@ use crate::files::{FileAccess, FileError, FileKind, normalize};
 use crate::import::punctual::{self, CameraChoice};
 use crate::import::spawn::{MESH_KEYS, MESH_SHAPE};
 use crate::import::{CameraProjection, ImportOptions, Imported, MeshSource, MeshStore, Model};
-use crate::limits::{MAX_SCENE_FILES, MemoryBudget, PARSED_BYTES_PER_SCENE_BYTE};
+use crate::limits::{MAX_SCENE_FILES, MemoryBudget, PARSED_BYTES_PER_SCENE_BYTE, UNBUDGETED_SCENE_BYTES};
 use crate::material::MaterialSpec;
 use crate::registry::ShapeRegistry;
 use crate::world::Scene;
@@ -259,10 +259,11 @@ impl Loader<'_> {
             }
         };
         self.scene_bytes += text.len() as u64;
-        // The first MiB is parsed whatever the budget (at most 200 MiB, less than any render
-        // needs anyway), so that small budgets meant for meshes still load small scenes.
-        let estimate =
-            if self.scene_bytes > 1 << 20 { self.scene_bytes.saturating_mul(PARSED_BYTES_PER_SCENE_BYTE) } else { 0 };
+        let estimate = if self.scene_bytes > UNBUDGETED_SCENE_BYTES {
+            self.scene_bytes.saturating_mul(PARSED_BYTES_PER_SCENE_BYTE)
+        } else {
+            0
+        };
         if let Err(e) =
             self.budget.check(|| format!("parsing {} KiB of scene TOML", self.scene_bytes.div_ceil(1024)), estimate)
         {
