@@ -16,6 +16,7 @@ pub mod export;
 pub mod farm;
 pub mod files;
 pub mod film;
+pub mod gamma;
 pub mod geometry;
 pub mod import;
 pub mod limits;

@@ -97,6 +97,26 @@ fn negative_diffuse_phong_and_specular_add_nothing() {
 }
 
 #[test]
+fn assumed_gamma_decodes_the_working_space_to_linear_light() {
+    // A colour shown as it is (ambient 1, diffuse 0) in POV-Ray 3.7's working spaces: the
+    // pixel is the working value decoded to linear light. Measured with POV-Ray 3.7.0.10
+    // (half-float EXR): assumed_gamma 2.2 gives (0.2177, 0.04736, 2.44), srgb (0.214,
+    // 0.05087, 2.537), and 0.5 (0.707, 0.5, 1.225); 1 leaves the colour as it is.
+    let scene = wall("color = [0.5, 0.25, 1.5], ambient = 1, diffuse = 0");
+    let relative = |got: [f64; 3], want: [f64; 3]| {
+        for c in 0..3 {
+            assert!((got[c] / want[c] - 1.0).abs() < 1e-3, "got {got:?}, want {want:?}");
+        }
+    };
+    relative(pixel_with_render("assumed_gamma = 2.2", &scene), [0.2177, 0.04736, 2.44]);
+    relative(pixel_with_render("assumed_gamma = \"srgb\"", &scene), [0.214, 0.05087, 2.537]);
+    relative(pixel_with_render("assumed_gamma = 0.5", &scene), [0.707, 0.5, 1.225]);
+    assert_close(pixel_with_render("assumed_gamma = 1", &scene), [0.5, 0.25, 1.5], 0.0);
+    // Within 1 % of 1 POV-Ray uses no curve at all.
+    assert_close(pixel_with_render("assumed_gamma = 1.009", &scene), [0.5, 0.25, 1.5], 0.0);
+}
+
+#[test]
 fn an_infinite_channel_saturates_and_a_nan_channel_is_black() {
     // A negative phong_size 89.99 degrees off the mirror direction: cos^-100 overflows to
     // infinity, and the light's zero green makes 0 x inf = NaN. POV-Ray 3.7.0.10 writes

@@ -39,6 +39,16 @@ fn cases() -> Vec<Case> {
             &["scene.toml:", "render.filter.stddev", "between 0.05 and 4"],
         ),
         case(
+            "assumed_gamma of 0",
+            &format!("[render]\nassumed_gamma = 0\n{SPHERE}"),
+            &["scene.toml:", "render.assumed_gamma", "above 0", "got 0"],
+        ),
+        case(
+            "assumed_gamma neither a number nor srgb",
+            &format!("[render]\nassumed_gamma = \"linear\"\n{SPHERE}"),
+            &["scene.toml:2:", "render.assumed_gamma", "\"srgb\""],
+        ),
+        case(
             "unknown filter",
             &format!("[render]\nfilter = {{ type = \"lanczos\" }}\n{SPHERE}"),
             &["scene.toml:2:", "render.filter", "lanczos"],
@@ -649,6 +659,24 @@ fn warnings_name_the_place_and_the_render_goes_on() {
     assert!(stderr.contains(points), "{stderr}");
     assert_eq!(stderr.matches("Points primitives").count(), 1, "{stderr}");
     assert!(stderr.contains("rendered 8x6"), "{stderr}");
+}
+
+#[test]
+fn assumed_gamma_below_one_or_under_path_is_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let render = |keys: &str| {
+        std::fs::write(dir.path().join("scene.toml"), format!("[render]\nwidth = 4\nheight = 3\n{keys}\n{SPHERE}"))
+            .unwrap();
+        let run = prism().current_dir(dir.path()).args(["render", "scene.toml", "-o", "out.png"]).output().unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr).to_string();
+        assert!(run.status.success(), "{stderr}");
+        stderr
+    };
+    let low = render("assumed_gamma = 0.45");
+    assert!(low.contains("warning in `render.assumed_gamma`") && low.contains("did you mean 2.2"), "{low}");
+    let path = render("assumed_gamma = 2.2\nintegrator = \"path\"");
+    assert!(path.contains("warning in `render.assumed_gamma`") && path.contains("classic integrator"), "{path}");
+    assert!(!render("assumed_gamma = 2.2").contains("warning"));
 }
 
 #[test]

@@ -275,6 +275,19 @@ fn cli_farm_errors() {
     }
     let run = prism().arg("render").arg(&pov).args(["--sample-range", "0..1", "--exr"]).arg(&out).output().unwrap();
     assert!(failed_run_problems(&run, &["POV-Ray's antialiasing", "--region or --tile"]).is_empty());
+    // A working space other than linear light decodes a pixel only once its samples are averaged.
+    let gamma = d.path().join("gamma.toml");
+    let text = "[render]\nassumed_gamma = 2.2\n[[object]]\nshape = \"sphere\"\ncenter = [0, 0, -3]\n[[light]]\nposition = [2, 2, 0]\n";
+    std::fs::write(&gamma, text).unwrap();
+    let run = prism()
+        .arg("render")
+        .arg(&gamma)
+        .args(SIZE)
+        .args(["--sample-range", "0..1", "--exr"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(failed_run_problems(&run, &["assumed_gamma", "--region or --tile"]).is_empty() && !out.exists());
     let run = prism()
         .arg("render")
         .arg(room())

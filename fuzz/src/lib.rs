@@ -144,7 +144,11 @@ pub fn image(data: &[u8]) {
         let _ = textures.load_file(&path, ColorSpace::Linear);
     }
     if extension == "png" {
-        let _ = prism::material::image_map::decode_png(&path, bytes, FUZZ_BUDGET, false);
+        let linear = prism::gamma::GammaCurve::Neutral;
+        if prism::material::image_map::decode_png(&path, bytes, FUZZ_BUDGET, false, linear).is_ok() {
+            let working = prism::gamma::GammaCurve::power_law(2.2);
+            let _ = prism::material::image_map::decode_png(&path, bytes, FUZZ_BUDGET, false, working);
+        }
     }
     if matches!(extension, "hdr" | "exr") {
         let _ = EnvironmentMap::load_with(&path, &access, FUZZ_BUDGET);

@@ -1,7 +1,7 @@
 //! `prism export pov`: a scene as POV-Ray 3.7 scene description language.
 //!
 //! The file renders in POV-Ray to the image the `classic` integrator renders (see
-//! `shared/povray/REPORT.md`): `#version 3.7`, `assumed_gamma 1.0`, the camera's `right`, `up`
+//! `shared/povray/REPORT.md`): `#version 3.7`, the scene's `assumed_gamma` (1.0 unless it sets one), the camera's `right`, `up`
 //! and `direction` written out, every shape through its plugin's [`prism_api::Shape::to_pov`]
 //! with its world transform, materials as pigment / finish / interior with every value
 //! explicit, lights, ambient light, background, `max_trace_level` and `adc_bailout`.
@@ -22,6 +22,7 @@ use prism_api::pov::{self, FilePaths, number, vector};
 
 use crate::color::Rgb;
 use crate::diagnostics::{Diagnostic, SceneError};
+use crate::gamma::AssumedGamma;
 use crate::geometry::csg::CsgShape;
 use crate::material::pov_view::{PovFinish, PovView};
 use crate::material::{Finish, Interior, Material, Reflection, SurfaceModel};
@@ -103,6 +104,7 @@ fn povray_options(scene: &Scene, errors: &mut Vec<Diagnostic>) -> String {
         tone_map: _,
         noise,
         aovs: _,
+        assumed_gamma: _,
     } = &scene.render;
     if noise.is_some() {
         errors.push(Diagnostic::new(
@@ -163,8 +165,12 @@ fn globals(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
     }
     let _ = write!(
         out,
-        "global_settings {{\n  assumed_gamma 1.0\n  max_trace_level {}\n  adc_bailout {}\n  ambient_light {}\n}}\n\n\
+        "global_settings {{\n  assumed_gamma {}\n  max_trace_level {}\n  adc_bailout {}\n  ambient_light {}\n}}\n\n\
          background {{ {} }}\n\n",
+        match render.assumed_gamma {
+            AssumedGamma::Power(g) => format!("{g:?}"),
+            AssumedGamma::Srgb => "srgb".to_string(),
+        },
         render.max_depth,
         number(render.adc_bailout),
         rgb(*ambient_light),

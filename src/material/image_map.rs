@@ -7,8 +7,9 @@
 //! the unit sphere by longitude (from +x towards +z) and latitude, `cylindrical` around the
 //! y axis by angle and height (y from 0 to 1). Outside the square the image repeats, or with
 //! `once` the pigment is clear (white, transmit 1). PNG files are decoded as POV-Ray 3.7 reads
-//! them: an `sRGB` chunk or none means sRGB, a `gAMA` chunk a power law; alpha becomes
-//! transmit `1 - alpha` (never premultiplied).
+//! them: an `sRGB` chunk or none means sRGB, a `gAMA` chunk a power law, decoded into the
+//! scene's working space (`assumed_gamma`); alpha becomes transmit `1 - alpha` (never
+//! premultiplied).
 
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -20,6 +21,7 @@ use serde::{Deserialize, Serialize};
 
 use super::pattern::Rgbft;
 use crate::files::{FileAccess, FileError, FileKind, shown_path};
+use crate::gamma::{GammaCurve, Transcoding};
 use crate::limits::{MAX_TEXTURE_SIDE, MemoryBudget};
 use crate::texture::TextureError;
 
@@ -471,36 +473,19 @@ fn cubic(x: f64) -> [f64; 4] {
     [-0.5 * p * q * q, 0.5 * q * (q * (3.0 * p + 1.0) + 1.0), 0.5 * p * (p * (3.0 * q + 1.0) + 1.0), -0.5 * q * p * p]
 }
 
-/// How a PNG's samples become linear values, as POV-Ray 3.7 reads PNG files.
-#[derive(Clone, Copy)]
-enum Decoding {
-    /// The sRGB curve (an `sRGB` chunk, or no gamma information at all).
-    Srgb,
-    /// A power law: linear = encoded^(1 / gamma) for the file's `gAMA` (encoding) gamma.
-    Power(f32),
-}
-
-impl Decoding {
-    fn decode(self, v: f32) -> f32 {
-        match self {
-            Decoding::Srgb => {
-                if v < 0.04045 {
-                    v / 12.92
-                } else {
-                    ((v + 0.055) / 1.055).powf(2.4)
-                }
-            }
-            Decoding::Power(g) => v.powf(1.0 / g),
-        }
-    }
-}
-
-/// Reads and decodes the PNG at `path` through `access`, within `budget`.
-/// `raw` (a `bump_map`'s image, which POV-Ray reads without gamma) keeps the samples as
-/// stored, scaled to [0, 1].
-pub fn load(path: &Path, access: &FileAccess, budget: MemoryBudget, raw: bool) -> Result<MapImage, ImageMapError> {
+/// Reads and decodes the PNG at `path` through `access`, within `budget`, into the working
+/// space `working` (the scene's `assumed_gamma`; neutral: linear values). `raw` (a
+/// `bump_map`'s image, which POV-Ray reads without gamma) keeps the samples as stored,
+/// scaled to [0, 1].
+pub fn load(
+    path: &Path,
+    access: &FileAccess,
+    budget: MemoryBudget,
+    raw: bool,
+    working: GammaCurve,
+) -> Result<MapImage, ImageMapError> {
     let bytes = access.read(path, FileKind::Image)?;
-    decode_png(path, &bytes, budget, raw)
+    decode_png(path, &bytes, budget, raw, working)
 }
 
 /// Bytes a decoded `width` x `height` image map takes.
@@ -509,9 +494,18 @@ pub fn memory_estimate(width: u32, height: u32) -> u64 {
 }
 
 /// Decodes PNG `bytes` (`path` names it in errors): 1 to 16 bits, grey, grey with alpha,
-/// RGB, RGBA or palette, to linear RGB and alpha (`raw`: the samples as stored, scaled to
-/// [0, 1], whatever the file's gamma).
-pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget, raw: bool) -> Result<MapImage, ImageMapError> {
+/// RGB, RGBA or palette, to RGB in the working space `working` and alpha (`raw`: the
+/// samples as stored, scaled to [0, 1], whatever the file's gamma). As POV-Ray 3.7 reads a
+/// PNG: an `sRGB` chunk or no gamma information means the sRGB curve, a `gAMA` chunk a power
+/// law, and the samples go from that curve to the working space through POV-Ray's
+/// transcoding (no curve at all where the two match).
+pub fn decode_png(
+    path: &Path,
+    bytes: &[u8],
+    budget: MemoryBudget,
+    raw: bool,
+    working: GammaCurve,
+) -> Result<MapImage, ImageMapError> {
     const SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a];
     if !bytes.starts_with(&SIGNATURE) {
         return Err(ImageMapError::NotPng(path.to_path_buf()));
@@ -535,9 +529,9 @@ pub fn decode_png(path: &Path, bytes: &[u8], budget: MemoryBudget, raw: bool) ->
         return Err(TextureError::Empty { path: path.to_path_buf(), width, height }.into());
     }
     let decoding = match (info.srgb, info.gama_chunk) {
-        _ if raw => Decoding::Power(1.0),
-        (None, Some(g)) if g.into_value() > 0.0 => Decoding::Power(g.into_value()),
-        _ => Decoding::Srgb,
+        _ if raw => Transcoding::Single(GammaCurve::Neutral),
+        (None, Some(g)) if g.into_value() > 0.0 => Transcoding::new(working, GammaCurve::by_encoding(g.into_value())),
+        _ => Transcoding::new(working, GammaCurve::Srgb),
     };
     let indexed = info.color_type == png::ColorType::Indexed;
     // POV-Ray keeps a grey image of at most 8 bits as 8-bit grey after decoding it, truncated.
@@ -785,19 +779,25 @@ mod tests {
         };
         let budget = MemoryBudget::UNLIMITED;
         let p = Path::new("t.png");
-        let srgb = |v: f32| Decoding::Srgb.decode(v);
+        let srgb = |v: f32| GammaCurve::Srgb.decode(v);
         let rgb = decode_png(
             p,
             &encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[64, 128, 255], true),
             budget,
             false,
+            GammaCurve::Neutral,
         )
         .unwrap();
         assert_eq!(rgb.texels[0], [srgb(64.0 / 255.0), srgb(128.0 / 255.0), 1.0, 1.0]);
         // 8-bit grey is truncated to 8 bits after decoding: 64 -> 13.07 -> 13.
-        let grey =
-            decode_png(p, &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Eight, &[64], true), budget, false)
-                .unwrap();
+        let grey = decode_png(
+            p,
+            &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Eight, &[64], true),
+            budget,
+            false,
+            GammaCurve::Neutral,
+        )
+        .unwrap();
         assert_eq!(grey.texels[0][0], 13.0 / 255.0);
         // 16-bit grey keeps its precision.
         let grey16 = decode_png(
@@ -805,6 +805,7 @@ mod tests {
             &encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Sixteen, &[64, 64], true),
             budget,
             false,
+            GammaCurve::Neutral,
         )
         .unwrap();
         assert_eq!(grey16.texels[0][0], srgb(f32::from(0x4040u16) / 65535.0));
@@ -814,20 +815,45 @@ mod tests {
             &encode(1, 1, png::ColorType::Rgba, png::BitDepth::Eight, &[64, 0, 0, 128], false),
             budget,
             false,
+            GammaCurve::Neutral,
         )
         .unwrap();
         assert_eq!(rgba.texels[0], [64.0 / 255.0, 0.0, 0.0, 128.0 / 255.0]);
+        // In a 2.2 working space (assumed_gamma 2.2): an sRGB file goes through linear light
+        // into the working space; a file whose gAMA is 1/2.2 matches it and arrives unchanged;
+        // 8-bit grey is truncated after the transcoding, as POV-Ray keeps it.
+        let working = GammaCurve::power_law(2.2);
+        let png = encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[64, 128, 255], true);
+        let rgb = decode_png(p, &png, budget, false, working).unwrap();
+        let to_working = |v: f32| srgb(v).powf(1.0 / 2.2f32);
+        assert_eq!(rgb.texels[0], [to_working(64.0 / 255.0), to_working(128.0 / 255.0), 1.0, 1.0]);
+        let mut gama = Vec::new();
+        {
+            let mut e = png::Encoder::new(&mut gama, 1, 1);
+            e.set_color(png::ColorType::Rgb);
+            e.set_depth(png::BitDepth::Eight);
+            e.set_source_gamma(png::ScaledFloat::new(1.0 / 2.2));
+            e.write_header().unwrap().write_image_data(&[64, 128, 255]).unwrap();
+        }
+        let matched = decode_png(p, &gama, budget, false, working).unwrap();
+        assert_eq!(matched.texels[0], [64.0 / 255.0, 128.0 / 255.0, 1.0, 1.0]);
+        let grey = encode(1, 1, png::ColorType::Grayscale, png::BitDepth::Eight, &[64], true);
+        let grey = decode_png(p, &grey, budget, false, working).unwrap();
+        assert_eq!(grey.texels[0][0], (to_working(64.0 / 255.0) * 255.0).trunc() / 255.0);
+        // Bump maps stay raw whatever the working space.
+        let raw = decode_png(p, &png, budget, true, working).unwrap();
+        assert_eq!(raw.texels[0], [64.0 / 255.0, 128.0 / 255.0, 1.0, 1.0]);
         assert!(rgba.has_alpha);
-        assert!(matches!(decode_png(p, b"GIF89a", budget, false), Err(ImageMapError::NotPng(_))));
+        assert!(matches!(decode_png(p, b"GIF89a", budget, false, GammaCurve::Neutral), Err(ImageMapError::NotPng(_))));
         let mut broken = encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[1, 2, 3], true);
         broken.truncate(40);
         assert!(matches!(
-            decode_png(p, &broken, budget, false),
+            decode_png(p, &broken, budget, false, GammaCurve::Neutral),
             Err(ImageMapError::Texture(TextureError::Decode { .. }))
         ));
         let huge = encode(1, 1, png::ColorType::Rgb, png::BitDepth::Eight, &[1, 2, 3], true);
         assert!(matches!(
-            decode_png(p, &huge, MemoryBudget(10), false),
+            decode_png(p, &huge, MemoryBudget(10), false, GammaCurve::Neutral),
             Err(ImageMapError::Texture(TextureError::OverBudget(_)))
         ));
     }

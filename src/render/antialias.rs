@@ -13,6 +13,7 @@ use super::camera::pov_screen;
 use super::extract::RenderScene;
 use super::integrators::Integrator;
 use super::sampling::{ProgressivePattern, SampleStream, hash4, mix64};
+use crate::gamma::{self, GammaCurve, Transcoding};
 use crate::world::components::Antialias;
 
 /// Side of the square blocks POV-Ray antialiases independently (`Render_Block_Size`).
@@ -64,6 +65,8 @@ struct Sampler<'a, I: Integrator> {
     rays: u64,
     /// Camera rays traced so far.
     primary: u64,
+    /// How colours are compared.
+    grade: AaGrade,
 }
 
 impl<I: Integrator> Sampler<'_, I> {
@@ -122,18 +125,39 @@ impl<I: Integrator> Sampler<'_, I> {
     }
 }
 
-/// POV-Ray's colour distance after antialiasing gamma: sum over the channels of the
-/// differences of max(v, 0)^(1 / 2.5) (the transmit channel is 0 without an alpha channel).
-fn distance(a: DVec3, b: DVec3) -> f64 {
-    graded_distance(aa_graded(a), aa_graded(b))
+/// How antialiasing grades colours before comparing them: POV-Ray's antialiasing gamma
+/// (2.5) transcoded from the integrator's working space (`view.cpp`).
+#[derive(Clone, Copy, Debug)]
+struct AaGrade {
+    /// The curve from a working space other than linear light; `None` for linear light.
+    from_working: Option<Transcoding>,
 }
 
-/// A colour as antialiasing compares it: max(v, 0)^(1 / 2.5) per channel.
-fn aa_graded(c: DVec3) -> DVec3 {
-    c.max(DVec3::ZERO).powf(1.0 / AA_GAMMA)
+impl AaGrade {
+    fn new(working: GammaCurve) -> Self {
+        let from_working =
+            (!working.is_neutral()).then(|| Transcoding::new(working, GammaCurve::power_law(AA_GAMMA as f32)));
+        Self { from_working }
+    }
+
+    /// A colour as antialiasing compares it: in linear light max(v, 0)^(1 / 2.5) per
+    /// channel; from another working space through POV-Ray's transcoding curve, in single
+    /// precision as POV-Ray's.
+    fn of(self, c: DVec3) -> DVec3 {
+        match self.from_working {
+            None => c.max(DVec3::ZERO).powf(1.0 / AA_GAMMA),
+            Some(curve) => DVec3::from_array(c.to_array().map(|v| f64::from(curve.encode(v as f32)))),
+        }
+    }
+
+    /// POV-Ray's colour distance after antialiasing gamma: sum over the channels of the
+    /// differences of the graded values (the transmit channel is 0 without an alpha channel).
+    fn distance(self, a: DVec3, b: DVec3) -> f64 {
+        graded_distance(self.of(a), self.of(b))
+    }
 }
 
-/// [`distance`] of two colours already passed through [`aa_graded`].
+/// [`AaGrade::distance`] of two colours already graded.
 fn graded_distance(a: DVec3, b: DVec3) -> f64 {
     (a - b).abs().element_sum()
 }
@@ -159,15 +183,24 @@ pub fn render_block<I: Integrator>(
     let (width, height) = (scene.settings.width, scene.settings.height);
     let w = BLOCK_SIZE.min(width - left) as usize;
     let h = BLOCK_SIZE.min(height - top) as usize;
+    let working = integrator.working_gamma();
+    let grade = AaGrade::new(working);
     let mut sampler =
-        Sampler { scene, integrator, width: f64::from(width), height: f64::from(height), rays: 0, primary: 0 };
+        Sampler { scene, integrator, width: f64::from(width), height: f64::from(height), rays: 0, primary: 0, grade };
     let block = BlockArea { left: f64::from(left), top: f64::from(top), w, h };
     let colours = match method {
         PovMethod::NonAdaptive { threshold, depth } => non_adaptive(&mut sampler, block, threshold, depth),
         PovMethod::Adaptive { threshold, depth } => adaptive(&mut sampler, block, threshold, depth),
     };
     Block {
-        pixels: colours.into_iter().map(|c| [c.x as f32, c.y as f32, c.z as f32]).collect(),
+        // Averaged in the working space; the film holds linear light.
+        pixels: colours
+            .into_iter()
+            .map(|c| {
+                let c = gamma::decode_rgb(working, c);
+                [c.x as f32, c.y as f32, c.z as f32]
+            })
+            .collect(),
         rays: sampler.rays,
         primary_rays: sampler.primary,
     }
@@ -188,27 +221,28 @@ struct BlockArea {
 /// pixel left of each row are traced only to compare with and are never supersampled.
 fn non_adaptive<I: Integrator>(s: &mut Sampler<I>, block: BlockArea, threshold: f64, depth: u32) -> Vec<DVec3> {
     let BlockArea { left, top, w, h } = block;
+    let grade = s.grade;
     // Each colour is graded for comparison once, when it is traced or supersampled.
-    let above: Vec<DVec3> = (0..w).map(|x| aa_graded(s.trace(left + x as f64, top - 1.0))).collect();
+    let above: Vec<DVec3> = (0..w).map(|x| grade.of(s.trace(left + x as f64, top - 1.0))).collect();
     let mut pixels = vec![DVec3::ZERO; w * h];
     let mut graded = vec![DVec3::ZERO; w * h];
     let mut done = vec![false; w * h];
     for y in 0..h {
         let py = top + y as f64;
-        let before_row = aa_graded(s.trace(left - 1.0, py));
+        let before_row = grade.of(s.trace(left - 1.0, py));
         for (x, &above_graded) in above.iter().enumerate() {
             let px = left + x as f64;
             let i = y * w + x;
             let current = s.trace(px, py);
             pixels[i] = current;
-            graded[i] = aa_graded(current);
+            graded[i] = grade.of(current);
             let (left_graded, left_done) = if x == 0 { (before_row, true) } else { (graded[i - 1], done[i - 1]) };
             let (top_graded, top_done) = if y == 0 { (above_graded, true) } else { (graded[i - w], done[i - w]) };
             let left_differs = graded_distance(left_graded, graded[i]) >= threshold;
             let top_differs = graded_distance(top_graded, graded[i]) >= threshold;
             let mut refine = |j: usize, px: f64, py: f64| {
                 pixels[j] = supersample(s, px, py, pixels[j], depth);
-                graded[j] = aa_graded(pixels[j]);
+                graded[j] = grade.of(pixels[j]);
                 done[j] = true;
             };
             if left_differs && !left_done {
@@ -320,7 +354,8 @@ fn subdivide<I: Integrator>(
     let c02 = grid.get(q.bx, q.by + q.step);
     let c20 = grid.get(q.bx + q.step, q.by);
     let c22 = grid.get(q.bx + q.step, q.by + q.step);
-    let differ = |a: DVec3, b: DVec3| distance(a, b) >= threshold;
+    let grade = s.grade;
+    let differ = |a: DVec3, b: DVec3| grade.distance(a, b) >= threshold;
     let split = level > 0
         && (differ(c00, c02)
             || differ(c00, c20)
@@ -366,7 +401,15 @@ mod tests {
     }
 
     fn sampler<'a>(scene: &'a RenderScene, integrator: &'a Classic<'a>) -> Sampler<'a, Classic<'a>> {
-        Sampler { scene, integrator, width: 40.0, height: 24.0, rays: 0, primary: 0 }
+        Sampler {
+            scene,
+            integrator,
+            width: 40.0,
+            height: 24.0,
+            rays: 0,
+            primary: 0,
+            grade: AaGrade::new(GammaCurve::Neutral),
+        }
     }
 
     /// Renders `scene` with `antialias` and checks each of `pixels` against `expected`, the
@@ -431,8 +474,13 @@ mod tests {
     fn distance_is_povs_gamma_encoded_sum() {
         let a = DVec3::new(1.0, 0.0, 0.0);
         let b = DVec3::new(0.0, 0.0, -1.0);
-        assert!((distance(a, b) - 1.0).abs() < 1e-15, "negative values count as 0");
-        let d = distance(DVec3::splat(0.5), DVec3::ZERO);
+        let linear = AaGrade::new(GammaCurve::Neutral);
+        assert!((linear.distance(a, b) - 1.0).abs() < 1e-15, "negative values count as 0");
+        let d = linear.distance(DVec3::splat(0.5), DVec3::ZERO);
         assert!((d - 3.0 * 0.5f64.powf(0.4)).abs() < 1e-15);
+        // In a 2.2 working space POV-Ray compares max(v, 0)^(2.2 / 2.5).
+        let working = AaGrade::new(GammaCurve::power_law(2.2));
+        let d = working.distance(DVec3::splat(0.5), DVec3::ZERO);
+        assert!((d - 3.0 * 0.5f64.powf(0.88)).abs() < 1e-6, "{d}");
     }
 }

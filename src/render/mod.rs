@@ -24,6 +24,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
 use crate::film::{Aov, Film, Region};
+use crate::gamma;
 use crate::limits::{MAX_THREADS, MemoryBudget, OverBudget};
 use crate::partial::PixelSums;
 use crate::world::components::{IntegratorKind, ToneMap};
@@ -204,6 +205,11 @@ pub enum RenderError {
         "--sample-range: the scene's focal blur is adaptive (`blur_variance`), so each pixel decides from all its lens samples when to stop and its samples cannot be split; split the image with --region or --tile instead, or drop `blur_variance`"
     )]
     SampleRangeWithAdaptiveBlur,
+    /// A sample range was asked of a classic render with an `assumed_gamma` other than 1.
+    #[error(
+        "--sample-range: the scene's assumed_gamma averages each pixel's samples in its working space before decoding them, so a pixel's samples cannot be split; split the image with --region or --tile instead, or render with assumed_gamma = 1"
+    )]
+    SampleRangeWithAssumedGamma,
     /// The region is empty or leaves the frame.
     #[error("region {x0},{y0},{x1},{y1} is not a non-empty part of the {width}x{height} image", x0 = region.x0, y0 = region.y0, x1 = region.x1, y1 = region.y1)]
     Region {
@@ -415,6 +421,9 @@ fn render_samples<I: Integrator>(
     }
     if scene.focal_blur.is_some() && range != (0..samples) {
         return Err(RenderError::SampleRangeWithAdaptiveBlur);
+    }
+    if !integrator.working_gamma().is_neutral() && (want_sums || range != (0..samples)) {
+        return Err(RenderError::SampleRangeWithAssumedGamma);
     }
     let threads = options.threads.unwrap_or(0);
     if threads > MAX_THREADS {
@@ -814,6 +823,7 @@ pub fn render_pixel_samples<I: Integrator>(
     let mut non_finite_samples = 0;
     let adaptive = settings.noise.filter(|_| range == (0..samples));
     let mut taken = range.len() as u32;
+    let working = integrator.working_gamma();
     for s in range {
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
         if let Some(progressive) = &mut progressive {
@@ -853,7 +863,9 @@ pub fn render_pixel_samples<I: Integrator>(
         // Box-filtered samples weigh 1, so their weighted mean is the plain mean, bit for bit.
         sum += weight * radiance;
         weights += weight;
-        spread.add(radiance);
+        // The mean is taken in the integrator's working space (POV-Ray's), the error
+        // estimates in linear light.
+        spread.add(gamma::decode_rgb(working, radiance));
         if let Some(noise) = adaptive
             && (s + 1) % SAMPLE_BATCH == 0
             && s + 1 >= SAMPLE_BATCH * MIN_BATCHES
@@ -871,7 +883,7 @@ pub fn render_pixel_samples<I: Integrator>(
         }
     }
     // Weights summing to 0 (a filter's negative lobes cancelling) give black.
-    let radiance = if weights != 0.0 { sum / weights } else { DVec3::ZERO };
+    let radiance = gamma::decode_rgb(working, if weights != 0.0 { sum / weights } else { DVec3::ZERO });
     let variance = spread.variance_of_mean().0;
     let stats = PixelStats {
         samples: taken,

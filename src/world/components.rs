@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::color::Rgb;
 use crate::diagnostics::Location;
+use crate::gamma::AssumedGamma;
 
 /// A user-visible name (objects can be parents by name).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -588,6 +589,12 @@ pub struct RenderSettings {
     /// `samples`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub aovs: Vec<String>,
+    /// The working space of the scene's colours under `classic` (POV-Ray's
+    /// `assumed_gamma`): a power law's decoding gamma (1, the default, is linear) or
+    /// `"srgb"`. Colours and image maps are in that space, shading runs on its values, and
+    /// a pixel is decoded to linear light once its samples are averaged.
+    #[serde(skip_serializing_if = "AssumedGamma::is_linear")]
+    pub assumed_gamma: AssumedGamma,
 }
 
 impl Default for RenderSettings {
@@ -607,6 +614,7 @@ impl Default for RenderSettings {
             tone_map: ToneMap::Clamp,
             noise: None,
             aovs: Vec::new(),
+            assumed_gamma: AssumedGamma::default(),
         }
     }
 }

@@ -9,6 +9,7 @@ use super::components::{
     PixelFilter, Projection, RenderSettings, WorldTransform,
 };
 use crate::diagnostics::{Diagnostic, Location, SceneError};
+use crate::gamma::AssumedGamma;
 
 /// Largest accepted image side, and pixel count (a 64k x 64k float image is 48 GiB).
 pub const MAX_IMAGE_SIDE: u32 = 65_536;
@@ -19,7 +20,8 @@ pub const MAX_SAMPLES: u32 = 1 << 20;
 
 /// Warnings that depend on the final settings, so they are not among [`Scene::warnings`]: a
 /// camera imported from a file made for another aspect ratio than the image's, POV-Ray's
-/// adaptive focal blur keys and normal patterns under `path` (ignored there), and a
+/// adaptive focal blur keys, normal patterns and `assumed_gamma` under `path` (ignored
+/// there), an `assumed_gamma` below 1 (POV-Ray's "suspicious value"), and a
 /// path-traced scene without any light (call it once the settings are final, after
 /// command-line overrides).
 pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
@@ -56,6 +58,24 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
             )
             .with_help("use [render] noise to sample adaptively under path"),
         );
+    }
+    let gamma_at = || scene.render_origin.child("assumed_gamma");
+    if let AssumedGamma::Power(g) = scene.render.assumed_gamma
+        && g > 0.0
+        && g < 1.0
+    {
+        // POV-Ray's "suspicious value" warning: gammas are usually given as decoding gammas.
+        out.push(Diagnostic::warning(
+            gamma_at(),
+            format!("assumed_gamma {g} is below 1, which brightens mid-tones; did you mean {}?", 1.0 / g),
+        ));
+    }
+    if scene.render.integrator == IntegratorKind::Path && !scene.render.assumed_gamma.is_linear() {
+        out.push(Diagnostic::warning(
+            gamma_at(),
+            "assumed_gamma belongs to the classic integrator: the path integrator takes the scene's colours, \
+             and the image maps read into that working space, as linear values",
+        ));
     }
     if scene.render.integrator == IntegratorKind::Path && !has_light(scene) {
         out.push(
@@ -177,6 +197,12 @@ fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
     }
     if !(r.adc_bailout.is_finite() && (0.0..1.0).contains(&r.adc_bailout)) {
         out.push(Diagnostic::new(at("adc_bailout"), format!("adc_bailout must be in [0, 1), got {}", r.adc_bailout)));
+    }
+    if !r.assumed_gamma.is_valid() {
+        out.push(Diagnostic::new(
+            at("assumed_gamma"),
+            format!("assumed_gamma must be a gamma above 0 (1 is linear) or \"srgb\", got {}", r.assumed_gamma),
+        ));
     }
     if let Antialias::Pov1 { threshold, depth } | Antialias::Pov2 { threshold, depth } = r.antialias {
         if !(threshold.is_finite() && threshold >= 0.0) {

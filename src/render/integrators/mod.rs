@@ -9,6 +9,7 @@ use glam::{DVec2, DVec3};
 use prism_api::Ray;
 
 use super::sampling::SampleStream;
+use crate::gamma::GammaCurve;
 
 /// The first surface a camera ray sees, for AOV layers.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,4 +47,11 @@ pub trait Integrator: Sync {
     /// The sample for camera ray `ray`, drawing its random numbers from `stream` (dimensions
     /// 0 to 3 are the scheduler's: pixel and lens position).
     fn sample(&self, ray: &Ray, stream: SampleStream) -> PixelSample;
+
+    /// The space the samples' values are in: linear light (the default), or the scene's
+    /// working space under `classic` with a POV-Ray `assumed_gamma`. The scheduler averages
+    /// a pixel's samples in this space, as POV-Ray does, and decodes the mean to linear light.
+    fn working_gamma(&self) -> GammaCurve {
+        GammaCurve::Neutral
+    }
 }

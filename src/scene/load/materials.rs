@@ -74,7 +74,7 @@ impl Loader<'_> {
             return true;
         }
         let store = &mut self.meshes.textures;
-        let loaded = crate::material::image_map::load(&path, &self.access, store.budget(), raw);
+        let loaded = crate::material::image_map::load(&path, &self.access, store.budget(), raw, self.working_gamma);
         let loaded = match loaded {
             Err(crate::material::image_map::ImageMapError::Texture(crate::texture::TextureError::OverBudget(e))) => {
                 Err(crate::texture::TextureError::OverBudget(store.restate(e)).into())

@@ -13,11 +13,13 @@ mod objects;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
+use serde::Deserialize;
 use serde::de::DeserializeOwned;
 
 use super::source::{ParsedFile, deserialize_at};
 use crate::diagnostics::{Diagnostic, Location, SceneError};
 use crate::files::{FileAccess, FileError, FileKind, normalize};
+use crate::gamma::{AssumedGamma, GammaCurve};
 use crate::import::punctual::{self, CameraChoice};
 use crate::import::spawn::{MESH_KEYS, MESH_SHAPE};
 use crate::import::{CameraProjection, ImportOptions, Imported, MeshSource, MeshStore, Model};
@@ -126,6 +128,7 @@ pub fn load_with(
         image_maps: HashMap::new(),
         light_imports: Vec::new(),
         camera_import: None,
+        working_gamma: GammaCurve::Neutral,
         imported_entities: 0,
         scene_bytes: 0,
     };
@@ -182,6 +185,9 @@ struct Loader<'a> {
     render: Section,
     camera: Section,
     environment: Section,
+    /// The working space of the scene's colours (`[render] assumed_gamma`), into which image
+    /// maps are decoded: known once every file's settings are merged.
+    working_gamma: GammaCurve,
     /// Named materials: the component objects naming them share, and the file defining them.
     materials: HashMap<String, (MaterialComponent, usize)>,
     /// The material of objects that name none (one, shared).
@@ -204,6 +210,8 @@ impl Loader<'_> {
     /// chain thousands deep cannot overflow the call stack), each file once: a file's
     /// includes are merged before its own sections, so it overrides them.
     fn load_all(&mut self, path: &Path) {
+        // Files in the order their sections apply (each after its includes).
+        let mut order = Vec::new();
         let mut frames: Vec<Frame> = Vec::new();
         if let Some(frame) = self.open_file(path, None) {
             frames.push(frame);
@@ -215,11 +223,24 @@ impl Loader<'_> {
                     frames.push(child);
                 }
             } else {
-                let index = frame.index;
+                order.push(frame.index);
                 frames.pop();
                 self.stack.pop();
-                self.sections(index);
             }
+        }
+        // The settings first, merged over every file: reading a material's image maps needs
+        // the final `assumed_gamma`, which the including file may set after an include's
+        // materials.
+        for &index in &order {
+            self.settings_sections(index);
+        }
+        self.working_gamma = match self.render.table.get("assumed_gamma").cloned().map(AssumedGamma::deserialize) {
+            // An invalid value is reported when the settings are read.
+            Some(Ok(gamma)) if gamma.is_valid() => gamma.curve(),
+            _ => GammaCurve::Neutral,
+        };
+        for index in order {
+            self.sections(index);
         }
     }
 
@@ -302,14 +323,20 @@ impl Loader<'_> {
         Some(Frame { index, includes, next: 0 })
     }
 
-    /// File `index`'s own sections, objects, materials and lights (after its includes').
-    fn sections(&mut self, index: usize) {
+    /// File `index`'s `[render]`, `[camera]` and `[world]`, merged over its includes'.
+    fn settings_sections(&mut self, index: usize) {
         let table = std::mem::take(&mut self.files[index].table);
         for (name, section) in [("render", 0), ("camera", 1), ("world", 2)] {
             if let Some(value) = table.get(name) {
                 self.merge_section(index, name, section, value);
             }
         }
+        self.files[index].table = table;
+    }
+
+    /// File `index`'s own materials, objects and lights (after its includes').
+    fn sections(&mut self, index: usize) {
+        let table = std::mem::take(&mut self.files[index].table);
         if let Some(value) = table.get("materials") {
             self.materials(index, value);
         }

@@ -12,6 +12,7 @@ use prism_api::Ray;
 
 use crate::accel::primitive::Primitive;
 use crate::accel::scene_bvh::{ConvexHull, Gathered};
+use crate::gamma::GammaCurve;
 use crate::material::pov_view::{PovFinish, PovView, ShadedFinish};
 use crate::render::extract::RenderScene;
 use crate::render::integrators::{FirstHit, Integrator, PixelSample};
@@ -93,6 +94,10 @@ impl Integrator for Classic<'_> {
         let mut state = PathState { stream, dimension: 4, rays: 0, first_hit: None };
         let radiance = pov_output(self.trace(ray, 1, 1.0, interiors, &mut state));
         PixelSample { radiance, first_hit: state.first_hit, rays: state.rays }
+    }
+
+    fn working_gamma(&self) -> GammaCurve {
+        self.scene.settings.assumed_gamma.curve()
     }
 }
 
