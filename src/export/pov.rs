@@ -816,8 +816,8 @@ fn image_map_sdl(map: &crate::material::image_map::ImageMap, file: String) -> St
     sdl
 }
 
-/// An image file with its mapping: `png FILE map_type N`, then `interpolate N` and `once`
-/// when written.
+/// An image file with its mapping: `png FILE map_type N`, then `interpolate N`, `once`,
+/// `repeat` and `offset` when written.
 fn image_options_sdl(map: &crate::material::image_map::ImageMap, file: String) -> String {
     use crate::material::image_map::Interpolate;
     let mut sdl = format!("png {file} map_type {}", map.map_type.pov_number());
@@ -826,6 +826,12 @@ fn image_options_sdl(map: &crate::material::image_map::ImageMap, file: String) -
     }
     if map.once {
         sdl.push_str(" once");
+    }
+    if let Some([u, v]) = map.repeat {
+        let _ = write!(sdl, " repeat <{}, {}>", number(u), number(v));
+    }
+    if let Some([u, v]) = map.offset {
+        let _ = write!(sdl, " offset <{}, {}>", number(u), number(v));
     }
     sdl
 }

@@ -38,6 +38,9 @@ pub enum MapType {
     Spherical,
     /// `map_type 2`: around the y axis, angle and height from 0 to 1.
     Cylindrical,
+    /// `map_type 5`: around a torus of major radius 1 about the y axis, the angle about y
+    /// across the width and the angle around the tube across the height.
+    Torus,
 }
 
 /// How texels are blended between their centres (POV-Ray's `interpolate`).
@@ -118,7 +121,7 @@ named_enum!(
     MapType,
     "map_type",
     "How an image_map wraps its image around the object.",
-    [(Planar, "planar", 0), (Spherical, "spherical", 1), (Cylindrical, "cylindrical", 2),]
+    [(Planar, "planar", 0), (Spherical, "spherical", 1), (Cylindrical, "cylindrical", 2), (Torus, "torus", 5),]
 );
 
 named_enum!(
@@ -148,6 +151,14 @@ pub struct ImageMap {
     /// Show the image once: outside its unit square the pigment is clear.
     #[serde(default, skip_serializing_if = "is_default")]
     pub once: bool,
+    /// POV-Ray's `repeat <u, v>`: the mapping spans the image this many times across its
+    /// unit square (both above 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub repeat: Option<[f64; 2]>,
+    /// POV-Ray's `offset <u, v>`: shifts the image by these fractions of its width and height
+    /// (towards the left and the top), before `once` and the wrap.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub offset: Option<[f64; 2]>,
     /// `bump_map` only: a palette image's indices (0 to 255) as heights instead of its
     /// colours' grey levels (POV-Ray's `use_index`; other images are read by their colours).
     #[serde(default, skip_serializing_if = "is_default")]
@@ -193,6 +204,8 @@ impl PartialEq for ImageMap {
             && self.map_type == other.map_type
             && self.interpolate == other.interpolate
             && self.once == other.once
+            && self.repeat == other.repeat
+            && self.offset == other.offset
             && self.use_index == other.use_index
             && self.filter_all == other.filter_all
             && self.transmit_all == other.transmit_all
@@ -245,6 +258,16 @@ impl ImageMap {
                 return Err((key, format!("must be finite, got {v}")));
             }
         }
+        if let Some(r) = self.repeat
+            && !r.iter().all(|v| v.is_finite() && *v > 0.0)
+        {
+            return Err(("repeat", format!("must be two numbers above 0 (POV-Ray's repeat vector), got {r:?}")));
+        }
+        if let Some(o) = self.offset
+            && !o.iter().all(|v| v.is_finite())
+        {
+            return Err(("offset", format!("must be two finite numbers, got {o:?}")));
+        }
         if self.file.is_empty() {
             return Err(("file", "must name a PNG file".into()));
         }
@@ -279,8 +302,11 @@ impl ImageMap {
     /// `None` off the image (`once`) or where the mapping gives no point.
     pub fn image_coords(&self, image: &MapImage, q: DVec3) -> Option<(f64, f64)> {
         let (w, h) = (image.width as f64, image.height as f64);
-        let (x, y) = self.project(q, w, h)?;
-        let (x, y) = (x + POV_EPSILON, y + POV_EPSILON);
+        // The mapping spans `repeat` images; the offset moves by whole images' fractions.
+        let [repeat_u, repeat_v] = self.repeat.unwrap_or([1.0, 1.0]);
+        let (x, y) = self.project(q, w * repeat_u, h * repeat_v)?;
+        let [offset_u, offset_v] = self.offset.map_or([0.0, 0.0], |[u, v]| [u * -w, v * -h]);
+        let (x, y) = (x + (offset_u + POV_EPSILON), y + (offset_v + POV_EPSILON));
         if self.once && (x >= w || y >= h || x < 0.0 || y < 0.0) {
             return None;
         }
@@ -388,6 +414,22 @@ impl ImageMap {
                 }
                 let theta = longitude(q.x / len, q.z / len)?;
                 Some((theta * w, v))
+            }
+            MapType::Torus => {
+                // POV-Ray's torus_image_map, major radius 1 (its gradient's x, fixed for maps).
+                let ring = (q.x * q.x + q.z * q.z).sqrt();
+                let theta = longitude(q.x, q.z)?;
+                let x = ring - 1.0;
+                let tube = (x * x + q.y * q.y).sqrt();
+                if tube == 0.0 {
+                    return None;
+                }
+                let mut phi = (-x / tube).acos();
+                if q.y > 0.0 {
+                    phi = std::f64::consts::TAU - phi;
+                }
+                // POV-Ray negates the angle twice on the way: u runs with it.
+                Some((theta * w, phi / std::f64::consts::TAU * h))
             }
         }
     }
@@ -684,6 +726,46 @@ mod tests {
             assert_eq!((c.rgb, c.filter, c.transmit), (DVec3::ONE, 0.0, 1.0), "{p}");
         }
         assert_eq!(m.clearest().transmit, 1.0);
+    }
+
+    #[test]
+    fn repeat_spans_copies_and_offset_shifts_by_fractions_of_the_image() {
+        // repeat 2 across: x 0.1 is 0.2 of the image (column 0), x 0.3 is 0.6 (column 2),
+        // x 0.6 is 1.2 (column 0 of the second copy).
+        let m = map("repeat = [2, 1]");
+        assert_eq!(texel_of(m.at(DVec3::new(0.1, 0.9, 0.0))), (0, 0));
+        assert_eq!(texel_of(m.at(DVec3::new(0.3, 0.9, 0.0))), (2, 0));
+        assert_eq!(texel_of(m.at(DVec3::new(0.6, 0.9, 0.0))), (0, 0));
+        // offset 0.25 moves the image a quarter of its width to the left: x 0.1 shows
+        // column 3 (0.1 - 0.25 wraps to 0.85); offset 0.5 down: y 0.9 shows row 1.
+        let m = map("offset = [0.25, 0.5]");
+        assert_eq!(texel_of(m.at(DVec3::new(0.1, 0.9, 0.0))), (3, 1));
+        // With once, what the offset moves off the square is clear.
+        let m = map("once = true\noffset = [0.25, 0]");
+        assert_eq!(m.at(DVec3::new(0.1, 0.9, 0.0)).transmit, 1.0);
+        assert_eq!(texel_of(m.at(DVec3::new(0.6, 0.9, 0.0))), (1, 0));
+        for bad in ["repeat = [0, 1]", "repeat = [1, -2]", "offset = [1, nan]"] {
+            let m: ImageMap = toml::from_str(&format!("file = \"t.png\"\n{bad}")).unwrap();
+            assert!(m.check().is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn torus_maps_the_angle_about_y_and_around_the_tube() {
+        let m = map("map_type = \"torus\"");
+        // On the ring of radius 1: the inner equator (x 0.8 at theta 0) is v 0, the bottom of
+        // the tube a quarter turn, the outer equator half, the top three quarters (flipped:
+        // rows count from the top).
+        let at = |x: f64, y: f64, z: f64| texel_of(m.at(DVec3::new(x, y, z)));
+        assert_eq!(at(0.8, 0.0, 0.0), (0, 1));
+        assert_eq!(at(1.0, -0.2, 0.0).0, 0);
+        assert_eq!(at(1.2, -0.01, 0.0), (0, 1));
+        assert_eq!(at(1.2, 0.01, 0.0), (0, 0));
+        // A quarter turn about y towards +z: column 1; half: column 2.
+        assert_eq!(at(0.0, 0.05, 1.2).0, 1);
+        assert_eq!(at(-1.2, 0.05, 0.0).0, 2);
+        // On the axis there is no angle: clear.
+        assert_eq!(m.at(DVec3::new(0.0, 0.3, 0.0)).transmit, 1.0);
     }
 
     #[test]

@@ -201,7 +201,7 @@ pub struct Normal {
     /// POV-Ray's `bump_map` (in place of a `pattern`): a PNG read as a height field, its
     /// grey level (0.297 R + 0.589 G + 0.114 B of the samples as stored, no gamma) times
     /// `bump_size` the height; the image is mapped as an `image_map` is (`map_type`,
-    /// `interpolate`, `once`; no `filter_all` or `transmit_all`).
+    /// `interpolate`, `once`, `repeat`, `offset`; no `filter_all` or `transmit_all`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bump_map: Option<ImageMap>,
     /// How far the pattern tilts the normal (POV-Ray's `bump_size`, the number after the
