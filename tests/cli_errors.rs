@@ -321,7 +321,7 @@ fn cases() -> Vec<Case> {
             ..case("unwritable output", SPHERE, &["/nonexistent-dir/out.png", "cannot write"])
         },
         Case { output: Some("out.xyz"), ..case("unknown output format", SPHERE, &["out.xyz", "unknown image format"]) },
-        case("zero width", "[render]\nwidth = 0\n", &["scene.toml:1:", "width must be between 1 and"]),
+        case("zero width", "[render]\nwidth = 0\n", &["scene.toml:2:1:", "width must be between 1 and"]),
         case("absurd size", "[render]\nwidth = 60000\nheight = 60000\n", &["scene.toml:", "exceeds the limit"]),
         case("zero samples", "[render]\nsamples = 0\n", &["scene.toml:", "samples must be between"]),
         case("negative width", "[render]\nwidth = -5\n", &["scene.toml:2:", "render.width"]),
@@ -729,7 +729,7 @@ fn a_path_traced_scene_without_light_renders_black_with_a_warning() {
     let run = prism().current_dir(dir.path()).args(["render", "dark.toml", "-o", "out.png"]).output().unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success() && dir.path().join("out.png").is_file(), "{stderr}");
-    assert!(stderr.contains("dark.toml:1:2: warning in `render.integrator`: the scene has no light"), "{stderr}");
+    assert!(stderr.contains("dark.toml:4:1: warning in `render.integrator`: the scene has no light"), "{stderr}");
     // A light anywhere (here the background) silences it, and classic never warns.
     for scene in [format!("{dark}[world]\nbackground = 0.5\n"), dark.replace("\"path\"", "\"classic\"")] {
         std::fs::write(dir.path().join("lit.toml"), scene).unwrap();

@@ -76,7 +76,7 @@ pub fn export(scene: &Scene, source: &str, mesh_prefix: &str, xml_dir: &Path) ->
     );
     if render.antialias != Antialias::Stratified {
         errors.push(Diagnostic::new(
-            scene.render_origin.child("antialias"),
+            scene.render_key("antialias"),
             "POV-Ray's antialiasing methods have no Mitsuba equivalent; use stratified sampling",
         ));
     }

@@ -108,20 +108,20 @@ fn povray_options(scene: &Scene, errors: &mut Vec<Diagnostic>) -> String {
     } = &scene.render;
     if noise.is_some() {
         errors.push(Diagnostic::new(
-            scene.render_origin.child("noise"),
+            scene.render_key("noise"),
             "POV-Ray has no adaptive sampling to match `noise`: export the scene without it",
         ));
     }
     if !filter.is_box() {
         errors.push(Diagnostic::new(
-            scene.render_origin.child("filter"),
+            scene.render_key("filter"),
             "POV-Ray has no reconstruction filters: export a scene with the default box filter",
         ));
     }
     match integrator {
         IntegratorKind::Classic => {}
         IntegratorKind::Path => errors.push(Diagnostic::new(
-            scene.render_origin.child("integrator"),
+            scene.render_key("integrator"),
             "POV-Ray renders the classic integrator's model; export a scene with integrator = \"classic\" \
              (or render `path` scenes against Mitsuba with `prism export mitsuba`)"
                 .to_string(),
@@ -132,7 +132,7 @@ fn povray_options(scene: &Scene, errors: &mut Vec<Diagnostic>) -> String {
             if *samples > 1 && scene.camera().aperture <= 0.0 {
                 errors.push(
                     Diagnostic::new(
-                        scene.render_origin.child("samples"),
+                        scene.render_key("samples"),
                         format!("{samples} stratified samples per pixel have no POV-Ray equivalent"),
                     )
                     .with_help(
@@ -159,7 +159,7 @@ fn globals(out: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
     let render = &scene.render;
     if render.max_depth > MAX_TRACE_LEVEL {
         errors.push(Diagnostic::new(
-            scene.render_origin.child("max_depth"),
+            scene.render_key("max_depth"),
             format!("max_depth {} is deeper than POV-Ray's limit of {MAX_TRACE_LEVEL}", render.max_depth),
         ));
     }

@@ -19,6 +19,8 @@ pub struct Scene {
     pub render: RenderSettings,
     /// Where `[render]` was written (for diagnostics about it).
     pub render_origin: Location,
+    /// Where each top-level `[render]` key was written (the last file that set it).
+    pub render_keys: std::collections::HashMap<String, Location>,
     /// `[world]` settings.
     pub environment: Environment,
     /// The camera entity.
@@ -29,6 +31,17 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// Where `[render]` key `key` (a path such as `antialias.threshold`) was written: at its
+    /// own line where the scene sets it, else at `[render]`.
+    pub fn render_key(&self, key: &str) -> Location {
+        let (top, rest) = key.split_once('.').map_or((key, None), |(top, rest)| (top, Some(rest)));
+        match (self.render_keys.get(top), rest) {
+            (Some(at), None) => at.clone(),
+            (Some(at), Some(rest)) => at.child(rest),
+            (None, _) => self.render_origin.child(key),
+        }
+    }
+
     /// The camera.
     pub fn camera(&self) -> components::Camera {
         self.world.get::<&components::Camera>(self.camera).map(|c| (*c).clone()).unwrap_or_default()

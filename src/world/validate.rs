@@ -59,7 +59,7 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
             .with_help("use [render] noise to sample adaptively under path"),
         );
     }
-    let gamma_at = || scene.render_origin.child("assumed_gamma");
+    let gamma_at = || scene.render_key("assumed_gamma");
     if let AssumedGamma::Power(g) = scene.render.assumed_gamma
         && g > 0.0
         && g < 1.0
@@ -80,7 +80,7 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
     if scene.render.integrator == IntegratorKind::Path && !has_light(scene) {
         out.push(
             Diagnostic::warning(
-                scene.render_origin.child("integrator"),
+                scene.render_key("integrator"),
                 "the scene has no light: no light source, emitting material or environment, so the path \
                  integrator renders it black",
             )
@@ -95,7 +95,7 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
     if scene.render.integrator == IntegratorKind::Path && scene.world.query::<&MaterialComponent>().iter().any(tilted) {
         out.push(
             Diagnostic::warning(
-                scene.render_origin.child("integrator"),
+                scene.render_key("integrator"),
                 "the path integrator ignores normal patterns (`material.normal`): surfaces render smooth",
             )
             .with_help("render with the classic integrator to see them"),
@@ -123,7 +123,7 @@ pub fn validate(scene: &Scene) -> Result<(), SceneError> {
     let env = &scene.environment;
     for (key, c) in [("background", env.background), ("ambient_light", env.ambient_light)] {
         if !c.is_finite() {
-            out.push(Diagnostic::new(scene.render_origin.child(key), format!("`world.{key}` must be finite")));
+            out.push(Diagnostic::new(scene.render_key(key), format!("`world.{key}` must be finite")));
         }
     }
     for (transform, origin) in scene.world.query::<(&WorldTransform, &Origin)>().iter() {
@@ -157,7 +157,7 @@ pub fn validate(scene: &Scene) -> Result<(), SceneError> {
 
 fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
     let r = &scene.render;
-    let at = |key: &str| scene.render_origin.child(key);
+    let at = |key: &str| scene.render_key(key);
     for (key, v) in [("width", r.width), ("height", r.height)] {
         if v == 0 || v > MAX_IMAGE_SIDE {
             out.push(Diagnostic::new(at(key), format!("image {key} must be between 1 and {MAX_IMAGE_SIDE}, got {v}")));

@@ -528,9 +528,16 @@ impl Loader<'_> {
             Some(&file) => self.files[file].locate("render"),
             None => Location::file_only(self.files[0].name.clone(), "render"),
         };
+        let render_keys = self
+            .render
+            .origin
+            .iter()
+            .map(|(key, &file)| (key.clone(), self.files[file].locate(&format!("render.{key}"))))
+            .collect();
         let mut warnings = std::mem::take(&mut self.warnings);
         self.sort_in_file_order(&mut warnings);
-        Ok(Scene { world, render, render_origin, environment: environment.expect("no diagnostics"), camera, warnings })
+        let environment = environment.expect("no diagnostics");
+        Ok(Scene { world, render, render_origin, render_keys, environment, camera, warnings })
     }
 
     /// Checks `[world] environment` and decodes its image (relative to the file that wrote it).
