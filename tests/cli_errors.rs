@@ -910,6 +910,21 @@ fn image_map_problems_name_the_file_and_key() {
             bumped("pattern = \"bumps\", bump_map = { file = \"ok.png\" }"),
             vec!["object[0].material.normal.bump_map", "not both"],
         ),
+        (
+            "zero image_map repeat",
+            object("image_map = { file = \"ok.png\", repeat = [0, 1] }"),
+            vec!["object[0].material.pigment.image_map.repeat", "above 0"],
+        ),
+        (
+            "infinite bump_map offset",
+            bumped("bump_map = { file = \"ok.png\", offset = [inf, 0] }"),
+            vec!["object[0].material.normal.bump_map.offset", "finite"],
+        ),
+        (
+            "one-number repeat",
+            object("image_map = { file = \"ok.png\", repeat = [2] }"),
+            vec!["object[0].material.pigment.image_map.repeat", "length 2"],
+        ),
     ];
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("text.png"), "not an image").unwrap();

@@ -495,8 +495,15 @@ impl Normal {
                         return Err((key, "belongs to an `image_map` pigment, not to a `bump_map`".into()));
                     }
                 }
-                map.check()
-                    .map_err(|(key, message)| (if key == "file" { "bump_map.file" } else { "bump_map" }, message))?;
+                map.check().map_err(|(key, message)| {
+                    let key = match key {
+                        "file" => "bump_map.file",
+                        "repeat" => "bump_map.repeat",
+                        "offset" => "bump_map.offset",
+                        _ => "bump_map",
+                    };
+                    (key, message)
+                })?;
             }
             (_, Some(_)) => return Err(("bump_map", "give either a `pattern` or a `bump_map`, not both".into())),
             (_, None) => {}

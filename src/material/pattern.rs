@@ -798,6 +798,8 @@ impl Pigment {
                 "filter_all" => "image_map.filter_all",
                 "transmit_all" => "image_map.transmit_all",
                 "file" => "image_map.file",
+                "repeat" => "image_map.repeat",
+                "offset" => "image_map.offset",
                 _ => "image_map",
             };
             (key, message)
