@@ -129,7 +129,9 @@ impl<I: Integrator> Sampler<'_, I> {
 /// (2.5) transcoded from the integrator's working space (`view.cpp`).
 #[derive(Clone, Copy, Debug)]
 struct AaGrade {
-    /// The curve from a working space other than linear light; `None` for linear light.
+    /// The curve from a working space other than linear light; `None` for linear light,
+    /// which keeps its double-precision `powf` (the images of linear scenes stay bit for bit
+    /// what they were; POV-Ray's single-precision curve differs from it in the last bits).
     from_working: Option<Transcoding>,
 }
 

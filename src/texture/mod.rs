@@ -78,7 +78,7 @@ pub fn srgb_to_linear(c: f32) -> f32 {
 
 /// The sRGB transfer function, encoding.
 pub fn linear_to_srgb(c: f32) -> f32 {
-    if c <= 0.003_130_8 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 }
+    crate::gamma::GammaCurve::Srgb.encode(c)
 }
 
 /// One mip level: RGBA bytes, row-major from the top.
