@@ -171,9 +171,19 @@ fn cases() -> Vec<Case> {
             &["scene.toml:5:", "object[0].material.normal.size", "above 0"],
         ),
         case(
-            "a discrete pattern as a normal",
-            "[[object]]\nshape = \"sphere\"\nmaterial = { normal = { pattern = \"checker\" } }\n",
-            &["scene.toml:3:", "object[0].material.normal.pattern", "list of normals"],
+            "a discrete normal with a short list of normals",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"hexagon\"\nnormals = [{ pattern = \"bumps\" }, { pattern = \"dents\" }]\n",
+            &["scene.toml:5:", "object[0].material.normal.normals", "takes 3 normals"],
+        ),
+        case(
+            "a bad normal in a discrete pattern's list",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"checker\"\nnormals = [{ pattern = \"bumps\" }, { pattern = \"dents\", scale = 0 }]\n",
+            &["scene.toml:5:", "object[0].material.normal.normals[1].scale", "scale"],
+        ),
+        case(
+            "no_bump_scale that is not a boolean",
+            "[[object]]\nshape = \"sphere\"\n[object.material.normal]\npattern = \"bumps\"\nno_bump_scale = 1\n",
+            &["scene.toml:5:", "no_bump_scale"],
         ),
         case(
             "normal with an empty normal_map",

@@ -173,6 +173,17 @@ impl Primitive {
         }
     }
 
+    /// The world-space normal `n` in object space as a covector, not normalised: the
+    /// transpose of the object's linear part applied to it (POV-Ray's `MInvTransNormal`
+    /// through the object's transform), so its length tells how the transform scaled it.
+    #[inline]
+    pub fn object_covector(&self, n: DVec3) -> DVec3 {
+        match self.placement {
+            Placement::Identity | Placement::Translation(_) => n,
+            Placement::Affine => self.world_from_object.matrix3.transpose() * n,
+        }
+    }
+
     /// The object-space unit normal `n` as a world-space unit normal.
     #[inline]
     pub fn world_normal(&self, n: DVec3) -> DVec3 {

@@ -657,7 +657,7 @@ fn pigment_body(
     files: &dyn FilePaths,
     indent: &str,
 ) -> String {
-    use crate::material::pattern::{DEFAULT_BRICK_SIZE, DEFAULT_MORTAR, MapEntry, PatternKind, PigmentMapEntry};
+    use crate::material::pattern::{MapEntry, PigmentMapEntry};
     if let Some(c) = p.plain_color() {
         return format!("color {}", rgbft_of(c));
     }
@@ -685,18 +685,7 @@ fn pigment_body(
             .collect();
         let _ = write!(sdl, "{indent}  {}", list.join(&format!(",{indent}  ")));
     }
-    if kind == PatternKind::Brick {
-        let size = p.brick_size.unwrap_or(DEFAULT_BRICK_SIZE);
-        // Brick sizes are lengths along POV-Ray's own axes: not mirrored.
-        let _ = write!(
-            sdl,
-            " brick_size <{}, {}, {}> mortar {}",
-            number(size[0]),
-            number(size[1]),
-            number(size[2]),
-            number(p.mortar.unwrap_or(DEFAULT_MORTAR))
-        );
-    }
+    brick_sdl(&mut sdl, kind, p);
     pattern_keys_sdl(&mut sdl, p, indent);
     turbulence_sdl(&mut sdl, p.turbulence, p.omega, p.lambda, p.octaves, indent);
     if !p.color_map.is_empty() {
@@ -718,6 +707,23 @@ fn pigment_body(
     wave_sdl(&mut sdl, p, indent);
     matrices_sdl(&mut sdl, &p.object_from_pattern(), world_from_object, indent);
     sdl
+}
+
+/// `brick`'s size and mortar, always written (POV-Ray's defaults are Prism's).
+fn brick_sdl(sdl: &mut String, kind: crate::material::pattern::PatternKind, p: &crate::material::pattern::Pigment) {
+    use crate::material::pattern::{DEFAULT_BRICK_SIZE, DEFAULT_MORTAR, PatternKind};
+    if kind == PatternKind::Brick {
+        let size = p.brick_size.unwrap_or(DEFAULT_BRICK_SIZE);
+        // Brick sizes are lengths along POV-Ray's own axes: not mirrored.
+        let _ = write!(
+            sdl,
+            " brick_size <{}, {}, {}> mortar {}",
+            number(size[0]),
+            number(size[1]),
+            number(size[2]),
+            number(p.mortar.unwrap_or(DEFAULT_MORTAR))
+        );
+    }
 }
 
 /// A pattern's keyword with the arguments that follow it (`gradient`'s vector, the spirals'
@@ -755,7 +761,6 @@ fn pattern_keys_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment, ind
 
 /// A pattern's `frequency`, `phase` and wave type, when written.
 fn wave_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment, indent: &str) {
-    use crate::material::pattern::Wave;
     if let Some(f) = p.frequency {
         let _ = write!(sdl, "{indent}frequency {}", number(f));
     }
@@ -763,14 +768,19 @@ fn wave_sdl(sdl: &mut String, p: &crate::material::pattern::Pigment, indent: &st
         let _ = write!(sdl, "{indent}phase {}", number(phase));
     }
     if let Some(wave) = p.wave {
-        let keyword = match wave {
-            Wave::Ramp => "ramp_wave",
-            Wave::Sine => "sine_wave",
-            Wave::Triangle => "triangle_wave",
-            Wave::Scallop => "scallop_wave",
-            Wave::Cubic => "cubic_wave",
-        };
-        let _ = write!(sdl, "{indent}{keyword}");
+        let _ = write!(sdl, "{indent}{}", wave_keyword(wave));
+    }
+}
+
+/// POV-Ray's keyword for a wave type.
+fn wave_keyword(wave: crate::material::pattern::Wave) -> &'static str {
+    use crate::material::pattern::Wave;
+    match wave {
+        Wave::Ramp => "ramp_wave",
+        Wave::Sine => "sine_wave",
+        Wave::Triangle => "triangle_wave",
+        Wave::Scallop => "scallop_wave",
+        Wave::Cubic => "cubic_wave",
     }
 }
 
@@ -842,10 +852,25 @@ fn normal_pattern(n: &crate::material::normal::Normal, world_from_object: &DAffi
     format!("normal {{{INDENT}{}\n    }}", normal_body(n, world_from_object, files, INDENT))
 }
 
-/// A normal's body (what POV-Ray reads inside `normal { }` and in a `normal_map` entry), each
-/// modifier on a new line with `indent`. A `normal_map` entry gets only its own transform:
-/// POV-Ray hands it the point and normal the outer normal's transform and turbulence made.
+/// A normal's body (what POV-Ray reads inside `normal { }`, in a `normal_map` entry and in a
+/// discrete pattern's list), each modifier on a new line with `indent`, and `no_bump_scale`
+/// when set. A map or list entry gets only its own transform: POV-Ray hands it the point
+/// and normal the outer normal's transform and turbulence made.
 fn normal_body(
+    n: &crate::material::normal::Normal,
+    world_from_object: &DAffine3,
+    files: &dyn FilePaths,
+    indent: &str,
+) -> String {
+    let mut sdl = normal_pattern_body(n, world_from_object, files, indent);
+    if n.no_bump_scale == Some(true) {
+        let _ = write!(sdl, "{indent}no_bump_scale");
+    }
+    sdl
+}
+
+/// [`normal_body`] without `no_bump_scale`.
+fn normal_pattern_body(
     n: &crate::material::normal::Normal,
     world_from_object: &DAffine3,
     files: &dyn FilePaths,
@@ -856,7 +881,17 @@ fn normal_body(
     if let Some(kind) = n.pattern.pigment_pattern() {
         let p = n.as_pigment().expect("a pigment pattern");
         let mut sdl = pattern_arguments(kind, &p);
-        if n.normal_map.is_none() {
+        if let Some(list) = &n.normals {
+            // POV-Ray's list form: every item a `normal { }`, read as a map entry is.
+            let inner = format!("{indent}    ");
+            let items: Vec<String> = list
+                .iter()
+                .map(|e| format!("normal {{{inner}{}{indent}  }}", normal_body(e, &DAffine3::IDENTITY, files, &inner)))
+                .collect();
+            let _ = write!(sdl, "{indent}  {}", items.join(&format!(",{indent}  ")));
+        }
+        brick_sdl(&mut sdl, kind, &p);
+        if n.normal_map.is_none() && n.normals.is_none() {
             // `bump_size` as a keyword: a negative amount right after a vector or the arms
             // would be read as part of their expression.
             let _ = write!(sdl, " bump_size {bump_size}");
@@ -895,7 +930,11 @@ fn normal_body(
         matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
         return sdl;
     }
-    let mut sdl = format!("{} {bump_size}", n.pattern);
+    // With a normal map the pattern's value picks the entries and its amount does not apply.
+    let mut sdl = match n.normal_map {
+        Some(_) => n.pattern.to_string(),
+        None => format!("{} {bump_size}", n.pattern),
+    };
     for (keyword, value) in [
         ("control0", n.control0),
         ("control1", n.control1),
@@ -914,6 +953,10 @@ fn normal_body(
     if let Some(phase) = n.phase {
         let _ = write!(sdl, "{indent}phase {}", number(phase));
     }
+    if let Some(wave) = n.wave {
+        let _ = write!(sdl, "{indent}{}", wave_keyword(wave));
+    }
+    normal_map_sdl(&mut sdl, n, files, indent);
     matrices_sdl(&mut sdl, &n.object_from_pattern(), world_from_object, indent);
     sdl
 }

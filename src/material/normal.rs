@@ -13,9 +13,12 @@
 //! tetrahedron of radius `accuracy`, and each value pushes the normal along its vertex, so the
 //! normal leans down the pattern's numerical gradient.
 //!
-//! A `slope_map` reshapes those values; a `normal_map` (or `average`) blends whole normals; a
-//! `bump_map` replaces the normal by the normal of an image's height field (`bump_map` in
-//! `imageutil.cpp`), the image loaded and mapped as an `image_map`'s.
+//! A `slope_map` reshapes those values; a `normal_map` (or `average`) blends whole normals,
+//! picked by a pigment pattern's value or a normal-only pattern's own (`Evaluate_TPat`); a
+//! discrete pattern (`checker`, `hexagon`, `brick`) takes a list of whole normals, one per
+//! value; a `bump_map` replaces the normal by the normal of an image's height field
+//! (`bump_map` in `imageutil.cpp`), the image loaded and mapped as an `image_map`'s.
+//! `no_bump_scale` skips the normalisations on the way into the pattern's frame and back.
 
 use std::fmt;
 use std::sync::OnceLock;
@@ -30,7 +33,8 @@ use super::noise::{Octaves, dnoise, dturbulence, noise};
 use super::pattern::{
     MAX_METRIC, MAX_NESTED_PIGMENTS, MAX_PIGMENT_MAP_DEPTH, MAX_PIGMENT_MAP_ENTRIES, PatternKind, PatternScale,
     Pigment, PigmentField, TurbulenceAmount, Wave, check_map_values, check_transform, check_turbulence, check_weights,
-    cycloidal, octaves_of, pattern_transform, quilt_vector, search_blend_map, single, warps_with_turbulence,
+    cycloidal, octaves_of, pattern_transform, quilt_vector, quilted, search_blend_map, shape_wave, single,
+    warps_with_turbulence, wrinkles,
 };
 
 /// POV-Ray's default `bump_size` (`Create_Tnormal`).
@@ -111,8 +115,8 @@ impl NormalKind {
     /// pigment patterns.
     pub fn names() -> Vec<&'static str> {
         let mut names: Vec<&str> = Self::NORMAL_ONLY.iter().map(|(_, n)| *n).collect();
-        for (kind, name) in PatternKind::ALL {
-            if kind.discrete_colors().is_none() && !names.contains(&name) {
+        for (_, name) in PatternKind::ALL {
+            if !names.contains(&name) {
                 names.push(name);
             }
         }
@@ -121,6 +125,25 @@ impl NormalKind {
 
     fn has_waves(self) -> bool {
         matches!(self, NormalKind::Ripples | NormalKind::Waves)
+    }
+
+    /// The number of normals a discrete pattern (`checker`, `hexagon`, `brick`) lists.
+    fn discrete_normals(self) -> Option<usize> {
+        self.pigment_pattern().and_then(PatternKind::discrete_colors)
+    }
+
+    /// True for the normal-only patterns that also have a value a `normal_map` can blend by
+    /// (POV-Ray's `Evaluate_TPat` knows them): not `facets`, `average` or a bump map.
+    fn has_value(self) -> bool {
+        matches!(
+            self,
+            NormalKind::Bumps
+                | NormalKind::Dents
+                | NormalKind::Ripples
+                | NormalKind::Waves
+                | NormalKind::Wrinkles
+                | NormalKind::Quilted
+        )
     }
 
     /// The pigment pattern read through its gradient, if this is one.
@@ -151,12 +174,6 @@ impl<'de> Deserialize<'de> for NormalKind {
             return Ok(*kind);
         }
         if let Some((kind, _)) = PatternKind::ALL.iter().find(|(_, n)| *n == name) {
-            if kind.discrete_colors().is_some() {
-                return Err(serde::de::Error::custom(format!(
-                    "`{name}` as a normal takes a list of normals in POV-Ray, which Prism does not support; \
-                     use a continuous pattern"
-                )));
-            }
             return Ok(NormalKind::Pattern(*kind));
         }
         let names = Self::names();
@@ -228,6 +245,12 @@ pub struct Normal {
     /// `spiral1` / `spiral2`: the number of arms.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub arms: Option<i32>,
+    /// `brick`: the brick's size, as in a pigment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub brick_size: Option<[f64; 3]>,
+    /// `brick`: the mortar's width, as in a pigment.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mortar: Option<f64>,
     /// `crackle`: the distance weights, as in a pigment.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub form: Option<[f64; 3]>,
@@ -267,6 +290,17 @@ pub struct Normal {
     /// normals are averaged with those weights.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal_map: Option<Vec<NormalMapEntry>>,
+    /// The discrete patterns (`checker`, `brick`: 2; `hexagon`: 3): POV-Ray's list of normals
+    /// (`normal { checker normal { bumps }, normal { ripples } }`), one whole normal per
+    /// value of the pattern, as many as it has values.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normals: Option<Vec<Normal>>,
+    /// POV-Ray's `no_bump_scale`: the normal enters the pattern's frame (the object's and the
+    /// pattern's transforms) and leaves it without being normalised, so the relief keeps its
+    /// height when the pattern is scaled (a pattern twice as large is half as steep); the
+    /// entries of its `normal_map` or list inherit it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub no_bump_scale: Option<bool>,
     /// POV-Ray's classic `turbulence`: displaces the point before the pattern reads it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub turbulence: Option<TurbulenceAmount>,
@@ -333,8 +367,8 @@ impl Normal {
             transmit: None,
             vector: self.vector,
             arms: self.arms,
-            brick_size: None,
-            mortar: None,
+            brick_size: self.brick_size,
+            mortar: self.mortar,
             form: self.form,
             metric: self.metric,
             offset: self.offset,
@@ -379,6 +413,9 @@ impl Normal {
             for (i, NormalMapEntry(_, entry)) in n.normal_map.iter_mut().flatten().enumerate() {
                 collect(entry, format!("{prefix}normal_map[{i}][1]."), out);
             }
+            for (i, entry) in n.normals.iter_mut().flatten().enumerate() {
+                collect(entry, format!("{prefix}normals[{i}]."), out);
+            }
         }
         let mut out = Vec::new();
         collect(self, String::new(), &mut out);
@@ -388,10 +425,18 @@ impl Normal {
     /// Every bump map of the normal, its `normal_map` entries' included.
     pub fn bump_maps(&self) -> Vec<&ImageMap> {
         let mut out: Vec<&ImageMap> = self.bump_map.iter().collect();
-        for NormalMapEntry(_, entry) in self.normal_map() {
+        for (_, entry) in self.nested() {
             out.extend(entry.bump_maps());
         }
         out
+    }
+
+    /// The normals this one holds directly, `normal_map` entries then the list of a discrete
+    /// pattern, each with its key path under this normal (`normal_map[1][1]`, `normals[0]`).
+    pub fn nested(&self) -> Vec<(String, &Normal)> {
+        let map = self.normal_map().iter().enumerate().map(|(i, e)| (format!("normal_map[{i}][1]"), &e.1));
+        let list = self.normals.iter().flatten().enumerate().map(|(i, n)| (format!("normals[{i}]"), n));
+        map.chain(list).collect()
     }
 
     /// The `normal_map` entries (none without a map).
@@ -403,7 +448,7 @@ impl Normal {
     /// bounded the depth). Stops counting past [`MAX_NESTED_PIGMENTS`].
     fn nested_count(&self) -> usize {
         let mut total = 0;
-        for NormalMapEntry(_, entry) in self.normal_map() {
+        for (_, entry) in self.nested() {
             total += 1 + entry.nested_count();
             if total > MAX_NESTED_PIGMENTS {
                 break;
@@ -417,17 +462,19 @@ impl Normal {
         let owned = |(key, message): (&str, String)| (key.to_string(), message);
         self.check_own().map_err(owned)?;
         self.check_maps().map_err(owned)?;
-        if self.normal_map().is_empty() {
+        let nested = self.nested();
+        if nested.is_empty() {
             return Ok(());
         }
         if depth >= MAX_PIGMENT_MAP_DEPTH {
+            let key = if self.normals.is_some() { "normals" } else { "normal_map" };
             return Err((
-                "normal_map".into(),
-                format!("normals in normal maps nest at most {MAX_PIGMENT_MAP_DEPTH} deep"),
+                key.into(),
+                format!("normals in normal maps and lists nest at most {MAX_PIGMENT_MAP_DEPTH} deep"),
             ));
         }
-        for (i, NormalMapEntry(_, entry)) in self.normal_map().iter().enumerate() {
-            entry.check_at(depth + 1).map_err(|(k, message)| (format!("normal_map[{i}][1].{k}"), message))?;
+        for (path, entry) in nested {
+            entry.check_at(depth + 1).map_err(|(k, message)| (format!("{path}.{k}"), message))?;
         }
         Ok(())
     }
@@ -447,15 +494,53 @@ impl Normal {
             };
             return check_weights("normal_map", map.iter().map(|e| e.0));
         }
-        for (key, written) in [("slope_map", self.slope_map.is_some()), ("normal_map", self.normal_map.is_some())] {
-            if written && kind.pigment_pattern().is_none() {
-                return Err((
-                    key,
-                    format!(
-                        "belongs to pigment patterns read as normals (e.g. `bozo`, the noise of `bumps`), not `{kind}`"
-                    ),
-                ));
+        if let Some(count) = kind.discrete_normals() {
+            for (key, written) in [("slope_map", self.slope_map.is_some()), ("normal_map", self.normal_map.is_some())] {
+                if written {
+                    return Err((
+                        key,
+                        format!("does not go with `{kind}` (POV-Ray refuses it): give it a list of `normals`"),
+                    ));
+                }
             }
+            if let Some(list) = &self.normals {
+                // POV-Ray 3.7 crashes on a shorter list (its `Post_Tnormal` follows the missing
+                // entries' null pointers).
+                if list.len() != count {
+                    return Err((
+                        "normals",
+                        format!("`{kind}` takes {count} normals (one per value), got {}", list.len()),
+                    ));
+                }
+                for (key, written) in [("bump_size", self.bump_size.is_some()), ("accuracy", self.accuracy.is_some())] {
+                    if written {
+                        return Err((
+                            key,
+                            "has no effect with a list of `normals`: give it to the normals (POV-Ray ignores it)"
+                                .into(),
+                        ));
+                    }
+                }
+            }
+        } else if self.normals.is_some() {
+            return Err((
+                "normals",
+                format!("belongs to the discrete patterns (checker, hexagon, brick), not `{kind}`"),
+            ));
+        }
+        if self.slope_map.is_some() && kind.pigment_pattern().is_none() {
+            return Err((
+                "slope_map",
+                format!(
+                    "belongs to pigment patterns read as normals (e.g. `bozo`, the noise of `bumps`), not `{kind}`"
+                ),
+            ));
+        }
+        if self.normal_map.is_some() && kind.pigment_pattern().is_none() && !kind.has_value() {
+            return Err((
+                "normal_map",
+                format!("does not go with `{kind}` (POV-Ray refuses it): it has no value to pick entries by"),
+            ));
         }
         if let Some(map) = &self.slope_map {
             if self.normal_map.is_some() {
@@ -546,10 +631,17 @@ impl Normal {
         {
             return Err(("metric", format!("must be above 0 and at most {MAX_METRIC}, got {m}")));
         }
+        // With a `normal_map`, a normal-only pattern's value is shaped as a pigment's.
+        let shaped = kind.has_value() && self.normal_map.is_some();
         for (key, v) in [("frequency", self.frequency), ("phase", self.phase)] {
             if let Some(v) = v {
-                if !kind.has_waves() {
-                    return Err((key, format!("belongs to ripples and waves (and pigment patterns), not `{kind}`")));
+                if !(kind.has_waves() || shaped) {
+                    return Err((
+                        key,
+                        format!(
+                            "belongs to ripples and waves (and pigment patterns, and normal patterns with a `normal_map`), not `{kind}`"
+                        ),
+                    ));
                 }
                 if !v.is_finite() {
                     return Err((key, format!("must be finite, got {v}")));
@@ -557,7 +649,9 @@ impl Normal {
             }
         }
         let pigment_keys = [
-            ("wave", self.wave.is_some()),
+            ("wave", self.wave.is_some() && !shaped),
+            ("brick_size", self.brick_size.is_some()),
+            ("mortar", self.mortar.is_some()),
             ("vector", self.vector.is_some()),
             ("arms", self.arms.is_some()),
             ("form", self.form.is_some()),
@@ -603,8 +697,12 @@ pub struct NormalField {
     /// The `slope_map` entries, values in single precision as POV-Ray holds them (empty
     /// without a map).
     slope_map: Vec<SlopeMapEntry>,
-    /// The `normal_map` entries' values (single precision) and fields (empty without a map).
+    /// The `normal_map` entries' values (single precision) and fields, or a discrete
+    /// pattern's list of normals at values 0, 1, ...; empty without either.
     entries: Vec<(f64, NormalField)>,
+    /// False under `no_bump_scale` (its own or a containing normal's): the normal is not
+    /// normalised on its way into the pattern's frame and back.
+    scales_bumps: bool,
 }
 
 /// POV-Ray's `(x, y, -z)` mirror between Prism's frame and its own.
@@ -613,6 +711,23 @@ const MIRROR: DVec3 = DVec3::new(1.0, 1.0, -1.0);
 impl NormalField {
     /// The field of `spec` (which must have passed [`Normal::check`]).
     pub fn new(spec: &Normal) -> Self {
+        Self::within(spec, false)
+    }
+
+    /// The field of `spec`, inside a normal with `no_bump_scale` when `no_bump_scale` is true
+    /// (POV-Ray's `Post_Tnormal` hands the flag down to the map's entries).
+    fn within(spec: &Normal, no_bump_scale: bool) -> Self {
+        let no_bump_scale = no_bump_scale || spec.no_bump_scale == Some(true);
+        let entries = match &spec.normals {
+            Some(list) => {
+                list.iter().enumerate().map(|(i, n)| (i as f64, NormalField::within(n, no_bump_scale))).collect()
+            }
+            None => spec
+                .normal_map()
+                .iter()
+                .map(|e| (f64::from(e.0 as f32), NormalField::within(&e.1, no_bump_scale)))
+                .collect(),
+        };
         let object_from_pattern = spec.object_from_pattern();
         let normal_in = object_from_pattern.matrix3.transpose();
         let single = |v: Option<f64>| f64::from(v.unwrap_or(1.0) as f32);
@@ -631,21 +746,34 @@ impl NormalField {
             pigment: spec.as_pigment().map(|p| PigmentField::new(&p)),
             quilt_controls: (single(spec.control0), single(spec.control1)),
             slope_map: spec.slope_map.iter().flatten().map(|e| SlopeMapEntry(f64::from(e.0 as f32), e.1)).collect(),
-            entries: spec.normal_map().iter().map(|e| (f64::from(e.0 as f32), NormalField::new(&e.1))).collect(),
+            entries,
+            scales_bumps: !no_bump_scale,
         }
     }
 
-    /// The perturbed unit normal at object point `p` with object-space normal `n` (facing
-    /// the ray, any length).
+    /// False under `no_bump_scale`: [`Self::perturb`] then wants the normal as POV-Ray's
+    /// unit world normal taken into object space by the transpose of the object's transform.
+    pub fn scales_bumps(&self) -> bool {
+        self.scales_bumps
+    }
+
+    /// The perturbed normal at object point `p` with object-space normal `n` (facing the ray;
+    /// any length, unless [`Self::scales_bumps`] is false: then its length matters). Unit,
+    /// except under `no_bump_scale` without a map (the caller normalises it, as POV-Ray's
+    /// trace does).
     pub fn perturb(&self, p: DVec3, n: DVec3) -> DVec3 {
         let mut q = self.pattern_from_object.transform_point3(p) * MIRROR;
         if let Some(amount) = self.turbulence {
             q += dturbulence(q, &self.octaves) * amount;
         }
-        let n_pattern = ((self.normal_in * n) * MIRROR).normalize();
+        // POV-Ray's `Warp_Normal` and `UnWarp_Normal`: normalised on the way in and out unless
+        // the bumps keep their scale.
+        let unit = |v: DVec3| if self.scales_bumps { v.normalize() } else { v };
+        let n_pattern = unit((self.normal_in * n) * MIRROR);
+        let blended = self.spec.pattern != NormalKind::Average && !self.entries.is_empty();
         let tilted = if self.spec.pattern == NormalKind::Average {
             self.average(q, n_pattern)
-        } else if !self.entries.is_empty() {
+        } else if blended {
             self.blend_entries(q, n_pattern)
         } else if self.spec.pattern == NormalKind::Facets {
             self.facet(q, n_pattern)
@@ -654,7 +782,9 @@ impl NormalField {
         } else {
             n_pattern + self.offset(q)
         };
-        (self.normal_out * (tilted * MIRROR)).normalize()
+        let out = unit(self.normal_out * (tilted * MIRROR));
+        // A normal map's blend is normalised whatever the flag.
+        if blended { out.normalize() } else { out }
     }
 
     /// POV-Ray's `normal_map` (`Perturb_Normal`'s blend map branch): the pattern's value at
@@ -662,7 +792,7 @@ impl NormalField {
     /// normal `n` (pattern frame) at `q` through its own transform, and the two results are
     /// blended linearly (one where the value sits on an entry or outside the map).
     fn blend_entries(&self, q: DVec3, n: DVec3) -> DVec3 {
-        let value = self.pigment.as_ref().map_or(0.0, |p| p.value(q));
+        let value = self.value(q);
         let entries = &self.entries;
         let (prev, cur, weight) = search_blend_map(entries.len(), |i| entries[i].0, value);
         // Back to Prism's frame: each entry's `perturb` mirrors its own point and normal.
@@ -673,6 +803,40 @@ impl NormalField {
         }
         let below = entries[prev].1.perturb(p, m) * MIRROR;
         (1.0 - weight) * below + weight * current
+    }
+
+    /// The pattern's value at the (warped) pattern point `q` that picks `normal_map` entries
+    /// (POV-Ray's `Evaluate_TPat`): a pigment pattern's value (a discrete pattern's index);
+    /// a normal-only pattern's own value function, then frequency, phase and wave.
+    fn value(&self, q: DVec3) -> f64 {
+        if let Some(pigment) = &self.pigment {
+            return pigment.value(q);
+        }
+        let spec = &self.spec;
+        let frequency = single(spec.frequency.unwrap_or(if spec.pattern == NormalKind::Quilted { 0.0 } else { 1.0 }));
+        let phase = single(spec.phase.unwrap_or(0.0));
+        let waves = |wave_frequency: fn(f64) -> f64, per_source: fn(f64, f64) -> f64| {
+            let (sources, frequencies) = wave_sources();
+            let mut sum = 0.0;
+            for (source, f) in sources.iter().zip(frequencies) {
+                let mut length = (q - *source).length();
+                if length == 0.0 {
+                    length = 1.0;
+                }
+                sum += per_source(cycloidal(length * frequency * wave_frequency(*f) + phase), *f);
+            }
+            sum / NUMBER_OF_WAVES as f64
+        };
+        let raw = match spec.pattern {
+            NormalKind::Bumps => noise(q),
+            NormalKind::Dents => noise(q).powi(3),
+            NormalKind::Ripples => 0.5 * (1.0 + waves(|_| 1.0, |c, _| c)),
+            NormalKind::Waves => 0.2 * (2.5 + waves(|f| f, |c, f| c / f)),
+            NormalKind::Wrinkles => wrinkles(q),
+            NormalKind::Quilted => quilted(q, self.quilt_controls),
+            _ => 0.0,
+        };
+        shape_wave(raw, frequency, phase, spec.wave.unwrap_or(Wave::Ramp))
     }
 
     /// POV-Ray's `Do_Average_Normals`: every `normal_map` entry perturbs the unit normal `n`
@@ -1041,6 +1205,95 @@ mod tests {
     }
 
     #[test]
+    fn a_discrete_pattern_picks_the_normal_of_its_value() {
+        // checker: value 0 where floor(x) + floor(y) + floor(z) is even (POV-Ray's frame).
+        let list = field(
+            "pattern = \"checker\"\nnormals = [{ pattern = \"bumps\", bump_size = 0.7, scale = 0.3 }, { pattern = \"ripples\", frequency = 2 }]",
+        );
+        let bumps = field("pattern = \"bumps\"\nbump_size = 0.7\nscale = 0.3");
+        let ripples = field("pattern = \"ripples\"\nfrequency = 2");
+        let n = DVec3::new(0.3, 0.9, -0.2);
+        let even = DVec3::new(0.5, 0.5, -0.5);
+        let odd = DVec3::new(1.5, 0.5, -0.5);
+        assert!((list.perturb(even, n) - bumps.perturb(even, n)).length() < 1e-12);
+        assert!((list.perturb(odd, n) - ripples.perturb(odd, n)).length() < 1e-12);
+        // hexagon's three values pick three different normals.
+        let hexagon = field(
+            "pattern = \"hexagon\"\nnormals = [{ pattern = \"bumps\", bump_size = 0 }, { pattern = \"dents\", bump_size = 3 }, { pattern = \"wrinkles\" }]",
+        );
+        let normals: Vec<DVec3> = [DVec3::ZERO, DVec3::new(1.5, 0.0, 0.0), DVec3::new(0.75, 0.0, -1.299)]
+            .map(|p| hexagon.perturb(p, DVec3::Y))
+            .into();
+        assert!((normals[0] - DVec3::Y).length() < 1e-12, "{normals:?}");
+        assert!(normals[1] != normals[0] && normals[2] != normals[0] && normals[1] != normals[2], "{normals:?}");
+    }
+
+    #[test]
+    fn a_discrete_pattern_without_a_list_tilts_only_at_its_edges() {
+        let checker = field("pattern = \"checker\"\nbump_size = 0.5");
+        let n = DVec3::Y;
+        // Inside a cell all four points read the same value: no tilt.
+        assert!((checker.perturb(DVec3::new(0.5, 0.5, -0.5), n) - n).length() < 1e-12);
+        // Within accuracy (0.02) of the x = 1 face the normal leans across it.
+        let tilted = checker.perturb(DVec3::new(0.995, 0.5, -0.5), n);
+        assert!(tilted.x.abs() > 0.05 && (tilted.length() - 1.0).abs() < 1e-12, "{tilted}");
+    }
+
+    #[test]
+    fn normal_only_patterns_pick_normal_map_entries_by_their_own_value() {
+        // bumps' value is bozo's noise (POV-Ray's `Evaluate_TPat`): the same map picks the same.
+        let entries = "normal_map = [[0.3, { pattern = \"ripples\", bump_size = 0.9 }], [0.7, { pattern = \"dents\", bump_size = 2, scale = 0.2 }]]";
+        let bumps = field(&format!("pattern = \"bumps\"\nscale = 0.4\n{entries}"));
+        let bozo = field(&format!("pattern = \"bozo\"\nscale = 0.4\n{entries}"));
+        let mut differs = false;
+        for p in POINTS {
+            let n = DVec3::new(0.3, 0.9, -0.2);
+            assert!((bumps.perturb(p, n) - bozo.perturb(p, n)).length() < 1e-12, "at {p}");
+            differs |= (bumps.perturb(p, n) - n.normalize()).length() > 1e-3;
+        }
+        assert!(differs);
+        // ripples' value (its rings' mean cycloid, mapped to [0, 1]) then frequency again: a
+        // gradient of [0, 1] through the map reads it back.
+        let ripples = field(
+            "pattern = \"ripples\"\nfrequency = 1.3\nphase = 0.2\nnormal_map = [[0, { pattern = \"gradient\", vector = [1, 0, 0], bump_size = 0 }], [1, { pattern = \"facets\" }]]",
+        );
+        let (sources, _) = wave_sources();
+        for p in POINTS {
+            let q = p * MIRROR;
+            let f = f64::from(1.3f32);
+            let phase = f64::from(0.2f32);
+            let mean = sources.iter().map(|s| cycloidal((q - *s).length() * f + phase)).sum::<f64>() / 10.0;
+            let expected = (0.5 * (1.0 + mean) * f + phase) % 1.00001;
+            assert!((ripples.value(q) - expected).abs() < 1e-12, "at {p}");
+        }
+    }
+
+    #[test]
+    fn no_bump_scale_keeps_the_relief_height_when_the_pattern_grows() {
+        // Scaled s times with s times the bump size (both exact in single precision), the relief is the same surface stretched:
+        // without no_bump_scale the slope grows s times, with it the normal is unchanged.
+        let plain = field("pattern = \"bumps\"\nbump_size = 0.5");
+        let kept = field("pattern = \"bumps\"\nbump_size = 1.5\nscale = 3\nno_bump_scale = true");
+        let scaled = field("pattern = \"bumps\"\nbump_size = 1.5\nscale = 3");
+        for p in POINTS {
+            let n = DVec3::new(0.3, 0.9, -0.2).normalize();
+            let expected = plain.perturb(p, n);
+            assert!((kept.perturb(3.0 * p, n).normalize() - expected).length() < 1e-12, "at {p}");
+            if p != DVec3::ZERO {
+                assert!((scaled.perturb(3.0 * p, n) - expected).length() > 1e-3, "at {p}");
+            }
+        }
+        // A normal map's entries inherit the flag.
+        let map = field(
+            "pattern = \"bozo\"\nno_bump_scale = true\nnormal_map = [[0.5, { pattern = \"bumps\", bump_size = 1.5, scale = 3 }]]",
+        );
+        for p in POINTS {
+            let n = DVec3::new(0.3, 0.9, -0.2).normalize();
+            assert!((map.perturb(3.0 * p, n) - plain.perturb(p, n)).length() < 1e-12, "at {p}");
+        }
+    }
+
+    #[test]
     fn a_normal_map_blends_its_entries_by_the_value() {
         // gradient x over [0, 1): the value is x's fraction; halfway between the entries the
         // two perturbed normals are averaged, then normalised.
@@ -1166,7 +1419,7 @@ mod tests {
         let err = |text: &str| toml::from_str::<Normal>(text).unwrap().check().unwrap_err();
         let key = |text: &str| err(text).0;
         assert_eq!(key("pattern = \"bumps\"\nslope_map = [[0, [0, 1]]]"), "slope_map");
-        assert_eq!(key("pattern = \"ripples\"\nnormal_map = [[0, { pattern = \"bumps\" }]]"), "normal_map");
+        assert_eq!(key("pattern = \"facets\"\nnormal_map = [[0, { pattern = \"bumps\" }]]"), "normal_map");
         assert_eq!(key("pattern = \"bozo\"\nnormal_map = []"), "normal_map");
         assert!(err("pattern = \"bozo\"\nslope_map = []").1.contains("at least one entry"));
         assert_eq!(key("pattern = \"bozo\"\nslope_map = [[0.5, [0, 1]], [0.2, [1, 0]]]"), "slope_map");
@@ -1222,8 +1475,28 @@ mod tests {
         assert!(
             toml::from_str::<Normal>("pattern = \"granite\"\nfrequency = 2\nwave = \"sine\"").unwrap().check().is_ok()
         );
-        let e = toml::from_str::<Normal>("pattern = \"checker\"").unwrap_err().to_string();
-        assert!(e.contains("list of normals"), "{e}");
+        assert!(toml::from_str::<Normal>("pattern = \"checker\"").unwrap().check().is_ok());
+        let one = "normals = [{ pattern = \"bumps\" }]";
+        let two = "normals = [{ pattern = \"bumps\" }, { pattern = \"dents\" }]";
+        assert_eq!(err(&format!("pattern = \"checker\"\n{one}")), "normals");
+        assert_eq!(err(&format!("pattern = \"hexagon\"\n{two}")), "normals");
+        assert_eq!(err(&format!("pattern = \"granite\"\n{two}")), "normals");
+        assert_eq!(err(&format!("pattern = \"bumps\"\n{two}")), "normals");
+        assert_eq!(err(&format!("pattern = \"checker\"\nbump_size = 1\n{two}")), "bump_size");
+        assert_eq!(err("pattern = \"checker\"\nnormal_map = [[0, { pattern = \"bumps\" }]]"), "normal_map");
+        assert_eq!(err("pattern = \"brick\"\nslope_map = [[0, [0, 1]]]"), "slope_map");
+        assert_eq!(err("pattern = \"facets\"\nnormal_map = [[0, { pattern = \"bumps\" }]]"), "normal_map");
+        assert_eq!(err("pattern = \"bumps\"\nslope_map = [[0, [0, 1]]]"), "slope_map");
+        assert_eq!(err("pattern = \"bumps\"\nwave = \"sine\""), "wave");
+        assert_eq!(err("pattern = \"checker\"\nmortar = 0.1"), "mortar");
+        assert_eq!(err("pattern = \"bumps\"\nbrick_size = [1, 1, 1]"), "brick_size");
+        assert_eq!(
+            err("pattern = \"checker\"\nnormals = [{ pattern = \"bumps\", scale = 0 }, { pattern = \"dents\" }]"),
+            "normals[0].scale"
+        );
+        let map = "normal_map = [[0, { pattern = \"bumps\" }]]";
+        let shaped = format!("pattern = \"wrinkles\"\nfrequency = 2\nphase = 0.1\nwave = \"cubic\"\n{map}");
+        assert!(toml::from_str::<Normal>(&shaped).unwrap().check().is_ok());
         let e = toml::from_str::<Normal>("pattern = \"crakle\"").unwrap_err().to_string();
         assert!(e.contains("did you mean `crackle`?"), "{e}");
         let e = toml::from_str::<Normal>("pattern = \"bumsp\"").unwrap_err().to_string();

@@ -103,9 +103,10 @@ impl PatternKind {
         }
     }
 
-    /// The frequency POV-Ray gives the pattern when none is written (`quilted`: 0, unwrapped).
+    /// The frequency POV-Ray gives the pattern when none is written (`quilted` and the
+    /// discrete patterns: 0, their values unwrapped).
     pub fn default_frequency(self) -> f64 {
-        if self == PatternKind::Quilted { 0.0 } else { 1.0 }
+        if self == PatternKind::Quilted || self.discrete_colors().is_some() { 0.0 } else { 1.0 }
     }
 
     /// The number of colours a discrete pattern lists (`None`: it takes a `color_map`).
@@ -1103,8 +1104,9 @@ impl PigmentField {
         Rgbft { rgb: sum.rgb / total, filter: sum.filter / total, transmit: sum.transmit / total }
     }
 
-    /// A continuous pattern's value at the (warped) pattern point `q`, POV-Ray's frame, after
-    /// frequency, phase and wave (POV-Ray's `Evaluate_TPat`).
+    /// The pattern's value at the (warped) pattern point `q`, POV-Ray's frame, after
+    /// frequency, phase and wave (POV-Ray's `Evaluate_TPat`): a discrete pattern's is its
+    /// colour index (checker 0 or 1, hexagon 0 to 2), which is how a normal reads it.
     pub fn value(&self, q: DVec3) -> f64 {
         let spec = &self.spec;
         let turbulent = spec.turbulence.is_some();
@@ -1125,7 +1127,10 @@ impl PigmentField {
             PatternKind::Wrinkles => wrinkles(q),
             PatternKind::Crackle => crackle(q, &self.crackle),
             PatternKind::Quilted => quilted(q, self.quilt_controls),
-            PatternKind::Checker | PatternKind::Hexagon | PatternKind::Brick | PatternKind::Average => 0.0,
+            PatternKind::Checker | PatternKind::Hexagon | PatternKind::Brick => {
+                discrete_value(self.kind, spec, q) as f64
+            }
+            PatternKind::Average => 0.0,
         };
         shape_wave(
             raw,
@@ -1395,7 +1400,7 @@ pub fn quilt_vector(q: DVec3, (c0, c1): (f64, f64)) -> DVec3 {
 }
 
 /// POV-Ray's quilted pigment: the mean absolute component of the quilting vector.
-fn quilted(q: DVec3, controls: (f64, f64)) -> f64 {
+pub(super) fn quilted(q: DVec3, controls: (f64, f64)) -> f64 {
     let v = quilt_vector(q, controls);
     (v.x.abs() + v.y.abs() + v.z.abs()) / 3.0
 }
@@ -1422,7 +1427,7 @@ fn agate(q: DVec3, octaves: &Octaves) -> f64 {
 
 /// POV-Ray 3.7's wrinkles pigment (noise generator 2): ten octaves of 2 noise - 0.5, each
 /// clamped to [0, 1], halved.
-fn wrinkles(q: DVec3) -> f64 {
+pub(super) fn wrinkles(q: DVec3) -> f64 {
     let term = |p: DVec3| (2.0 * noise(p) - 0.5).clamp(0.0, 1.0);
     let mut value = term(q);
     let (mut lambda, mut omega) = (2.0, 0.5);

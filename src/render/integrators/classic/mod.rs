@@ -250,6 +250,11 @@ impl<'a> Classic<'a> {
             // A normal pattern tilts the facing normal (POV-Ray's `Perturb_Normal`, in the
             // object's space); the layer shades and reflects with it.
             let n = match layer.normal() {
+                // `no_bump_scale` keeps the length the object's transform gives POV-Ray's unit
+                // world normal on its way into the pattern's frame.
+                Some(field) if !field.scales_bumps() => {
+                    primitive.world_normal(field.perturb(surface.point, primitive.object_covector(raw))).normalize()
+                }
                 Some(field) => primitive.world_normal(field.perturb(surface.point, object_normal)).normalize(),
                 None => raw,
             };
