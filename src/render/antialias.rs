@@ -130,8 +130,8 @@ impl<I: Integrator> Sampler<'_, I> {
 #[derive(Clone, Copy, Debug)]
 struct AaGrade {
     /// The curve from a working space other than linear light; `None` for linear light,
-    /// which keeps its double-precision `powf` (the images of linear scenes stay bit for bit
-    /// what they were; POV-Ray's single-precision curve differs from it in the last bits).
+    /// graded in double precision by [`two_fifths_power`] (POV-Ray's single-precision curve
+    /// differs from it in the last bits).
     from_working: Option<Transcoding>,
 }
 
@@ -147,7 +147,7 @@ impl AaGrade {
     /// precision as POV-Ray's.
     fn of(self, c: DVec3) -> DVec3 {
         match self.from_working {
-            None => c.max(DVec3::ZERO).powf(1.0 / AA_GAMMA),
+            None => DVec3::from_array(c.to_array().map(two_fifths_power)),
             Some(curve) => DVec3::from_array(c.to_array().map(|v| f64::from(curve.encode(v as f32)))),
         }
     }
@@ -157,6 +157,50 @@ impl AaGrade {
     fn distance(self, a: DVec3, b: DVec3) -> f64 {
         graded_distance(self.of(a), self.of(b))
     }
+}
+
+/// max(x, 0)^(1 / 2.5) (the antialiasing gamma's curve, [`AA_GAMMA`]) to within 1e-13
+/// relative, several times faster than `powf`, which took a tenth of a simple scene's render
+/// at 4K: x = m 2^e with m in [1, 2), m^(2/5) from a polynomial refined by one Newton step on
+/// y^5 = m^2, and 2^(2e/5) as a power of four times one of five constants.
+fn two_fifths_power(x: f64) -> f64 {
+    // NaN and negatives grade as 0, as `max(0)` then `powf` did; subnormals and infinity
+    // take the slow path.
+    if x.is_nan() || x <= 0.0 {
+        return 0.0;
+    }
+    if !(f64::MIN_POSITIVE..=f64::MAX).contains(&x) {
+        return x.powf(0.4);
+    }
+    const TWO_TO_TWO_FIFTHS: [f64; 5] =
+        [1.0, 1.3195079107728942, 1.7411011265922482, 2.2973967099940698, 3.0314331330207964];
+    // Chebyshev fit of m^0.4 over t = 2m - 3 in [-1, 1], relative error 8e-8.
+    const FIT: [f64; 8] = [
+        1.176079040184787,
+        0.15681051209407101,
+        -0.01568168234674013,
+        0.002788093990602002,
+        -0.0006006161228651753,
+        0.00014362134951812524,
+        -4.271887378212206e-05,
+        1.1717608030731615e-05,
+    ];
+    let bits = x.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i32 - 1023;
+    let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    let t = 2.0 * m - 3.0;
+    // Estrin's scheme (a short dependency chain); not `mul_add`, which is a library call
+    // without hardware FMA.
+    let t2 = t * t;
+    let low = (FIT[0] + FIT[1] * t) + t2 * (FIT[2] + FIT[3] * t);
+    let high = (FIT[4] + FIT[5] * t) + t2 * (FIT[6] + FIT[7] * t);
+    let y = low + (t2 * t2) * high;
+    let y2 = y * y;
+    let y = (4.0 * y + m * m / (y2 * y2)) * 0.2;
+    let (k, r) = (exponent.div_euclid(5), exponent.rem_euclid(5));
+    // 4^k, |2k| <= 410: a normal power of two built from its exponent bits.
+    let four_to_k = f64::from_bits(((2 * k + 1023) as u64) << 52);
+    y * TWO_TO_TWO_FIFTHS[r as usize] * four_to_k
 }
 
 /// [`AaGrade::distance`] of two colours already graded.
@@ -385,6 +429,27 @@ fn subdivide<I: Integrator>(
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn the_two_fifths_power_matches_powf() {
+        assert_eq!(AA_GAMMA, 2.5);
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut values: Vec<f64> = (0..200_000).map(|_| 4.0 * next()).collect();
+        values.extend((0..200_000).map(|_| 10f64.powf(600.0 * next() - 300.0)));
+        values.extend([1.0, 2.0, 0.5, 1.0 - f64::EPSILON, f64::MIN_POSITIVE, f64::MAX, 1e-310, f64::INFINITY]);
+        for x in values {
+            let (got, want) = (two_fifths_power(x), x.powf(0.4));
+            assert!(got == want || (got - want).abs() <= 1e-13 * want, "{x}: {got} against {want}");
+        }
+        for x in [0.0, -0.0, -1.0, f64::NAN, f64::NEG_INFINITY] {
+            assert_eq!(two_fifths_power(x), 0.0, "{x}");
+        }
+    }
+
     use super::*;
     use crate::render::integrators::classic::Classic;
     use crate::render::{RenderOptions, render_frame};
@@ -477,9 +542,10 @@ mod tests {
         let a = DVec3::new(1.0, 0.0, 0.0);
         let b = DVec3::new(0.0, 0.0, -1.0);
         let linear = AaGrade::new(GammaCurve::Neutral);
-        assert!((linear.distance(a, b) - 1.0).abs() < 1e-15, "negative values count as 0");
+        // Linear light is graded by `two_fifths_power`, within 1e-13 of powf.
+        assert!((linear.distance(a, b) - 1.0).abs() < 1e-13, "negative values count as 0");
         let d = linear.distance(DVec3::splat(0.5), DVec3::ZERO);
-        assert!((d - 3.0 * 0.5f64.powf(0.4)).abs() < 1e-15);
+        assert!((d - 3.0 * 0.5f64.powf(0.4)).abs() < 1e-13);
         // In a 2.2 working space POV-Ray compares max(v, 0)^(2.2 / 2.5).
         let working = AaGrade::new(GammaCurve::power_law(2.2));
         let d = working.distance(DVec3::splat(0.5), DVec3::ZERO);
