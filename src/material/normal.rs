@@ -200,11 +200,11 @@ impl JsonSchema for NormalKind {
     }
 }
 
-/// One `slope_map` entry: `[value, [height, slope]]`, value in [0, 1].
+/// One `slope_map` entry: `[value, [height, slope]]` (value usually in [0, 1]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct SlopeMapEntry(pub f64, pub [f64; 2]);
 
-/// One `normal_map` entry: `[value, normal]`, value in [0, 1].
+/// One `normal_map` entry: `[value, normal]` (value usually in [0, 1]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct NormalMapEntry(pub f64, pub Normal);
 
@@ -277,12 +277,12 @@ pub struct Normal {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub control1: Option<f64>,
     /// Pigment patterns: POV-Ray's `slope_map`, `[value, [height, slope]]` entries (values
-    /// in [0, 1] ascending) that reshape the pattern's value before its gradient is taken:
+    /// ascending) that reshape the pattern's value before its gradient is taken:
     /// between two entries a cubic through both heights with both slopes (POV-Ray's
     /// `Hermite_Cubic`), outside them the nearest entry's height.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub slope_map: Option<Vec<SlopeMapEntry>>,
-    /// Pigment patterns: POV-Ray's `normal_map`, `[value, normal]` entries (values in [0, 1]
+    /// Pigment patterns: POV-Ray's `normal_map`, `[value, normal]` entries (values
     /// ascending), each a whole normal (another `normal_map` included); the pattern's value
     /// picks the two entries around it and blends their perturbed normals linearly, as a
     /// `pigment_map` blends pigments. The pattern's own `bump_size` and `accuracy` do not apply.
@@ -1423,7 +1423,13 @@ mod tests {
         assert_eq!(key("pattern = \"bozo\"\nnormal_map = []"), "normal_map");
         assert!(err("pattern = \"bozo\"\nslope_map = []").1.contains("at least one entry"));
         assert_eq!(key("pattern = \"bozo\"\nslope_map = [[0.5, [0, 1]], [0.2, [1, 0]]]"), "slope_map");
-        assert!(err("pattern = \"bozo\"\nslope_map = [[1.5, [0, 1]]]").1.contains("outside [0, 1]"));
+        assert!(err("pattern = \"bozo\"\nslope_map = [[inf, [0, 1]]]").1.contains("not a finite number"));
+        assert!(
+            toml::from_str::<Normal>("pattern = \"bozo\"\nslope_map = [[-0.5, [0, 1]], [1.5, [1, 1]]]")
+                .unwrap()
+                .check()
+                .is_ok()
+        );
         assert_eq!(key("pattern = \"bozo\"\nslope_map = [[0.5, [nan, 1]]]"), "slope_map");
         assert_eq!(
             key("pattern = \"bozo\"\nslope_map = [[0, [0, 1]]]\nnormal_map = [[0, { pattern = \"bumps\" }]]"),

@@ -220,11 +220,11 @@ impl MapColor {
     }
 }
 
-/// One `color_map` entry: `[value, colour]` with value in [0, 1].
+/// One `color_map` entry: `[value, colour]` (value usually in [0, 1]).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct MapEntry(pub f64, pub MapColor);
 
-/// One `pigment_map` entry: `[value, pigment]` with value in [0, 1].
+/// One `pigment_map` entry: `[value, pigment]` (value usually in [0, 1]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub struct PigmentMapEntry(pub f64, pub Pigment);
 
@@ -290,7 +290,7 @@ pub struct Pigment {
     /// `checker pigment { } pigment { }`), each read as a `pigment_map` entry is.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pigments: Vec<Pigment>,
-    /// The other patterns: `[value, colour]` entries, values in [0, 1] ascending, interpolated
+    /// The other patterns: `[value, colour]` entries, values ascending (usually in [0, 1]), interpolated
     /// linearly (below the first entry its colour, above the last the last's).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub color_map: Vec<MapEntry>,
@@ -810,15 +810,17 @@ impl Pigment {
     }
 }
 
-/// The first problem of a map's entry values (under `key`): each in [0, 1], ascending.
+/// The first problem of a map's entry values (under `key`): each finite, ascending. As in
+/// POV-Ray, values need not lie in [0, 1] (`[1.01 colour]` is common in its scenes, and
+/// changes the blend below it).
 pub(super) fn check_map_values(
     key: &'static str,
     values: impl Iterator<Item = f64>,
 ) -> Result<(), (&'static str, String)> {
-    let mut previous = 0.0;
+    let mut previous = f64::NEG_INFINITY;
     for (i, value) in values.enumerate() {
-        if !(0.0..=1.0).contains(&value) {
-            return Err((key, format!("entry {i}: value {value} is outside [0, 1]")));
+        if !value.is_finite() {
+            return Err((key, format!("entry {i}: value {value} is not a finite number")));
         }
         if value < previous {
             return Err((
@@ -1443,6 +1445,20 @@ pub(super) fn wrinkles(q: DVec3) -> f64 {
 mod tests {
     use super::*;
 
+    #[test]
+    fn map_values_beyond_one_shift_the_blend_below_them() {
+        // POV-Ray's common `[0.8 A] [1.01 B]`: at value 1 the colour is not quite B.
+        let pigment: Pigment =
+            toml::from_str("pattern = \"bozo\"\ncolor_map = [[-0.2, [0, 0, 0]], [0.8, [0, 0, 0]], [1.01, [1, 1, 1]]]")
+                .unwrap();
+        pigment.check().unwrap();
+        let c = map_lookup(&pigment.color_map, 1.0);
+        assert!((c.rgb.x - 0.2 / 0.21).abs() < 1e-12, "{c:?}");
+        let bad: Pigment =
+            toml::from_str("pattern = \"bozo\"\ncolor_map = [[0, [0, 0, 0]], [nan, [1, 1, 1]]]").unwrap();
+        assert_eq!(bad.check().unwrap_err().0, "color_map");
+    }
+
     fn pigment(text: &str) -> Pigment {
         let p: Pigment = toml::from_str(text).unwrap();
         p.check().unwrap();
@@ -1726,7 +1742,7 @@ mod tests {
         let err = |text: &str| toml::from_str::<Pigment>(text).unwrap().check().unwrap_err();
         assert_eq!(err("pattern = \"onion\"").0, "color_map");
         assert_eq!(err("pattern = \"onion\"\ncolor_map = [[0.5, [1, 1, 1]], [0.2, [0, 0, 0]]]").0, "color_map");
-        assert_eq!(err("pattern = \"onion\"\ncolor_map = [[1.5, [1, 1, 1]]]").0, "color_map");
+        assert_eq!(err("pattern = \"onion\"\ncolor_map = [[inf, [1, 1, 1]]]").0, "color_map");
         assert_eq!(err("pattern = \"checker\"\ncolors = [[1, 1, 1]]").0, "colors");
         assert_eq!(err("pattern = \"checker\"\ncolors = [[1, 1, 1], [0, 0, 0]]\nfrequency = 2").0, "frequency");
         assert_eq!(err(&format!("pattern = \"gradient\"\n{BW}")).0, "vector");
@@ -1876,7 +1892,7 @@ mod tests {
         let e = err(&format!("pattern = \"onion\"\npigment_map = [[0.6, {red}], [0.2, {red}]]"));
         assert_eq!(e.0, "pigment_map");
         assert!(e.1.contains("entry 1") && e.1.contains("ascending"), "{}", e.1);
-        assert_eq!(err(&format!("pattern = \"onion\"\npigment_map = [[1.5, {red}]]")).0, "pigment_map");
+        assert_eq!(err(&format!("pattern = \"onion\"\npigment_map = [[nan, {red}]]")).0, "pigment_map");
         let e = err(&format!("pattern = \"checker\"\ncolors = [[1, 1, 1], [0, 0, 0]]\npigment_map = [[0, {red}]]"));
         assert_eq!(e.0, "pigment_map");
         assert!(e.1.contains("takes `colors`"), "{}", e.1);
