@@ -482,6 +482,12 @@ impl Normal {
     /// The first problem of the `slope_map` or `normal_map` (their entries' normals apart).
     fn check_maps(&self) -> Result<(), (&'static str, String)> {
         let kind = self.pattern;
+        if self.normals.is_some() && kind.discrete_normals().is_none() {
+            return Err((
+                "normals",
+                format!("belongs to the discrete patterns (checker, hexagon, brick), not `{kind}`"),
+            ));
+        }
         if kind == NormalKind::Average {
             if let Some(key) = [("slope_map", self.slope_map.is_some()), ("bump_size", self.bump_size.is_some())]
                 .into_iter()
@@ -522,11 +528,6 @@ impl Normal {
                     }
                 }
             }
-        } else if self.normals.is_some() {
-            return Err((
-                "normals",
-                format!("belongs to the discrete patterns (checker, hexagon, brick), not `{kind}`"),
-            ));
         }
         if self.slope_map.is_some() && kind.pigment_pattern().is_none() {
             return Err((
@@ -1488,6 +1489,10 @@ mod tests {
         assert_eq!(err(&format!("pattern = \"hexagon\"\n{two}")), "normals");
         assert_eq!(err(&format!("pattern = \"granite\"\n{two}")), "normals");
         assert_eq!(err(&format!("pattern = \"bumps\"\n{two}")), "normals");
+        assert_eq!(
+            err(&format!("pattern = \"average\"\nnormal_map = [[1, {{ pattern = \"bumps\" }}]]\n{two}")),
+            "normals"
+        );
         assert_eq!(err(&format!("pattern = \"checker\"\nbump_size = 1\n{two}")), "bump_size");
         assert_eq!(err("pattern = \"checker\"\nnormal_map = [[0, { pattern = \"bumps\" }]]"), "normal_map");
         assert_eq!(err("pattern = \"brick\"\nslope_map = [[0, [0, 1]]]"), "slope_map");
