@@ -1253,8 +1253,8 @@ mod tests {
             differs |= (bumps.perturb(p, n) - n.normalize()).length() > 1e-3;
         }
         assert!(differs);
-        // ripples' value (its rings' mean cycloid, mapped to [0, 1]) then frequency again: a
-        // gradient of [0, 1] through the map reads it back.
+        // ripples' value: its rings' mean cycloid mapped to [0, 1], then frequency and phase
+        // applied again (`Evaluate_TPat` after `ripples_pattern`), recomputed here.
         let ripples = field(
             "pattern = \"ripples\"\nfrequency = 1.3\nphase = 0.2\nnormal_map = [[0, { pattern = \"gradient\", vector = [1, 0, 0], bump_size = 0 }], [1, { pattern = \"facets\" }]]",
         );
