@@ -160,9 +160,10 @@ impl AaGrade {
 }
 
 /// max(x, 0)^(1 / 2.5) (the antialiasing gamma's curve, [`AA_GAMMA`]) to within 1e-13
-/// relative, several times faster than `powf`, which took a tenth of a simple scene's render
-/// at 4K: x = m 2^e with m in [1, 2), m^(2/5) from a polynomial refined by one Newton step on
-/// y^5 = m^2, and 2^(2e/5) as a power of four times one of five constants.
+/// relative, somewhat faster than libm's `pow` (which took a tenth of a simple scene's
+/// single-thread render at 4K; this takes 7-8 %): x = m 2^e with m in [1, 2), m^(2/5) from a
+/// polynomial refined by one Newton step on y^5 = m^2, and 2^(2e/5) as a power of four times
+/// one of five constants.
 fn two_fifths_power(x: f64) -> f64 {
     // NaN and negatives grade as 0, as `max(0)` then `powf` did; subnormals and infinity
     // take the slow path.
