@@ -816,23 +816,16 @@ impl NormalField {
         let spec = &self.spec;
         let frequency = single(spec.frequency.unwrap_or(if spec.pattern == NormalKind::Quilted { 0.0 } else { 1.0 }));
         let phase = single(spec.phase.unwrap_or(0.0));
-        let waves = |wave_frequency: fn(f64) -> f64, per_source: fn(f64, f64) -> f64| {
-            let (sources, frequencies) = wave_sources();
-            let mut sum = 0.0;
-            for (source, f) in sources.iter().zip(frequencies) {
-                let mut length = (q - *source).length();
-                if length == 0.0 {
-                    length = 1.0;
-                }
-                sum += per_source(cycloidal(length * frequency * wave_frequency(*f) + phase), *f);
-            }
-            sum / NUMBER_OF_WAVES as f64
+        // `ripples_pattern` and `waves_pattern`: the rings' mean cycloid.
+        let mean_cycloid = |waves: bool| {
+            let terms = wave_rings(q, frequency, phase, waves).map(|(_, _, f, c)| if waves { c / f } else { c });
+            terms.sum::<f64>() / NUMBER_OF_WAVES as f64
         };
         let raw = match spec.pattern {
             NormalKind::Bumps => noise(q),
             NormalKind::Dents => noise(q).powi(3),
-            NormalKind::Ripples => 0.5 * (1.0 + waves(|_| 1.0, |c, _| c)),
-            NormalKind::Waves => 0.2 * (2.5 + waves(|f| f, |c, f| c / f)),
+            NormalKind::Ripples => 0.5 * (1.0 + mean_cycloid(false)),
+            NormalKind::Waves => 0.2 * (2.5 + mean_cycloid(true)),
             NormalKind::Wrinkles => wrinkles(q),
             NormalKind::Quilted => quilted(q, self.quilt_controls),
             _ => 0.0,
@@ -957,19 +950,9 @@ impl NormalField {
                 let frequency = single(spec.frequency.unwrap_or(1.0));
                 let phase = single(spec.phase.unwrap_or(0.0));
                 let waves = spec.pattern == NormalKind::Waves;
-                let (sources, frequencies) = wave_sources();
                 let mut sum = DVec3::ZERO;
-                for (source, f) in sources.iter().zip(frequencies) {
-                    let v = q - *source;
-                    let mut length = v.length();
-                    if length == 0.0 {
-                        length = 1.0;
-                    }
-                    let scalar = if waves {
-                        cycloidal(length * frequency * f + phase) * amount / f
-                    } else {
-                        cycloidal(length * frequency + phase) * amount
-                    };
+                for (v, length, f, cycloid) in wave_rings(q, frequency, phase, waves) {
+                    let scalar = if waves { cycloid * amount / f } else { cycloid * amount };
                     sum += (scalar / (length * NUMBER_OF_WAVES as f64)) * v;
                 }
                 sum
@@ -985,6 +968,24 @@ impl NormalField {
             }
         }
     }
+}
+
+/// Each of POV-Ray's wave sources seen from pattern point `q`, as `ripples` and `waves` read
+/// them: the offset from the source, its length (1 where it is 0, as POV-Ray takes it), the
+/// source's frequency, and the cycloid of its ring, `length frequency + phase` (for `waves`
+/// the frequency times the source's own).
+fn wave_rings(q: DVec3, frequency: f64, phase: f64, waves: bool) -> impl Iterator<Item = (DVec3, f64, f64, f64)> {
+    let (sources, frequencies) = wave_sources();
+    sources.iter().zip(frequencies).map(move |(source, &f)| {
+        let v = q - *source;
+        let mut length = v.length();
+        if length == 0.0 {
+            length = 1.0;
+        }
+        let cycloid =
+            if waves { cycloidal(length * frequency * f + phase) } else { cycloidal(length * frequency + phase) };
+        (v, length, f, cycloid)
+    })
 }
 
 /// POV-Ray's `Hermite_Cubic`: the cubic from `a` = (height, slope) at t = 0 to `b` at t = 1
