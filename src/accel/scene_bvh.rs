@@ -15,7 +15,7 @@ use super::mesh_bvh::TriangleBvh;
 use super::primitive::Primitive;
 use super::simd::BoxRay;
 use super::triangle::{WatertightRay, mesh_hit, plane_t};
-use super::wide::{EMPTY, LEAF, WIDTH, WideTree, traverse_fastest, with_traversal_stack};
+use super::wide::{CollapseCost, EMPTY, LEAF, WIDTH, WideTree, traverse_fastest, with_traversal_stack};
 
 /// The acceleration structure.
 pub struct Accel {
@@ -78,7 +78,9 @@ fn primitive_tree(primitives: &[Primitive], bounded: &[u32]) -> Option<WideTree>
         // One primitive per leaf: the wide tree's leaves are single primitives.
         let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
         let bvh2 = build_bvh2(&boxes, params, &mut build_time);
-        WideTree::collapse(&bvh2, 1, |prims| {
+        // One primitive per leaf; how costly each is does not change the collapse.
+        let cost = CollapseCost { node: 1.0, leaf: |n| (n == 1).then_some(1.0) };
+        WideTree::collapse(&bvh2, cost, |prims| {
             debug_assert_eq!(prims.len(), 1, "leaves hold one primitive");
             bounded[prims[0] as usize]
         })

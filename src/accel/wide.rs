@@ -274,27 +274,37 @@ pub struct WideTree {
     pub stack_size: usize,
 }
 
+/// What a collapse weighs, in the surface area heuristic's units: the expected cost of a
+/// ray reaching a box is the cost of what the box holds times its surface area.
+#[derive(Clone, Copy, Debug)]
+pub struct CollapseCost {
+    /// Cost of testing a wide node's children (one eight-box test).
+    pub node: f32,
+    /// Cost of testing a leaf of `n` primitives, or `None` when `n` are too many for one
+    /// leaf.
+    pub leaf: fn(usize) -> Option<f32>,
+}
+
 impl WideTree {
-    /// Collapses `bvh2`: each node takes the eight most promising descendants of a binary
-    /// node (repeatedly opening the one with the largest surface area). A subtree with at
-    /// most `leaf_size` primitives becomes a leaf, whose reference is
-    /// `make_leaf(primitives)` (the primitive indices under it, in `bvh2`'s numbering). A
-    /// binary leaf holding more than `leaf_size` primitives stays one leaf: build `bvh2`
-    /// with at most `leaf_size` per leaf to rule that out.
-    pub fn collapse(bvh2: &obvhs::bvh2::Bvh2, leaf_size: usize, make_leaf: impl FnMut(&[u32]) -> u32) -> Self {
-        // About one wide node per eight leaves of `leaf_size`.
-        let estimate = bvh2.primitive_indices.len() / (WIDTH * leaf_size.max(1)) * 2 + 1;
-        let mut collapse = Collapse {
-            bvh2,
-            subtrees: Subtrees::of(bvh2),
-            leaf_size,
-            make_leaf,
-            nodes: Vec::with_capacity(estimate),
-            depth: 1,
-        };
+    /// Collapses `bvh2` into the wide tree of least expected cost under `cost`: which
+    /// binary subtrees become leaves and which descendants each wide node takes as its up
+    /// to eight children are chosen together, by dynamic programming over the binary tree
+    /// (Ylitie, Karras and Laine, "Efficient incoherent ray traversal on GPUs through
+    /// compressed wide BVHs", 2017). A greedy collapse (open the largest child until eight;
+    /// every subtree that fits one leaf is one) leaves nodes near the bottom half empty.
+    /// A leaf's reference is `make_leaf(primitives)` (the primitive indices under it, in
+    /// `bvh2`'s numbering).
+    ///
+    /// # Panics
+    ///
+    /// When a binary leaf holds more primitives than `cost.leaf` allows in one leaf (build
+    /// `bvh2` with one primitive per leaf).
+    pub fn collapse(bvh2: &obvhs::bvh2::Bvh2, cost: CollapseCost, make_leaf: impl FnMut(&[u32]) -> u32) -> Self {
+        let plan = Plan::of(bvh2, cost);
+        let mut collapse = Collapse { bvh2, plan, make_leaf, nodes: Vec::new(), depth: 1 };
         collapse.nodes.push(Node::EMPTY);
-        if !collapse.openable(0) {
-            // Small enough for one leaf: a root node holding it.
+        if collapse.plan.is_leaf(0) {
+            // Cheapest as one leaf: a root node holding it.
             let reference = collapse.leaf(0);
             collapse.nodes[0].set_child(0, &bvh2.nodes[0], LEAF | reference);
         } else {
@@ -305,76 +315,21 @@ impl WideTree {
     }
 }
 
-/// The state of one collapse: the binary tree, the leaf policy, and the wide nodes so far.
-struct Collapse<'a, F> {
-    bvh2: &'a obvhs::bvh2::Bvh2,
+/// The least-cost collapse of every binary subtree, as Ylitie et al. tabulate it, with the
+/// primitives under every node. For binary node `n` and `i` from 1 to 8, `choice[n][i - 1]`
+/// says how the subtree under `n` is best spread over at most `i` child slots of the wide
+/// node above it: for `i = 1`, 0 when `n` is a leaf, else the number of its own node's eight
+/// slots given to its left child; for `i > 1`, 0 when `i - 1` slots do as well, else the
+/// number of the `i` slots given to its left child (the right one has the rest).
+struct Plan {
+    choice: Vec<[u8; WIDTH]>,
     subtrees: Subtrees,
-    leaf_size: usize,
-    make_leaf: F,
-    nodes: Vec<Node>,
-    /// Deepest level filled.
-    depth: usize,
+    /// The least cost of the whole tree.
+    #[cfg_attr(not(test), allow(dead_code, reason = "checked by the tests"))]
+    cost: f32,
 }
 
-impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
-    /// True when binary node `index` is an inner node over more than `leaf_size` primitives
-    /// (a binary leaf is never opened: its `first_index` points at primitives).
-    fn openable(&self, index: usize) -> bool {
-        self.bvh2.nodes[index].prim_count == 0 && self.subtrees.count[index] as usize > self.leaf_size
-    }
-
-    /// Makes the leaf of the primitives under binary node `index`.
-    fn leaf(&mut self, index: usize) -> u32 {
-        let start = self.subtrees.start[index] as usize;
-        let end = start + self.subtrees.count[index] as usize;
-        (self.make_leaf)(&self.subtrees.prims[start..end])
-    }
-
-    /// Fills wide node `index` from the binary inner node `bvh2_index`, at `level`.
-    fn fill(&mut self, bvh2_index: usize, index: usize, level: usize) {
-        self.depth = self.depth.max(level);
-        let nodes = &self.bvh2.nodes;
-        let first = nodes[bvh2_index].first_index as usize;
-        // (binary node, openable)
-        let mut children = [(0usize, false); WIDTH];
-        children[0] = (first, self.openable(first));
-        children[1] = (first + 1, self.openable(first + 1));
-        let mut len = 2;
-        while len < WIDTH {
-            // Open the largest child; subtrees small enough for one leaf stay whole.
-            let open = children[..len]
-                .iter()
-                .enumerate()
-                .filter(|&(_, &(_, openable))| openable)
-                .max_by(|a, b| half_area(&nodes[a.1.0]).total_cmp(&half_area(&nodes[b.1.0])))
-                .map(|(i, _)| i);
-            let Some(i) = open else { break };
-            let c = children[i].0;
-            // As `Vec::swap_remove` then two pushes.
-            children[i] = children[len - 1];
-            let f = nodes[c].first_index as usize;
-            children[len - 1] = (f, self.openable(f));
-            children[len] = (f + 1, self.openable(f + 1));
-            len += 1;
-        }
-        for (slot, &(c, openable)) in children[..len].iter().enumerate() {
-            let child = &nodes[c];
-            if openable {
-                let inner = self.nodes.len();
-                self.nodes.push(Node::EMPTY);
-                self.nodes[index].set_child(slot, child, inner as u32);
-                self.fill(c, inner, level + 1);
-            } else {
-                let reference = self.leaf(c);
-                self.nodes[index].set_child(slot, child, LEAF | reference);
-            }
-        }
-    }
-}
-
-/// The primitives under every node of a binary tree, found in one depth-first pass (the
-/// tree's nodes lie in no useful order, so each visit is a cache miss: one pass, not one
-/// count per node and one walk per leaf).
+/// The primitives under every node of a binary tree.
 struct Subtrees {
     /// The primitives in depth-first order, left child first: those under a node are
     /// `prims[start..start + count]`.
@@ -385,11 +340,15 @@ struct Subtrees {
     count: Vec<u32>,
 }
 
-impl Subtrees {
+impl Plan {
     /// Marks a stack entry as the end of a node's subtree rather than the node itself.
     const END: u32 = 1 << 31;
 
-    fn of(bvh2: &obvhs::bvh2::Bvh2) -> Self {
+    /// The plan for `bvh2` under `cost`, made in one depth-first pass: the tree's nodes lie
+    /// in no useful order, so each visit is a cache miss. A subtree's costs (the least for
+    /// each number of slots) wait on a stack until its parent's are made from them, so they
+    /// are still in the cache then.
+    fn of(bvh2: &obvhs::bvh2::Bvh2, cost: CollapseCost) -> Self {
         let nodes = &bvh2.nodes;
         assert!(nodes.len() < Self::END as usize, "too many BVH2 nodes");
         let mut subtrees = Subtrees {
@@ -397,30 +356,238 @@ impl Subtrees {
             start: vec![0; nodes.len()],
             count: vec![0; nodes.len()],
         };
+        let mut choice = vec![[0u8; WIDTH]; nodes.len()];
+        // The costs of the finished subtrees whose parents are not: a left child's below its
+        // sibling's.
+        let mut finished: Vec<[f32; WIDTH]> = Vec::new();
         let mut stack = vec![0u32];
         while let Some(entry) = stack.pop() {
             let index = (entry & !Self::END) as usize;
             let here = subtrees.prims.len() as u32;
+            let node = &nodes[index];
             if entry & Self::END != 0 {
-                subtrees.count[index] = here - subtrees.start[index];
+                let count = here - subtrees.start[index];
+                subtrees.count[index] = count;
+                let right = finished.pop().expect("the right child's costs");
+                let left = finished.pop().expect("the left child's costs");
+                let (costs, choices) = Self::inner(node, count as usize, &left, &right, cost);
+                choice[index] = choices;
+                finished.push(costs);
                 continue;
             }
             subtrees.start[index] = here;
-            let node = &nodes[index];
             let first = node.first_index;
             if node.prim_count > 0 {
                 let range = first as usize..first as usize + node.prim_count as usize;
                 subtrees.prims.extend_from_slice(&bvh2.primitive_indices[range]);
                 subtrees.count[index] = node.prim_count;
+                let leaf = (cost.leaf)(node.prim_count as usize)
+                    .expect("a binary leaf holds more primitives than a wide leaf may");
+                finished.push([leaf * half_area(node); WIDTH]);
             } else {
                 stack.extend([index as u32 | Self::END, first + 1, first]);
             }
         }
-        subtrees
+        Plan { choice, subtrees, cost: finished[0][0] }
+    }
+
+    /// The least costs of the inner binary node `node` over `count` primitives, for one to
+    /// eight slots, and how they are reached, from its children's least costs.
+    #[inline]
+    fn inner(
+        node: &obvhs::bvh2::node::Bvh2Node,
+        count: usize,
+        left: &[f32; WIDTH],
+        right: &[f32; WIDTH],
+        cost: CollapseCost,
+    ) -> ([f32; WIDTH], [u8; WIDTH]) {
+        let area = half_area(node);
+        // spread[j - 1]: the least cost of the two children over j slots, and the left's share.
+        let mut spread = [(f32::INFINITY, 0u8); WIDTH];
+        for (j, best) in spread.iter_mut().enumerate().skip(1) {
+            for k in 1..=j {
+                let c = left[k - 1] + right[j - k];
+                if c < best.0 {
+                    *best = (c, k as u8);
+                }
+            }
+        }
+        let leaf = (cost.leaf)(count).map_or(f32::INFINITY, |c| c * area);
+        let node_cost = cost.node * area + spread[WIDTH - 1].0;
+        let (mut best, mut choice) = if leaf <= node_cost { (leaf, 0) } else { (node_cost, spread[WIDTH - 1].1) };
+        let (mut costs, mut choices) = ([best; WIDTH], [choice; WIDTH]);
+        for i in 1..WIDTH {
+            choice = 0;
+            if spread[i].0 < best {
+                (best, choice) = spread[i];
+            }
+            costs[i] = best;
+            choices[i] = choice;
+        }
+        (costs, choices)
+    }
+
+    /// True when binary node `n` becomes a leaf of the wide tree (given one slot).
+    fn is_leaf(&self, n: usize) -> bool {
+        self.choice[n][0] == 0
+    }
+
+    /// Appends the binary nodes that take the (at most) `slots` child slots of binary node
+    /// `n` to `out`.
+    fn gather(&self, bvh2: &obvhs::bvh2::Bvh2, n: usize, slots: usize, out: &mut Vec<usize>) {
+        let mut slots = slots;
+        while slots > 1 && self.choice[n][slots - 1] == 0 {
+            slots -= 1;
+        }
+        if slots == 1 {
+            out.push(n);
+        } else {
+            let left = self.choice[n][slots - 1] as usize;
+            let first = bvh2.nodes[n].first_index as usize;
+            self.gather(bvh2, first, left, out);
+            self.gather(bvh2, first + 1, slots - left, out);
+        }
+    }
+}
+
+/// The state of one collapse: the binary tree, the plan, and the wide nodes so far.
+struct Collapse<'a, F> {
+    bvh2: &'a obvhs::bvh2::Bvh2,
+    plan: Plan,
+    make_leaf: F,
+    nodes: Vec<Node>,
+    /// Deepest level filled.
+    depth: usize,
+}
+
+impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
+    /// Makes the leaf of the primitives under binary node `index`.
+    fn leaf(&mut self, index: usize) -> u32 {
+        let subtrees = &self.plan.subtrees;
+        let start = subtrees.start[index] as usize;
+        let end = start + subtrees.count[index] as usize;
+        (self.make_leaf)(&subtrees.prims[start..end])
+    }
+
+    /// Fills wide node `index` from the binary inner node `bvh2_index`, at `level`.
+    fn fill(&mut self, bvh2_index: usize, index: usize, level: usize) {
+        self.depth = self.depth.max(level);
+        let nodes = &self.bvh2.nodes;
+        let first = nodes[bvh2_index].first_index as usize;
+        let left = self.plan.choice[bvh2_index][0] as usize;
+        let mut children = Vec::with_capacity(WIDTH);
+        self.plan.gather(self.bvh2, first, left, &mut children);
+        self.plan.gather(self.bvh2, first + 1, WIDTH - left, &mut children);
+        for (slot, &c) in children.iter().enumerate() {
+            if self.plan.is_leaf(c) {
+                let reference = self.leaf(c);
+                self.nodes[index].set_child(slot, &nodes[c], LEAF | reference);
+            } else {
+                let inner = self.nodes.len();
+                self.nodes.push(Node::EMPTY);
+                self.nodes[index].set_child(slot, &nodes[c], inner as u32);
+                self.fill(c, inner, level + 1);
+            }
+        }
     }
 }
 
 fn half_area(n: &obvhs::bvh2::node::Bvh2Node) -> f32 {
     let d = n.aabb().max - n.aabb().min;
     d.x * d.y + d.y * d.z + d.z * d.x
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3A;
+    use obvhs::BvhBuildParams;
+    use obvhs::aabb::Aabb;
+    use obvhs::bvh2::builder::build_bvh2;
+    use prism_api::contract::TestRng;
+
+    use super::*;
+
+    /// `count` small random boxes in the unit cube, and the binary tree over them.
+    fn binary_tree(count: usize, seed: u64) -> obvhs::bvh2::Bvh2 {
+        let mut rng = TestRng::new(seed);
+        let boxes: Vec<Aabb> = (0..count)
+            .map(|_| {
+                let min = Vec3A::new(rng.uniform() as f32, rng.uniform() as f32, rng.uniform() as f32);
+                let size = Vec3A::new(rng.uniform() as f32, rng.uniform() as f32, rng.uniform() as f32) * 0.05;
+                Aabb { min, max: min + size }
+            })
+            .collect();
+        let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
+        build_bvh2(&boxes, params, &mut std::time::Duration::default())
+    }
+
+    const PACKETS: CollapseCost = CollapseCost { node: 1.0, leaf: |n| (n <= 16).then(|| 0.4 * n.div_ceil(4) as f32) };
+
+    /// The wide tree, the primitives of each leaf (by reference), and the tree's cost under
+    /// `cost` recomputed from its nodes' boxes.
+    fn collapse_and_price(bvh2: &obvhs::bvh2::Bvh2, cost: CollapseCost) -> (WideTree, Vec<Vec<u32>>, f32) {
+        let mut leaves = Vec::new();
+        let tree = WideTree::collapse(bvh2, cost, |prims| {
+            leaves.push(prims.to_vec());
+            leaves.len() as u32 - 1
+        });
+        let area = |b: &BoxLanes, slot: usize| {
+            let d = [0, 1, 2].map(|axis| b.planes[axis + 3][slot] - b.planes[axis][slot]);
+            d[0] * d[1] + d[1] * d[2] + d[2] * d[0]
+        };
+        let mut total =
+            if tree.nodes.len() > 1 || leaves.len() > 1 { cost.node * half_area(&bvh2.nodes[0]) } else { 0.0 };
+        for node in &tree.nodes {
+            for (slot, &child) in node.child.iter().enumerate().filter(|&(_, &c)| c != EMPTY) {
+                total += area(&node.bounds, slot)
+                    * if child & LEAF != 0 {
+                        (cost.leaf)(leaves[(child & !LEAF) as usize].len()).expect("leaf within the limit")
+                    } else {
+                        cost.node
+                    };
+            }
+        }
+        (tree, leaves, total)
+    }
+
+    #[test]
+    fn collapse_holds_every_primitive_once_at_the_planned_cost() {
+        for (count, seed) in [(1, 1), (2, 2), (9, 3), (100, 4), (5000, 5)] {
+            let bvh2 = binary_tree(count, seed);
+            let planned = Plan::of(&bvh2, PACKETS).cost;
+            let (tree, leaves, built) = collapse_and_price(&bvh2, PACKETS);
+            let mut prims: Vec<u32> = leaves.concat();
+            prims.sort_unstable();
+            assert_eq!(prims, (0..count as u32).collect::<Vec<_>>(), "{count} primitives");
+            assert!(leaves.iter().all(|l| !l.is_empty() && l.len() <= 16));
+            let referenced: usize =
+                tree.nodes.iter().flat_map(|n| n.child).filter(|&c| c != EMPTY && c & LEAF != 0).count();
+            assert_eq!(referenced, leaves.len(), "every leaf hangs in the tree once");
+            if count > 1 {
+                assert!((built - planned).abs() <= 1e-4 * planned, "{count}: built {built}, planned {planned}");
+            }
+        }
+    }
+
+    #[test]
+    fn collapse_fills_the_nodes_it_makes() {
+        // A greedy collapse that made every subtree of up to sixteen primitives one leaf
+        // left the lowest nodes about half empty.
+        let (tree, ..) = collapse_and_price(&binary_tree(20_000, 7), PACKETS);
+        let children = tree.nodes.iter().flat_map(|n| n.child).filter(|&c| c != EMPTY).count();
+        let mean = children as f64 / tree.nodes.len() as f64;
+        assert!(mean > 7.0, "{mean} children per node");
+    }
+
+    #[test]
+    fn costlier_leaves_make_smaller_leaves() {
+        let bvh2 = binary_tree(5000, 9);
+        let mean_leaf = |cost| {
+            let (_, leaves, _) = collapse_and_price(&bvh2, cost);
+            5000.0 / leaves.len() as f64
+        };
+        let cheap = mean_leaf(CollapseCost { node: 1.0, leaf: |n| (n <= 16).then(|| 0.1 * n.div_ceil(4) as f32) });
+        let dear = mean_leaf(CollapseCost { node: 1.0, leaf: |n| (n <= 16).then_some(4.0 * n as f32) });
+        assert!(cheap > 2.0 * dear, "{cheap} against {dear} primitives per leaf");
+    }
 }
