@@ -347,10 +347,14 @@ impl MeshShape {
         alpha * mask.factor >= mask.cutoff
     }
 
+    // Always inlined: called, it wrote the ray to memory that the caller then read back in
+    // wider loads, a store-forwarding stall of about a tenth of a primary ray's time.
+    #[inline(always)]
     fn prepare(ray: &Ray) -> Option<WatertightRay> {
         WatertightRay::new(ray.origin.as_vec3(), ray.direction.as_vec3())
     }
 
+    #[inline(always)]
     fn f32_bound(t_max: f64) -> f32 {
         if t_max >= f64::from(f32::MAX) { f32::INFINITY } else { next_up(t_max as f32) }
     }
