@@ -51,7 +51,7 @@ const LEAF_PACKETS: usize = 4;
 /// side by side and are fetched together, while each node is one more dependent cache miss
 /// down the tree. Measured on the terrain and the dragon with incoherent rays (best of three
 /// runs each, Mrays/s through the f32 API): packet cost 1 gave 2.73 and 2.88, 0.5 3.17 and
-/// 3.26, 0.25 3.40 and 3.69, 0.1 3.33 and 3.50.
+/// 3.26, 0.25 3.40 and 3.69, 0.1 3.33 and 3.50; 0.2 lies between the best two.
 const LEAF_COST: CollapseCost = CollapseCost {
     node: 1.0,
     leaf: |triangles| (triangles <= PACKET * LEAF_PACKETS).then(|| 0.2 * triangles.div_ceil(PACKET) as f32),

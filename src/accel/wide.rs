@@ -403,7 +403,9 @@ impl Plan {
     ) -> ([f32; WIDTH], [u8; WIDTH]) {
         let area = half_area(node);
         // spread[j - 1]: the least cost of the two children over j slots, and the left's share.
-        let mut spread = [(f32::INFINITY, 0u8); WIDTH];
+        // A valid share (one slot to the left) stands until a cost beats it, so that costs
+        // that overflow or are NaN (boxes near f32's limits) still give a well-formed tree.
+        let mut spread = [(f32::INFINITY, 1u8); WIDTH];
         for (j, best) in spread.iter_mut().enumerate().skip(1) {
             for k in 1..=j {
                 let c = left[k - 1] + right[j - k];
@@ -412,9 +414,11 @@ impl Plan {
                 }
             }
         }
-        let leaf = (cost.leaf)(count).map_or(f32::INFINITY, |c| c * area);
         let node_cost = cost.node * area + spread[WIDTH - 1].0;
-        let (mut best, mut choice) = if leaf <= node_cost { (leaf, 0) } else { (node_cost, spread[WIDTH - 1].1) };
+        let (mut best, mut choice) = match (cost.leaf)(count).map(|c| c * area) {
+            Some(leaf) if leaf <= node_cost => (leaf, 0),
+            _ => (node_cost, spread[WIDTH - 1].1),
+        };
         let (mut costs, mut choices) = ([best; WIDTH], [choice; WIDTH]);
         for i in 1..WIDTH {
             choice = 0;
@@ -577,6 +581,30 @@ mod tests {
         let children = tree.nodes.iter().flat_map(|n| n.child).filter(|&c| c != EMPTY).count();
         let mean = children as f64 / tree.nodes.len() as f64;
         assert!(mean > 7.0, "{mean} children per node");
+    }
+
+    #[test]
+    fn boxes_at_the_limits_of_f32_still_make_a_well_formed_tree() {
+        // Areas overflow to infinity (and to NaN where a side is zero): no leaf may then
+        // exceed the limit, and every primitive must still be in the tree once.
+        let boxes: Vec<Aabb> = (0..300)
+            .map(|i| {
+                let x = if i % 2 == 0 { -3e38 } else { 3e38 } * (i as f32 / 300.0);
+                let min = Vec3A::new(x, -3e38, if i % 3 == 0 { 0.0 } else { -3e38 });
+                Aabb { min, max: Vec3A::new(x + 1.0, 3e38, if i % 3 == 0 { 0.0 } else { 3e38 }) }
+            })
+            .collect();
+        let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
+        let bvh2 = build_bvh2(&boxes, params, &mut std::time::Duration::default());
+        let mut leaves: Vec<Vec<u32>> = Vec::new();
+        WideTree::collapse(&bvh2, PACKETS, |prims| {
+            leaves.push(prims.to_vec());
+            leaves.len() as u32 - 1
+        });
+        assert!(leaves.iter().all(|l| !l.is_empty() && l.len() <= 16));
+        let mut prims = leaves.concat();
+        prims.sort_unstable();
+        assert_eq!(prims, (0..300).collect::<Vec<u32>>());
     }
 
     #[test]
