@@ -114,6 +114,11 @@ impl TriangleBvh {
         let mut packets = PageBuffer::with_capacity(triangles.len());
         let tree = WideTree::collapse(&bvh2, LEAF_COST, |prims| {
             let first = packets.len() as u32;
+            // The triangles lie in input order, not the tree's: ask for all of a leaf's at
+            // once, so that their cache misses overlap.
+            for &prim in prims {
+                simd::prefetch(triangles.as_ptr().wrapping_add(prim as usize));
+            }
             for chunk in prims.chunks(PACKET) {
                 packets.push(TrianglePacket::new(triangles, chunk));
             }

@@ -316,140 +316,199 @@ impl WideTree {
 }
 
 /// The least-cost collapse of every binary subtree, as Ylitie et al. tabulate it, with the
-/// primitives under every node. For binary node `n` and `i` from 1 to 8, `choice[n][i - 1]`
-/// says how the subtree under `n` is best spread over at most `i` child slots of the wide
-/// node above it: for `i = 1`, 0 when `n` is a leaf, else the number of its own node's eight
-/// slots given to its left child; for `i > 1`, 0 when `i - 1` slots do as well, else the
-/// number of the `i` slots given to its left child (the right one has the rest).
+/// primitives under every node.
+///
+/// The binary tree's nodes lie in no useful order (reinsertion moves them), so a
+/// depth-first walk over them waits for one cache miss per node, each address known only
+/// once the parent is read. The plan instead lists the nodes level by level, where the
+/// next nodes' addresses are known ahead and their misses overlap, and copies what it needs
+/// of each node into that list; every later pass reads the list in order. Nodes are named
+/// by their *position* in it: a node's children are side by side, after it.
+///
+/// For the node at position `p` and `i` from 1 to 8, `choice[p][i - 1]` says how its
+/// subtree is best spread over at most `i` child slots of the wide node above it: for
+/// `i = 1`, 0 when the node is a leaf, else the number of its own node's eight slots given
+/// to its left child; for `i > 1`, 0 when `i - 1` slots do as well, else the number of the
+/// `i` slots given to its left child (the right one has the rest).
 struct Plan {
+    /// The binary node at each position.
+    order: Vec<u32>,
+    /// What the plan needs of the node at each position.
+    listed: Vec<Listed>,
     choice: Vec<[u8; WIDTH]>,
-    subtrees: Subtrees,
+    /// The primitives in depth-first order, left child first: those under the node at
+    /// position `p` are `prims[start[p]..start[p] + count[p]]`.
+    prims: Vec<u32>,
+    /// Where the primitives under each position begin in `prims`.
+    start: Vec<u32>,
+    /// How many primitives are under each position.
+    count: Vec<u32>,
     /// The least cost of the whole tree.
     #[cfg_attr(not(test), allow(dead_code, reason = "checked by the tests"))]
     cost: f32,
 }
 
-/// The primitives under every node of a binary tree.
-struct Subtrees {
-    /// The primitives in depth-first order, left child first: those under a node are
-    /// `prims[start..start + count]`.
-    prims: Vec<u32>,
-    /// Where each node's primitives begin in `prims`.
-    start: Vec<u32>,
-    /// How many primitives are under each node.
-    count: Vec<u32>,
+/// A binary node as the plan lists it.
+#[derive(Clone, Copy)]
+struct Listed {
+    /// Half the surface area of its box.
+    half_area: f32,
+    /// Primitives in it when it is a leaf, 0 when it is an inner node.
+    prim_count: u32,
+    /// The position of its first child (inner node), or its first primitive's place in the
+    /// binary tree's primitive indices (leaf).
+    first: u32,
 }
 
 impl Plan {
-    /// Marks a stack entry as the end of a node's subtree rather than the node itself.
-    const END: u32 = 1 << 31;
+    /// How many positions ahead of the one in hand the listing asks for the node.
+    const LOOKAHEAD: usize = 16;
 
-    /// The plan for `bvh2` under `cost`, made in one depth-first pass: the tree's nodes lie
-    /// in no useful order, so each visit is a cache miss. A subtree's costs (the least for
-    /// each number of slots) wait on a stack until its parent's are made from them, so they
-    /// are still in the cache then.
+    /// The plan for `bvh2` under `cost`.
     fn of(bvh2: &obvhs::bvh2::Bvh2, cost: CollapseCost) -> Self {
-        let nodes = &bvh2.nodes;
-        assert!(nodes.len() < Self::END as usize, "too many BVH2 nodes");
-        let mut subtrees = Subtrees {
-            prims: Vec::with_capacity(bvh2.primitive_indices.len()),
-            start: vec![0; nodes.len()],
-            count: vec![0; nodes.len()],
-        };
-        let mut choice = vec![[0u8; WIDTH]; nodes.len()];
-        // The costs of the finished subtrees whose parents are not: a left child's below its
-        // sibling's.
-        let mut finished: Vec<[f32; WIDTH]> = Vec::new();
-        let mut stack = vec![0u32];
-        while let Some(entry) = stack.pop() {
-            let index = (entry & !Self::END) as usize;
-            let here = subtrees.prims.len() as u32;
-            let node = &nodes[index];
-            if entry & Self::END != 0 {
-                let count = here - subtrees.start[index];
-                subtrees.count[index] = count;
-                let right = finished.pop().expect("the right child's costs");
-                let left = finished.pop().expect("the left child's costs");
-                let (costs, choices) = Self::inner(node, count as usize, &left, &right, cost);
-                choice[index] = choices;
-                finished.push(costs);
-                continue;
+        let (order, listed, levels) = Self::list(bvh2);
+        // The costs are made from the deepest level up; `below` holds the level under the
+        // one in hand, indexed by position from that level's start.
+        let mut choice = vec![[0u8; WIDTH]; order.len()];
+        let mut count = vec![0u32; order.len()];
+        let mut below: Vec<[f32; WIDTH]> = Vec::new();
+        let mut here: Vec<[f32; WIDTH]> = Vec::new();
+        for level in levels.windows(3).rev() {
+            let (begin, end, next) = (level[0], level[1], level[2]);
+            debug_assert!(below.len() == next - end);
+            here.clear();
+            for position in begin..end {
+                let node = listed[position];
+                if node.prim_count > 0 {
+                    count[position] = node.prim_count;
+                    let leaf = (cost.leaf)(node.prim_count as usize)
+                        .expect("a binary leaf holds more primitives than a wide leaf may");
+                    here.push([leaf * node.half_area; WIDTH]);
+                } else {
+                    let first = node.first as usize;
+                    let under = count[first] + count[first + 1];
+                    count[position] = under;
+                    let (left, right) = (&below[first - end], &below[first + 1 - end]);
+                    let (costs, choices) = Self::inner(node.half_area, under as usize, left, right, cost);
+                    choice[position] = choices;
+                    here.push(costs);
+                }
             }
-            subtrees.start[index] = here;
-            let first = node.first_index;
-            if node.prim_count > 0 {
-                let range = first as usize..first as usize + node.prim_count as usize;
-                subtrees.prims.extend_from_slice(&bvh2.primitive_indices[range]);
-                subtrees.count[index] = node.prim_count;
-                let leaf = (cost.leaf)(node.prim_count as usize)
-                    .expect("a binary leaf holds more primitives than a wide leaf may");
-                finished.push([leaf * half_area(node); WIDTH]);
+            std::mem::swap(&mut below, &mut here);
+        }
+        // Each subtree's primitives follow its left sibling's: where each begins, from the
+        // root down; then the primitives of each leaf in their place.
+        let mut start = vec![0u32; order.len()];
+        let mut prims = vec![0u32; count[0] as usize];
+        for (position, node) in listed.iter().enumerate() {
+            let at = start[position] as usize;
+            if node.prim_count == 0 {
+                let first = node.first as usize;
+                start[first] = at as u32;
+                start[first + 1] = at as u32 + count[first];
             } else {
-                stack.extend([index as u32 | Self::END, first + 1, first]);
+                let from = node.first as usize..(node.first + node.prim_count) as usize;
+                prims[at..at + from.len()].copy_from_slice(&bvh2.primitive_indices[from]);
             }
         }
-        Plan { choice, subtrees, cost: finished[0][0] }
+        Plan { order, listed, choice, prims, start, count, cost: below[0][0] }
     }
 
-    /// The least costs of the inner binary node `node` over `count` primitives, for one to
-    /// eight slots, and how they are reached, from its children's least costs.
+    /// The nodes reachable from the root, level by level, a node's children side by side
+    /// (the binary node at each position, and what the plan needs of it); and where each
+    /// level begins (with the end of the list last, twice: the level below the deepest is
+    /// empty).
+    fn list(bvh2: &obvhs::bvh2::Bvh2) -> (Vec<u32>, Vec<Listed>, Vec<usize>) {
+        let nodes = &bvh2.nodes;
+        assert!(nodes.len() < u32::MAX as usize, "too many BVH2 nodes");
+        let mut order = Vec::with_capacity(nodes.len());
+        let mut listed = Vec::with_capacity(nodes.len());
+        order.push(0u32);
+        let mut levels = vec![0];
+        while levels[levels.len() - 1] < order.len() {
+            let (begin, end) = (levels[levels.len() - 1], order.len());
+            levels.push(end);
+            for position in begin..end {
+                if let Some(&ahead) = order.get(position + Self::LOOKAHEAD) {
+                    simd::prefetch(nodes.as_ptr().wrapping_add(ahead as usize));
+                }
+                let node = &nodes[order[position] as usize];
+                let first = if node.prim_count == 0 {
+                    order.extend([node.first_index, node.first_index + 1]);
+                    order.len() as u32 - 2
+                } else {
+                    node.first_index
+                };
+                listed.push(Listed { half_area: half_area(node), prim_count: node.prim_count, first });
+            }
+        }
+        levels.push(order.len());
+        (order, listed, levels)
+    }
+
+    /// The least costs of an inner binary node (of half surface area `area`) over `count`
+    /// primitives, for one to eight slots, and how they are reached, from its children's
+    /// least costs.
     #[inline]
     fn inner(
-        node: &obvhs::bvh2::node::Bvh2Node,
+        area: f32,
         count: usize,
         left: &[f32; WIDTH],
         right: &[f32; WIDTH],
         cost: CollapseCost,
     ) -> ([f32; WIDTH], [u8; WIDTH]) {
-        let area = half_area(node);
-        // spread[j - 1]: the least cost of the two children over j slots, and the left's share.
-        // A valid share (one slot to the left) stands until a cost beats it, so that costs
-        // that overflow or are NaN (boxes near f32's limits) still give a well-formed tree.
-        let mut spread = [(f32::INFINITY, 1u8); WIDTH];
-        for (j, best) in spread.iter_mut().enumerate().skip(1) {
-            for k in 1..=j {
-                let c = left[k - 1] + right[j - k];
-                if c < best.0 {
-                    *best = (c, k as u8);
-                }
+        // spread_cost[j - 1]: the least cost of the two children over j slots; spread_left[j - 1]
+        // the left's share. A valid share (one slot to the left) stands until a cost beats
+        // it, so that costs that overflow or are NaN (boxes near f32's limits) still give a
+        // well-formed tree. For each share of the left, all slot counts at once, without
+        // branches (the comparisons are unpredictable): the right's costs shifted by the
+        // share, infinite where the right would get no slot.
+        let mut spread_cost = [f32::INFINITY; WIDTH];
+        let mut spread_left = [1u8; WIDTH];
+        for share in 1..WIDTH {
+            let mut right_shifted = [f32::INFINITY; WIDTH];
+            right_shifted[share..].copy_from_slice(&right[..WIDTH - share]);
+            for j in 0..WIDTH {
+                let c = left[share - 1] + right_shifted[j];
+                let better = c < spread_cost[j];
+                spread_cost[j] = if better { c } else { spread_cost[j] };
+                spread_left[j] = if better { share as u8 } else { spread_left[j] };
             }
         }
-        let node_cost = cost.node * area + spread[WIDTH - 1].0;
-        let (mut best, mut choice) = match (cost.leaf)(count).map(|c| c * area) {
+        let node_cost = cost.node * area + spread_cost[WIDTH - 1];
+        let (mut best, choice) = match (cost.leaf)(count).map(|c| c * area) {
             Some(leaf) if leaf <= node_cost => (leaf, 0),
-            _ => (node_cost, spread[WIDTH - 1].1),
+            _ => (node_cost, spread_left[WIDTH - 1]),
         };
         let (mut costs, mut choices) = ([best; WIDTH], [choice; WIDTH]);
         for i in 1..WIDTH {
-            choice = 0;
-            if spread[i].0 < best {
-                (best, choice) = spread[i];
-            }
+            let better = spread_cost[i] < best;
+            best = if better { spread_cost[i] } else { best };
             costs[i] = best;
-            choices[i] = choice;
+            choices[i] = if better { spread_left[i] } else { 0 };
         }
         (costs, choices)
     }
 
-    /// True when binary node `n` becomes a leaf of the wide tree (given one slot).
-    fn is_leaf(&self, n: usize) -> bool {
-        self.choice[n][0] == 0
+    /// True when the node at position `p` becomes a leaf of the wide tree (given one slot).
+    fn is_leaf(&self, p: usize) -> bool {
+        self.choice[p][0] == 0
     }
 
-    /// Appends the binary nodes that take the (at most) `slots` child slots of binary node
-    /// `n` to `out`.
-    fn gather(&self, bvh2: &obvhs::bvh2::Bvh2, n: usize, slots: usize, out: &mut Vec<usize>) {
+    /// Appends the positions of the nodes that take the (at most) `slots` child slots of
+    /// the node at position `p` to `out`.
+    fn gather(&self, p: usize, slots: usize, out: &mut Vec<usize>) {
         let mut slots = slots;
-        while slots > 1 && self.choice[n][slots - 1] == 0 {
+        while slots > 1 && self.choice[p][slots - 1] == 0 {
             slots -= 1;
         }
         if slots == 1 {
-            out.push(n);
+            out.push(p);
         } else {
-            let left = self.choice[n][slots - 1] as usize;
-            let first = bvh2.nodes[n].first_index as usize;
-            self.gather(bvh2, first, left, out);
-            self.gather(bvh2, first + 1, slots - left, out);
+            let left = self.choice[p][slots - 1] as usize;
+            let first = self.listed[p].first as usize;
+            self.gather(first, left, out);
+            self.gather(first + 1, slots - left, out);
         }
     }
 }
@@ -465,31 +524,36 @@ struct Collapse<'a, F> {
 }
 
 impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
-    /// Makes the leaf of the primitives under binary node `index`.
-    fn leaf(&mut self, index: usize) -> u32 {
-        let subtrees = &self.plan.subtrees;
-        let start = subtrees.start[index] as usize;
-        let end = start + subtrees.count[index] as usize;
-        (self.make_leaf)(&subtrees.prims[start..end])
+    /// Makes the leaf of the primitives under the node at position `p`.
+    fn leaf(&mut self, p: usize) -> u32 {
+        let start = self.plan.start[p] as usize;
+        let end = start + self.plan.count[p] as usize;
+        (self.make_leaf)(&self.plan.prims[start..end])
     }
 
-    /// Fills wide node `index` from the binary inner node `bvh2_index`, at `level`.
-    fn fill(&mut self, bvh2_index: usize, index: usize, level: usize) {
+    /// The binary node at position `p`.
+    fn binary(&self, p: usize) -> &obvhs::bvh2::node::Bvh2Node {
+        &self.bvh2.nodes[self.plan.order[p] as usize]
+    }
+
+    /// Fills wide node `index` from the binary inner node at position `p`, at `level`.
+    fn fill(&mut self, p: usize, index: usize, level: usize) {
         self.depth = self.depth.max(level);
-        let nodes = &self.bvh2.nodes;
-        let first = nodes[bvh2_index].first_index as usize;
-        let left = self.plan.choice[bvh2_index][0] as usize;
+        let first = self.plan.listed[p].first as usize;
+        let left = self.plan.choice[p][0] as usize;
         let mut children = Vec::with_capacity(WIDTH);
-        self.plan.gather(self.bvh2, first, left, &mut children);
-        self.plan.gather(self.bvh2, first + 1, WIDTH - left, &mut children);
+        self.plan.gather(first, left, &mut children);
+        self.plan.gather(first + 1, WIDTH - left, &mut children);
         for (slot, &c) in children.iter().enumerate() {
             if self.plan.is_leaf(c) {
                 let reference = self.leaf(c);
-                self.nodes[index].set_child(slot, &nodes[c], LEAF | reference);
+                let child = *self.binary(c);
+                self.nodes[index].set_child(slot, &child, LEAF | reference);
             } else {
                 let inner = self.nodes.len();
                 self.nodes.push(Node::EMPTY);
-                self.nodes[index].set_child(slot, &nodes[c], inner as u32);
+                let child = *self.binary(c);
+                self.nodes[index].set_child(slot, &child, inner as u32);
                 self.fill(c, inner, level + 1);
             }
         }
