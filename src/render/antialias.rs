@@ -282,7 +282,9 @@ fn non_adaptive<I: Integrator>(s: &mut Sampler<I>, block: BlockArea, threshold: 
             let i = y * w + x;
             let current = s.trace(px, py);
             pixels[i] = current;
-            graded[i] = grade.of(current);
+            // Flat regions (a background) repeat the left neighbour's colour exactly: its
+            // grade then needs no recomputing (`graded` always grades `pixels`).
+            graded[i] = if x > 0 && current == pixels[i - 1] { graded[i - 1] } else { grade.of(current) };
             let (left_graded, left_done) = if x == 0 { (before_row, true) } else { (graded[i - 1], done[i - 1]) };
             let (top_graded, top_done) = if y == 0 { (above_graded, true) } else { (graded[i - w], done[i - w]) };
             let left_differs = graded_distance(left_graded, graded[i]) >= threshold;
