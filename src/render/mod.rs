@@ -556,12 +556,18 @@ fn render_samples<I: Integrator>(
     let mut saturated = 0;
     let mut counts = Vec::new();
     let mut squared_errors = 0.0;
+    let film_w = region.width() as usize;
     for tile in tiles {
-        let tile_w = tile.area.width();
-        for (i, p) in tile.pixels.into_iter().enumerate() {
-            let (x, y) = (tile.area.x0 + i as u32 % tile_w, tile.area.y0 + i as u32 / tile_w);
-            if region.contains(x, y) {
-                let index = (y - region.y0) as usize * region.width() as usize + (x - region.x0) as usize;
+        // The tile's part of the region, row by row (a POV-Ray block can reach past it).
+        let inside = intersect(tile.area, region);
+        let tile_w = tile.area.width() as usize;
+        for y in inside.y0..inside.y1 {
+            let tile_row = (y - tile.area.y0) as usize * tile_w;
+            let film_row = (y - region.y0) as usize * film_w;
+            for x in inside.x0..inside.x1 {
+                let i = tile_row + (x - tile.area.x0) as usize;
+                let index = film_row + (x - region.x0) as usize;
+                let p = tile.pixels[i];
                 if want_sums {
                     sums[index] = tile.sums[i];
                 }
@@ -578,8 +584,10 @@ fn render_samples<I: Integrator>(
                     counts.push(estimate.samples);
                     squared_errors += f64::from(estimate.display_error).powi(2);
                 }
-                let pixel = film.pixels[index];
-                write_aovs(&mut film, index, pixel, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
+                if !film.layers.is_empty() {
+                    let pixel = film.pixels[index];
+                    write_aovs(&mut film, index, pixel, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
+                }
             }
         }
     }
