@@ -28,13 +28,12 @@ pub fn prefetch<T>(item: *const T) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let first = item as usize & !63;
-        let last = (item as usize).wrapping_add(std::mem::size_of::<T>().max(1) - 1);
-        let mut line = first;
-        while line <= last {
+        let offset = item as usize & 63;
+        let lines = (offset + std::mem::size_of::<T>().max(1)).div_ceil(64);
+        let first = item.cast::<i8>().wrapping_sub(offset);
+        for line in 0..lines {
             // SAFETY: a prefetch never faults and changes no state a program can observe.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(line as *const i8) };
-            line += 64;
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(first.wrapping_add(64 * line)) };
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
