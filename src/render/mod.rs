@@ -584,10 +584,8 @@ fn render_samples<I: Integrator>(
                     counts.push(estimate.samples);
                     squared_errors += f64::from(estimate.display_error).powi(2);
                 }
-                if !film.layers.is_empty() {
-                    let pixel = film.pixels[index];
-                    write_aovs(&mut film, index, pixel, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
-                }
+                let pixel = film.pixels[index];
+                write_aovs(&mut film, index, pixel, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
             }
         }
     }

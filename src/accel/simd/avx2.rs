@@ -44,12 +44,7 @@ fn run_enabled<D: Dispatch>(avx2: Avx2, work: D) -> D::Output {
 impl Kernels for Avx2 {
     #[inline(always)]
     fn prefetch(self, address: *const u8, bytes: usize) {
-        let mut offset = 0;
-        while offset < bytes {
-            // SAFETY: a prefetch is a hint that never faults, whatever the address.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(address.wrapping_add(offset).cast()) };
-            offset += 64;
-        }
+        super::prefetch_bytes(address, bytes);
     }
 
     #[inline(always)]

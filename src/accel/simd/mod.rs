@@ -20,24 +20,30 @@ pub use scalar::Scalar;
 
 use super::triangle::{PacketHits, TrianglePacket, WatertightRay};
 
-/// Hints the CPU to fetch every cache line of `*item`, which is about to be read (a hint
-/// that never faults, whatever the address). Outside the kernels: the SSE prefetch is part
-/// of every x86-64; elsewhere nothing is done.
+/// Hints the CPU to fetch every cache line of `*item`, which is about to be read.
 #[inline(always)]
 pub fn prefetch<T>(item: *const T) {
+    prefetch_bytes(item.cast(), std::mem::size_of::<T>());
+}
+
+/// Hints the CPU to fetch every cache line holding a byte of `address..address + bytes`
+/// (a hint that never faults, whatever the address). The SSE prefetch is part of every
+/// x86-64, so this needs no kernel token; elsewhere nothing is done.
+#[inline(always)]
+pub fn prefetch_bytes(address: *const u8, bytes: usize) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let offset = item as usize & 63;
-        let lines = (offset + std::mem::size_of::<T>().max(1)).div_ceil(64);
-        let first = item.cast::<i8>().wrapping_sub(offset);
+        let offset = address as usize & 63;
+        let lines = (offset + bytes.max(1)).div_ceil(64);
+        let first = address.cast::<i8>().wrapping_sub(offset);
         for line in 0..lines {
             // SAFETY: a prefetch never faults and changes no state a program can observe.
             unsafe { _mm_prefetch::<_MM_HINT_T0>(first.wrapping_add(64 * line)) };
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = item;
+    let _ = (address, bytes);
 }
 
 /// Boxes tested together: the children of one wide node.
