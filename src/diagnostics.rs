@@ -236,6 +236,12 @@ impl fmt::Display for SceneError {
 
 impl std::error::Error for SceneError {}
 
+/// A number as a message shows it: in scientific notation when very large or very small
+/// (`1e300`, not three hundred digits), else as written.
+pub fn shown_number(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-6..1e9).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
+}
+
 /// The candidate closest to `wrong` by edit distance, if it is close enough to be a typo.
 pub fn nearest_name<'a>(wrong: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
     candidates
@@ -261,6 +267,16 @@ pub fn parse_unknown_field(message: &str) -> Option<(String, Vec<String>)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_are_shown_short() {
+        assert_eq!(shown_number(1e300), "1e300");
+        assert_eq!(shown_number(-2.5e-12), "-2.5e-12");
+        assert_eq!(shown_number(0.0), "0");
+        assert_eq!(shown_number(-1.5), "-1.5");
+        assert_eq!(shown_number(180.0), "180");
+        assert_eq!(shown_number(f64::NAN), "NaN");
+    }
 
     /// What a parser repeats from a file (a 10 MB string value, a long key, a terminal
     /// escape) is shortened in the message, never echoed whole.

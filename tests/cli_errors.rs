@@ -66,29 +66,29 @@ fn cases() -> Vec<Case> {
         case(
             "adaptive focal blur without a lens",
             &format!("[camera]\nblur_variance = 0.001\n{SPHERE}"),
-            &["scene.toml:1:", "camera.blur_variance", "no aperture"],
+            &["scene.toml:2:1", "camera.blur_variance", "no aperture"],
         ),
         case(
             "blur_variance out of POV-Ray's range",
             &format!("[camera]\naperture = 0.1\nblur_variance = 2\n{SPHERE}"),
-            &["scene.toml:1:", "camera.blur_variance", "between 0 and 1"],
+            &["scene.toml:3:1", "camera.blur_variance", "between 0 and 1"],
         ),
         case(
             "blur_min_samples above samples",
             &format!(
                 "[render]\nsamples = 8\n[camera]\naperture = 0.1\nblur_variance = 0.001\nblur_min_samples = 9\n{SPHERE}"
             ),
-            &["scene.toml:3:", "camera.blur_min_samples", "between 1 and [render] samples (8)"],
+            &["scene.toml:6:1", "camera.blur_min_samples", "between 1 and [render] samples (8)"],
         ),
         case(
             "adaptive focal blur beside adaptive sampling",
             &format!("[render]\nsamples = 16\nnoise = 0.01\n[camera]\naperture = 0.1\nblur_variance = 0.001\n{SPHERE}"),
-            &["scene.toml:4:", "camera.blur_variance", "use one"],
+            &["scene.toml:6:1", "camera.blur_variance", "use one"],
         ),
         case(
             "blur_confidence without blur_variance",
             &format!("[camera]\naperture = 0.1\nblur_confidence = 0.5\n{SPHERE}"),
-            &["scene.toml:1:", "camera.blur_confidence", "without blur_variance"],
+            &["scene.toml:3:1", "camera.blur_confidence", "without blur_variance"],
         ),
         case(
             "pigment with an empty color_map",
@@ -353,7 +353,27 @@ fn cases() -> Vec<Case> {
         case(
             "camera looks at itself",
             "[camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, 0]\n",
-            &["scene.toml:", "look_at is the camera position"],
+            &["scene.toml:3:1", "camera.look_at", "look_at is the camera position"],
+        ),
+        case(
+            "spot aimed at its own position",
+            "[[light]]\nkind = \"spot\"\nposition = [0, 1, 0]\npoint_at = [0, 1, 0]\n",
+            &["scene.toml:4:1", "light[0].point_at", "no direction"],
+        ),
+        case(
+            "negative light under path",
+            &format!("[render]\nintegrator = \"path\"\n{SPHERE}\n[[light]]\nposition = [0, 5, 0]\nintensity = -2\n"),
+            &["light[0].intensity", "cannot be negative", "classic"],
+        ),
+        case(
+            "negative light colour under path",
+            &format!("[render]\nintegrator = \"path\"\n{SPHERE}\n[[light]]\ncolor = [1, -1, 1]\n"),
+            &["light[0].color", "cannot be negative"],
+        ),
+        case(
+            "enormous light intensity",
+            "[[light]]\nintensity = 1e300\n",
+            &["scene.toml:2:1", "light[0].intensity", "got 1e300"],
         ),
         case(
             "unknown light kind",
@@ -722,7 +742,7 @@ fn adaptive_blur_keys_bend_to_command_line_overrides() {
     };
     let (ok, stderr) = run(&["--integrator", "path"]);
     assert!(
-        ok && stderr.contains("scene.toml:5:2: warning in `camera.blur_variance`: blur_variance is ignored"),
+        ok && stderr.contains("scene.toml:7:1: warning in `camera.blur_variance`: blur_variance is ignored"),
         "{stderr}"
     );
     let (ok, stderr) = run(&[]);
@@ -747,6 +767,26 @@ fn a_path_traced_scene_without_light_renders_black_with_a_warning() {
         let stderr = String::from_utf8_lossy(&run.stderr);
         assert!(run.status.success() && !stderr.contains("no light"), "{stderr}");
     }
+}
+
+/// POV-Ray's negative lights subtract light under classic; under path, where the scene's
+/// own setting or `--integrator` puts it, such a light is an error naming its key.
+#[test]
+fn a_negative_light_renders_under_classic_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[render]\nwidth = 8\nheight = 6\n[[object]]\nshape = \"sphere\"\n\n[[light]]\nposition = [0, 5, -5]\n\
+                 \n[[light]]\nposition = [0, 5, -5]\nintensity = -0.5\n";
+    std::fs::write(dir.path().join("minus.toml"), scene).unwrap();
+    let run = prism().current_dir(dir.path()).args(["render", "minus.toml", "-o", "classic.png"]).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let run = prism()
+        .current_dir(dir.path())
+        .args(["render", "minus.toml", "--integrator", "path", "-o", "path.png"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success() && !dir.path().join("path.png").exists(), "{stderr}");
+    assert!(stderr.contains("minus.toml:12:1: error in `light[1].intensity`"), "{stderr}");
 }
 
 #[test]

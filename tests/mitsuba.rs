@@ -306,6 +306,18 @@ fn adaptive_focal_blur_is_refused_naming_the_key() {
     export_case(dir.path(), scene, "blur_variance", Some("camera.blur_variance"));
 }
 
+/// POV-Ray's negative lights (which `classic` renders) have no Mitsuba emitter: the export
+/// is an error at the key that makes the light negative, and nothing is written.
+#[test]
+fn negative_lights_are_refused_naming_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = "[[object]]\nshape = \"sphere\"\n";
+    let scene = format!("{sphere}[[light]]\nposition = [0, 5, 0]\n\n[[light]]\nposition = [0, 5, 0]\nintensity = -1\n");
+    export_case(dir.path(), &scene, "negative intensity", Some("s.toml:8:1: error in `light[1].intensity`"));
+    let scene = format!("{sphere}[[light]]\nposition = [0, 5, 0]\ncolor = [1, -0.5, 1]\n");
+    export_case(dir.path(), &scene, "negative colour", Some("s.toml:5:1: error in `light[0].color`"));
+}
+
 /// A glTF metallic-roughness material (here a scene's `pbr` table, as glTF files give it) is
 /// exported as the `gltf_metallic_roughness` plugin of scripts/mitsuba_gltf_bsdf.py with its
 /// factors and bitmaps (the base colour decoded from sRGB, the metallic-roughness texture

@@ -411,6 +411,7 @@ pub(crate) fn check_finite(
         return Err((key, format!("must be finite, got {v}")));
     }
     if let Some((key, v)) = numbers.iter().find(|(_, v)| v.abs() > MAX_COEFFICIENT) {
+        let v = crate::diagnostics::shown_number(*v);
         return Err((key, format!("must lie within ±{MAX_COEFFICIENT:e} (products would overflow), got {v}")));
     }
     Ok(())

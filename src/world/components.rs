@@ -21,6 +21,24 @@ pub struct Name(pub String);
 #[derive(Clone, Debug, PartialEq)]
 pub struct Origin(pub Location);
 
+/// Where each key of an entity's own table was written, so that a diagnostic found after
+/// loading points at the key's line rather than at the table's header.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct KeyLocations(pub std::collections::HashMap<String, Location>);
+
+impl KeyLocations {
+    /// The location of `key` (a path such as `point_at` or `texture.scale`, located by its
+    /// first part), or `origin`'s child `key` when the table did not write it.
+    pub fn locate(&self, origin: &Location, key: &str) -> Location {
+        let (top, rest) = key.split_once('.').map_or((key, None), |(top, rest)| (top, Some(rest)));
+        match (self.0.get(top), rest) {
+            (Some(at), None) => at.clone(),
+            (Some(at), Some(rest)) => at.child(rest),
+            (None, _) => origin.child(key),
+        }
+    }
+}
+
 /// The parent whose world transform applies before this entity's own.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Parent(pub hecs::Entity);

@@ -20,7 +20,7 @@ pub struct Scene {
     /// Where `[render]` was written (for diagnostics about it).
     pub render_origin: Location,
     /// Where each top-level `[render]` key was written (the last file that set it).
-    pub render_keys: std::collections::HashMap<String, Location>,
+    pub render_keys: components::KeyLocations,
     /// `[world]` settings.
     pub environment: Environment,
     /// The camera entity.
@@ -34,12 +34,7 @@ impl Scene {
     /// Where `[render]` key `key` (a path such as `antialias.threshold`) was written: at its
     /// own line where the scene sets it, else at `[render]`.
     pub fn render_key(&self, key: &str) -> Location {
-        let (top, rest) = key.split_once('.').map_or((key, None), |(top, rest)| (top, Some(rest)));
-        match (self.render_keys.get(top), rest) {
-            (Some(at), None) => at.clone(),
-            (Some(at), Some(rest)) => at.child(rest),
-            (None, _) => self.render_origin.child(key),
-        }
+        self.render_keys.locate(&self.render_origin, key)
     }
 
     /// The camera.

@@ -5,10 +5,10 @@ use glam::DVec3;
 
 use super::Scene;
 use super::components::{
-    Antialias, Camera, ImportedCamera, IntegratorKind, Light, LightKind, MaterialComponent, Origin, PhotometricLight,
-    PixelFilter, Projection, RenderSettings, WorldTransform,
+    Antialias, Camera, ImportedCamera, IntegratorKind, KeyLocations, Light, LightKind, MaterialComponent, Origin,
+    PhotometricLight, PixelFilter, Projection, RenderSettings, WorldTransform,
 };
-use crate::diagnostics::{Diagnostic, Location, SceneError};
+use crate::diagnostics::{Diagnostic, Location, SceneError, shown_number};
 use crate::gamma::AssumedGamma;
 
 /// Largest accepted image side, and pixel count (a 64k x 64k float image is 48 GiB).
@@ -44,10 +44,7 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
     if scene.render.integrator == IntegratorKind::Path
         && let Some((first, _)) = blur_keys.iter().find(|(_, set)| *set)
     {
-        let location = match scene.world.get::<&Origin>(scene.camera) {
-            Ok(origin) => origin.0.child(first),
-            Err(_) => scene.render_origin.clone(),
-        };
+        let location = EntityKeys::of(scene, scene.camera, || scene.render_origin.clone()).child(first);
         out.push(
             Diagnostic::warning(
                 location,
@@ -115,6 +112,26 @@ fn has_light(scene: &Scene) -> bool {
         || scene.world.query::<&MaterialComponent>().iter().any(|m| m.material.emission.can_emit())
 }
 
+/// Where an entity and each of its keys were written.
+struct EntityKeys {
+    origin: Location,
+    keys: KeyLocations,
+}
+
+impl EntityKeys {
+    /// The locations of `entity` (its table, else `fallback()`) and of its keys.
+    fn of(scene: &Scene, entity: hecs::Entity, fallback: impl FnOnce() -> Location) -> Self {
+        let origin = scene.world.get::<&Origin>(entity).map(|o| o.0.clone()).unwrap_or_else(|_| fallback());
+        let keys = scene.world.get::<&KeyLocations>(entity).map(|k| (*k).clone()).unwrap_or_default();
+        Self { origin, keys }
+    }
+
+    /// Where `key` was written: at its own line, or at the entity's table when it was not.
+    fn child(&self, key: &str) -> Location {
+        self.keys.locate(&self.origin, key)
+    }
+}
+
 /// Checks the scene; `Ok` means it can be extracted and rendered.
 pub fn validate(scene: &Scene) -> Result<(), SceneError> {
     let mut out = Vec::new();
@@ -138,8 +155,9 @@ pub fn validate(scene: &Scene) -> Result<(), SceneError> {
             );
         }
     }
-    for (light, origin) in scene.world.query::<(&Light, &Origin)>().iter() {
-        check_light(light, &origin.0, &mut out);
+    for (entity, light) in scene.world.query::<(hecs::Entity, &Light)>().iter() {
+        let origin = EntityKeys::of(scene, entity, || scene.render_origin.child("light"));
+        check_light(light, &origin, scene.render.integrator, &mut out);
     }
     if out.is_empty() {
         Ok(())
@@ -196,7 +214,10 @@ fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
         out.push(Diagnostic::new(at("rr_depth"), "rr_depth must be at least 1, got 0".to_string()));
     }
     if !(r.adc_bailout.is_finite() && (0.0..1.0).contains(&r.adc_bailout)) {
-        out.push(Diagnostic::new(at("adc_bailout"), format!("adc_bailout must be in [0, 1), got {}", r.adc_bailout)));
+        out.push(Diagnostic::new(
+            at("adc_bailout"),
+            format!("adc_bailout must be in [0, 1), got {}", shown_number(r.adc_bailout)),
+        ));
     }
     if !r.assumed_gamma.is_valid() {
         out.push(Diagnostic::new(
@@ -257,11 +278,7 @@ fn check_filter(r: &RenderSettings, at: &impl Fn(&str) -> Location, out: &mut Ve
 
 fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
     let camera = scene.camera();
-    let origin = scene
-        .world
-        .get::<&Origin>(scene.camera)
-        .map(|o| o.0.clone())
-        .unwrap_or_else(|_| Location::file_only("", "camera"));
+    let origin = EntityKeys::of(scene, scene.camera, || Location::file_only("", "camera"));
     let position = DVec3::from_array(camera.position);
     let look_at = DVec3::from_array(camera.look_at);
     let up = DVec3::from_array(camera.up);
@@ -283,7 +300,7 @@ fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
     if !(camera.vfov.is_finite() && camera.vfov > 0.0 && camera.vfov < 180.0) {
         out.push(Diagnostic::new(
             origin.child("vfov"),
-            format!("vfov must be greater than 0 and less than 180 degrees, got {}", camera.vfov),
+            format!("vfov must be greater than 0 and less than 180 degrees, got {}", shown_number(camera.vfov)),
         ));
     }
     if let Some(a) = camera.aspect
@@ -332,7 +349,7 @@ use crate::limits::{MAX_COEFFICIENT, MAX_COLOR_COMPONENT};
 
 /// POV-Ray's adaptive focal blur keys: in range, and only where they apply (a lens, the
 /// classic integrator, `blur_variance` for the other two, not beside `noise`).
-fn check_adaptive_blur(camera: &Camera, render: &RenderSettings, origin: &Location, out: &mut Vec<Diagnostic>) {
+fn check_adaptive_blur(camera: &Camera, render: &RenderSettings, origin: &EntityKeys, out: &mut Vec<Diagnostic>) {
     let set: Vec<&str> = [
         ("blur_variance", camera.blur_variance.is_some()),
         ("blur_confidence", camera.blur_confidence.is_some()),
@@ -347,7 +364,7 @@ fn check_adaptive_blur(camera: &Camera, render: &RenderSettings, origin: &Locati
     {
         out.push(Diagnostic::new(
             origin.child("blur_variance"),
-            format!("blur_variance must be between 0 and 1 (POV-Ray's range), got {v}"),
+            format!("blur_variance must be between 0 and 1 (POV-Ray's range), got {}", shown_number(v)),
         ));
     }
     if let Some(c) = camera.blur_confidence
@@ -402,7 +419,7 @@ fn check_adaptive_blur(camera: &Camera, render: &RenderSettings, origin: &Locati
     }
 }
 
-fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
+fn check_light(light: &Light, origin: &EntityKeys, integrator: IntegratorKind, out: &mut Vec<Diagnostic>) {
     let vectors =
         [("position", light.position), ("point_at", light.point_at), ("axis1", light.axis1), ("axis2", light.axis2)];
     for (key, v) in vectors {
@@ -424,7 +441,10 @@ fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
         } else if v.abs() > MAX_COEFFICIENT {
             out.push(Diagnostic::new(
                 origin.child(key),
-                format!("`{key}` must lie within ±{MAX_COEFFICIENT:e} (products would overflow), got {v}"),
+                format!(
+                    "`{key}` must lie within ±{MAX_COEFFICIENT:e} (products would overflow), got {}",
+                    shown_number(v)
+                ),
             ));
         }
     }
@@ -435,6 +455,21 @@ fn check_light(light: &Light, origin: &Location, out: &mut Vec<Diagnostic>) {
             origin.child("color"),
             format!("`color` components must lie within ±{MAX_COLOR_COMPONENT:e} (products would overflow)"),
         ));
+    }
+    let power = light.color.0 * light.intensity;
+    if integrator == IntegratorKind::Path && power.is_finite() && power.min_element() < 0.0 {
+        // POV-Ray's negative lights subtract light; a physical emitter cannot.
+        out.push(
+            Diagnostic::new(
+                origin.child(if light.intensity < 0.0 { "intensity" } else { "color" }),
+                format!(
+                    "the path integrator reads `color * intensity` as emitted power, which cannot be negative; \
+                     got {:?}",
+                    power.to_array()
+                ),
+            )
+            .with_help("a negative light subtracts light only under the classic integrator, as in POV-Ray"),
+        );
     }
     let position = DVec3::from_array(light.position);
     let point_at = DVec3::from_array(light.point_at);

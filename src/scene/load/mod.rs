@@ -28,8 +28,8 @@ use crate::material::MaterialSpec;
 use crate::registry::ShapeRegistry;
 use crate::world::Scene;
 use crate::world::components::{
-    Camera, Environment, ImportedCamera, Light, LightKind, MaterialComponent, Name, ObjectFlags, Origin, Parent,
-    RenderSettings, ShapeComponent, Transform,
+    Camera, Environment, ImportedCamera, KeyLocations, Light, LightKind, MaterialComponent, Name, ObjectFlags, Origin,
+    Parent, RenderSettings, ShapeComponent, Transform,
 };
 use crate::world::transforms::world_from_local;
 
@@ -193,7 +193,7 @@ struct Loader<'a> {
     /// The material of objects that name none (one, shared).
     default_material: MaterialComponent,
     objects: Vec<ObjectDef>,
-    lights: Vec<(Light, Location)>,
+    lights: Vec<(Light, Location, KeyLocations)>,
     /// Imported mesh files and decoded textures, shared by every object that uses them.
     meshes: MeshStore,
     /// Decoded `image_map` and `bump_map` PNGs by canonical path and whether read raw (a bump
@@ -348,9 +348,11 @@ impl Loader<'_> {
         if let Some(value) = table.get("light") {
             for (i, t) in self.array_of_tables(index, "light", value) {
                 let key = format!("light[{i}]");
+                let file = &self.files[index];
+                let keys = KeyLocations(t.keys().map(|k| (k.clone(), file.locate(&format!("{key}.{k}")))).collect());
                 if let Some(light) = self.light(index, &key, t) {
                     let location = self.files[index].locate(&key);
-                    self.lights.push((light, location));
+                    self.lights.push((light, location, keys));
                 }
             }
         }
@@ -444,6 +446,18 @@ impl Loader<'_> {
         out
     }
 
+    /// Where each top-level key of the merged table `section` (`[name]`) was written: in the
+    /// last file that set it.
+    fn section_keys(&self, section: &Section, name: &str) -> KeyLocations {
+        KeyLocations(
+            section
+                .origin
+                .iter()
+                .map(|(key, &file)| (key.clone(), self.files[file].locate(&format!("{name}.{key}"))))
+                .collect(),
+        )
+    }
+
     fn section<T: DeserializeOwned + Default>(&mut self, which: usize, name: &str) -> Option<T> {
         let section = match which {
             0 => &self.render,
@@ -501,8 +515,8 @@ impl Loader<'_> {
             }
         }
         let lights = std::mem::take(&mut self.lights);
-        for (i, (light, location)) in lights.into_iter().enumerate() {
-            world.spawn((light, Origin(location), Name(format!("light{i}"))));
+        for (i, (light, location, keys)) in lights.into_iter().enumerate() {
+            world.spawn((light, Origin(location), keys, Name(format!("light{i}"))));
         }
         self.check_camera_keys();
 
@@ -521,19 +535,15 @@ impl Loader<'_> {
                     Some(&file) => self.files[file].locate("camera"),
                     None => Location::file_only(self.files[0].name.clone(), "camera"),
                 };
-                world.spawn((camera, Name("camera".into()), Origin(camera_origin)))
+                let keys = self.section_keys(&self.camera, "camera");
+                world.spawn((camera, Name("camera".into()), Origin(camera_origin), keys))
             }
         };
         let render_origin = match self.render.origin.get("width").or_else(|| self.render.origin.values().next()) {
             Some(&file) => self.files[file].locate("render"),
             None => Location::file_only(self.files[0].name.clone(), "render"),
         };
-        let render_keys = self
-            .render
-            .origin
-            .iter()
-            .map(|(key, &file)| (key.clone(), self.files[file].locate(&format!("render.{key}"))))
-            .collect();
+        let render_keys = self.section_keys(&self.render, "render");
         let mut warnings = std::mem::take(&mut self.warnings);
         self.sort_in_file_order(&mut warnings);
         let environment = environment.expect("no diagnostics");
@@ -551,8 +561,10 @@ impl Loader<'_> {
             }
         }
         if map.intensity < 0.0 {
-            self.diagnostics
-                .push(Diagnostic::new(at("intensity"), format!("must not be negative, got {}", map.intensity)));
+            self.diagnostics.push(Diagnostic::new(
+                at("intensity"),
+                format!("must not be negative, got {}", crate::diagnostics::shown_number(map.intensity)),
+            ));
             return;
         }
         let path = match self.access.join(&self.directory(index), &map.file) {
