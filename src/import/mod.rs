@@ -192,7 +192,7 @@ pub enum ImportErrorKind {
     #[error("{}", obj::describe(.0))]
     Obj(#[source] tobj::LoadError),
     /// The gltf crate rejects the file.
-    #[error("invalid glTF: {0}")]
+    #[error("{}", invalid_gltf(.0))]
     Gltf(#[source] ::gltf::Error),
     /// A glTF buffer cannot be loaded.
     #[error("cannot load buffers: {0}")]
@@ -241,6 +241,13 @@ pub enum ImportErrorKind {
     /// A mesh or image would exceed the memory budget the load's meshes and images share.
     #[error("{0}")]
     OverBudget(#[from] crate::limits::OverBudget),
+}
+
+/// The gltf crate's message for a file it rejects, said once as invalid glTF (its own
+/// validation messages already begin so).
+fn invalid_gltf(error: &::gltf::Error) -> String {
+    let message = error.to_string();
+    if message.starts_with("invalid glTF") { message } else { format!("invalid glTF: {message}") }
 }
 
 /// Imports `path` by its extension (`.obj`, `.gltf`, `.glb`, `.ply`, `.ply.gz`).
