@@ -54,7 +54,7 @@ pub const UNBUDGETED_SCENE_BYTES: u64 = 1 << 20;
 
 /// An estimate over the memory budget.
 #[derive(Debug, Clone, thiserror::Error, PartialEq, Eq)]
-#[error("{what} needs about {} MiB{}, over the memory budget of {} MiB (--max-memory)", mib(*.estimate), spent_before(*.spent), mib(*.budget))]
+#[error("{what} needs about {}{}, over the memory budget of {} (--max-memory)", size(*.estimate), spent_before(*.spent), size(*.budget))]
 pub struct OverBudget {
     /// What would be allocated (`a 16384 x 16384 film`, `texture `wood.png``).
     pub what: String,
@@ -71,12 +71,22 @@ fn spent_before(spent: u64) -> String {
     if spent == 0 {
         String::new()
     } else {
-        format!(" on top of {} MiB for the meshes and images loaded before it", mib(spent))
+        format!(" on top of {} for the meshes and images loaded before it", size(spent))
     }
 }
 
-fn mib(bytes: u64) -> u64 {
-    bytes.div_ceil(1 << 20)
+/// A size in bytes as a message shows it: whole MiB from 1 MiB up (rounded up, as the
+/// estimates are), else KiB or bytes, so that a tiny budget does not read as 1 MiB.
+fn size(bytes: u64) -> String {
+    if bytes >= 1 << 20 {
+        format!("{} MiB", bytes.div_ceil(1 << 20))
+    } else if bytes >= 1 << 10 {
+        format!("{} KiB", bytes.div_ceil(1 << 10))
+    } else if bytes == 1 {
+        "1 byte".into()
+    } else {
+        format!("{bytes} bytes")
+    }
 }
 
 /// A memory budget in bytes.
@@ -170,5 +180,7 @@ mod tests {
             "a 16384 x 16383 film needs about 3072 MiB, over the memory budget of 1 MiB (--max-memory)"
         );
         assert!(MemoryBudget::UNLIMITED.check(String::new, u64::MAX).is_ok());
+        let e = MemoryBudget(1).check(|| "a 64 x 48 film".into(), 80_000).unwrap_err();
+        assert_eq!(e.to_string(), "a 64 x 48 film needs about 79 KiB, over the memory budget of 1 byte (--max-memory)");
     }
 }
