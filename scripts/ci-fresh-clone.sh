@@ -3,8 +3,7 @@
 # into a temporary folder with nothing beside it (no ../shared), runs the README's render
 # command there, fetches the large assets from the registries (no local cache: the clone has
 # none beside it), and renders every scene under scenes/ at 64x36 with one sample, under
-# each integrator. A scene
-# that needs a file outside the repository fails here.
+# each integrator. A scene that needs a file outside the repository fails here.
 #
 # The clone builds in its own folder; CARGO_TARGET_DIR, when set, is reused so that the
 # dependencies compiled by the earlier CI steps are not compiled again (the clone's own crates
