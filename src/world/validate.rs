@@ -84,20 +84,6 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
             .with_help("add a [[light]], a material with `emission`, or a [world] background or environment"),
         );
     }
-    let tilted = |m: &MaterialComponent| match &m.material.surface {
-        crate::material::SurfaceModel::Finish(f) => f.normal.is_some(),
-        crate::material::SurfaceModel::Layered(layers) => layers.iter().any(|l| l.finish.normal.is_some()),
-        _ => false,
-    };
-    if scene.render.integrator == IntegratorKind::Path && scene.world.query::<&MaterialComponent>().iter().any(tilted) {
-        out.push(
-            Diagnostic::warning(
-                scene.render_key("integrator"),
-                "the path integrator ignores normal patterns (`material.normal`): surfaces render smooth",
-            )
-            .with_help("render with the classic integrator to see them"),
-        );
-    }
     out
 }
 

@@ -16,6 +16,8 @@ use prism_api::Ray;
 
 use super::{FirstHit, Integrator, PixelSample};
 use crate::accel::scene_bvh::ClosestHit;
+use crate::geometry::mesh::shading_normal_for_view;
+use crate::material::normal::NormalField;
 use crate::render::bsdf::Frame;
 use crate::render::extract::RenderScene;
 use crate::render::sampling::SampleStream;
@@ -171,7 +173,7 @@ impl<'a> Path<'a> {
                 }
                 break;
             };
-            let vertex = self.vertex(&ray, &closest);
+            let mut vertex = self.vertex(&ray, &closest);
             let emitted = self.emitted(&vertex, -direction);
             if emitted.max_element() > 0.0 {
                 let weight = if previous_delta {
@@ -188,6 +190,9 @@ impl<'a> Path<'a> {
                 break;
             }
             let material = &self.materials[vertex.material as usize];
+            if let Some(field) = material.normal_pattern() {
+                vertex.shading_normal = self.tilted_normal(&vertex, field, direction);
+            }
             let shaded = material.shade(&SurfacePoint { uv: vertex.uv, object_point: vertex.object_point });
             let scatter = &shaded.scatter;
             if depth == 1 {
@@ -320,6 +325,25 @@ impl<'a> Path<'a> {
                 f * radiance * (weight / pdf)
             }
         }
+    }
+
+    /// The shading normal tilted by a normal pattern, as `classic` tilts it (POV-Ray's
+    /// `Perturb_Normal`, on the normal facing the ray, in the object's space), then bent where
+    /// it would mirror the view below the surface (the shading-normal terminator fix meshes
+    /// use), and returned on the geometric normal's side like every vertex's shading normal.
+    fn tilted_normal(&self, vertex: &Vertex, field: &NormalField, direction: DVec3) -> DVec3 {
+        let primitive = &self.scene.primitives[vertex.primitive as usize];
+        let front = vertex.shading_normal.dot(direction) <= 0.0;
+        let facing = if front { vertex.shading_normal } else { -vertex.shading_normal };
+        // The covector carries the unit world normal into object space as POV-Ray does (its
+        // length matters under `no_bump_scale`; otherwise the pattern normalises it).
+        let object_tilted = field.perturb(vertex.object_point, primitive.object_covector(facing));
+        let tilted = primitive.world_normal(object_tilted).normalize_or_zero();
+        if !tilted.is_finite() || tilted == DVec3::ZERO {
+            return vertex.shading_normal;
+        }
+        let on_front_side = if front { tilted } else { -tilted };
+        shading_normal_for_view(on_front_side, vertex.geometric_normal, direction)
     }
 
     fn first_hit(&self, vertex: &Vertex, toward_viewer: DVec3) -> FirstHit {

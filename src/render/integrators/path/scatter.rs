@@ -24,6 +24,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::color::Rgb;
+use crate::material::normal::NormalField;
 use crate::material::{AlphaMode, Finish, Layer, Material, MetallicRoughness, Mtl, Physical, Scattering, SurfaceModel};
 use crate::render::bsdf::{Bsdf, BsdfSample};
 
@@ -247,6 +248,16 @@ impl PathMaterial {
             path_material.uniform_emission = Some(path_material.emitted(&anywhere));
         }
         path_material
+    }
+
+    /// The normal pattern that tilts the shading normal, when the material has one (a
+    /// layered texture's top layer's).
+    pub fn normal_pattern(&self) -> Option<&NormalField> {
+        match &self.material.surface {
+            SurfaceModel::Finish(f) => f.normal.as_deref(),
+            SurfaceModel::Layered(layers) => layers.last()?.finish.normal.as_deref(),
+            _ => None,
+        }
     }
 
     /// True when shading reads the surface's uv (an image drives some parameter).
