@@ -41,8 +41,8 @@ use crate::render::integrators::path::scatter::{Lobe, PathMaterial, SurfacePoint
 use crate::render::lights::{LightSource, RenderLight};
 use crate::world::Scene;
 use crate::world::components::{
-    Antialias, KeyLocations, Light, MaterialComponent, Origin, PhotometricLight, PixelFilter, Projection,
-    ShapeComponent, WorldTransform,
+    Antialias, Light, MaterialComponent, Origin, PhotometricLight, PixelFilter, Projection, ShapeComponent,
+    WorldTransform,
 };
 
 /// A Mitsuba scene: the XML and the mesh files it refers to.
@@ -239,24 +239,21 @@ fn rfilter(filter: PixelFilter) -> String {
 }
 
 fn lights(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
-    let mut entries: Vec<(hecs::Entity, RenderLight, Option<Origin>)> = Vec::new();
-    for (e, l, o, keys) in scene.world.query::<(hecs::Entity, &Light, Option<&Origin>, Option<&KeyLocations>)>().iter()
-    {
-        if (l.color.0 * l.intensity).min_element() < 0.0 {
-            let origin = o.map_or_else(|| scene.render_origin.clone(), |o| o.0.clone());
-            let key = if l.intensity < 0.0 { "intensity" } else { "color" };
-            let at = keys.map_or_else(|| origin.child(key), |k| k.locate(&origin, key));
+    let mut entries: Vec<(hecs::Entity, RenderLight)> = Vec::new();
+    for (e, l) in scene.world.query::<(hecs::Entity, &Light)>().iter() {
+        if let Some(key) = l.negative_key() {
+            let at = scene.entity_keys(e, || scene.render_origin.clone()).child(key);
             errors.push(Diagnostic::new(at, "Mitsuba's emitters cannot be negative (a negative light is POV-Ray's)"));
             continue;
         }
-        entries.push((e, RenderLight::from_scene(l), o.cloned()));
+        entries.push((e, RenderLight::from_scene(l)));
     }
-    for (e, l, o) in scene.world.query::<(hecs::Entity, &PhotometricLight, Option<&Origin>)>().iter() {
-        entries.push((e, RenderLight::from_photometric(l), o.cloned()));
+    for (e, l) in scene.world.query::<(hecs::Entity, &PhotometricLight)>().iter() {
+        entries.push((e, RenderLight::from_photometric(l)));
     }
-    entries.sort_by_key(|(e, ..)| e.id());
-    for (_, light, origin) in entries {
-        let at = |key: &str| origin.as_ref().map_or_else(|| scene.render_origin.clone(), |o| o.0.child(key));
+    entries.sort_by_key(|(e, _)| e.id());
+    for (entity, light) in entries {
+        let at = |key: &str| scene.entity_keys(entity, || scene.render_origin.clone()).child(key);
         match &light.source {
             LightSource::Point(l) => point(xml, l.position, l.intensity),
             LightSource::Spot(l) => {

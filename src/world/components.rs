@@ -280,6 +280,16 @@ pub struct Light {
     pub area_illumination: bool,
 }
 
+impl Light {
+    /// The key that makes `color * intensity` negative in some channel (POV-Ray's negative
+    /// light, which takes light away): `intensity` when it is negative, else `color`; `None`
+    /// for a light that emits.
+    pub fn negative_key(&self) -> Option<&'static str> {
+        let power = self.color.0 * self.intensity;
+        (power.min_element() < 0.0).then_some(if self.intensity < 0.0 { "intensity" } else { "color" })
+    }
+}
+
 impl Default for Light {
     fn default() -> Self {
         Self {

@@ -37,8 +37,31 @@ impl Scene {
         self.render_keys.locate(&self.render_origin, key)
     }
 
+    /// Where `entity` and each of its keys were written (its table, else `fallback()`), for
+    /// diagnostics about it.
+    pub fn entity_keys(&self, entity: hecs::Entity, fallback: impl FnOnce() -> Location) -> EntityKeys<'_> {
+        let origin = self.world.get::<&components::Origin>(entity).map(|o| o.0.clone()).unwrap_or_else(|_| fallback());
+        EntityKeys { origin, keys: self.world.get::<&components::KeyLocations>(entity).ok() }
+    }
+
     /// The camera.
     pub fn camera(&self) -> components::Camera {
         self.world.get::<&components::Camera>(self.camera).map(|c| (*c).clone()).unwrap_or_default()
+    }
+}
+
+/// Where an entity and each of its keys were written ([`Scene::entity_keys`]).
+pub struct EntityKeys<'a> {
+    origin: Location,
+    keys: Option<hecs::Ref<'a, components::KeyLocations>>,
+}
+
+impl EntityKeys<'_> {
+    /// Where `key` was written: at its own line, or at the entity's table when it was not.
+    pub fn child(&self, key: &str) -> Location {
+        match &self.keys {
+            Some(keys) => keys.locate(&self.origin, key),
+            None => self.origin.child(key),
+        }
     }
 }

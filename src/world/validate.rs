@@ -3,11 +3,11 @@
 
 use glam::DVec3;
 
-use super::Scene;
 use super::components::{
-    Antialias, Camera, ImportedCamera, IntegratorKind, KeyLocations, Light, LightKind, MaterialComponent, Origin,
-    PhotometricLight, PixelFilter, Projection, RenderSettings, WorldTransform,
+    Antialias, Camera, ImportedCamera, IntegratorKind, Light, LightKind, MaterialComponent, Origin, PhotometricLight,
+    PixelFilter, Projection, RenderSettings, WorldTransform,
 };
+use super::{EntityKeys, Scene};
 use crate::diagnostics::{Diagnostic, Location, SceneError, shown_number};
 use crate::gamma::AssumedGamma;
 
@@ -44,7 +44,7 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
     if scene.render.integrator == IntegratorKind::Path
         && let Some((first, _)) = blur_keys.iter().find(|(_, set)| *set)
     {
-        let location = EntityKeys::of(scene, scene.camera, || scene.render_origin.clone()).child(first);
+        let location = scene.entity_keys(scene.camera, || scene.render_origin.clone()).child(first);
         out.push(
             Diagnostic::warning(
                 location,
@@ -98,26 +98,6 @@ fn has_light(scene: &Scene) -> bool {
         || scene.world.query::<&MaterialComponent>().iter().any(|m| m.material.emission.can_emit())
 }
 
-/// Where an entity and each of its keys were written.
-struct EntityKeys {
-    origin: Location,
-    keys: KeyLocations,
-}
-
-impl EntityKeys {
-    /// The locations of `entity` (its table, else `fallback()`) and of its keys.
-    fn of(scene: &Scene, entity: hecs::Entity, fallback: impl FnOnce() -> Location) -> Self {
-        let origin = scene.world.get::<&Origin>(entity).map(|o| o.0.clone()).unwrap_or_else(|_| fallback());
-        let keys = scene.world.get::<&KeyLocations>(entity).map(|k| (*k).clone()).unwrap_or_default();
-        Self { origin, keys }
-    }
-
-    /// Where `key` was written: at its own line, or at the entity's table when it was not.
-    fn child(&self, key: &str) -> Location {
-        self.keys.locate(&self.origin, key)
-    }
-}
-
 /// Checks the scene; `Ok` means it can be extracted and rendered.
 pub fn validate(scene: &Scene) -> Result<(), SceneError> {
     let mut out = Vec::new();
@@ -142,7 +122,7 @@ pub fn validate(scene: &Scene) -> Result<(), SceneError> {
         }
     }
     for (entity, light) in scene.world.query::<(hecs::Entity, &Light)>().iter() {
-        let origin = EntityKeys::of(scene, entity, || scene.render_origin.child("light"));
+        let origin = scene.entity_keys(entity, || scene.render_origin.child("light"));
         check_light(light, &origin, scene.render.integrator, &mut out);
     }
     if out.is_empty() {
@@ -264,7 +244,7 @@ fn check_filter(r: &RenderSettings, at: &impl Fn(&str) -> Location, out: &mut Ve
 
 fn check_camera(scene: &Scene, out: &mut Vec<Diagnostic>) {
     let camera = scene.camera();
-    let origin = EntityKeys::of(scene, scene.camera, || Location::file_only("", "camera"));
+    let origin = scene.entity_keys(scene.camera, || Location::file_only("", "camera"));
     let position = DVec3::from_array(camera.position);
     let look_at = DVec3::from_array(camera.look_at);
     let up = DVec3::from_array(camera.up);
@@ -335,7 +315,7 @@ use crate::limits::{MAX_COEFFICIENT, MAX_COLOR_COMPONENT};
 
 /// POV-Ray's adaptive focal blur keys: in range, and only where they apply (a lens, the
 /// classic integrator, `blur_variance` for the other two, not beside `noise`).
-fn check_adaptive_blur(camera: &Camera, render: &RenderSettings, origin: &EntityKeys, out: &mut Vec<Diagnostic>) {
+fn check_adaptive_blur(camera: &Camera, render: &RenderSettings, origin: &EntityKeys<'_>, out: &mut Vec<Diagnostic>) {
     let set: Vec<&str> = [
         ("blur_variance", camera.blur_variance.is_some()),
         ("blur_confidence", camera.blur_confidence.is_some()),
@@ -405,7 +385,7 @@ fn check_adaptive_blur(camera: &Camera, render: &RenderSettings, origin: &Entity
     }
 }
 
-fn check_light(light: &Light, origin: &EntityKeys, integrator: IntegratorKind, out: &mut Vec<Diagnostic>) {
+fn check_light(light: &Light, origin: &EntityKeys<'_>, integrator: IntegratorKind, out: &mut Vec<Diagnostic>) {
     let vectors =
         [("position", light.position), ("point_at", light.point_at), ("axis1", light.axis1), ("axis2", light.axis2)];
     for (key, v) in vectors {
@@ -443,11 +423,14 @@ fn check_light(light: &Light, origin: &EntityKeys, integrator: IntegratorKind, o
         ));
     }
     let power = light.color.0 * light.intensity;
-    if integrator == IntegratorKind::Path && power.is_finite() && power.min_element() < 0.0 {
+    if integrator == IntegratorKind::Path
+        && power.is_finite()
+        && let Some(key) = light.negative_key()
+    {
         // POV-Ray's negative lights subtract light; a physical emitter cannot.
         out.push(
             Diagnostic::new(
-                origin.child(if light.intensity < 0.0 { "intensity" } else { "color" }),
+                origin.child(key),
                 format!(
                     "the path integrator reads `color * intensity` as emitted power, which cannot be negative; \
                      got {:?}",

@@ -339,7 +339,8 @@ impl<'a> Path<'a> {
         // length matters under `no_bump_scale`; otherwise the pattern normalises it).
         let object_tilted = field.perturb(vertex.object_point, primitive.object_covector(facing));
         let tilted = primitive.world_normal(object_tilted).normalize_or_zero();
-        if !tilted.is_finite() || tilted == DVec3::ZERO {
+        // Zero also when the pattern gave a non-finite normal.
+        if tilted == DVec3::ZERO {
             return vertex.shading_normal;
         }
         let on_front_side = if front { tilted } else { -tilted };
