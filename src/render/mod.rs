@@ -551,43 +551,52 @@ fn render_samples<I: Integrator>(
     let mut film = Film::for_region(region, (width, height), &options.aovs);
     let rendered_tiles = tiles.iter().map(|t| intersect(t.area, region)).collect();
     let mut sums = if want_sums { vec![PixelSums::default(); region.pixel_count()] } else { Vec::new() };
-    let mut non_finite = 0;
-    let mut non_finite_samples = 0;
-    let mut saturated = 0;
+    // The tiles go into the film a row of tiles (a band of film rows) per task.
+    let mut band_tiles: Vec<Vec<TileResult>> = (ty0..ty1).map(|_| Vec::new()).collect();
+    for tile in tiles {
+        band_tiles[(tile.area.y0 / tile_size - ty0) as usize].push(tile);
+    }
+    let film_w = region.width() as usize;
+    let mut bands = Vec::with_capacity(band_tiles.len());
+    let (mut pixels, mut sums_left) = (film.pixels.as_mut_slice(), sums.as_mut_slice());
+    let mut layers: Vec<(Aov, &mut [f32])> = film.layers.iter_mut().map(|l| (l.aov, l.data.as_mut_slice())).collect();
+    for (ty, tiles) in (ty0..ty1).zip(band_tiles) {
+        let y0 = (ty * tile_size).max(region.y0);
+        let rows = ((ty + 1) * tile_size).min(region.y1) - y0;
+        let n = rows as usize * film_w;
+        let (band_pixels, rest) = std::mem::take(&mut pixels).split_at_mut(n);
+        pixels = rest;
+        let (band_sums, rest) = std::mem::take(&mut sums_left).split_at_mut(if want_sums { n } else { 0 });
+        sums_left = rest;
+        let band_layers = layers
+            .iter_mut()
+            .map(|(aov, data)| {
+                let (band, rest) = std::mem::take(data).split_at_mut(n * aov.channels().len());
+                *data = rest;
+                (*aov, band)
+            })
+            .collect();
+        bands.push(FilmBand {
+            y0,
+            x0: region.x0,
+            width: film_w,
+            pixels: band_pixels,
+            sums: band_sums,
+            layers: band_layers,
+            tiles,
+        });
+    }
+    let gathered: Vec<Gathered> = pool.install(|| bands.into_par_iter().map(FilmBand::gather).collect());
+    let (mut non_finite, mut non_finite_samples, mut saturated) = (0, 0, 0);
     let mut counts = Vec::new();
     let mut squared_errors = 0.0;
-    let film_w = region.width() as usize;
-    for tile in tiles {
-        // The tile's part of the region, row by row (a POV-Ray block can reach past it).
-        let inside = intersect(tile.area, region);
-        let tile_w = tile.area.width() as usize;
-        for y in inside.y0..inside.y1 {
-            let tile_row = (y - tile.area.y0) as usize * tile_w;
-            let film_row = (y - region.y0) as usize * film_w;
-            for x in inside.x0..inside.x1 {
-                let i = tile_row + (x - tile.area.x0) as usize;
-                let index = film_row + (x - region.x0) as usize;
-                let p = tile.pixels[i];
-                if want_sums {
-                    sums[index] = tile.sums[i];
-                }
-                film.pixels[index] = if p.iter().all(|c| c.is_finite()) {
-                    saturated += u64::from(p.iter().any(|c| c.abs() == f32::MAX));
-                    p
-                } else {
-                    non_finite += 1;
-                    [0.0; 3]
-                };
-                let estimate = tile.estimates.get(i).copied().unwrap_or_default();
-                non_finite_samples += u64::from(estimate.non_finite_samples);
-                if !tile.estimates.is_empty() {
-                    counts.push(estimate.samples);
-                    squared_errors += f64::from(estimate.display_error).powi(2);
-                }
-                let pixel = film.pixels[index];
-                write_aovs(&mut film, index, pixel, tile.first_hits.get(i).and_then(Option::as_ref), &estimate);
-            }
-        }
+    for band in gathered {
+        non_finite += band.non_finite;
+        non_finite_samples += band.non_finite_samples;
+        saturated += band.saturated;
+        counts.extend(band.counts);
+        // Summed in pixel order, as one loop over the film would.
+        squared_errors = band.display_errors.iter().fold(squared_errors, |sum, &e| sum + f64::from(e).powi(2));
     }
     let noise = if counts.is_empty() { 0.0 } else { (squared_errors / counts.len() as f64).sqrt() };
     let sample_counts = if done.is_some() { counts.clone() } else { Vec::new() };
@@ -668,11 +677,94 @@ fn centre_hits<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region)
 }
 
 /// Writes a pixel's beauty, first-hit data and error estimate into the film's AOV layers.
-fn write_aovs(film: &mut Film, index: usize, beauty: [f32; 3], hit: Option<&FirstHit>, estimate: &PixelStats) {
-    for layer in &mut film.layers {
-        let n = layer.aov.channels().len();
-        let out = &mut layer.data[index * n..(index + 1) * n];
-        let values: [f64; 3] = match (layer.aov, hit) {
+/// One row of tiles' band of the film: the rows `y0..` of the frame (`width` pixels from
+/// column `x0`), with the tiles that cover it.
+struct FilmBand<'a> {
+    y0: u32,
+    x0: u32,
+    width: usize,
+    pixels: &'a mut [[f32; 3]],
+    /// Empty unless sums were asked for.
+    sums: &'a mut [PixelSums],
+    layers: Vec<(Aov, &'a mut [f32])>,
+    tiles: Vec<TileResult>,
+}
+
+/// What gathering a band found, in pixel order.
+struct Gathered {
+    non_finite: u64,
+    non_finite_samples: u64,
+    saturated: u64,
+    counts: Vec<u32>,
+    display_errors: Vec<f32>,
+}
+
+impl FilmBand<'_> {
+    /// Copies the tiles' pixels (a non-finite one as black), sums and AOVs into the band.
+    fn gather(mut self) -> Gathered {
+        let mut found = Gathered {
+            non_finite: 0,
+            non_finite_samples: 0,
+            saturated: 0,
+            counts: Vec::new(),
+            display_errors: Vec::new(),
+        };
+        let rows = (self.pixels.len() / self.width.max(1)) as u32;
+        let band = Region { x0: self.x0, y0: self.y0, x1: self.x0 + self.width as u32, y1: self.y0 + rows };
+        for tile in std::mem::take(&mut self.tiles) {
+            // The tile's part of the band, row by row (a POV-Ray block can reach past it).
+            let inside = intersect(tile.area, band);
+            let tile_w = tile.area.width() as usize;
+            for y in inside.y0..inside.y1 {
+                let tile_row = (y - tile.area.y0) as usize * tile_w;
+                let band_row = (y - band.y0) as usize * self.width;
+                for x in inside.x0..inside.x1 {
+                    let i = tile_row + (x - tile.area.x0) as usize;
+                    let index = band_row + (x - band.x0) as usize;
+                    let p = tile.pixels[i];
+                    if !self.sums.is_empty() {
+                        self.sums[index] = tile.sums[i];
+                    }
+                    let pixel = if p.iter().all(|c| c.is_finite()) {
+                        found.saturated += u64::from(p.iter().any(|c| c.abs() == f32::MAX));
+                        p
+                    } else {
+                        found.non_finite += 1;
+                        [0.0; 3]
+                    };
+                    self.pixels[index] = pixel;
+                    let estimate = tile.estimates.get(i).copied().unwrap_or_default();
+                    found.non_finite_samples += u64::from(estimate.non_finite_samples);
+                    if !tile.estimates.is_empty() {
+                        found.counts.push(estimate.samples);
+                        found.display_errors.push(estimate.display_error);
+                    }
+                    write_aovs(
+                        &mut self.layers,
+                        index,
+                        pixel,
+                        tile.first_hits.get(i).and_then(Option::as_ref),
+                        &estimate,
+                    );
+                }
+            }
+        }
+        found
+    }
+}
+
+/// Writes pixel `index`'s values into each layer.
+fn write_aovs(
+    layers: &mut [(Aov, &mut [f32])],
+    index: usize,
+    beauty: [f32; 3],
+    hit: Option<&FirstHit>,
+    estimate: &PixelStats,
+) {
+    for (aov, data) in layers {
+        let n = aov.channels().len();
+        let out = &mut data[index * n..(index + 1) * n];
+        let values: [f64; 3] = match (*aov, hit) {
             (Aov::Albedo, Some(h)) => h.albedo.to_array(),
             (Aov::Normal, Some(h)) => h.normal.to_array(),
             (Aov::Position, Some(h)) => h.position.to_array(),
