@@ -261,26 +261,35 @@ pub fn srgb_encode(x: f64) -> f64 {
     if x <= 0.003_130_8 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 }
 }
 
-/// A tone-mapping operator applied to one linear channel (after exposure).
+/// A tone-mapping operator applied to one linear channel (after exposure). Monotonic on
+/// `[0, inf]`: an infinite input gives the operator's limit (the formulas alone would give
+/// NaN, a black pixel where the image is brightest); negative and NaN inputs give 0.
 pub fn tone_map(x: f64, op: ToneMap) -> f64 {
     let x = x.max(0.0);
     match op {
         ToneMap::Clamp => x,
+        ToneMap::Reinhard if x.is_infinite() => 1.0,
         ToneMap::Reinhard => x / (1.0 + x),
+        ToneMap::Aces if x.is_infinite() => 2.51 / 2.43,
         ToneMap::Aces => (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14),
     }
 }
 
-/// The film as 8-bit sRGB: exposure (stops), tone map, clip, sRGB curve, round.
+/// The film as 8-bit sRGB: exposure (stops), tone map, clip, sRGB curve, round; rows in
+/// parallel, each value exactly [`ldr_channel`]'s.
 pub fn to_ldr(film: &Film, exposure: f64, op: ToneMap) -> RgbImage {
-    let scale = exposure.exp2();
-    let mut img = RgbImage::new(film.width, film.height);
-    for (dst, src) in img.pixels_mut().zip(&film.pixels) {
-        for (out, &linear) in dst.0.iter_mut().zip(src) {
-            *out = ldr_channel(f64::from(linear), scale, op);
-        }
+    use rayon::prelude::*;
+    let encoder = LdrEncoder::new(exposure.exp2(), op);
+    let width = film.width as usize;
+    let mut bytes = vec![0u8; film.pixels.len() * 3];
+    if width > 0 {
+        bytes.par_chunks_mut(width * 3).zip(film.pixels.par_chunks(width)).for_each(|(row, pixels)| {
+            for (out, &linear) in row.iter_mut().zip(pixels.iter().flatten()) {
+                *out = encoder.encode(linear);
+            }
+        });
     }
-    img
+    RgbImage::from_raw(film.width, film.height, bytes).expect("the buffer holds width x height pixels")
 }
 
 /// One linear channel as an 8-bit sRGB value, as [`to_ldr`] makes it: times `scale` (the
@@ -288,6 +297,42 @@ pub fn to_ldr(film: &Film, exposure: f64, op: ToneMap) -> RgbImage {
 pub fn ldr_channel(linear: f64, scale: f64, op: ToneMap) -> u8 {
     let v = tone_map(linear * scale, op).clamp(0.0, 1.0);
     (srgb_encode(v) * 255.0 + 0.5).floor() as u8
+}
+
+/// [`ldr_channel`] of f32 values for one scale and operator, by table: the function is a
+/// non-decreasing step function of its input, so it is fixed by the 255 inputs where it
+/// steps, found once by bisection over the ordered bit patterns of non-negative f32s. A
+/// value then costs a short search of 255 floats instead of a `powf`.
+pub struct LdrEncoder {
+    /// `steps[k]` is the least f32 whose byte exceeds `k`, or infinity where none does.
+    steps: [f32; 255],
+}
+
+impl LdrEncoder {
+    /// The table for `scale` (exposure as a factor) and `op`.
+    pub fn new(scale: f64, op: ToneMap) -> Self {
+        let byte = |bits: u32| ldr_channel(f64::from(f32::from_bits(bits)), scale, op);
+        let top = f32::INFINITY.to_bits();
+        let mut steps = [f32::INFINITY; 255];
+        for (k, step) in steps.iter_mut().enumerate() {
+            if byte(top) <= k as u8 {
+                continue;
+            }
+            // The least bit pattern in [0, +inf] whose byte exceeds k.
+            let (mut lo, mut hi) = (0u32, top);
+            while lo < hi {
+                let mid = lo + (hi - lo) / 2;
+                if byte(mid) > k as u8 { hi = mid } else { lo = mid + 1 }
+            }
+            *step = f32::from_bits(lo);
+        }
+        Self { steps }
+    }
+
+    /// The byte of `linear`: how many steps lie at or below it (0 for NaN and negatives).
+    pub fn encode(&self, linear: f32) -> u8 {
+        self.steps.partition_point(|&step| step <= linear) as u8
+    }
 }
 
 /// An 8-bit preview of one AOV layer (for `--aov-png`): albedo through the sRGB curve,
@@ -359,11 +404,12 @@ pub fn layer_preview(film: &Film, aov: crate::film::Aov) -> Option<RgbImage> {
 
 /// Encodes an 8-bit image as PNG.
 pub fn encode_png(img: &RgbImage, path: &Path) -> Result<Vec<u8>, OutputError> {
-    let mut bytes = Cursor::new(Vec::new());
-    image::DynamicImage::ImageRgb8(img.clone())
-        .write_to(&mut bytes, ImageFormat::Png)
+    use image::ImageEncoder;
+    let mut bytes = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut bytes)
+        .write_image(img.as_raw(), img.width(), img.height(), image::ExtendedColorType::Rgb8)
         .map_err(|e| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() })?;
-    Ok(bytes.into_inner())
+    Ok(bytes)
 }
 
 /// How the film becomes an image file.
@@ -384,25 +430,7 @@ pub fn encode(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Vec<
         |e: &dyn std::fmt::Display| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() };
     let mut bytes = Cursor::new(Vec::new());
     match format_for(path)? {
-        OutputFormat::Exr if !film.layers.is_empty() || !film.is_full_frame() => {
-            encode_layered_exr(film, settings.exr_half, &mut bytes).map_err(|e| encode_err(&e))?;
-        }
-        OutputFormat::Exr => {
-            use exr::prelude::*;
-            let (w, h) = (film.width as usize, film.height as usize);
-            let pixel = |p: Vec2<usize>| film.pixels[p.y() * w + p.x()];
-            let attributes = LayerAttributes::named("beauty");
-            let written = if settings.exr_half {
-                let channels = SpecificChannels::rgb(|p| pixel(p).map(half_float).into());
-                let layer = Layer::new((w, h), attributes, Encoding::SMALL_LOSSLESS, channels);
-                Image::from_layer(layer).write().to_buffered(&mut bytes)
-            } else {
-                let channels = SpecificChannels::rgb(|p| pixel(p).into());
-                let layer = Layer::new((w, h), attributes, Encoding::SMALL_LOSSLESS, channels);
-                Image::from_layer(layer).write().to_buffered(&mut bytes)
-            };
-            written.map_err(|e| encode_err(&e))?;
-        }
+        OutputFormat::Exr => return encode_exr(film, settings.exr_half).map_err(|e| encode_err(&e)),
         OutputFormat::Hdr => {
             let data: Vec<f32> = film.pixels.iter().flatten().copied().collect();
             let img = image::Rgb32FImage::from_raw(film.width, film.height, data)
@@ -426,32 +454,125 @@ pub fn encode(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Vec<
     Ok(bytes.into_inner())
 }
 
-/// An EXR of a film with AOV layers or of a region: beauty as `R`, `G`, `B`, each layer's
-/// channels as `layer.channel` (`albedo.R`, `normal.X`, `depth.Z`...), the data window the
-/// film's region and the display window the full frame.
-fn encode_layered_exr(film: &Film, half: bool, bytes: &mut Cursor<Vec<u8>>) -> exr::error::UnitResult {
+/// One channel of an EXR being written: its name and its values, every `stride`-th of
+/// `values` from `offset` (pixel by pixel, row by row over the film).
+struct ExrChannel<'a> {
+    name: String,
+    values: &'a [f32],
+    stride: usize,
+    offset: usize,
+}
+
+/// The film as an EXR: beauty as `R`, `G`, `B`, each AOV layer's channels as
+/// `layer.channel` (`albedo.R`, `normal.X`, `depth.Z`...), the data window the film's region
+/// and the display window the full frame; ZIP compression of 16-line blocks (OpenEXR's
+/// usual choice for rendered images), in 32-bit or `half` floats. Each block's bytes are
+/// made straight from the film and compressed on all threads.
+fn encode_exr(film: &Film, half: bool) -> exr::error::Result<Vec<u8>> {
+    use exr::block::chunk::{Chunk, CompressedBlock, CompressedScanLineBlock};
+    use exr::block::writer::ChunksWriter;
+    use exr::block::{self, BlockIndex};
+    use exr::meta::BlockDescription;
+    use exr::meta::header::Header;
     use exr::prelude::*;
-    let samples = |values: Vec<f32>| {
-        if half { FlatSamples::F16(values.into_iter().map(half_float).collect()) } else { FlatSamples::F32(values) }
-    };
-    let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
-    for (c, name) in ["R", "G", "B"].into_iter().enumerate() {
-        channels.push(AnyChannel::new(name, samples(film.pixels.iter().map(|p| p[c]).collect())));
-    }
+    use rayon::prelude::*;
+
+    let beauty = film.pixels.as_flattened();
+    let mut channels: Vec<ExrChannel> = ["R", "G", "B"]
+        .into_iter()
+        .enumerate()
+        .map(|(offset, name)| ExrChannel { name: name.into(), values: beauty, stride: 3, offset })
+        .collect();
     for layer in &film.layers {
-        let n = layer.channel_count();
-        for (c, channel) in layer.aov.channels().iter().enumerate() {
-            let values = layer.data.iter().skip(c).step_by(n).copied().collect();
+        let stride = layer.channel_count();
+        for (offset, channel) in layer.aov.channels().iter().enumerate() {
             let name = format!("{}.{channel}", layer.aov.name());
-            channels.push(AnyChannel::new(name.as_str(), samples(values)));
+            channels.push(ExrChannel { name, values: &layer.data, stride, offset });
         }
     }
-    let (x0, y0) = film.origin;
-    let attributes = LayerAttributes { layer_position: Vec2(x0 as i32, y0 as i32), ..LayerAttributes::named("beauty") };
-    let size = (film.width as usize, film.height as usize);
-    let layer = Layer::new(size, attributes, Encoding::SMALL_LOSSLESS, AnyChannels::sort(channels));
-    let frame = IntegerBounds::new((0, 0), (film.frame.0 as usize, film.frame.1 as usize));
-    Image::new(ImageAttributes::new(frame), layer).write().to_buffered(bytes)
+    // EXR lists channels sorted by name, and a block holds them in that order.
+    channels.sort_by(|a, b| a.name.cmp(&b.name));
+    let sample_type = if half { SampleType::F16 } else { SampleType::F32 };
+    let descriptions = channels.iter().map(|c| ChannelDescription::named(c.name.as_str(), sample_type)).collect();
+    let width = film.width as usize;
+    let mut header = Header::new("beauty".into(), (width, film.height as usize), descriptions)
+        .with_encoding(Compression::ZIP16, BlockDescription::ScanLines, LineOrder::Increasing)
+        .with_display_window(IntegerBounds::new((0, 0), (film.frame.0 as usize, film.frame.1 as usize)));
+    header.own_attributes.layer_position = Vec2(film.origin.0 as i32, film.origin.1 as i32);
+
+    // A block's bytes: for each of its lines, each channel's samples of that line, little-endian.
+    let block_bytes = |index: &BlockIndex| {
+        let bytes_per_sample = if half { 2 } else { 4 };
+        let line_bytes = index.pixel_size.width() * bytes_per_sample;
+        let mut bytes = vec![0u8; index.pixel_size.height() * channels.len() * line_bytes];
+        let mut lines = bytes.chunks_exact_mut(line_bytes);
+        for y in index.pixel_position.y()..index.pixel_position.y() + index.pixel_size.height() {
+            for (channel, line) in channels.iter().zip(&mut lines) {
+                let first = (y * width + index.pixel_position.x()) * channel.stride + channel.offset;
+                let samples = channel.values[first..].iter().step_by(channel.stride);
+                if half {
+                    for (out, &v) in line.chunks_exact_mut(2).zip(samples) {
+                        out.copy_from_slice(&half_float(v).to_le_bytes());
+                    }
+                } else {
+                    for (out, &v) in line.chunks_exact_mut(4).zip(samples) {
+                        out.copy_from_slice(&v.to_le_bytes());
+                    }
+                }
+            }
+        }
+        bytes
+    };
+    let y_origin = film.origin.1 as i32;
+    let mut out = Cursor::new(Vec::new());
+    block::write(&mut out, std::iter::once(header).collect(), true, |meta, writer| {
+        let blocks: Vec<_> = block::enumerate_ordered_header_block_indices(&meta.headers).collect();
+        let chunks: Vec<_> = blocks
+            .par_iter()
+            .map(|(_, index)| {
+                let y_coordinate = y_origin + index.pixel_position.y() as i32;
+                let compressed_pixels_le = zip_compress(block_bytes(index));
+                Chunk {
+                    layer_index: 0,
+                    compressed_block: CompressedBlock::ScanLine(CompressedScanLineBlock {
+                        y_coordinate,
+                        compressed_pixels_le,
+                    }),
+                }
+            })
+            .collect();
+        for ((index_in_header, _), chunk) in blocks.iter().zip(chunks) {
+            writer.write_chunk(*index_in_header, chunk)?;
+        }
+        Ok(())
+    })?;
+    Ok(out.into_inner())
+}
+
+/// OpenEXR's ZIP compression of a block's little-endian bytes: the bytes split into those at
+/// even and at odd offsets, each byte replaced by its difference to the one before (plus
+/// 128), then zlib (level 4, zlib-rs: twice miniz's speed at this level, within 3 % of its
+/// size). A block that would not shrink is stored as it is, as the format requires.
+fn zip_compress(bytes: Vec<u8>) -> Vec<u8> {
+    use std::io::Write;
+    let half = bytes.len().div_ceil(2);
+    let mut split = vec![0u8; bytes.len()];
+    let (evens, odds) = split.split_at_mut(half);
+    for ((even, odd), pair) in evens.iter_mut().zip(odds.iter_mut()).zip(bytes.chunks_exact(2)) {
+        (*even, *odd) = (pair[0], pair[1]);
+    }
+    if let Some(&last) = bytes.chunks_exact(2).remainder().first() {
+        evens[half - 1] = last;
+    }
+    let mut predicted = Vec::with_capacity(split.len());
+    predicted.extend(split.first());
+    predicted.extend(split.windows(2).map(|pair| pair[1].wrapping_sub(pair[0]).wrapping_add(128)));
+    let mut encoder = flate2::write::ZlibEncoder::new(Vec::with_capacity(bytes.len() / 2), flate2::Compression::new(4));
+    let compressed = encoder.write_all(&predicted).and_then(|()| encoder.finish());
+    match compressed {
+        Ok(compressed) if compressed.len() < bytes.len() => compressed,
+        _ => bytes,
+    }
 }
 
 /// The largest finite half float.
@@ -518,8 +639,7 @@ mod tests {
             *p = [i as f32, 0.5, -1.0];
         }
         film.layers[1].data[4] = 7.25;
-        let mut bytes = Cursor::new(Vec::new());
-        encode_layered_exr(&film, false, &mut bytes).unwrap();
+        let bytes = Cursor::new(encode_exr(&film, false).unwrap());
         let image = read()
             .no_deep_data()
             .largest_resolution_level()
@@ -606,6 +726,48 @@ mod tests {
             }
         }
         assert!(tone_map(1e6, ToneMap::Reinhard) < 1.0);
+    }
+
+    #[test]
+    fn ldr_table_gives_the_formula_byte_for_every_value() {
+        let mut values = vec![0.0, -0.0, -1.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY, f32::MAX, f32::MIN_POSITIVE];
+        values.push(f32::from_bits(1));
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..20_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            // Any non-negative f32 bit pattern, and uniform values in [0, 2].
+            values.push(f32::from_bits((state >> 33) as u32 & 0x7fff_ffff));
+            values.push((state >> 40) as f32 / (1u64 << 23) as f32);
+        }
+        for op in [ToneMap::Clamp, ToneMap::Reinhard, ToneMap::Aces] {
+            for exposure in [0.0, -3.3, 5.0, 200.0] {
+                let scale = f64::exp2(exposure);
+                let encoder = LdrEncoder::new(scale, op);
+                // Each step and its neighbours, where a wrong table would show first.
+                let mut probes = values.clone();
+                for step in encoder.steps.iter().filter(|s| s.is_finite()) {
+                    probes.extend([f32::from_bits(step.to_bits() - 1), *step, f32::from_bits(step.to_bits() + 1)]);
+                }
+                for v in probes {
+                    assert_eq!(
+                        encoder.encode(v),
+                        ldr_channel(f64::from(v), scale, op),
+                        "{v:e} under {op:?}, {exposure} stops"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn infinitely_bright_values_tone_map_to_white() {
+        for op in [ToneMap::Clamp, ToneMap::Reinhard, ToneMap::Aces] {
+            assert_eq!(ldr_channel(f64::INFINITY, 1.0, op), 255, "{op:?}");
+            assert_eq!(ldr_channel(f64::from(f32::MAX), 1e10, op), 255, "{op:?}");
+            assert_eq!(ldr_channel(f64::NAN, 1.0, op), 0, "{op:?}");
+        }
     }
 
     #[test]
