@@ -676,7 +676,6 @@ fn centre_hits<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region)
     hits
 }
 
-/// Writes a pixel's beauty, first-hit data and error estimate into the film's AOV layers.
 /// One row of tiles' band of the film: the rows `y0..` of the frame (`width` pixels from
 /// column `x0`), with the tiles that cover it.
 struct FilmBand<'a> {
@@ -753,7 +752,8 @@ impl FilmBand<'_> {
     }
 }
 
-/// Writes pixel `index`'s values into each layer.
+/// Writes a pixel's beauty, first-hit data and error estimate into the AOV layers (of a
+/// band of the film; `index` counts pixels within it).
 fn write_aovs(
     layers: &mut [(Aov, &mut [f32])],
     index: usize,
