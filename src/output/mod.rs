@@ -806,4 +806,36 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
         assert!(sizes[1] < sizes[0], "half-float file is smaller: {sizes:?}");
     }
+
+    /// Blocks that deflate and blocks that do not (stored as they are) both read back
+    /// exactly, through the exr crate's reader.
+    #[test]
+    fn exr_blocks_compressed_or_stored_read_back_exactly() {
+        let (w, h) = (300, 40);
+        let mut smooth = Film::new(w, h);
+        let mut noise = Film::new(w, h);
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for (i, (s, n)) in smooth.pixels.iter_mut().zip(&mut noise.pixels).enumerate() {
+            let (x, y) = ((i % w as usize) as f32, (i / w as usize) as f32);
+            *s = [x / w as f32, y / h as f32, 0.25];
+            *n = [0; 3].map(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                f32::from_bits((state >> 32) as u32 & 0x3fff_ffff)
+            });
+        }
+        let raw = (w * h * 3 * 4) as usize;
+        for (film, compresses) in [(&smooth, true), (&noise, false)] {
+            let bytes = encode_exr(film, false).unwrap();
+            assert_eq!(bytes.len() < raw / 2, compresses, "{} bytes of {raw}", bytes.len());
+            let path = std::env::temp_dir().join(format!("prism-exr-blocks-{}-{compresses}.exr", std::process::id()));
+            std::fs::write(&path, &bytes).unwrap();
+            let back = read_exr(&path).unwrap();
+            std::fs::remove_file(&path).unwrap();
+            assert!(back.pixels == film.pixels, "compresses = {compresses}");
+        }
+        let incompressible: Vec<u8> = noise.pixels.as_flattened().iter().flat_map(|v| v.to_le_bytes()).collect();
+        assert_eq!(zip_compress(incompressible.clone()), incompressible);
+    }
 }
