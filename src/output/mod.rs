@@ -420,7 +420,7 @@ pub struct ImageSettings {
     /// Tone-mapping operator for 8-bit formats.
     pub tone_map: ToneMap,
     /// Write EXR channels as 16-bit half floats (as POV-Ray does) instead of 32-bit floats:
-    /// half the size and about three times faster to compress, with 11 significant bits.
+    /// half the size and about half the time to write, with 11 significant bits.
     pub exr_half: bool,
 }
 
