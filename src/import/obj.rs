@@ -34,6 +34,8 @@ pub fn import(path: &Path, options: &ImportOptions, textures: &mut TextureStore)
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
     let load_options =
         tobj::LoadOptions { single_index: false, triangulate: false, ignore_points: true, ignore_lines: true };
+    check_face_indices(text)
+        .map_err(|(line, message)| ImportError::new(path, ImportErrorKind::Invalid(message)).at_line(Some(line)))?;
     let mut reader = std::io::BufReader::new(text.as_bytes());
     let mut warnings = Vec::new();
     let mtl_errors = std::cell::RefCell::new(Vec::new());
@@ -174,6 +176,50 @@ fn check_library(text: &str) -> Result<(), (usize, &'static str)> {
         let mut words = line.split_whitespace();
         if matches!(words.next(), Some("Ka" | "Kd" | "Ks" | "Ke")) && words.count() < 3 {
             return Err((i + 1, "a colour statement needs three numbers"));
+        }
+    }
+    Ok(())
+}
+
+/// Face and line indices tobj 4 would turn into wrapped or overflowing arithmetic (a
+/// relative index reaching before the first element becomes a huge unsigned one, and tobj
+/// doubles and triples indices unchecked): index 0, a negative index past the elements read
+/// so far, a positive one larger than the file has bytes. Refused here, with the line. A
+/// positive index past the elements that do exist is left to tobj, which ignores normals
+/// and texture coordinates a file has none of (real files point at absent normals, even
+/// past their own line count).
+fn check_face_indices(text: &str) -> Result<(), (usize, String)> {
+    const KINDS: [&str; 3] = ["v", "vt", "vn"];
+    let bytes = text.len() as u64;
+    let mut so_far = [0u64; 3];
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some(word) if KINDS.contains(&word) => so_far[KINDS.iter().position(|k| *k == word).unwrap_or(0)] += 1,
+            Some(word @ ("f" | "l")) => {
+                for vertex in words {
+                    for (kind, field) in vertex.split('/').enumerate().take(3) {
+                        // Malformed fields are tobj's to report.
+                        let Ok(index) = field.parse::<i64>() else { continue };
+                        let name = ["vertex", "texture coordinate", "normal"][kind];
+                        let problem = if index == 0 {
+                            format!("`{word}` uses {name} index 0 (OBJ indices count from 1)")
+                        } else if index < 0 && index.unsigned_abs() > so_far[kind] {
+                            let before = so_far[kind];
+                            format!(
+                                "`{word}` uses relative {name} index {index}, but only {before} `{}` come before it",
+                                KINDS[kind]
+                            )
+                        } else if index > 0 && index.unsigned_abs() > bytes {
+                            format!("`{word}` uses {name} index {index}, more than the file has bytes ({bytes})")
+                        } else {
+                            continue;
+                        };
+                        return Err((i + 1, problem));
+                    }
+                }
+            }
+            _ => {}
         }
     }
     Ok(())
@@ -565,6 +611,42 @@ mod tests {
         let glass = model.parts.iter().find(|p| p.material_name.as_deref() == Some("glass")).unwrap();
         let SurfaceModel::Mtl(mtl) = &glass.material.surface else { panic!("an MTL surface") };
         assert!((mtl.d.unwrap() - 0.2).abs() < 1e-6 && (mtl.ni.unwrap() - 1.5).abs() < 1e-6);
+    }
+
+    /// Indices tobj would wrap or overflow on (found by fuzzing: `f 1/-10` after one `vt`
+    /// panicked inside tobj in an overflow-checked build) are errors naming the line.
+    #[test]
+    fn out_of_range_face_indices_are_refused_with_their_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let cases = [
+            (
+                "vt 0 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/-1 2/-10 3\n",
+                5,
+                "relative texture coordinate index -10, but only 1 `vt`",
+            ),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", 4, "vertex index 0"),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", 4, "relative vertex index -4, but only 3 `v`"),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//4611686018427387904\n",
+                5,
+                "normal index 4611686018427387904, more than the file has bytes (68)",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n",
+                4,
+                "relative vertex index -9223372036854775808, but only 3",
+            ),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 99\n", 4, "vertex index 99, more than the file has bytes (31)"),
+        ];
+        for (n, (text, line, expected)) in cases.into_iter().enumerate() {
+            let p = write(dir.path(), &format!("bad{n}.obj"), text);
+            let e = import(&p, &ImportOptions::default(), &mut TextureStore::new()).unwrap_err().to_string();
+            assert!(e.contains(expected) && e.contains(&format!(":{line}")), "{text:?}: {e}");
+        }
+        // Relative indices within range, and a vertex defined after the face that uses it
+        // (tobj resolves faces at the end of their object), stay valid.
+        let p = write(dir.path(), "good.obj", "v 0 0 0\nv 1 0 0\nvt 0 0\nf -2/-1 -1/-1 3/1\nv 0 1 0\n");
+        assert_eq!(import(&p, &ImportOptions::default(), &mut TextureStore::new()).unwrap().parts.len(), 1);
     }
 
     #[test]
