@@ -194,32 +194,30 @@ fn check_face_indices(text: &str) -> Result<(), (usize, String)> {
     let mut so_far = [0u64; 3];
     for (i, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
-        match words.next() {
-            Some(word) if KINDS.contains(&word) => so_far[KINDS.iter().position(|k| *k == word).unwrap_or(0)] += 1,
-            Some(word @ ("f" | "l")) => {
-                for vertex in words {
-                    for (kind, field) in vertex.split('/').enumerate().take(3) {
-                        // Malformed fields are tobj's to report.
-                        let Ok(index) = field.parse::<i64>() else { continue };
-                        let name = ["vertex", "texture coordinate", "normal"][kind];
-                        let problem = if index == 0 {
-                            format!("`{word}` uses {name} index 0 (OBJ indices count from 1)")
-                        } else if index < 0 && index.unsigned_abs() > so_far[kind] {
-                            let before = so_far[kind];
-                            format!(
-                                "`{word}` uses relative {name} index {index}, but only {before} `{}` come before it",
-                                KINDS[kind]
-                            )
-                        } else if index > 0 && index.unsigned_abs() > bytes {
-                            format!("`{word}` uses {name} index {index}, more than the file has bytes ({bytes})")
-                        } else {
-                            continue;
-                        };
-                        return Err((i + 1, problem));
-                    }
-                }
-            }
-            _ => {}
+        let first = words.next();
+        if let Some(kind) = first.and_then(|w| KINDS.iter().position(|k| *k == w)) {
+            so_far[kind] += 1;
+            continue;
+        }
+        let Some(word @ ("f" | "l")) = first else { continue };
+        for (kind, field) in words.flat_map(|vertex| vertex.split('/').take(3).enumerate()) {
+            // Malformed fields are tobj's to report.
+            let Ok(index) = field.parse::<i64>() else { continue };
+            let name = ["vertex", "texture coordinate", "normal"][kind];
+            let problem = if index == 0 {
+                format!("`{word}` uses {name} index 0 (OBJ indices count from 1)")
+            } else if index < 0 && index.unsigned_abs() > so_far[kind] {
+                let before = so_far[kind];
+                format!(
+                    "`{word}` uses relative {name} index {index}, but only {before} `{}` come before it",
+                    KINDS[kind]
+                )
+            } else if index > 0 && index.unsigned_abs() > bytes {
+                format!("`{word}` uses {name} index {index}, more than the file has bytes ({bytes})")
+            } else {
+                continue;
+            };
+            return Err((i + 1, problem));
         }
     }
     Ok(())

@@ -313,11 +313,9 @@ impl LdrEncoder {
     pub fn new(scale: f64, op: ToneMap) -> Self {
         let byte = |bits: u32| ldr_channel(f64::from(f32::from_bits(bits)), scale, op);
         let top = f32::INFINITY.to_bits();
+        let brightest = byte(top);
         let mut steps = [f32::INFINITY; 255];
-        for (k, step) in steps.iter_mut().enumerate() {
-            if byte(top) <= k as u8 {
-                continue;
-            }
+        for (k, step) in steps.iter_mut().enumerate().take(usize::from(brightest)) {
             // The least bit pattern in [0, +inf] whose byte exceeds k.
             let (mut lo, mut hi) = (0u32, top);
             while lo < hi {

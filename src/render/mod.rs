@@ -577,9 +577,7 @@ fn render_samples<I: Integrator>(
             })
             .collect();
         bands.push(FilmBand {
-            y0,
-            x0: region.x0,
-            width: film_w,
+            area: Region { x0: region.x0, y0, x1: region.x1, y1: y0 + rows },
             pixels: band_pixels,
             sums: band_sums,
             layers: band_layers,
@@ -676,12 +674,9 @@ fn centre_hits<I: Integrator>(scene: &RenderScene, integrator: &I, area: Region)
     hits
 }
 
-/// One row of tiles' band of the film: the rows `y0..` of the frame (`width` pixels from
-/// column `x0`), with the tiles that cover it.
+/// One row of tiles' band of the film: its pixels of the frame, with the tiles that cover it.
 struct FilmBand<'a> {
-    y0: u32,
-    x0: u32,
-    width: usize,
+    area: Region,
     pixels: &'a mut [[f32; 3]],
     /// Empty unless sums were asked for.
     sums: &'a mut [PixelSums],
@@ -708,15 +703,14 @@ impl FilmBand<'_> {
             counts: Vec::new(),
             display_errors: Vec::new(),
         };
-        let rows = (self.pixels.len() / self.width.max(1)) as u32;
-        let band = Region { x0: self.x0, y0: self.y0, x1: self.x0 + self.width as u32, y1: self.y0 + rows };
+        let (band, width) = (self.area, self.area.width() as usize);
         for tile in std::mem::take(&mut self.tiles) {
             // The tile's part of the band, row by row (a POV-Ray block can reach past it).
             let inside = intersect(tile.area, band);
             let tile_w = tile.area.width() as usize;
             for y in inside.y0..inside.y1 {
                 let tile_row = (y - tile.area.y0) as usize * tile_w;
-                let band_row = (y - band.y0) as usize * self.width;
+                let band_row = (y - band.y0) as usize * width;
                 for x in inside.x0..inside.x1 {
                     let i = tile_row + (x - tile.area.x0) as usize;
                     let index = band_row + (x - band.x0) as usize;
