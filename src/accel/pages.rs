@@ -16,9 +16,13 @@ use std::ops::Deref;
 /// The huge page size the mapping is aligned to (x86-64 and aarch64 with 4 KiB base pages).
 pub const HUGE_PAGE: usize = 2 << 20;
 
-/// The smallest array given its own mapping: a smaller one is covered by the TLB's 4 KiB
-/// entries anyway, and its last, partly used huge page would waste a larger share.
-pub const MIN_MAPPED: usize = 4 * HUGE_PAGE;
+/// The smallest array given its own mapping: a smaller one is mostly covered by the TLB's
+/// 4 KiB entries, and its last, partly used huge page would waste a larger share (here at
+/// most a third). Two huge pages, so that the nodes of a million-triangle mesh (about
+/// 5 MiB, beside some 50 MiB of leaves competing for the TLB) are mapped too: at four
+/// they were not, and incoherent rays through the terrain of `benches/mesh_bvh.rs` were
+/// slower in five of six alternating runs, by about 4 % (the dragon's within the noise).
+pub const MIN_MAPPED: usize = 2 * HUGE_PAGE;
 
 /// An immutable array of `T`, on huge pages where the system gives them.
 pub struct PageArray<T: Copy> {
