@@ -11,6 +11,10 @@
 //! `cargo bench --bench mesh_bvh` (add `-- quick` for fewer passes). Further arguments pick
 //! what runs: `terrain` / `dragon` (the mesh), `primary` / `incoherent` (the ray set),
 //! `no-occluded` (skip the any-hit queries), `no-embree`; by default everything runs.
+//! `rounds=N` then alternates `Shape::intersect` and Embree's `rtcIntersect1` N times on each
+//! ray set and reports the ratio of each round and their median: on a shared machine the
+//! speed drifts by 10 % and more within a minute, and a ratio of runs made minutes apart
+//! measures the drift as much as the tracers.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -307,6 +311,8 @@ struct Filter {
     sets: Vec<String>,
     occluded: bool,
     embree: bool,
+    /// Alternating rounds of Prism and Embree (`rounds=N`; 0: none).
+    rounds: usize,
 }
 
 impl Filter {
@@ -319,6 +325,10 @@ impl Filter {
             sets: pick(&["primary", "incoherent"]),
             occluded: !args.iter().any(|a| a == "no-occluded"),
             embree: !args.iter().any(|a| a == "no-embree"),
+            rounds: args
+                .iter()
+                .find_map(|a| a.strip_prefix("rounds="))
+                .map_or(0, |n| n.parse().unwrap_or_else(|_| panic!("rounds=N takes a whole number, got `{n}`"))),
         }
     }
 
@@ -331,13 +341,15 @@ impl Filter {
     }
 }
 
-fn embree(mesh: &Path, rays: &Path, passes: usize, occluded: bool) {
+/// Runs Embree's queries on the files and prints its lines; returns rtcIntersect1's rate by
+/// CPU time (Mrays/s), when Embree ran.
+fn embree(mesh: &Path, rays: &Path, passes: usize, occluded: bool) -> Option<f64> {
     let exe = PathBuf::from("/tmp/perf/mesh_embree");
     if !exe.exists() {
         println!(
             "  embree: /tmp/perf/mesh_embree not built (g++ -O3 -march=native -std=c++17 benches/mesh_embree.cpp -o /tmp/perf/mesh_embree -lembree3 -lpthread); baseline on this machine: rtcIntersect1 8.56 Mrays/s, build 0.275 s (terrain)"
         );
-        return;
+        return None;
     }
     let out = std::process::Command::new(&exe)
         .args(["1", "medium", &passes.to_string()])
@@ -347,14 +359,53 @@ fn embree(mesh: &Path, rays: &Path, passes: usize, occluded: bool) {
         .output();
     match out {
         Ok(o) => {
+            let mut rate = None;
             for line in String::from_utf8_lossy(&o.stdout).lines() {
                 if line.contains("build") || line.contains("rtcIntersect1 ") || line.contains("rtcOccluded1") {
                     println!("  {}", line.trim());
                 }
+                if line.contains("rtcIntersect1 ") {
+                    rate = cpu_best_rate(line);
+                }
             }
+            rate
         }
-        Err(e) => println!("  embree: cannot run {}: {e}", exe.display()),
+        Err(e) => {
+            println!("  embree: cannot run {}: {e}", exe.display());
+            None
+        }
     }
+}
+
+/// The Mrays/s after "cpu best" in a report line (Prism's and the Embree harness's share
+/// the format).
+fn cpu_best_rate(line: &str) -> Option<f64> {
+    let after = &line[line.find("cpu best")?..];
+    let open = after.find('(')?;
+    after[open + 1..].split_whitespace().next()?.parse().ok()
+}
+
+/// `rounds` alternations of Prism's `Shape::intersect` and Embree's `rtcIntersect1` on one
+/// ray set: the ratio of their rates (by CPU time) in each round, and the median.
+fn alternate(shape: &MeshShape, rays: &Rays, files: (&Path, &Path), passes: usize, rounds: usize) {
+    let mut ratios = Vec::new();
+    for round in 1..=rounds {
+        let prism = time_passes(passes, || trace_shape(shape, rays));
+        let prism_rate = rays.rays.len() as f64 / prism.cpu_best / 1e6;
+        let Some(embree_rate) = embree(files.0, files.1, passes, false) else { return };
+        ratios.push(prism_rate / embree_rate);
+        println!(
+            "  round {round}: Shape::intersect {prism_rate:.2} Mrays/s, rtcIntersect1 {embree_rate:.2}: ratio {:.3}",
+            prism_rate / embree_rate
+        );
+    }
+    ratios.sort_by(f64::total_cmp);
+    println!(
+        "  Shape::intersect / rtcIntersect1 over {rounds} alternating rounds: median {:.3} (from {:.3} to {:.3})",
+        ratios[ratios.len() / 2],
+        ratios[0],
+        ratios[ratios.len() - 1]
+    );
 }
 
 fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays)], passes: usize, filter: &Filter) {
@@ -400,6 +451,9 @@ fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays
         }
         if filter.embree {
             embree(mesh_file, path, passes, filter.occluded);
+            if filter.rounds > 0 {
+                alternate(&shape, rays, (mesh_file, path), passes, filter.rounds);
+            }
         }
     }
 }
