@@ -36,9 +36,10 @@ pub fn triangulate(points: &[DVec3]) -> Result<Vec<[usize; 3]>, PolygonTooLarge>
     triangulate_counting(points, &mut 0)
 }
 
-/// [`triangulate`], adding to `point_tests` the number of point-in-triangle tests the ear
-/// clipping made: the work that grows with the square of the vertex count, which the tests
-/// bound instead of the run time.
+/// [`triangulate`], adding to `point_tests` the number of corners the ear clipping checked
+/// against a candidate ear (each a point-in-triangle test unless it is one of the ear's own
+/// corners): the work that grows with the square of the vertex count, which the tests bound
+/// instead of the run time.
 fn triangulate_counting(points: &[DVec3], point_tests: &mut u64) -> Result<Vec<[usize; 3]>, PolygonTooLarge> {
     let n = points.len();
     if n < 3 {
@@ -122,8 +123,8 @@ fn in_triangle(p: DVec2, a: DVec2, b: DVec2, c: DVec2) -> bool {
     cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0
 }
 
-/// Ear clipping of a counter-clockwise 2D polygon, O(n^2) per ear; counts its
-/// point-in-triangle tests in `point_tests`.
+/// Ear clipping of a counter-clockwise 2D polygon, O(n^2) per ear; counts the corners it
+/// checks against candidate ears in `point_tests`.
 fn ear_clip(p: &[DVec2], point_tests: &mut u64) -> Vec<[usize; 3]> {
     let mut remaining: Vec<usize> = (0..p.len()).collect();
     let mut out = Vec::with_capacity(p.len() - 2);
@@ -164,7 +165,7 @@ fn ear_clip(p: &[DVec2], point_tests: &mut u64) -> Vec<[usize; 3]> {
 /// Ear clipping of a counter-clockwise 2D polygon over a doubly linked list: the search
 /// goes on from the last ear instead of starting over, removal is O(1), and only reflex
 /// corners (the only ones that can lie inside an ear) are tested against a candidate ear.
-/// Counts its point-in-triangle tests in `point_tests`.
+/// Counts the corners it checks against candidate ears in `point_tests`.
 fn ear_clip_linked(p: &[DVec2], point_tests: &mut u64) -> Vec<[usize; 3]> {
     let n = p.len();
     let mut next: Vec<usize> = (1..=n).map(|i| i % n).collect();
