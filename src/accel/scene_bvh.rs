@@ -80,7 +80,7 @@ fn primitive_tree(primitives: &[Primitive], bounded: &[u32]) -> Option<WideTree>
         let bvh2 = build_bvh2(&boxes, params, &mut build_time);
         // One primitive per leaf; how costly each is does not change the collapse.
         let cost = CollapseCost { node: 1.0, leaf: |n| (n == 1).then_some(1.0) };
-        WideTree::collapse(&bvh2, cost, |prims| {
+        WideTree::collapse(&bvh2, cost, |prims: &[u32]| {
             debug_assert_eq!(prims.len(), 1, "leaves hold one primitive");
             bounded[prims[0] as usize]
         })
@@ -122,7 +122,7 @@ impl Accel {
                 None => bounded.push(i as u32),
             }
         }
-        let flat = (!triangles.is_empty()).then(|| FlatTriangles { bvh: TriangleBvh::build(&triangles), owners });
+        let flat = (!triangles.is_empty()).then(|| FlatTriangles { bvh: TriangleBvh::build(triangles), owners });
         let gather_tree = flat.is_some().then(|| primitive_tree(primitives, &all_bounded)).flatten();
         Self { tree: primitive_tree(primitives, &bounded), unbounded, flat, gather_tree }
     }

@@ -274,6 +274,22 @@ pub struct WideTree {
     pub stack_size: usize,
 }
 
+/// Makes the wide tree's leaves as a collapse chooses them.
+pub trait LeafMaker {
+    /// The reference of a new leaf holding `primitives` (indices into the binary tree's
+    /// primitives).
+    fn make(&mut self, primitives: &[u32]) -> u32;
+
+    /// Asks for what [`make`](Self::make) will read of `primitives`, ahead of the call.
+    fn prefetch(&self, _primitives: &[u32]) {}
+}
+
+impl<F: FnMut(&[u32]) -> u32> LeafMaker for F {
+    fn make(&mut self, primitives: &[u32]) -> u32 {
+        self(primitives)
+    }
+}
+
 /// What a collapse weighs, in the surface area heuristic's units: the expected cost of a
 /// ray reaching a box is the cost of what the box holds times its surface area.
 #[derive(Clone, Copy, Debug)]
@@ -281,7 +297,7 @@ pub struct CollapseCost {
     /// Cost of testing a wide node's children (one eight-box test).
     pub node: f32,
     /// Cost of testing a leaf of `n` primitives, or `None` when `n` are too many for one
-    /// leaf.
+    /// leaf (then for every larger `n` too; at most 256).
     pub leaf: fn(usize) -> Option<f32>,
 }
 
@@ -292,16 +308,16 @@ impl WideTree {
     /// (Ylitie, Karras and Laine, "Efficient incoherent ray traversal on GPUs through
     /// compressed wide BVHs", 2017). A greedy collapse (open the largest child until eight;
     /// every subtree that fits one leaf is one) leaves nodes near the bottom half empty.
-    /// A leaf's reference is `make_leaf(primitives)` (the primitive indices under it, in
+    /// A leaf's reference is `leaves.make(primitives)` (the primitive indices under it, in
     /// `bvh2`'s numbering).
     ///
     /// # Panics
     ///
     /// When a binary leaf holds more primitives than `cost.leaf` allows in one leaf (build
     /// `bvh2` with one primitive per leaf).
-    pub fn collapse(bvh2: &obvhs::bvh2::Bvh2, cost: CollapseCost, make_leaf: impl FnMut(&[u32]) -> u32) -> Self {
+    pub fn collapse(bvh2: &obvhs::bvh2::Bvh2, cost: CollapseCost, leaves: impl LeafMaker) -> Self {
         let plan = Plan::of(bvh2, cost);
-        let mut collapse = Collapse { bvh2, plan, make_leaf, nodes: Vec::new(), depth: 1 };
+        let mut collapse = Collapse { bvh2, plan, leaves, nodes: Vec::new(), depth: 1 };
         collapse.nodes.push(Node::EMPTY);
         if collapse.plan.is_leaf(0) {
             // Cheapest as one leaf: a root node holding it.
@@ -312,6 +328,25 @@ impl WideTree {
         }
         collapse.nodes.shrink_to_fit();
         WideTree { stack_size: collapse.depth * (WIDTH - 1) + 2, nodes: collapse.nodes }
+    }
+}
+
+/// A leaf's cost for each primitive count it may hold (`CollapseCost::leaf` tabulated: the
+/// plan asks once per binary node).
+struct LeafCosts(Vec<f32>);
+
+impl LeafCosts {
+    /// Most primitives one leaf may hold under any cost (more are never asked about).
+    const MOST: usize = 256;
+
+    fn of(cost: CollapseCost) -> Self {
+        Self((0..=Self::MOST).map_while(|n| if n == 0 { Some(0.0) } else { (cost.leaf)(n) }).collect())
+    }
+
+    /// The cost of a leaf of `count` primitives, `None` when they are too many.
+    #[inline]
+    fn get(&self, count: usize) -> Option<f32> {
+        self.0.get(count).copied()
     }
 }
 
@@ -366,6 +401,7 @@ impl Plan {
 
     /// The plan for `bvh2` under `cost`.
     fn of(bvh2: &obvhs::bvh2::Bvh2, cost: CollapseCost) -> Self {
+        let leaf_cost = LeafCosts::of(cost);
         let (order, listed, levels) = Self::list(bvh2);
         // The costs are made from the deepest level up; `below` holds the level under the
         // one in hand, indexed by position from that level's start.
@@ -381,7 +417,8 @@ impl Plan {
                 let node = listed[position];
                 if node.prim_count > 0 {
                     count[position] = node.prim_count;
-                    let leaf = (cost.leaf)(node.prim_count as usize)
+                    let leaf = leaf_cost
+                        .get(node.prim_count as usize)
                         .expect("a binary leaf holds more primitives than a wide leaf may");
                     here.push([leaf * node.half_area; WIDTH]);
                 } else {
@@ -389,7 +426,8 @@ impl Plan {
                     let under = count[first] + count[first + 1];
                     count[position] = under;
                     let (left, right) = (&below[first - end], &below[first + 1 - end]);
-                    let (costs, choices) = Self::inner(node.half_area, under as usize, left, right, cost);
+                    let (costs, choices) =
+                        Self::inner(node.half_area, leaf_cost.get(under as usize), left, right, cost.node);
                     choice[position] = choices;
                     here.push(costs);
                 }
@@ -401,6 +439,12 @@ impl Plan {
         let mut start = vec![0u32; order.len()];
         let mut prims = vec![0u32; count[0] as usize];
         for (position, node) in listed.iter().enumerate() {
+            // A leaf's primitives and their place lie anywhere: ask ahead (a place not yet
+            // known is asked for at 0, harmlessly).
+            if let Some(ahead) = listed.get(position + Self::LOOKAHEAD).filter(|n| n.prim_count > 0) {
+                simd::prefetch(bvh2.primitive_indices.as_ptr().wrapping_add(ahead.first as usize));
+                simd::prefetch(prims.as_ptr().wrapping_add(start[position + Self::LOOKAHEAD] as usize));
+            }
             let at = start[position] as usize;
             if node.prim_count == 0 {
                 let first = node.first as usize;
@@ -446,16 +490,16 @@ impl Plan {
         (order, listed, levels)
     }
 
-    /// The least costs of an inner binary node (of half surface area `area`) over `count`
-    /// primitives, for one to eight slots, and how they are reached, from its children's
-    /// least costs.
+    /// The least costs of an inner binary node (of half surface area `area`) for one to
+    /// eight slots, and how they are reached, from its children's least costs, the cost of
+    /// all its primitives as one leaf (`None` when they are too many) and a node's cost.
     #[inline]
     fn inner(
         area: f32,
-        count: usize,
+        leaf: Option<f32>,
         left: &[f32; WIDTH],
         right: &[f32; WIDTH],
-        cost: CollapseCost,
+        node: f32,
     ) -> ([f32; WIDTH], [u8; WIDTH]) {
         // spread_cost[j - 1]: the least cost of the two children over j slots; spread_left[j - 1]
         // the left's share. A valid share (one slot to the left) stands until a cost beats
@@ -463,20 +507,24 @@ impl Plan {
         // well-formed tree. For each share of the left, all slot counts at once, without
         // branches (the comparisons are unpredictable): the right's costs shifted by the
         // share, infinite where the right would get no slot.
+        // The shares are kept as 32-bit integers, so that their selects use the same lane
+        // masks as the costs' and vectorise.
         let mut spread_cost = [f32::INFINITY; WIDTH];
-        let mut spread_left = [1u8; WIDTH];
+        let mut spread_left = [1i32; WIDTH];
+        let mut padded = [f32::INFINITY; 2 * WIDTH];
+        padded[WIDTH..].copy_from_slice(right);
         for share in 1..WIDTH {
-            let mut right_shifted = [f32::INFINITY; WIDTH];
-            right_shifted[share..].copy_from_slice(&right[..WIDTH - share]);
+            let right_shifted = &padded[WIDTH - share..2 * WIDTH - share];
             for j in 0..WIDTH {
                 let c = left[share - 1] + right_shifted[j];
                 let better = c < spread_cost[j];
                 spread_cost[j] = if better { c } else { spread_cost[j] };
-                spread_left[j] = if better { share as u8 } else { spread_left[j] };
+                spread_left[j] = if better { share as i32 } else { spread_left[j] };
             }
         }
-        let node_cost = cost.node * area + spread_cost[WIDTH - 1];
-        let (mut best, choice) = match (cost.leaf)(count).map(|c| c * area) {
+        let spread_left = spread_left.map(|share| share as u8);
+        let node_cost = node * area + spread_cost[WIDTH - 1];
+        let (mut best, choice) = match leaf.map(|c| c * area) {
             Some(leaf) if leaf <= node_cost => (leaf, 0),
             _ => (node_cost, spread_left[WIDTH - 1]),
         };
@@ -517,18 +565,18 @@ impl Plan {
 struct Collapse<'a, F> {
     bvh2: &'a obvhs::bvh2::Bvh2,
     plan: Plan,
-    make_leaf: F,
+    leaves: F,
     nodes: Vec<Node>,
     /// Deepest level filled.
     depth: usize,
 }
 
-impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
+impl<F: LeafMaker> Collapse<'_, F> {
     /// Makes the leaf of the primitives under the node at position `p`.
     fn leaf(&mut self, p: usize) -> u32 {
         let start = self.plan.start[p] as usize;
         let end = start + self.plan.count[p] as usize;
-        (self.make_leaf)(&self.plan.prims[start..end])
+        self.leaves.make(&self.plan.prims[start..end])
     }
 
     /// The binary node at position `p`.
@@ -544,6 +592,15 @@ impl<F: FnMut(&[u32]) -> u32> Collapse<'_, F> {
         let mut children = Vec::with_capacity(WIDTH);
         self.plan.gather(first, left, &mut children);
         self.plan.gather(first + 1, WIDTH - left, &mut children);
+        // The children's binary nodes (for their boxes) and the leaves' primitives lie
+        // anywhere: ask for all at once, so that their cache misses overlap.
+        for &c in &children {
+            simd::prefetch(self.bvh2.nodes.as_ptr().wrapping_add(self.plan.order[c] as usize));
+            if self.plan.is_leaf(c) {
+                let start = self.plan.start[c] as usize;
+                self.leaves.prefetch(&self.plan.prims[start..start + self.plan.count[c] as usize]);
+            }
+        }
         for (slot, &c) in children.iter().enumerate() {
             if self.plan.is_leaf(c) {
                 let reference = self.leaf(c);
@@ -595,7 +652,7 @@ mod tests {
     /// `cost` recomputed from its nodes' boxes.
     fn collapse_and_price(bvh2: &obvhs::bvh2::Bvh2, cost: CollapseCost) -> (WideTree, Vec<Vec<u32>>, f32) {
         let mut leaves = Vec::new();
-        let tree = WideTree::collapse(bvh2, cost, |prims| {
+        let tree = WideTree::collapse(bvh2, cost, |prims: &[u32]| {
             leaves.push(prims.to_vec());
             leaves.len() as u32 - 1
         });
@@ -668,7 +725,7 @@ mod tests {
         let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
         let bvh2 = build_bvh2(&boxes, params, &mut std::time::Duration::default());
         let mut leaves: Vec<Vec<u32>> = Vec::new();
-        WideTree::collapse(&bvh2, PACKETS, |prims| {
+        WideTree::collapse(&bvh2, PACKETS, |prims: &[u32]| {
             leaves.push(prims.to_vec());
             leaves.len() as u32 - 1
         });

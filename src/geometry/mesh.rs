@@ -153,7 +153,6 @@ impl MeshBuilder {
         }
         self.triangles.shrink_to_fit();
         let corners: Vec<[Vec3; 3]> = self.triangles.iter().map(|t| t.map(|i| positions[i as usize])).collect();
-        let bvh = TriangleBvh::build(&corners);
         let mut bounds = Aabb::EMPTY;
         let mut area = 0.0;
         for t in &corners {
@@ -163,6 +162,7 @@ impl MeshBuilder {
             area += 0.5 * (t[1] - t[0]).as_dvec3().cross((t[2] - t[0]).as_dvec3()).length();
         }
         let plane_normal = plane_normal(&corners);
+        let bvh = TriangleBvh::build(corners);
         Ok(MeshData {
             positions: self.positions,
             normals: self.normals,
