@@ -428,8 +428,11 @@ fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays
         "  prism build (obvhs PLOC + BVH8 collapse) best of 3: {build_best:.3} s, cpu best of 3: {build_cpu_best:.3} s; BVH {:.1} bytes/triangle (nodes + packets)",
         bvh.memory_bytes() as f64 / mesh.triangles.len() as f64
     );
-    let (nodes, packets, children, fill) = bvh.stats();
-    println!("  prism BVH8: {nodes} nodes ({children:.2} children each), {packets} packets ({fill:.2} triangles each)");
+    let stats = bvh.stats();
+    println!(
+        "  prism BVH8: {} nodes ({:.2} children each), {} packets ({:.2} triangles each), expected cost {:.3} per ray entering the root",
+        stats.nodes, stats.children_per_node, stats.packets, stats.triangles_per_packet, stats.expected_cost
+    );
     let builder =
         MeshBuilder { positions: mesh.positions.clone(), triangles: mesh.triangles.clone(), ..MeshBuilder::default() };
     let data = std::sync::Arc::new(builder.build().expect("mesh"));

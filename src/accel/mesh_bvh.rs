@@ -30,6 +30,25 @@ pub struct TriangleBvh {
     triangles: Vec<[Vec3; 3]>,
     /// Deepest stack a traversal can need.
     stack_size: usize,
+    /// The collapse's expected cost of a ray entering the root's box.
+    expected_cost: f32,
+}
+
+/// The shape of a [`TriangleBvh`].
+#[derive(Clone, Copy, Debug)]
+pub struct TreeStats {
+    /// Wide nodes.
+    pub nodes: usize,
+    /// Leaf packets.
+    pub packets: usize,
+    /// Mean children per node.
+    pub children_per_node: f64,
+    /// Mean distinct triangles per packet.
+    pub triangles_per_packet: f64,
+    /// The expected cost of a ray entering the root's box, in the collapse's units (a node
+    /// test 1, a packet of four triangles 0.2): lower is better, and unlike a timing it is
+    /// the same on every run.
+    pub expected_cost: f32,
 }
 
 impl std::fmt::Debug for TriangleBvh {
@@ -129,8 +148,8 @@ impl TriangleBvh {
         // and did not make traversal measurably faster. PLOC searches six clusters each way
         // for a merge partner (obvhs's `Low`, not `medium_build`'s fourteen) and the pass
         // reinserts 3% of the nodes: against fourteen and 2%, PLOC takes 10-20% less time and
-        // the collapsed tree's expected cost (`WideTree::collapse`'s) is 0.7% lower on the
-        // terrain and on the dragon. The narrower search alone costs the dragon 0.4%, which
+        // the collapsed tree's expected cost (`WideTree::collapse`'s) is 0.7-0.8% lower on the
+        // terrain and on the dragon. The narrower search alone costs the terrain 0.4%, which
         // the extra reinsertion wins back.
         let params = BvhBuildParams {
             max_prims_per_leaf: 1,
@@ -149,6 +168,7 @@ impl TriangleBvh {
             packets: packets.finish(),
             triangles,
             stack_size: tree.stack_size,
+            expected_cost: tree.expected_cost,
         }
     }
 
@@ -173,17 +193,17 @@ impl TriangleBvh {
         &self.triangles[index]
     }
 
-    /// Shape statistics: (nodes, leaf packets, mean children per node, mean distinct
-    /// triangles per packet).
-    pub fn stats(&self) -> (usize, usize, f64, f64) {
+    /// The tree's shape and expected cost.
+    pub fn stats(&self) -> TreeStats {
         let children: usize = self.nodes.iter().map(|n| n.child.iter().filter(|&&c| c != EMPTY).count()).sum();
         let distinct: usize = self.packets.iter().map(TrianglePacket::distinct).sum();
-        (
-            self.nodes.len(),
-            self.packets.len(),
-            children as f64 / self.nodes.len() as f64,
-            distinct as f64 / self.packets.len() as f64,
-        )
+        TreeStats {
+            nodes: self.nodes.len(),
+            packets: self.packets.len(),
+            children_per_node: children as f64 / self.nodes.len() as f64,
+            triangles_per_packet: distinct as f64 / self.packets.len() as f64,
+            expected_cost: self.expected_cost,
+        }
     }
 
     /// Bytes used by the nodes and the leaf packets (not the triangle list kept for
