@@ -341,9 +341,9 @@ impl Filter {
     }
 }
 
-/// Runs Embree's queries on the files and prints its lines; returns rtcIntersect1's rate by
-/// CPU time (Mrays/s), when Embree ran.
-fn embree(mesh: &Path, rays: &Path, passes: usize, occluded: bool) -> Option<f64> {
+/// Runs Embree's queries on the files and prints its lines (unless `quiet`); returns
+/// rtcIntersect1's rate by CPU time (Mrays/s), when Embree ran.
+fn embree(mesh: &Path, rays: &Path, passes: usize, occluded: bool, quiet: bool) -> Option<f64> {
     let exe = PathBuf::from("/tmp/perf/mesh_embree");
     if !exe.exists() {
         println!(
@@ -361,7 +361,9 @@ fn embree(mesh: &Path, rays: &Path, passes: usize, occluded: bool) -> Option<f64
         Ok(o) => {
             let mut rate = None;
             for line in String::from_utf8_lossy(&o.stdout).lines() {
-                if line.contains("build") || line.contains("rtcIntersect1 ") || line.contains("rtcOccluded1") {
+                if !quiet
+                    && (line.contains("build") || line.contains("rtcIntersect1 ") || line.contains("rtcOccluded1"))
+                {
                     println!("  {}", line.trim());
                 }
                 if line.contains("rtcIntersect1 ") {
@@ -392,7 +394,7 @@ fn alternate(shape: &MeshShape, rays: &Rays, files: (&Path, &Path), passes: usiz
     for round in 1..=rounds {
         let prism = time_passes(passes, || trace_shape(shape, rays));
         let prism_rate = rays.rays.len() as f64 / prism.cpu_best / 1e6;
-        let Some(embree_rate) = embree(files.0, files.1, passes, false) else { return };
+        let Some(embree_rate) = embree(files.0, files.1, passes, false, true) else { return };
         ratios.push(prism_rate / embree_rate);
         println!(
             "  round {round}: Shape::intersect {prism_rate:.2} Mrays/s, rtcIntersect1 {embree_rate:.2}: ratio {:.3}",
@@ -455,7 +457,7 @@ fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays
             report("Shape::occluded", rays, &time_passes(passes, || occlusion(&shape, rays)));
         }
         if filter.embree {
-            embree(mesh_file, path, passes, filter.occluded);
+            embree(mesh_file, path, passes, filter.occluded, false);
             if filter.rounds > 0 {
                 alternate(&shape, rays, (mesh_file, path), passes, filter.rounds);
             }

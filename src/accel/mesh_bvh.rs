@@ -162,10 +162,9 @@ impl TriangleBvh {
         // At most one packet per triangle: the buffer never outgrows its mapping.
         let mut leaves = LeafPackets { triangles: &triangles, packets: PageBuffer::with_capacity(triangles.len()) };
         let tree = WideTree::collapse(&bvh2, LEAF_COST, &mut leaves);
-        let packets = leaves.packets;
         TriangleBvh {
             nodes: PageArray::new(tree.nodes),
-            packets: packets.finish(),
+            packets: leaves.packets.finish(),
             triangles,
             stack_size: tree.stack_size,
             expected_cost: tree.expected_cost,

@@ -543,6 +543,12 @@ impl Plan {
         (costs, choices)
     }
 
+    /// The primitives under the node at position `p`.
+    fn prims_under(&self, p: usize) -> &[u32] {
+        let start = self.start[p] as usize;
+        &self.prims[start..start + self.count[p] as usize]
+    }
+
     /// True when the node at position `p` becomes a leaf of the wide tree (given one slot).
     fn is_leaf(&self, p: usize) -> bool {
         self.choice[p][0] == 0
@@ -579,9 +585,7 @@ struct Collapse<'a, F> {
 impl<F: LeafMaker> Collapse<'_, F> {
     /// Makes the leaf of the primitives under the node at position `p`.
     fn leaf(&mut self, p: usize) -> u32 {
-        let start = self.plan.start[p] as usize;
-        let end = start + self.plan.count[p] as usize;
-        self.leaves.make(&self.plan.prims[start..end])
+        self.leaves.make(self.plan.prims_under(p))
     }
 
     /// The binary node at position `p`.
@@ -602,8 +606,7 @@ impl<F: LeafMaker> Collapse<'_, F> {
         for &c in &children {
             simd::prefetch(self.bvh2.nodes.as_ptr().wrapping_add(self.plan.order[c] as usize));
             if self.plan.is_leaf(c) {
-                let start = self.plan.start[c] as usize;
-                self.leaves.prefetch(&self.plan.prims[start..start + self.plan.count[c] as usize]);
+                self.leaves.prefetch(self.plan.prims_under(c));
             }
         }
         for (slot, &c) in children.iter().enumerate() {
