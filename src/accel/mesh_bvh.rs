@@ -9,17 +9,16 @@
 //! (`accel::simd`: AVX2 where the CPU has it, plain loops otherwise, with the same hits);
 //! children are visited nearest first.
 
-use std::time::Duration;
-
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
-use obvhs::bvh2::builder::build_bvh2;
 use obvhs::ploc::PlocSearchDistance;
 
 use super::pages::{PageArray, PageBuffer};
 use super::simd::{self, BoxRay, Dispatch, Kernels};
 use super::triangle::{PACKET, PacketHits, TriangleHit, TrianglePacket, WatertightRay};
-use super::wide::{CollapseCost, EMPTY, LeafMaker, LeafVisitor, Node, StackEntry, WideTree, with_traversal_stack};
+use super::wide::{
+    CollapseCost, EMPTY, LeafMaker, LeafVisitor, Node, StackEntry, WideTree, build_binary, with_traversal_stack,
+};
 
 /// A BVH over triangles.
 #[derive(Clone)]
@@ -141,7 +140,6 @@ impl TriangleBvh {
                 obvhs::aabb::Aabb { min: Vec3A::from(min), max: Vec3A::from(max) }
             })
             .collect();
-        let mut build_time = Duration::default();
         // One triangle per BVH2 leaf: the collapse below forms the leaves. One pass of
         // reinsertion, not obvhs's second pass after its own leaf collapse (which has nothing
         // to collapse at one triangle per leaf): the second pass took a third of the build
@@ -158,7 +156,7 @@ impl TriangleBvh {
             post_collapse_reinsertion_batch_ratio_multiplier: 0.0,
             ..BvhBuildParams::medium_build()
         };
-        let bvh2 = build_bvh2(&boxes, params, &mut build_time);
+        let bvh2 = build_binary(boxes, params);
         // At most one packet per triangle: the buffer never outgrows its mapping.
         let mut leaves = LeafPackets { triangles: &triangles, packets: PageBuffer::with_capacity(triangles.len()) };
         let tree = WideTree::collapse(&bvh2, LEAF_COST, &mut leaves);

@@ -4,18 +4,15 @@
 //! their own object space; the BVH works in f32 with conservatively enlarged boxes, and the
 //! closest hit is decided in f64.
 
-use std::time::Duration;
-
 use glam::{DVec3, Vec3, Vec3A};
 use obvhs::BvhBuildParams;
-use obvhs::bvh2::builder::build_bvh2;
 use prism_api::{Hit, Ray};
 
 use super::mesh_bvh::TriangleBvh;
 use super::primitive::Primitive;
 use super::simd::BoxRay;
 use super::triangle::{WatertightRay, mesh_hit, plane_t};
-use super::wide::{CollapseCost, EMPTY, LEAF, WIDTH, WideTree, traverse_fastest, with_traversal_stack};
+use super::wide::{CollapseCost, EMPTY, LEAF, WIDTH, WideTree, build_binary, traverse_fastest, with_traversal_stack};
 
 /// The acceleration structure.
 pub struct Accel {
@@ -74,10 +71,9 @@ fn f32_bound(t: f64) -> f32 {
 fn primitive_tree(primitives: &[Primitive], bounded: &[u32]) -> Option<WideTree> {
     (!bounded.is_empty()).then(|| {
         let boxes: Vec<_> = bounded.iter().map(|&i| to_obvhs_aabb(&primitives[i as usize].world_bounds)).collect();
-        let mut build_time = Duration::default();
         // One primitive per leaf: the wide tree's leaves are single primitives.
         let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
-        let bvh2 = build_bvh2(&boxes, params, &mut build_time);
+        let bvh2 = build_binary(boxes, params);
         // One primitive per leaf; how costly each is does not change the collapse.
         let cost = CollapseCost { node: 1.0, leaf: |n| (n == 1).then_some(1.0) };
         WideTree::collapse(&bvh2, cost, |prims: &[u32]| {
