@@ -747,7 +747,8 @@ mod tests {
                 })
                 .collect()
         };
-        for boxes in [random(1, &mut rng), random(2, &mut rng), random(3, &mut rng), random(500, &mut rng), height_field(40)]
+        for boxes in
+            [random(1, &mut rng), random(2, &mut rng), random(3, &mut rng), random(500, &mut rng), height_field(40)]
         {
             let bvh2 = build_binary(boxes.clone(), params);
             // Walk the tree from the root: every input primitive in one leaf, no other, and
