@@ -45,7 +45,7 @@ pub struct TreeStats {
     /// Mean distinct triangles per packet.
     pub triangles_per_packet: f64,
     /// The expected cost of a ray entering the root's box, in the collapse's units (a node
-    /// test 1, a packet of four triangles 0.2): lower is better, and unlike a timing it is
+    /// test 1, a packet of four triangles 0.1): lower is better, and unlike a timing it is
     /// the same on every run.
     pub expected_cost: f32,
 }
@@ -65,15 +65,19 @@ impl std::fmt::Debug for TriangleBvh {
 /// Most packets in one leaf (the leaf reference's two count bits).
 const LEAF_PACKETS: usize = 4;
 
-/// What the collapse weighs: an 8-wide node test costs 1, a leaf 0.2 per started packet of
+/// What the collapse weighs: an 8-wide node test costs 1, a leaf 0.1 per started packet of
 /// four triangles. A packet costs far less than a node because the packets of a leaf lie
 /// side by side and are fetched together, while each node is one more dependent cache miss
 /// down the tree. Measured on the terrain and the dragon with incoherent rays (best of three
-/// runs each, Mrays/s through the f32 API): packet cost 1 gave 2.73 and 2.88, 0.5 3.17 and
-/// 3.26, 0.25 3.40 and 3.69, 0.1 3.33 and 3.50; 0.2 lies between the best two.
+/// runs each, Mrays/s through the f32 API, on the trees of stop 32): packet cost 1 gave 2.73
+/// and 2.88, 0.5 3.17 and 3.26, 0.25 3.40 and 3.69, 0.1 3.33 and 3.50. On the trees built
+/// with the Morton cube (`wide::build_binary`), two trees in one process timed in turn (six
+/// or eight rounds, median speed-up of each against 0.2): 0.12 gave 1.006 and 1.032 (terrain,
+/// two runs) and 1.072 and 1.040 (dragon), 0.1 1.031 and 1.020, 0.08 1.021 and 1.036, 0.05
+/// 1.022 and 0.998, 0.3 0.988 and 0.960.
 const LEAF_COST: CollapseCost = CollapseCost {
     node: 1.0,
-    leaf: |triangles| (triangles <= PACKET * LEAF_PACKETS).then(|| 0.2 * triangles.div_ceil(PACKET) as f32),
+    leaf: |triangles| (triangles <= PACKET * LEAF_PACKETS).then(|| 0.1 * triangles.div_ceil(PACKET) as f32),
 };
 
 /// Makes the collapse's leaves: packets of the triangles, in the order the collapse lists
