@@ -147,16 +147,20 @@ impl TriangleBvh {
         // One triangle per BVH2 leaf: the collapse below forms the leaves. One pass of
         // reinsertion, not obvhs's second pass after its own leaf collapse (which has nothing
         // to collapse at one triangle per leaf): the second pass took a third of the build
-        // and did not make traversal measurably faster. PLOC searches six clusters each way
-        // for a merge partner (obvhs's `Low`, not `medium_build`'s fourteen) and the pass
-        // reinserts 3% of the nodes: against fourteen and 2%, PLOC takes 10-20% less time and
-        // the collapsed tree's expected cost (`WideTree::collapse`'s) is 0.7-0.8% lower on the
-        // terrain and on the dragon. The narrower search alone costs the terrain 0.4%, which
-        // the extra reinsertion wins back.
+        // and did not make traversal measurably faster. PLOC searches two clusters each way
+        // for a merge partner (obvhs's `VeryLow`, not `medium_build`'s fourteen) and the pass
+        // reinserts 4% of the nodes. On the Morton curve laid in a cube (`build_binary`) a
+        // wider search made the terrain's tree worse: the collapsed tree's expected cost
+        // (`WideTree::collapse`'s) was 8.964 and 12.567 (terrain and dragon) against 9.096 and
+        // 12.588 with six and 3% (under the earlier packet price of 0.2, fourteen and 3% gave
+        // 9.822 and 13.514 against six's 9.707 and 13.395), and PLOC's time falls with the
+        // search distance (the extra reinsertion costs about as much as it saves).
+        // Incoherent rays ran 1-3% faster on the terrain than with six and 3% (two trees timed
+        // in turn in one process).
         let params = BvhBuildParams {
             max_prims_per_leaf: 1,
-            ploc_search_distance: PlocSearchDistance::Low,
-            reinsertion_batch_ratio: 0.03,
+            ploc_search_distance: PlocSearchDistance::VeryLow,
+            reinsertion_batch_ratio: 0.04,
             post_collapse_reinsertion_batch_ratio_multiplier: 0.0,
             ..BvhBuildParams::medium_build()
         };
