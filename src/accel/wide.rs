@@ -277,7 +277,12 @@ pub fn with_traversal_stack<R>(size: usize, f: impl FnOnce(&mut [StackEntry]) ->
 /// axis; its leaf is taken out of the tree once built (its sibling takes its parent's place,
 /// and the boxes above are refitted). On the terrain of `benches/mesh_bvh.rs` the collapsed
 /// tree's expected cost fell by 9 %, on the dragon by 1.6 % (docs/meshes.md, seventh round).
+///
+/// # Panics
+///
+/// When `params` allow more than one primitive per leaf (the padding could share a leaf).
 pub fn build_binary(mut boxes: Vec<obvhs::aabb::Aabb>, params: obvhs::BvhBuildParams) -> obvhs::bvh2::Bvh2 {
+    assert_eq!(params.max_prims_per_leaf, 1, "build_binary builds one primitive per leaf");
     let total = boxes.iter().fold(obvhs::aabb::Aabb::INVALID, |all, b| all.union(b));
     let corner = total.min + glam::Vec3A::splat((total.max - total.min).max_element());
     // Bounds too large for a finite cube keep obvhs's own scaling.
