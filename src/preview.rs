@@ -258,10 +258,16 @@ impl Preview {
     pub fn open(image: (u32, u32), title: &str, settings: PreviewSettings) -> Result<Self, PreviewError> {
         let x11 = std::env::var("DISPLAY").ok().filter(|d| !d.is_empty());
         let wayland = std::env::var_os("WAYLAND_DISPLAY").filter(|d| !d.is_empty());
-        let screen = match (&x11, &wayland) {
+        // The X11 connection that measured the screen stays open until the window is: a
+        // server that resets when its last client leaves (Xvfb by default) would otherwise
+        // drop the window's connection while resetting, and `XOpenDisplay` would fail.
+        let (screen, measuring) = match (&x11, &wayland) {
             (None, None) => return Err(PreviewError::NoDisplay),
-            (Some(display), _) => x11_screen_size(display)?,
-            (None, Some(_)) => WAYLAND_SCREEN,
+            (Some(display), _) => {
+                let connection = X11Connection::open(display)?;
+                (connection.screen_size(), Some(connection))
+            }
+            (None, Some(_)) => (WAYLAND_SCREEN, None),
         };
         let layout = Layout::fit(image, screen);
         let (tiles, inbox) = mpsc::channel();
@@ -283,6 +289,7 @@ impl Preview {
                 return Err(PreviewError::Window { reason: "the windowing library failed".into() });
             }
         }
+        drop(measuring);
         let closer = tiles.clone();
         Ok(Self { hook: TileHook(std::sync::Arc::new(Forwarder(tiles))), closer, layout, thread: Some(thread) })
     }
@@ -316,21 +323,40 @@ impl Drop for Preview {
     }
 }
 
-/// The size of the default screen of X11 display `display`; the error says why there is
-/// none. (minifb would say only that `XOpenDisplay` failed, and knows no size to fit to.)
-fn x11_screen_size(display: &str) -> Result<(u32, u32), PreviewError> {
-    let xlib = x11_dl::xlib::Xlib::open().map_err(|e| PreviewError::NoLibrary { reason: e.to_string() })?;
-    // SAFETY: Xlib's functions as loaded, called in their documented order on a display
-    // pointer checked for null, which is closed before returning.
-    unsafe {
-        let connection = (xlib.XOpenDisplay)(std::ptr::null());
+/// An open connection to an X11 display, closed when dropped. (minifb would say only that
+/// `XOpenDisplay` failed, and knows no size to fit to.)
+struct X11Connection {
+    xlib: x11_dl::xlib::Xlib,
+    display: *mut x11_dl::xlib::Display,
+}
+
+impl X11Connection {
+    /// Connects to `display` (the value of `DISPLAY`); the error says why it cannot.
+    fn open(display: &str) -> Result<Self, PreviewError> {
+        let xlib = x11_dl::xlib::Xlib::open().map_err(|e| PreviewError::NoLibrary { reason: e.to_string() })?;
+        // SAFETY: Xlib's function as loaded; a null name means `DISPLAY`, checked above.
+        let connection = unsafe { (xlib.XOpenDisplay)(std::ptr::null()) };
         if connection.is_null() {
             return Err(PreviewError::Unreachable { display: crate::files::shown(display) });
         }
-        let screen = (xlib.XDefaultScreen)(connection);
-        let size = ((xlib.XDisplayWidth)(connection, screen), (xlib.XDisplayHeight)(connection, screen));
-        (xlib.XCloseDisplay)(connection);
-        Ok((size.0.max(1) as u32, size.1.max(1) as u32))
+        Ok(Self { xlib, display: connection })
+    }
+
+    /// The size of the display's default screen in pixels.
+    fn screen_size(&self) -> (u32, u32) {
+        // SAFETY: a display pointer from `XOpenDisplay`, not null, not yet closed.
+        let size = unsafe {
+            let screen = (self.xlib.XDefaultScreen)(self.display);
+            ((self.xlib.XDisplayWidth)(self.display, screen), (self.xlib.XDisplayHeight)(self.display, screen))
+        };
+        (size.0.max(1) as u32, size.1.max(1) as u32)
+    }
+}
+
+impl Drop for X11Connection {
+    fn drop(&mut self) {
+        // SAFETY: closed once, here, on the pointer `XOpenDisplay` returned.
+        unsafe { (self.xlib.XCloseDisplay)(self.display) };
     }
 }
 
