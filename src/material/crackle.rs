@@ -160,6 +160,19 @@ impl Metric {
         }
     }
 
+    /// A bound on the largest component of a difference whose powered sum is below `sum`:
+    /// a point farther than it along any axis is no nearer than `sum`, so the search skips
+    /// it without its powers. `None` where the check would cost what it saves (metrics 1
+    /// and 2) or where the bound's margin falls below the powers' rounding (metrics below
+    /// 1/100). The margin of a millionth keeps the skip exact: `max^m` then exceeds `sum` by
+    /// far more than `powf`'s rounding, and the sum of the three powers is at least each.
+    fn cutoff(self, sum: f64) -> Option<f64> {
+        match self {
+            Metric::Power(m) if m >= 0.01 => Some(sum.powf(1.0 / m) * (1.0 + 1e-6)),
+            _ => None,
+        }
+    }
+
     /// `offset` as a powered sum.
     fn power(self, offset: f64) -> f64 {
         match self {
@@ -202,8 +215,13 @@ fn crackle_in(q: DVec3, cells: &CubeCells, metric: Metric, params: &CrackleParam
     if s3 < s2 {
         std::mem::swap(&mut s2, &mut s3);
     }
+    let mut cutoff = metric.cutoff(s3);
     for i in 3..cells.len() {
-        let sum = metric.sum(point(i) - q);
+        let d = point(i) - q;
+        if cutoff.is_some_and(|c| d.abs().max_element() > c) {
+            continue;
+        }
+        let sum = metric.sum(d);
         if sum < s1 {
             s3 = s2;
             s2 = s1;
@@ -214,7 +232,10 @@ fn crackle_in(q: DVec3, cells: &CubeCells, metric: Metric, params: &CrackleParam
             s2 = sum;
         } else if sum < s3 {
             s3 = sum;
+        } else {
+            continue;
         }
+        cutoff = metric.cutoff(s3);
     }
     if params.offset != 0.0 {
         let o = metric.power(params.offset);
@@ -246,14 +267,21 @@ pub fn nearest_facet_point(tv: DVec3, metric: f64) -> DVec3 {
     };
     let cube =
         [(tv.x - POV_EPSILON).floor() as i32, (tv.y - POV_EPSILON).floor() as i32, (tv.z - POV_EPSILON).floor() as i32];
+    let power = (metric != 2.0 && metric != 1.0).then_some(Metric::Power(metric));
     with_cells(cube, |cells| {
         let mut best = DVec3::ZERO;
         let mut best_sum = f64::INFINITY;
+        let mut cutoff = None;
         for (i, &p) in cells.iter().enumerate() {
-            let s = sum(p - tv);
+            let d = p - tv;
+            if cutoff.is_some_and(|c| d.abs().max_element() > c) {
+                continue;
+            }
+            let s = sum(d);
             if i == 0 || s < best_sum {
                 best = p;
                 best_sum = s;
+                cutoff = power.and_then(|m| m.cutoff(best_sum));
             }
         }
         best
@@ -344,6 +372,37 @@ mod tests {
             let p = CrackleParams { form: DVec3::new(0.5, 0.0, 0.0), offset: 0.3, ..CrackleParams::default() };
             let expected = (0.5 * (s[0].0 + 0.09).sqrt()).clamp(0.0, 1.0);
             assert!((crackle(q, &p) - expected).abs() < 1e-14, "offset at {q}");
+        }
+    }
+
+    /// Skipping the cells whose largest component is beyond the third distance changes
+    /// nothing: on random points, for metrics with and without the skip, every form and
+    /// `solid` give exactly what sorting all 81 powered sums gives.
+    #[test]
+    fn the_pruned_search_equals_sorting_every_cell() {
+        let mut rng = prism_api::contract::TestRng::new(41);
+        for metric in [0.005, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 7.0, 100.0] {
+            let kind = if metric == 2.0 {
+                Metric::Square
+            } else if metric == 1.0 {
+                Metric::Unity
+            } else {
+                Metric::Power(metric)
+            };
+            for _ in 0..300 {
+                let q = DVec3::new(rng.range(-20.0, 20.0), rng.range(-20.0, 20.0), rng.range(-20.0, 20.0));
+                let s = sorted_sums(q, kind);
+                let form = DVec3::new(0.7, -0.4, 0.3);
+                let p = CrackleParams { form, metric, offset: 0.0, solid: false };
+                let expected = (form.x * kind.root(s[0].0) + form.y * kind.root(s[1].0) + form.z * kind.root(s[2].0))
+                    .clamp(0.0, 1.0);
+                assert_eq!(crackle(q, &p).to_bits(), expected.to_bits(), "metric {metric} at {q}");
+                let solid = CrackleParams { solid: true, ..p };
+                assert_eq!(crackle(q, &solid).to_bits(), noise(s[0].1).to_bits(), "solid, metric {metric} at {q}");
+                if metric != 1.0 {
+                    assert_eq!(nearest_facet_point(q, metric), s[0].1, "facets, metric {metric} at {q}");
+                }
+            }
         }
     }
 
