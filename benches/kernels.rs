@@ -1,5 +1,6 @@
 //! Criterion benchmarks of the hot kernels: shape intersection (per plugin), the top-level
-//! BVH's closest-hit and occlusion queries, and a whole small render of the seed room.
+//! BVH's closest-hit and occlusion queries, POV-Ray's solid noise and crackle (what the
+//! pattern scenes spend their time in), and a whole small render of the seed room.
 //! Run with `cargo bench --bench kernels`; report ratios measured in one run.
 
 use std::hint::black_box;
@@ -93,6 +94,32 @@ fn queries(c: &mut Criterion) {
     group.finish();
 }
 
+/// POV-Ray's noise, its vector form (normal perturbations), its turbulence and crackle at
+/// random points, per call.
+fn patterns(c: &mut Criterion) {
+    use prism::material::crackle::{CrackleParams, crackle};
+    use prism::material::noise::{Octaves, dnoise, noise, turbulence};
+    let mut rng = TestRng::new(5);
+    let points: Vec<DVec3> =
+        (0..4096).map(|_| DVec3::new(rng.range(-50.0, 50.0), rng.range(-50.0, 50.0), rng.range(-50.0, 50.0))).collect();
+    let mut group = c.benchmark_group("patterns");
+    group.throughput(Throughput::Elements(points.len() as u64));
+    group.bench_function("noise", |b| b.iter(|| points.iter().map(|&p| noise(black_box(p))).sum::<f64>()));
+    group.bench_function("dnoise", |b| b.iter(|| points.iter().map(|&p| dnoise(black_box(p))).sum::<DVec3>()));
+    let octaves = Octaves::default();
+    group.bench_function("turbulence_6_octaves", |b| {
+        b.iter(|| points.iter().map(|&p| turbulence(black_box(p), &octaves)).sum::<f64>())
+    });
+    for (name, metric) in [("crackle_metric_2", 2.0), ("crackle_metric_3", 3.0)] {
+        let params = CrackleParams { metric, ..CrackleParams::default() };
+        // Neighbouring points, as a surface's shading points are: mostly in one cube.
+        group.bench_function(name, |b| {
+            b.iter(|| points.iter().map(|&p| crackle(black_box(p * 0.02), &params)).sum::<f64>())
+        });
+    }
+    group.finish();
+}
+
 fn whole_render(c: &mut Criterion) {
     let scene = room();
     let mut group = c.benchmark_group("render");
@@ -107,7 +134,7 @@ fn whole_render(c: &mut Criterion) {
 /// The benchmarks, in a module of their own: `criterion_group!` defines a public function
 /// without documentation, which `missing_docs` would report at the crate root.
 mod groups {
-    use super::{queries, shapes, whole_render};
-    criterion::criterion_group!(benches, shapes, queries, whole_render);
+    use super::{patterns, queries, shapes, whole_render};
+    criterion::criterion_group!(benches, shapes, queries, patterns, whole_render);
 }
 criterion_main!(groups::benches);
