@@ -81,12 +81,12 @@ static PATTERN_RANDS: LazyLock<Vec<f64>> =
 
 /// POV-Ray's `CrackleCubeTable`: the 81 cube offsets searched, in its order (the order
 /// decides which of two equally near points a `solid` crackle takes).
-static CUBE_OFFSETS: LazyLock<Vec<[i32; 3]>> = LazyLock::new(|| {
+static CUBE_OFFSETS: LazyLock<Vec<[i64; 3]>> = LazyLock::new(|| {
     let mut offsets = Vec::with_capacity(81);
     for x in -2..=2 {
         for y in -2..=2 {
             for z in -2..=2 {
-                let twos = [x, y, z].iter().filter(|v: &&i32| v.abs() == 2).count();
+                let twos = [x, y, z].iter().filter(|v: &&i64| v.abs() == 2).count();
                 if twos <= 1 {
                     offsets.push([x, y, z]);
                 }
@@ -96,11 +96,25 @@ static CUBE_OFFSETS: LazyLock<Vec<[i32; 3]>> = LazyLock::new(|| {
     offsets
 });
 
-/// The random point of unit cube `(x, y, z)` (POV-Ray's `IntPickInCube`).
-pub fn cell_point(x: i32, y: i32, z: i32) -> DVec3 {
-    let seed = hash3d(x, y, z);
+/// The largest cube coordinate searched: from 2^53 on every f64 is a whole number, so
+/// there are no finer cells to tell apart.
+const MAX_CUBE: f64 = 9_007_199_254_740_992.0;
+
+/// The random point of unit cube `(x, y, z)` (POV-Ray's `IntPickInCube`), for coordinates
+/// within ±2^53.
+pub fn cell_point(x: i64, y: i64, z: i64) -> DVec3 {
+    // The hash reads the low twelve bits, which the cast to i32 keeps.
+    let seed = hash3d(x as i32, y as i32, z as i32);
     let r = &*PATTERN_RANDS;
-    DVec3::new(f64::from(x) + r[seed], f64::from(y) + r[seed + 1], f64::from(z) + r[seed + 2])
+    DVec3::new(x as f64 + r[seed], y as f64 + r[seed + 1], z as f64 + r[seed + 2])
+}
+
+/// The unit cube of `q` as POV-Ray finds it, `floor(q - EPSILON)`, each coordinate clamped
+/// to ±2^53 so that the neighbours searched around it cannot overflow (a point that far
+/// out, or one made infinite or NaN by extreme turbulence, still reads a cube).
+fn cube_of(q: DVec3) -> [i64; 3] {
+    // `as` maps NaN to 0.
+    q.to_array().map(|v| (v - POV_EPSILON).floor().clamp(-MAX_CUBE, MAX_CUBE) as i64)
 }
 
 /// The 81 cell points searched around cube `cube`, in [`CUBE_OFFSETS`]' order.
@@ -110,12 +124,12 @@ thread_local! {
     /// The cells of the cube the last lookup on this thread fell in (POV-Ray keeps a
     /// per-thread cache of cubes too): neighbouring shading points mostly share a cube, and
     /// the points are a pure function of the cube, so the cache changes no result.
-    static LAST_CUBE: RefCell<Option<([i32; 3], Box<CubeCells>)>> = const { RefCell::new(None) };
+    static LAST_CUBE: RefCell<Option<([i64; 3], Box<CubeCells>)>> = const { RefCell::new(None) };
 }
 
 /// Calls `f` with the 81 cell points around `cube`, computing them only when the last
 /// lookup on this thread was in another cube.
-fn with_cells<T>(cube: [i32; 3], f: impl FnOnce(&CubeCells) -> T) -> T {
+fn with_cells<T>(cube: [i64; 3], f: impl FnOnce(&CubeCells) -> T) -> T {
     LAST_CUBE.with(|last| {
         let mut last = last.borrow_mut();
         match &mut *last {
@@ -192,9 +206,7 @@ pub fn crackle(q: DVec3, params: &CrackleParams) -> f64 {
     } else {
         Metric::Power(params.metric)
     };
-    let cube =
-        [(q.x - POV_EPSILON).floor() as i32, (q.y - POV_EPSILON).floor() as i32, (q.z - POV_EPSILON).floor() as i32];
-    with_cells(cube, |cells| crackle_in(q, cells, metric, params))
+    with_cells(cube_of(q), |cells| crackle_in(q, cells, metric, params))
 }
 
 /// [`crackle`] with the cells around `q`'s cube given.
@@ -265,10 +277,8 @@ pub fn nearest_facet_point(tv: DVec3, metric: f64) -> DVec3 {
             d.x.abs().powf(metric) + d.y.abs().powf(metric) + d.z.abs().powf(metric)
         }
     };
-    let cube =
-        [(tv.x - POV_EPSILON).floor() as i32, (tv.y - POV_EPSILON).floor() as i32, (tv.z - POV_EPSILON).floor() as i32];
     let power = (metric != 2.0 && metric != 1.0).then_some(Metric::Power(metric));
-    with_cells(cube, |cells| {
+    with_cells(cube_of(tv), |cells| {
         let mut best = DVec3::ZERO;
         let mut best_sum = f64::INFINITY;
         let mut cutoff = None;
@@ -301,6 +311,22 @@ mod tests {
     }
 
     #[test]
+    fn far_and_non_finite_points_search_a_cube_without_overflow() {
+        // Past the i32 range (a plane seen far away through a small pattern scale), at the
+        // f64 limit and beyond it.
+        for v in [3.0e9, -3.0e9, 2.0f64.powi(60), 1e300, f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            let q = DVec3::new(v, 0.25, -v);
+            let value = crackle(q, &CrackleParams::default());
+            assert!(value.is_nan() || (0.0..=1.0).contains(&value), "{v}: {value}");
+            let _ = nearest_facet_point(q, 2.0);
+        }
+        // Within it the cells are still the point's own.
+        let q = DVec3::new(3.0e9 + 0.5, 0.5, 0.5);
+        assert_eq!(cube_of(q), [3_000_000_000, 0, 0]);
+        assert!(crackle(q, &CrackleParams::default()).is_finite());
+    }
+
+    #[test]
     fn cube_table_is_povrays_81_cells_in_order() {
         assert_eq!(CUBE_OFFSETS.len(), 81);
         // x = -2 allows only y, z in -1..=1: the first entry is (-2, -1, -1).
@@ -313,7 +339,7 @@ mod tests {
     fn cell_points_lie_in_their_cube_and_wrap_every_4096() {
         for (x, y, z) in [(0, 0, 0), (-1, 3, -7), (4095, -4096, 17)] {
             let p = cell_point(x, y, z);
-            let corner = DVec3::new(f64::from(x), f64::from(y), f64::from(z));
+            let corner = DVec3::new(x as f64, y as f64, z as f64);
             assert!((p - corner).min_element() >= 0.0 && (p - corner).max_element() < 1.0, "{p}");
             // The hash reads coordinates modulo 4096.
             assert_eq!(cell_point(x + 4096, y, z) - DVec3::new(4096.0, 0.0, 0.0), p);
@@ -330,7 +356,7 @@ mod tests {
         let mut all: Vec<(f64, DVec3)> = CUBE_OFFSETS
             .iter()
             .map(|[x, y, z]| {
-                let p = cell_point(c.x as i32 + x, c.y as i32 + y, c.z as i32 + z);
+                let p = cell_point(c.x as i64 + x, c.y as i64 + y, c.z as i64 + z);
                 (metric.sum(p - q), p)
             })
             .collect();
@@ -432,7 +458,7 @@ mod tests {
         let c = (q - DVec3::splat(POV_EPSILON)).floor();
         let signed = CUBE_OFFSETS
             .iter()
-            .map(|[x, y, z]| cell_point(c.x as i32 + x, c.y as i32 + y, c.z as i32 + z))
+            .map(|[x, y, z]| cell_point(c.x as i64 + x, c.y as i64 + y, c.z as i64 + z))
             .min_by(|a, b| (a.x + a.y + a.z).total_cmp(&(b.x + b.y + b.z)))
             .unwrap();
         assert_eq!(nearest_facet_point(q, 1.0), signed);

@@ -16,6 +16,8 @@ use glam::DVec3;
 const POV_EPSILON: f64 = 1.0e-10;
 /// POV-Ray's lattice offset (`NOISE_MINX`), so negative cells hash like positive ones.
 const LATTICE_MIN: i64 = -10000;
+/// 2^53: from here on every f64 is a whole number.
+const WHOLE_FLOATS: f64 = 9_007_199_254_740_992.0;
 
 /// POV-Ray's `RTable`: 267 random values; entry `2 i + 1` of the working table is half of
 /// entry `2 i`.
@@ -328,6 +330,13 @@ pub fn hash3d(x: i32, y: i32, z: i32) -> usize {
 /// A coordinate's lattice cell (hash index) and its offset in the cell, as POV-Ray takes
 /// them.
 fn cell(v: f64) -> (usize, f64) {
+    if v.is_nan() || v.abs() >= WHOLE_FLOATS {
+        // Every f64 this large is a whole number (and beyond 2^63 the integer cast would
+        // saturate): the cell is the value modulo the lattice, the offset 0, as below. A
+        // point made infinite or NaN by extreme turbulence reads cell 0.
+        let whole = if v.is_finite() { v.rem_euclid(4096.0) as i64 } else { 0 };
+        return (((whole - LATTICE_MIN) & 0xFFF) as usize, 0.0);
+    }
     let whole = if v >= 0.0 { v as i64 } else { (v - (1.0 - POV_EPSILON)) as i64 };
     (((whole - LATTICE_MIN) & 0xFFF) as usize, v - whole as f64)
 }
@@ -438,6 +447,25 @@ pub fn dturbulence(p: DVec3, o: &Octaves) -> DVec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn far_and_non_finite_points_read_a_cell_without_overflow() {
+        // From 2^53 to 2^63 the modulo agrees with POV-Ray's integer formula.
+        for v in [9_007_199_254_740_992.0, 9_007_199_254_740_992.0 * 3.0 + 4096.0 * 5.0, -1.5e17, 9.0e18] {
+            let whole = v as i64;
+            assert_eq!(cell(v), (((whole - LATTICE_MIN) & 0xFFF) as usize, 0.0), "{v}");
+        }
+        // Beyond i64 (turbulence of 1e300, or a lambda whose powers overflow) the noise and
+        // its gradient stay finite.
+        for v in [9.3e18, -9.3e18, 1e300, f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            let p = DVec3::new(v, 0.5, -v);
+            assert!((0.0..=1.0).contains(&noise(p)), "{v}");
+            assert!(dnoise(p).is_finite(), "{v}");
+        }
+        let extreme = Octaves { octaves: 10, omega: 0.5, lambda: 1e300 };
+        assert!(turbulence(DVec3::splat(0.3), &extreme).is_finite());
+        assert!(dturbulence(DVec3::splat(0.3), &extreme).is_finite());
+    }
 
     #[test]
     fn the_permutation_is_povrays_shuffle() {
