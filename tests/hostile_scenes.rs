@@ -5,6 +5,7 @@
 
 mod common;
 
+use common::failed_run_problems;
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -48,6 +49,15 @@ fn assert_renders(dir: &Path, scene: &str) {
     assert!(dir.join("out.png").is_file(), "{scene}");
 }
 
+fn assert_refused(dir: &Path, scene: &str, expect: &[&str]) {
+    let _ = std::fs::remove_file(dir.join("out.png"));
+    let out = render_scene(dir, scene);
+    let problems = failed_run_problems(&out, expect);
+    assert!(problems.is_empty(), "{scene}\n{}\n--- stderr:\n{}", problems.join("; "), stderr(&out));
+    assert!(!stderr(&out).contains("internal error"), "{}", stderr(&out));
+    assert!(!dir.join("out.png").exists(), "{scene}: an output was written");
+}
+
 /// Noise and crackle read far from the origin: a plane seen from a million units up through
 /// a pattern scaled down 5,000 times (crackle cells past the i32 range), and turbulence,
 /// `lambda` and normal `accuracy` so large that the point leaves the i64 range or becomes
@@ -75,4 +85,25 @@ fn patterns_read_far_from_the_origin_render() {
         }
     }
     assert_renders(dir.path(), &sphere("{ normal = { pattern = \"granite\", accuracy = 1e300 } }"));
+}
+
+/// Pattern colours keep a material's limits (components within ±1e30, filter and transmit
+/// within ±1e9): a `color_map` colour of 1e31, a `color_map` filter or an image map's
+/// `transmit_all` of 1e300 and a `pigment_map` entry's filter of 1e300 used to render with
+/// overflowing pixels; each is an error naming the file, line and key.
+#[test]
+fn pattern_colours_beyond_the_limits_are_refused_at_load() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(common::repo().join("scenes/parity/image_map.png"), dir.path().join("img.png")).unwrap();
+    let pigment = |p: &str| format!("[[object]]\nshape = \"sphere\"\nmaterial = {{ pigment = {p} }}\n");
+    let cases = [
+        ("{ pattern = \"bozo\", color_map = [[0, [1e31, 0, 0]], [1, 1]] }", "pigment.color_map`: entry 0: colour"),
+        ("{ pattern = \"bozo\", color_map = [[0, 0], [1, { color = 1, filter = 1e300 }]] }", "entry 1: filter"),
+        ("{ pattern = \"checker\", colors = [0, { color = 1, transmit = -1e10 }] }", "pigment.colors`: entry 1"),
+        ("{ image_map = { file = \"img.png\", transmit_all = 1e300 } }", "pigment.image_map.transmit_all"),
+        ("{ pattern = \"bozo\", pigment_map = [[0, { color = 1, filter = 1e300 }]] }", "pigment_map[0].filter"),
+    ];
+    for (p, key) in cases {
+        assert_refused(dir.path(), &pigment(p), &["scene.toml:3:", key, "1e"]);
+    }
 }

@@ -22,7 +22,7 @@ use serde::{Deserialize, Serialize};
 use super::pattern::Rgbft;
 use crate::files::{FileAccess, FileError, FileKind, shown_path};
 use crate::gamma::{GammaCurve, Transcoding};
-use crate::limits::{MAX_TEXTURE_SIDE, MemoryBudget};
+use crate::limits::{MAX_COEFFICIENT, MAX_TEXTURE_SIDE, MemoryBudget};
 use crate::texture::TextureError;
 
 /// POV-Ray's `EPSILON`, added to the image coordinates before they wrap.
@@ -256,6 +256,13 @@ impl ImageMap {
                 && !v.is_finite()
             {
                 return Err((key, format!("must be finite, got {v}")));
+            }
+            // As a material's filter and transmit: larger values overflow their products.
+            if let Some(v) = v
+                && v.abs() > MAX_COEFFICIENT
+            {
+                let v = crate::diagnostics::shown_number(v);
+                return Err((key, format!("must lie within ±{MAX_COEFFICIENT:e} (products would overflow), got {v}")));
             }
         }
         if let Some(r) = self.repeat
@@ -958,6 +965,7 @@ mod tests {
         assert_eq!(err("image_map = { file = \"t.png\" }\npattern = \"onion\""), "image_map");
         assert_eq!(err("scale = 2"), "pattern");
         assert_eq!(err("image_map = { file = \"t.png\", filter_all = nan }"), "image_map.filter_all");
+        assert_eq!(err("image_map = { file = \"t.png\", transmit_all = 1e300 }"), "image_map.transmit_all");
         assert_eq!(err("image_map = { file = \"t.png\" }\nscale = 0"), "scale");
     }
 

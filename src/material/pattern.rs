@@ -19,6 +19,7 @@ use super::crackle::{CrackleParams, crackle};
 use super::image_map::ImageMap;
 use super::noise::{Octaves, dturbulence, noise, turbulence};
 use crate::color::Rgb;
+use crate::limits::{MAX_COEFFICIENT, MAX_COLOR_COMPONENT};
 
 /// POV-Ray's `EPSILON` (`configcore.h`), the offset of `checker`'s and `brick`'s cell edges.
 const POV_EPSILON: f64 = 1.0e-10;
@@ -568,17 +569,11 @@ impl Pigment {
         if let Some((key, _)) = written.find(|(_, given)| *given) {
             return Err((key, "belongs to a pattern: a plain `color` has no pattern keys".into()));
         }
-        if !color.0.is_finite() {
-            return Err(("color", "must be finite".into()));
-        }
-        for (key, v) in [("filter", self.filter), ("transmit", self.transmit)] {
-            if let Some(v) = v
-                && !v.is_finite()
-            {
-                return Err((key, format!("must be finite, got {v}")));
-            }
-        }
-        Ok(())
+        // A material's limits: larger values overflow their products.
+        super::check_finite(
+            &[("color", color)],
+            &[("filter", self.filter.unwrap_or(0.0)), ("transmit", self.transmit.unwrap_or(0.0))],
+        )
     }
 
     /// This pigment's own first problem (its `pigment_map` entries apart).
@@ -665,12 +660,41 @@ impl Pigment {
                 }
             }
         }
-        for c in self.own_colors() {
-            if !c.rgb.is_finite() || !c.filter.is_finite() || !c.transmit.is_finite() {
-                return Err(("color_map", "colours, filter and transmit must be finite".into()));
-            }
-        }
+        self.check_written_colors()?;
         self.check_keys()
+    }
+
+    /// The first colour of this pattern's `colors` or `color_map` outside a material's
+    /// limits: components within ±1e30, filter and transmit within ±1e9, whose products
+    /// cannot overflow.
+    fn check_written_colors(&self) -> Result<(), (&'static str, String)> {
+        let listed = |key: &'static str, i: usize, c: Rgbft| {
+            if !(c.rgb.is_finite() && c.filter.is_finite() && c.transmit.is_finite()) {
+                return Err((key, format!("entry {i}: colour, filter and transmit must be finite")));
+            }
+            let parts = [
+                ("colour components", c.rgb.abs().max_element(), MAX_COLOR_COMPONENT),
+                ("filter", c.filter.abs(), MAX_COEFFICIENT),
+                ("transmit", c.transmit.abs(), MAX_COEFFICIENT),
+            ];
+            match parts.into_iter().find(|(_, v, limit)| v > limit) {
+                Some((part, v, limit)) => Err((
+                    key,
+                    format!(
+                        "entry {i}: {part} must lie within ±{limit:e} (products would overflow), got {}",
+                        crate::diagnostics::shown_number(v)
+                    ),
+                )),
+                None => Ok(()),
+            }
+        };
+        for (i, c) in self.colors.iter().enumerate() {
+            listed("colors", i, c.rgbft())?;
+        }
+        for (i, e) in self.color_map.iter().enumerate() {
+            listed("color_map", i, e.1.rgbft())?;
+        }
+        Ok(())
     }
 
     /// `average`'s first problem: it takes a `pigment_map` of weighted pigments and no
@@ -1743,6 +1767,14 @@ mod tests {
         assert_eq!(err("pattern = \"onion\"").0, "color_map");
         assert_eq!(err("pattern = \"onion\"\ncolor_map = [[0.5, [1, 1, 1]], [0.2, [0, 0, 0]]]").0, "color_map");
         assert_eq!(err("pattern = \"onion\"\ncolor_map = [[inf, [1, 1, 1]]]").0, "color_map");
+        // Colours, filter and transmit within a material's limits (their products overflow).
+        assert_eq!(err("pattern = \"onion\"\ncolor_map = [[0, [1e31, 1, 1]]]").0, "color_map");
+        assert_eq!(err("pattern = \"onion\"\ncolor_map = [[0, { color = 1, filter = 1e300 }]]").0, "color_map");
+        assert_eq!(err("pattern = \"checker\"\ncolors = [1, { color = 1, transmit = -1e10 }]").0, "colors");
+        let nested = "pattern = \"onion\"\npigment_map = [[0, { color = 1, filter = 1e300 }]]";
+        assert_eq!(err(nested).0, "pigment_map[0].filter");
+        let at_limits = "pattern = \"onion\"\ncolor_map = [[0, { color = 1e30, filter = 1e9, transmit = -1e9 }]]";
+        toml::from_str::<Pigment>(at_limits).unwrap().check().unwrap();
         assert_eq!(err("pattern = \"checker\"\ncolors = [[1, 1, 1]]").0, "colors");
         assert_eq!(err("pattern = \"checker\"\ncolors = [[1, 1, 1], [0, 0, 0]]\nfrequency = 2").0, "frequency");
         assert_eq!(err(&format!("pattern = \"gradient\"\n{BW}")).0, "vector");
