@@ -107,3 +107,29 @@ fn pattern_colours_beyond_the_limits_are_refused_at_load() {
         assert_refused(dir.path(), &pigment(p), &["scene.toml:3:", key, "1e"]);
     }
 }
+
+/// `[world]` keeps the limits on values: a NaN `background` named `render.background`
+/// without a line, and a `background` or `ambient_light` beyond ±1e30 or an environment
+/// `intensity` of 1e300 loaded and rendered overflowing (or black) pixels. Each is an error
+/// at its key's line.
+#[test]
+fn world_colours_and_environment_intensity_are_checked_at_their_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(common::repo().join("assets/env/sunset_256x128.exr"), dir.path().join("sky.exr")).unwrap();
+    let sphere = "[[object]]\nshape = \"sphere\"\n";
+    let cases = [
+        ("[world]\nbackground = [nan, 0, 0]\n", "scene.toml:2:1: error in `world.background`: must be finite"),
+        ("[world]\nbackground = 1e31\n", "scene.toml:2:1: error in `world.background`: components must lie within"),
+        ("[world]\nambient_light = [0, 1e300, 0]\n", "scene.toml:2:1: error in `world.ambient_light`"),
+        (
+            "[render]\nintegrator = \"path\"\n[world]\nenvironment = { file = \"sky.exr\", intensity = 1e300 }\n",
+            "scene.toml:4:35: error in `world.environment.intensity`: must be at most 1e9",
+        ),
+    ];
+    for (world, expect) in cases {
+        assert_refused(dir.path(), &format!("{world}{sphere}"), &[expect]);
+    }
+    // At the limits the scene loads.
+    let world = "[world]\nbackground = [1e30, 0, 0]\nambient_light = -1e30\n";
+    assert_renders(dir.path(), &format!("{world}{sphere}"));
+}

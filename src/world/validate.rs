@@ -106,7 +106,8 @@ pub fn validate(scene: &Scene) -> Result<(), SceneError> {
     let env = &scene.environment;
     for (key, c) in [("background", env.background), ("ambient_light", env.ambient_light)] {
         if !c.is_finite() {
-            out.push(Diagnostic::new(scene.render_key(key), format!("`world.{key}` must be finite")));
+            let location = Location::file_only(scene.render_origin.file.clone(), format!("world.{key}"));
+            out.push(Diagnostic::new(location, format!("`world.{key}` must be finite")));
         }
     }
     for (transform, origin) in scene.world.query::<(&WorldTransform, &Origin)>().iter() {

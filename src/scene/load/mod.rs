@@ -491,6 +491,9 @@ impl Loader<'_> {
         let render: Option<RenderSettings> = self.section(0, "render");
         let camera: Option<Camera> = self.section(1, "camera");
         let mut environment: Option<Environment> = self.section(2, "world");
+        if let Some(environment) = &environment {
+            self.world_colors(environment);
+        }
         if let Some(map) = environment.as_mut().and_then(|e| e.environment.as_mut()) {
             self.environment_map(map);
         }
@@ -550,6 +553,17 @@ impl Loader<'_> {
         Ok(Scene { world, render, render_origin, render_keys, environment, camera, warnings })
     }
 
+    /// Checks `[world]`'s colours as a material's: finite, and components within ±1e30,
+    /// beyond which their products overflow into infinite pixels.
+    fn world_colors(&mut self, environment: &Environment) {
+        for (key, color) in [("background", environment.background), ("ambient_light", environment.ambient_light)] {
+            if let Err((_, message)) = crate::material::check_finite(&[(key, color)], &[]) {
+                let index = self.environment.origin.get(key).copied().unwrap_or(0);
+                self.diagnostics.push(Diagnostic::new(self.files[index].locate(&format!("world.{key}")), message));
+            }
+        }
+    }
+
     /// Checks `[world] environment` and decodes its image (relative to the file that wrote it).
     fn environment_map(&mut self, map: &mut crate::world::components::EnvironmentMapRef) {
         let index = self.environment.origin.get("environment").copied().unwrap_or(0);
@@ -564,6 +578,17 @@ impl Loader<'_> {
             self.diagnostics.push(Diagnostic::new(
                 at("intensity"),
                 format!("must not be negative, got {}", crate::diagnostics::shown_number(map.intensity)),
+            ));
+            return;
+        }
+        if map.intensity > crate::limits::MAX_COEFFICIENT {
+            self.diagnostics.push(Diagnostic::new(
+                at("intensity"),
+                format!(
+                    "must be at most {:e}, as other light coefficients (products would overflow), got {}",
+                    crate::limits::MAX_COEFFICIENT,
+                    crate::diagnostics::shown_number(map.intensity)
+                ),
             ));
             return;
         }
