@@ -378,6 +378,8 @@ impl MaterialSpec {
             if !p.emissive.is_finite() || p.emissive.0.min_element() < 0.0 {
                 return Err(("pbr.emissive", "must be finite and not negative".into()));
             }
+            // A colour like `emission`: beyond the limit its products overflow.
+            super::check_finite(&[("pbr.emissive", p.emissive)], &[])?;
             for t in [&p.metallic_roughness_texture, &p.emissive_texture].into_iter().flatten() {
                 t.check()?;
             }
@@ -749,6 +751,14 @@ mod tests {
         assert_eq!(err("layers = [{}, { reflection = { exponent = 0 } }]"), "layers[1].reflection.exponent");
         assert_eq!(err("layers = [{ normal = { pattern = \"bumps\", scale = 0 } }]"), "layers[0].normal.scale");
         assert_eq!(err("ior = -1\nlayers = [{}]"), "ior");
+    }
+
+    #[test]
+    fn pbr_emission_keeps_the_colour_limit() {
+        let check = |text: &str| toml::from_str::<MaterialSpec>(text).unwrap().check();
+        assert_eq!(check("pbr = { emissive = [1e31, 0, 0] }").unwrap_err().0, "pbr.emissive");
+        assert_eq!(check("pbr = { emissive = [0, -1, 0] }").unwrap_err().0, "pbr.emissive");
+        assert!(check("pbr = { emissive = [1e30, 0, 0] }").is_ok());
     }
 
     #[test]
