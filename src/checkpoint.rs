@@ -116,7 +116,7 @@ impl Checkpoint {
         let text = crate::scene::save::save(scene)?;
         let settings = &scene.render;
         let (width, height) = (settings.width, settings.height);
-        let pov = !matches!(settings.antialias, Antialias::Stratified);
+        let pov = !matches!(settings.antialias, Antialias::Stratified {});
         let info = PartInfo {
             fingerprint: Fingerprint::of_scene(scene)?,
             frame: (width, height),

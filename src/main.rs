@@ -1105,7 +1105,7 @@ fn resume_command(path: &Path) -> String {
 fn render_part(mut scene: Scene, args: &RenderArgs, path: &Path) -> Result<(), CliError> {
     use prism::partial::{Fingerprint, PartInfo, Partial, Sampling};
     let (width, height) = (scene.render.width, scene.render.height);
-    let pov = !matches!(scene.render.antialias, prism::world::components::Antialias::Stratified);
+    let pov = !matches!(scene.render.antialias, prism::world::components::Antialias::Stratified {});
     let region = match (args.region, args.tile) {
         (Some(region), _) => {
             if region.is_empty() || !region.fits(width, height) {

@@ -52,7 +52,7 @@ fn info(scene: &RenderScene, fingerprint: &Fingerprint, region: Region, samples:
         samples,
         total_samples: s.samples,
         tile: None,
-        sampling: if s.antialias == Antialias::Stratified { Sampling::Stratified } else { Sampling::Pov },
+        sampling: if matches!(s.antialias, Antialias::Stratified {}) { Sampling::Stratified } else { Sampling::Pov },
         exposure: s.exposure,
         tone_map: s.tone_map,
         scene: None,

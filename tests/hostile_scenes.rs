@@ -133,3 +133,21 @@ fn world_colours_and_environment_intensity_are_checked_at_their_keys() {
     let world = "[world]\nbackground = [1e30, 0, 0]\nambient_light = -1e30\n";
     assert_renders(dir.path(), &format!("{world}{sphere}"));
 }
+
+/// Keys beside the tag of `antialias = { method = "stratified" }` and `filter = { type =
+/// "box" }` (a stray `depth`, a `stddev`) were ignored silently, serde not refusing unknown
+/// keys of a unit variant; they are errors at the key like any unknown key.
+#[test]
+fn keys_beside_stratified_and_box_are_unknown_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = "[[object]]\nshape = \"sphere\"\n";
+    let cases = [
+        ("antialias = { method = \"stratified\", depth = 3 }", "scene.toml:2:38: error in `render.antialias.depth`"),
+        ("filter = { type = \"box\", stddev = 2 }", "scene.toml:2:26: error in `render.filter.stddev`"),
+    ];
+    for (render, expect) in cases {
+        assert_refused(dir.path(), &format!("[render]\n{render}\n{sphere}"), &[expect, "unknown key"]);
+    }
+    let plain = "[render]\nantialias = { method = \"stratified\" }\nfilter = { type = \"box\" }\n";
+    assert_renders(dir.path(), &format!("{plain}{sphere}"));
+}

@@ -47,7 +47,7 @@ fn assert_is_crop(full: &Film, part: &Film, what: &str) {
 fn a_region_is_the_same_pixels_of_the_whole_frame() {
     let aovs = [Aov::Albedo, Aov::Normal, Aov::Depth, Aov::ObjectId];
     for (antialias, samples) in [
-        (Antialias::Stratified, 3),
+        (Antialias::Stratified {}, 3),
         (Antialias::Pov1 { threshold: 0.1, depth: 3 }, 1),
         (Antialias::Pov2 { threshold: 0.1, depth: 3 }, 1),
     ] {
@@ -69,7 +69,7 @@ fn a_region_is_the_same_pixels_of_the_whole_frame() {
 
 #[test]
 fn aov_layers_describe_the_first_surface() {
-    let scene = room(Antialias::Stratified, 1);
+    let scene = room(Antialias::Stratified {}, 1);
     let film = render_region(&scene, Region::full(100, 57), &[Aov::Normal, Aov::Depth, Aov::ObjectId]);
     let (normal, depth, id) = (&film.layers[0].data, &film.layers[1].data, &film.layers[2].data);
     let pixels = film.pixels.len();
@@ -90,7 +90,7 @@ fn aov_layers_describe_the_first_surface() {
 
 #[test]
 fn a_region_outside_the_frame_is_an_error() {
-    let scene = room(Antialias::Stratified, 1);
+    let scene = room(Antialias::Stratified {}, 1);
     for region in [Region { x0: 0, y0: 0, x1: 101, y1: 10 }, Region { x0: 5, y0: 5, x1: 5, y1: 9 }] {
         let options = RenderOptions::default();
         let error = render(&scene, &Classic::new(&scene), region, &options).unwrap_err().to_string();

@@ -74,7 +74,7 @@ pub fn export(scene: &Scene, source: &str, mesh_prefix: &str, xml_dir: &Path) ->
         "  <integrator type=\"path\">\n    <integer name=\"max_depth\" value=\"{}\"/>\n    <integer name=\"rr_depth\" value=\"{}\"/>\n    <boolean name=\"hide_emitters\" value=\"false\"/>\n  </integrator>",
         render.max_depth, render.rr_depth
     );
-    if render.antialias != Antialias::Stratified {
+    if !matches!(render.antialias, Antialias::Stratified {}) {
         errors.push(Diagnostic::new(
             scene.render_key("antialias"),
             "POV-Ray's antialiasing methods have no Mitsuba equivalent; use stratified sampling",
@@ -225,7 +225,7 @@ fn sensor(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
 /// The `rfilter` element of `filter`, every parameter written.
 fn rfilter(filter: PixelFilter) -> String {
     match filter {
-        PixelFilter::Box => "      <rfilter type=\"box\"/>".into(),
+        PixelFilter::Box {} => "      <rfilter type=\"box\"/>".into(),
         PixelFilter::Gaussian { stddev } => format!(
             "      <rfilter type=\"gaussian\">\n        <float name=\"stddev\" value=\"{}\"/>\n      </rfilter>",
             number(stddev)

@@ -128,7 +128,7 @@ fn povray_options(scene: &Scene, errors: &mut Vec<Diagnostic>) -> String {
         )),
     }
     let aa = match *antialias {
-        Antialias::Stratified => {
+        Antialias::Stratified {} => {
             if *samples > 1 && scene.camera().aperture <= 0.0 {
                 errors.push(
                     Diagnostic::new(

@@ -48,7 +48,7 @@ impl PovMethod {
     /// The method an [`Antialias`] setting asks for, if it is one of POV-Ray's.
     pub fn from_setting(antialias: Antialias) -> Option<Self> {
         match antialias {
-            Antialias::Stratified => None,
+            Antialias::Stratified {} => None,
             Antialias::Pov1 { threshold, depth } => Some(PovMethod::NonAdaptive { threshold, depth }),
             Antialias::Pov2 { threshold, depth } => Some(PovMethod::Adaptive { threshold, depth }),
         }

@@ -26,7 +26,7 @@ impl PixelFilter {
     /// Half the side of the square outside which the filter is 0, in pixels.
     pub fn radius(&self) -> f64 {
         match *self {
-            PixelFilter::Box => 0.5,
+            PixelFilter::Box {} => 0.5,
             PixelFilter::Gaussian { stddev } => 4.0 * stddev,
             PixelFilter::Mitchell { .. } => 2.0,
         }
@@ -37,7 +37,7 @@ impl PixelFilter {
     pub fn eval_1d(&self, x: f64) -> f64 {
         let x = x.abs();
         match *self {
-            PixelFilter::Box => f64::from(u8::from(x <= 0.5)),
+            PixelFilter::Box {} => f64::from(u8::from(x <= 0.5)),
             PixelFilter::Gaussian { stddev } => {
                 let alpha = -1.0 / (2.0 * stddev * stddev);
                 let cut = 4.0 * stddev;

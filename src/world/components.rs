@@ -491,13 +491,13 @@ pub enum IntegratorKind {
 
 /// How each pixel is sampled: `antialias = { method = "stratified" }` (the default) or one of
 /// POV-Ray's methods, `antialias = { method = "pov1", threshold = 0.3, depth = 3 }`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "method", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Antialias {
     /// `samples` stratified (correlated multi-jittered) samples per pixel; one sample is the
-    /// pixel centre, as POV-Ray without antialiasing.
-    #[default]
-    Stratified,
+    /// pixel centre, as POV-Ray without antialiasing. (A struct variant: serde does not
+    /// refuse unknown keys beside the tag of a unit variant, such as a stray `depth`.)
+    Stratified {},
     /// POV-Ray's method 1 without jitter (`+AM1 +A<threshold> +R<depth> -J`): pixels that
     /// differ from a neighbour get depth x depth extra samples. With an aperture, each
     /// position traced averages `samples` lens samples (POV-Ray's `blur_samples`).
@@ -521,6 +521,13 @@ pub enum Antialias {
     },
 }
 
+impl Default for Antialias {
+    /// Stratified sampling.
+    fn default() -> Self {
+        Antialias::Stratified {}
+    }
+}
+
 fn default_aa_threshold() -> f64 {
     0.3
 }
@@ -533,12 +540,12 @@ fn default_aa_depth() -> u32 {
 /// pixel is the filter-weighted mean of the radiance around its centre, offsets in pixels.
 /// Written as a table: `filter = { type = "gaussian" }`, `{ type = "gaussian", stddev = 0.4 }`,
 /// `{ type = "mitchell", B = 0.3, C = 0.35 }`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum PixelFilter {
-    /// The pixel's own square, weighted equally (radius 0.5).
-    #[default]
-    Box,
+    /// The pixel's own square, weighted equally (radius 0.5). (A struct variant, so that
+    /// unknown keys beside the tag are refused.)
+    Box {},
     /// A Gaussian of standard deviation `stddev` pixels, cut off at 4 `stddev` and shifted
     /// down to reach 0 there (Mitsuba's default filter).
     Gaussian {
@@ -557,6 +564,13 @@ pub enum PixelFilter {
     },
 }
 
+impl Default for PixelFilter {
+    /// The box filter.
+    fn default() -> Self {
+        PixelFilter::Box {}
+    }
+}
+
 fn default_gaussian_stddev() -> f64 {
     0.5
 }
@@ -568,7 +582,7 @@ fn one_third() -> f64 {
 impl PixelFilter {
     /// True for the default box filter.
     pub fn is_box(&self) -> bool {
-        *self == PixelFilter::Box
+        *self == PixelFilter::Box {}
     }
 }
 
@@ -636,8 +650,8 @@ impl Default for RenderSettings {
             adc_bailout: 1.0 / 255.0,
             seed: 0,
             integrator: IntegratorKind::Classic,
-            antialias: Antialias::Stratified,
-            filter: PixelFilter::Box,
+            antialias: Antialias::Stratified {},
+            filter: PixelFilter::Box {},
             exposure: 0.0,
             tone_map: ToneMap::Clamp,
             noise: None,

@@ -161,7 +161,7 @@ fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
     if let Some(noise) = r.noise {
         if !(noise > 0.0 && noise < 1.0) {
             out.push(Diagnostic::new(at("noise"), format!("noise must be between 0 and 1 (exclusive), got {noise}")));
-        } else if !matches!(r.antialias, Antialias::Stratified) {
+        } else if !matches!(r.antialias, Antialias::Stratified {}) {
             out.push(Diagnostic::new(
                 at("noise"),
                 "adaptive sampling (`noise`) works with stratified sampling only, not POV-Ray's antialiasing methods",
@@ -215,7 +215,7 @@ fn check_render(scene: &Scene, out: &mut Vec<Diagnostic>) {
 /// A filter's parameters, and that it goes with `stratified` sampling.
 fn check_filter(r: &RenderSettings, at: &impl Fn(&str) -> Location, out: &mut Vec<Diagnostic>) {
     match r.filter {
-        PixelFilter::Box => return,
+        PixelFilter::Box {} => return,
         PixelFilter::Gaussian { stddev } => {
             if !(stddev.is_finite() && (0.05..=4.0).contains(&stddev)) {
                 out.push(Diagnostic::new(
@@ -235,7 +235,7 @@ fn check_filter(r: &RenderSettings, at: &impl Fn(&str) -> Location, out: &mut Ve
             }
         }
     }
-    if r.antialias != Antialias::Stratified {
+    if !matches!(r.antialias, Antialias::Stratified {}) {
         out.push(
             Diagnostic::new(at("filter"), "a reconstruction filter needs stratified sampling")
                 .with_help("POV-Ray's antialiasing methods weigh their own samples; remove `filter` or `antialias`"),
