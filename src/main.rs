@@ -1318,7 +1318,11 @@ fn which_sbatch() -> Option<PathBuf> {
 }
 
 fn save_command(path: &Path, output: Option<&Path>, limits: &LimitArgs) -> Result<(), CliError> {
-    let scene = load_and_warn(path, limits)?;
+    let mut scene = load_and_warn(path, limits)?;
+    // Checked as a render and the exports check it: a scene that cannot render is an error
+    // here, at its own file and line, not a saved copy that fails later at the copy's.
+    prism::world::transforms::resolve_transforms(&mut scene)?;
+    prism::world::validate::validate(&scene)?;
     // Written to a file, mesh and texture paths are relative to it; on standard output,
     // whose destination is unknown, they stay absolute.
     let text = match output {

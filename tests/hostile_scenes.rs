@@ -151,3 +151,33 @@ fn keys_beside_stratified_and_box_are_unknown_keys() {
     let plain = "[render]\nantialias = { method = \"stratified\" }\nfilter = { type = \"box\" }\n";
     assert_renders(dir.path(), &format!("{plain}{sphere}"));
 }
+
+/// `prism save` checks the scene as `render` and the exports do: a camera with `vfov = 0`
+/// or a parent cycle used to be saved with exit 0, the copy then failing to load at its own
+/// lines. Now it is an error at the original's line, and no copy is written.
+#[test]
+fn save_refuses_a_scene_that_cannot_render() {
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = "[[object]]\nshape = \"sphere\"\n";
+    let cases = [
+        (format!("[camera]\nvfov = 0\n{sphere}"), "scene.toml:2:1: error in `camera.vfov`"),
+        (
+            "[[object]]\nshape = \"sphere\"\nname = \"a\"\nparent = \"a\"\n".to_string(),
+            "scene.toml:1:1: error in `object[0].parent`: parent chain forms a cycle",
+        ),
+    ];
+    for (scene, expect) in cases {
+        std::fs::write(dir.path().join("scene.toml"), &scene).unwrap();
+        let mut c = prism();
+        c.current_dir(dir.path()).args(["save", "scene.toml", "-o", "copy.toml"]);
+        let out = run(c);
+        let problems = failed_run_problems(&out, &[expect]);
+        assert!(problems.is_empty(), "{scene}\n{}\n--- stderr:\n{}", problems.join("; "), stderr(&out));
+        assert!(!dir.path().join("copy.toml").exists(), "{scene}: a copy was written");
+    }
+    std::fs::write(dir.path().join("scene.toml"), sphere).unwrap();
+    let mut c = prism();
+    c.current_dir(dir.path()).args(["save", "scene.toml", "-o", "copy.toml"]);
+    let out = run(c);
+    assert!(out.status.success() && dir.path().join("copy.toml").is_file(), "{}", stderr(&out));
+}
