@@ -157,9 +157,11 @@ pub const MAX_MESSAGE_CHARS: usize = 1000;
 /// `text` safe to print: control characters (terminal escapes) become `?`, every quoted
 /// part (between backticks or double quotes: names, keys, string values that a parser
 /// repeats) longer than [`crate::files::MAX_SHOWN_CHARS`] is shortened to its start and
-/// end, and the whole is cut at [`MAX_MESSAGE_CHARS`]. So a message never repeats more of
-/// what a file holds than a short name.
+/// end, a number written out in full (an `f64` formatted with `{}`: 1e300 has 301 digits) is
+/// rewritten as [`shown_number`] writes it, and the whole is cut at [`MAX_MESSAGE_CHARS`].
+/// So a message never repeats more of what a file holds than a short name.
 pub fn sanitize(text: &str) -> String {
+    let text = &*shorten_long_numbers(text);
     let limit = crate::files::MAX_SHOWN_CHARS;
     let mut out = String::with_capacity(text.len().min(MAX_MESSAGE_CHARS + 3));
     let mut quoted: Option<(char, String)> = None;
@@ -236,6 +238,48 @@ impl fmt::Display for SceneError {
 
 impl std::error::Error for SceneError {}
 
+/// Longest run of digits (and decimal point) a message shows as written: an f64 needs at
+/// most 17 significant digits, so a longer number is one formatted out in full.
+const MAX_NUMBER_CHARS: usize = 24;
+
+/// `text` with every number longer than [`MAX_NUMBER_CHARS`] (digits and a decimal point,
+/// not part of a word or a path) rewritten by [`shown_number`].
+fn shorten_long_numbers(text: &str) -> std::borrow::Cow<'_, str> {
+    let in_number = |c: char| c.is_ascii_digit() || c == '.';
+    let in_word = |c: char| c.is_alphanumeric() || c == '_' || c == '/' || c == '\\';
+    let mut out = String::new();
+    let mut copied = 0;
+    let mut chars = text.char_indices().peekable();
+    let mut previous: Option<char> = None;
+    while let Some((start, c)) = chars.next() {
+        if !c.is_ascii_digit() || previous.is_some_and(|p| in_word(p) || p == '.') {
+            previous = Some(c);
+            continue;
+        }
+        let mut end = start + 1;
+        while let Some(&(i, d)) = chars.peek().filter(|(_, d)| in_number(*d)) {
+            end = i + d.len_utf8();
+            chars.next();
+        }
+        previous = text[..end].chars().next_back();
+        let followed_by_word = chars.peek().is_some_and(|&(_, d)| in_word(d));
+        let run = &text[start..end];
+        if run.len() > MAX_NUMBER_CHARS
+            && !followed_by_word
+            && let Ok(v) = run.parse::<f64>()
+        {
+            out.push_str(&text[copied..start]);
+            out.push_str(&shown_number(v));
+            copied = end;
+        }
+    }
+    if copied == 0 {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    out.push_str(&text[copied..]);
+    std::borrow::Cow::Owned(out)
+}
+
 /// A number as a message shows it: in scientific notation when very large or very small
 /// (`1e300`, not three hundred digits), else as written.
 pub fn shown_number(v: f64) -> String {
@@ -288,6 +332,13 @@ mod tests {
         assert!(shown.starts_with("invalid type: string \"sss") && shown.ends_with("sss\", expected u32"));
         assert_eq!(sanitize("unknown shape `sphear`"), "unknown shape `sphear`");
         assert_eq!(sanitize("a\u{1b}[31mred"), "a?[31mred");
+        // Numbers formatted in full are shown as `shown_number` shows them; short numbers,
+        // and digits in names and paths, as written.
+        let huge = format!("must be at most 10, got {} and {}", 1e300, -1e-300);
+        assert_eq!(sanitize(&huge), "must be at most 10, got 1e300 and -1e-300");
+        assert_eq!(sanitize("got 0.30000000000000004 in [1, 2.5]"), "got 0.30000000000000004 in [1, 2.5]");
+        let name = format!("file f{0}.toml and dir/{0}/x", "1".repeat(40));
+        assert_eq!(sanitize(&name), name);
         assert!(sanitize(&"x".repeat(5000)).chars().count() <= MAX_MESSAGE_CHARS + 3);
         let d = Diagnostic::new(Location::file_only("a.toml", "k".repeat(500)), format!("unknown shape `{secret}`"));
         assert!(d.to_string().len() < 300, "{d}");

@@ -181,3 +181,16 @@ fn save_refuses_a_scene_that_cannot_render() {
     let out = run(c);
     assert!(out.status.success() && dir.path().join("copy.toml").is_file(), "{}", stderr(&out));
 }
+
+/// Messages show extreme numbers short: an `assumed_gamma` or a superellipsoid `e` of 1e300
+/// was echoed as 301 digits.
+#[test]
+fn messages_show_extreme_numbers_short() {
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = "[[object]]\nshape = \"sphere\"\n";
+    assert_refused(dir.path(), &format!("[render]\nassumed_gamma = 1e300\n{sphere}"), &["got 1e300"]);
+    let superellipsoid = "[[object]]\nshape = \"superellipsoid\"\ne = 1e300\n";
+    assert_refused(dir.path(), superellipsoid, &["scene.toml:3:", "got 1e300"]);
+    let out = render_scene(dir.path(), superellipsoid);
+    assert!(!stderr(&out).contains("0000000000"), "{}", stderr(&out));
+}
