@@ -194,3 +194,21 @@ fn messages_show_extreme_numbers_short() {
     let out = render_scene(dir.path(), superellipsoid);
     assert!(!stderr(&out).contains("0000000000"), "{}", stderr(&out));
 }
+
+/// A mesh translated beyond f32's range (1e39, 1e300) had infinite world-space vertices
+/// when flattened into the scene's triangle tree, whose build then failed (an internal
+/// error); it renders, as far-away analytic shapes do.
+#[test]
+fn a_mesh_moved_beyond_f32_renders() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = common::assets().join("BoxTextured/BoxTextured.gltf");
+    for far in ["1e39", "-1e300"] {
+        let scene = format!(
+            "[camera]\nposition = [0, 0, 5]\n[[light]]\nposition = [3, 3, 5]\n\
+             [[object]]\nshape = \"sphere\"\n\
+             [[object]]\nshape = \"mesh\"\nfile = {:?}\ntransform = {{ translate = [0.3, 0.25, {far}] }}\n",
+            mesh.display().to_string()
+        );
+        assert_renders(dir.path(), &scene);
+    }
+}

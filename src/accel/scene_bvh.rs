@@ -108,7 +108,11 @@ impl Accel {
                 continue;
             }
             all_bounded.push(i as u32);
-            match flatten.get(i).copied().flatten() {
+            // A mesh moved beyond f32's range (a translation of 1e39) would have infinite
+            // world-space vertices, which the triangle tree cannot be built over; it keeps
+            // its own object-space tree, as a primitive whose f32 box is infinite.
+            let fits_f32 = p.world_bounds.min.as_vec3().is_finite() && p.world_bounds.max.as_vec3().is_finite();
+            match flatten.get(i).copied().flatten().filter(|_| fits_f32) {
                 Some(object) => {
                     for (slot, t) in object.iter().enumerate() {
                         triangles.push(t.map(|v| p.world_point(v.as_dvec3()).as_vec3()));
@@ -513,6 +517,26 @@ mod tests {
             }
             accel.occluded(&primitives, &ray, 1e-6, f64::INFINITY, |_| true);
         }
+    }
+
+    /// A mesh moved beyond f32's range (its world-space vertices would be infinite) is not
+    /// flattened into the scene's triangle tree, whose build failed on them (an internal
+    /// error); it stays a primitive of its own, and a nearby one is still found.
+    #[test]
+    fn primitives_beyond_f32_are_not_flattened() {
+        let triangle = [[Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, -1.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]];
+        let far = DAffine3::from_translation(DVec3::new(1e39, 0.0, 0.0));
+        let primitives = vec![
+            Primitive::new(Arc::new(Sphere { center: DVec3::ZERO, radius: 1.0 }), far, 0, false),
+            primitive(Arc::new(Sphere { center: DVec3::ZERO, radius: 1.0 })),
+            primitive(Arc::new(Sphere { center: DVec3::new(3.0, 0.0, 0.0), radius: 1.0 })),
+        ];
+        let flatten: Vec<Option<&[[Vec3; 3]]>> = vec![Some(&triangle), Some(&triangle), None];
+        let accel = Accel::build_flattening(&primitives, &flatten);
+        assert_eq!(accel.flattened_triangles(), 1, "only the primitive within f32's range is flattened");
+        let ray = Ray::new(DVec3::new(3.0, 0.0, 5.0), -DVec3::Z);
+        let hit = accel.closest(&primitives, &ray, 1e-6, f64::INFINITY, |_| true).unwrap();
+        assert_eq!(hit.primitive, 2);
     }
 
     /// Random shadow frusta: every shadow segment (from `skip` along the ray to the light
