@@ -461,8 +461,19 @@ impl Partial {
                 .map(|c| &c.sample_data)
                 .ok_or_else(|| invalid(format!("channel `{name}` is missing")))
         };
+        // Prism writes no infinity or NaN into any file; one in a part would reach the merged
+        // or resumed image.
+        let finite = |name: &str, values: &mut dyn Iterator<Item = f64>| {
+            let mut values = values.enumerate();
+            match values.find(|(_, v)| !v.is_finite()) {
+                Some((i, _)) => {
+                    Err(invalid(format!("channel `{name}` holds a NaN or infinite value (pixel {i} of the part)")))
+                }
+                None => Ok(()),
+            }
+        };
         let f32s = |name: &str| match channel(name)? {
-            FlatSamples::F32(v) if v.len() == n => Ok(v),
+            FlatSamples::F32(v) if v.len() == n => finite(name, &mut v.iter().map(|&x| f64::from(x))).map(|()| v),
             _ => Err(invalid(format!("channel `{name}` is not {n} 32-bit floats"))),
         };
         let u32s = |name: &str| match channel(name)? {
@@ -486,6 +497,9 @@ impl Partial {
             };
             let rgb = [f64s(SUM_CHANNELS[0])?, f64s(SUM_CHANNELS[1])?, f64s(SUM_CHANNELS[2])?];
             let weight = f64s("weight")?;
+            for (name, values) in SUM_CHANNELS.iter().zip(&rgb).chain([(&"weight", &weight)]) {
+                finite(name, &mut values.iter().copied())?;
+            }
             Some((0..n).map(|i| PixelSums { sum: [rgb[0][i], rgb[1][i], rgb[2][i]], weight: weight[i] }).collect())
         } else {
             None
@@ -565,7 +579,7 @@ mod tests {
         let n = original.info.region.pixel_count();
         original.layers = vec![
             Layer { aov: Aov::Normal, data: (0..3 * n).map(|i| i as f32 * 0.25 - 1.0).collect() },
-            Layer { aov: Aov::Depth, data: (0..n).map(|i| if i == 2 { f32::INFINITY } else { i as f32 }).collect() },
+            Layer { aov: Aov::Depth, data: (0..n).map(|i| if i == 2 { f32::MAX } else { i as f32 }).collect() },
         ];
         let back = Partial::decode(&original.encode().unwrap(), Path::new("c.exr")).unwrap();
         // Read back in the order of `Aov::ALL`.
@@ -586,6 +600,28 @@ mod tests {
         let plain = crate::output::encode(&film, Path::new("x.exr"), &Default::default()).unwrap();
         let error = Partial::decode(&plain, Path::new("plain.exr")).unwrap_err().to_string();
         assert!(error.contains("no `prismPart` header attribute"), "{error}");
+    }
+
+    /// Prism writes no infinity or NaN into a file, so a part holding one (a forged or
+    /// damaged file) is refused, naming the channel, instead of reaching the merged or
+    /// resumed image.
+    #[test]
+    fn non_finite_values_are_refused() {
+        let mut nan_radiance = part(true);
+        nan_radiance.radiance[3] = [0.0, f32::NAN, 0.0];
+        let mut infinite_sum = part(true);
+        infinite_sum.sums.as_mut().unwrap()[1].sum[2] = f64::INFINITY;
+        let mut nan_weight = part(true);
+        nan_weight.sums.as_mut().unwrap()[0].weight = f64::NAN;
+        let mut infinite_layer = part(false);
+        let n = infinite_layer.info.region.pixel_count();
+        infinite_layer.layers = vec![Layer { aov: Aov::Depth, data: vec![f32::INFINITY; n] }];
+        for (part, channel) in
+            [(nan_radiance, "`G`"), (infinite_sum, "`sum.B`"), (nan_weight, "`weight`"), (infinite_layer, "`depth.Z`")]
+        {
+            let error = Partial::decode(&part.encode().unwrap(), Path::new("f.exr")).unwrap_err().to_string();
+            assert!(error.contains(channel) && error.contains("NaN or infinite"), "{error}");
+        }
     }
 
     #[test]
