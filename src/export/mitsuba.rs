@@ -654,6 +654,16 @@ fn bsdf_xml(
             "    <bsdf type=\"diffuse\">\n      <rgb name=\"reflectance\" value=\"0, 0, 0\"/>\n    </bsdf>\n".into()
         );
     }
+    // A lone lobe of weight below 1 (a mirror with `diffuse = 0`, say) is that lobe with the
+    // weight as its tint: padding it with a black diffuse in a blendbsdf would be the same
+    // BSDF on paper, but Mitsuba 3.9's blendbsdf mis-weights a delta lobe mixed with a smooth
+    // one (see docs/scene-format.md), and rendered such a mirror 27 % too dark.
+    if let [(weight, lobe)] = lobes.as_slice()
+        && !matches!(lobe, Lobe::PassThrough)
+        && let Ok(xml) = lobe_xml(lobe, *weight)
+    {
+        return Ok(format!("    {xml}\n"));
+    }
     // A sum of weighted lobes as nested blends: lobe i's grey weight s_i (the largest
     // channel) goes into the blend, the rest of its colour into the lobe's own tint.
     let mut parts = Vec::new();
@@ -985,6 +995,19 @@ mod tests {
                 .unwrap();
         assert!(out.xml.contains("type=\"blendbsdf\""), "{}", out.xml);
         assert!(out.xml.contains("name=\"material\" value=\"none\""), "{}", out.xml);
+    }
+
+    /// A mirror alone is one conductor tinted by its reflectivity: no blendbsdf padded with a
+    /// black diffuse, which Mitsuba 3.9 renders too dark (the blend mis-weights a delta lobe
+    /// mixed with a smooth one).
+    #[test]
+    fn a_lone_lobe_is_written_with_its_weight_as_tint_not_blended_with_black() {
+        let out = export_text(
+            "[[object]]\nshape = \"sphere\"\nmaterial = { color = [0.3, 0.6, 0.3], reflection = [0.5, 0.2, 0.1], diffuse = 0 }\n",
+        )
+        .unwrap();
+        assert!(!out.xml.contains("blendbsdf"), "{}", out.xml);
+        assert!(out.xml.contains("name=\"specular_reflectance\" value=\"0.5, 0.2, 0.1\""), "{}", out.xml);
     }
 
     #[test]
