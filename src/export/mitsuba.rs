@@ -557,6 +557,9 @@ fn shape_xml(
     if let Some(lines) = mesh_file {
         xml.push_str(&lines);
     }
+    if flips_normals(&part.kind, world_from_shape) {
+        xml.push_str("    <boolean name=\"flip_normals\" value=\"true\"/>\n");
+    }
     if let MitsubaKind::Cylinder { radius, length } = part.kind {
         let _ = writeln!(
             xml,
@@ -575,6 +578,23 @@ fn shape_xml(
         xml.push_str(emission);
     }
     xml.push_str("  </shape>\n");
+}
+
+/// True when Mitsuba turns the shape's normal inward (or to its back) under a mirroring
+/// `world_from_shape` (negative determinant), where Prism's normal, carried by the inverse
+/// transpose, keeps its side: the shape is then written with `flip_normals`, which undoes it.
+/// Mitsuba's sphere reads a mirror as a negative radius and flips its normals, and a mesh
+/// with face normals takes them from the world-space winding, which a mirror reverses (meshes
+/// with vertex normals shade and emit by those, which Mitsuba transforms as Prism does; its
+/// rectangle, disk, cube and cylinder keep their side too).
+fn flips_normals(kind: &MitsubaKind, world_from_shape: &DAffine3) -> bool {
+    let mirrored = world_from_shape.matrix3.determinant() < 0.0;
+    mirrored
+        && match kind {
+            MitsubaKind::Sphere => true,
+            MitsubaKind::Triangles(triangles) => triangles.normals.is_empty(),
+            _ => false,
+        }
 }
 
 /// Binary little-endian PLY of `triangles`: positions, normals and uvs when present, and faces.
@@ -1008,6 +1028,38 @@ mod tests {
         .unwrap();
         assert!(!out.xml.contains("blendbsdf"), "{}", out.xml);
         assert!(out.xml.contains("name=\"specular_reflectance\" value=\"0.5, 0.2, 0.1\""), "{}", out.xml);
+    }
+
+    /// Under a mirroring transform Mitsuba turns a sphere's normals inward (a negative radius)
+    /// and takes a flat mesh's from its reversed winding: `flip_normals` restores Prism's side,
+    /// which matters for one-sided emitters and dielectrics. Unmirrored shapes, and a mirrored
+    /// disc (Mitsuba's keeps its side), are written without it.
+    #[test]
+    fn mirrored_spheres_and_flat_meshes_flip_their_normals_back() {
+        let object = |shape: &str, scale: &str| {
+            format!(
+                "[[object]]\n{shape}\ntransform = {{ scale = {scale} }}\nmaterial = {{ bsdf = {{ type = \"dielectric\" }} }}\n"
+            )
+        };
+        let shapes = [
+            ("shape = \"sphere\"", true),
+            ("shape = \"triangle\"\nvertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]", true),
+            ("shape = \"disc\"", false),
+        ];
+        for (shape, flips) in shapes {
+            for (scale, mirrored) in
+                [("[-1, 1, 1]", true), ("[2, 2, -2]", true), ("[-1, -1, -1]", true), ("[2, 2, 2]", false)]
+            {
+                let text: &'static str = Box::leak(object(shape, scale).into_boxed_str());
+                let out = export_text(text).unwrap();
+                assert_eq!(
+                    out.xml.contains("name=\"flip_normals\" value=\"true\""),
+                    flips && mirrored,
+                    "{shape} {scale}: {}",
+                    out.xml
+                );
+            }
+        }
     }
 
     #[test]
