@@ -507,7 +507,18 @@ fn shape_xml(
     emission: Option<&str>,
     mesh_prefix: &str,
 ) {
-    let (part, world_from_shape) = (shape.part, shape.world_from_shape);
+    let part = shape.part;
+    // Mitsuba 3.9's cylinder mis-samples its area under a mirroring to_world (a mirrored
+    // emissive tube lit the floor 8 % too dark; `flip_normals` makes it worse), and the tube
+    // is its own mirror image across the plane x = 0 of its frame: that mirror is taken out.
+    let unmirrored;
+    let world_from_shape =
+        if matches!(part.kind, MitsubaKind::Cylinder { .. }) && shape.world_from_shape.matrix3.determinant() < 0.0 {
+            unmirrored = *shape.world_from_shape * DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0));
+            &unmirrored
+        } else {
+            shape.world_from_shape
+        };
     let kind = match &part.kind {
         MitsubaKind::Sphere => "sphere",
         MitsubaKind::Rectangle => "rectangle",
@@ -1060,6 +1071,25 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A mirrored cylinder is written unmirrored (it is its own mirror image across x = 0 of
+    /// its frame): Mitsuba's cylinder samples its area wrongly under a mirroring to_world.
+    #[test]
+    fn a_mirrored_cylinder_is_written_without_the_mirror() {
+        let out = export_text(
+            "[[object]]\nshape = \"cylinder\"\nbase = [0, 0, 0]\ntop = [0, 1, 0]\nradius = 0.2\nopen = true\n\
+             transform = { scale = [-1, 1, 1] }\nmaterial = { color = 0, bsdf = { type = \"diffuse\" }, emission = 1 }\n",
+        )
+        .unwrap();
+        let start = out.xml.find("<shape type=\"cylinder\">").expect("a cylinder");
+        let values = out.xml[start..].split("<matrix value=\"").nth(1).unwrap().split('"').next().unwrap();
+        let m: Vec<f64> = values.split(' ').map(|v| v.parse().unwrap()).collect();
+        let det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[1] * (m[4] * m[10] - m[6] * m[8])
+            + m[2] * (m[4] * m[9] - m[5] * m[8]);
+        assert!(det > 0.0, "{values}");
+        // The same tube: its axis (the frame's z) still runs from the base up.
+        assert_eq!((m[2], m[6], m[10]), (0.0, 1.0, 0.0), "{values}");
     }
 
     #[test]
