@@ -240,7 +240,15 @@ impl FileAccess {
                 false => Err(FileError::Io { path: path.into(), source: std::io::ErrorKind::NotFound.into() }),
             };
         }
-        let canonical = std::fs::canonicalize(path).map_err(|source| FileError::Io { path: path.into(), source })?;
+        let canonical = match std::fs::canonicalize(path) {
+            Ok(canonical) => canonical,
+            // A missing file outside the root is reported as outside, as an existing one is:
+            // the error must not tell a scene which files exist beyond the sandbox.
+            Err(_) if self.root.as_ref().is_some_and(|root| !would_lie_inside(path, root)) => {
+                return Err(FileError::OutsideRoot { path: path.into() });
+            }
+            Err(source) => return Err(FileError::Io { path: path.into(), source }),
+        };
         match &self.root {
             Some(root) if !canonical.starts_with(root) => Err(FileError::OutsideRoot { path: path.into() }),
             _ => Ok(canonical),
@@ -284,6 +292,20 @@ impl FileAccess {
             source: std::io::Error::new(std::io::ErrorKind::InvalidData, "stream did not contain valid UTF-8"),
         })
     }
+}
+
+/// Whether `path`, which does not resolve, would lie inside `root` if it existed: its
+/// deepest ancestor that exists, resolved (symlinks followed), with the rest appended and
+/// normalized as written.
+fn would_lie_inside(path: &Path, root: &Path) -> bool {
+    let Ok(absolute) = std::path::absolute(path) else { return false };
+    for ancestor in absolute.ancestors() {
+        if let Ok(resolved) = std::fs::canonicalize(ancestor) {
+            let rest = absolute.strip_prefix(ancestor).unwrap_or(Path::new(""));
+            return normalize(&resolved.join(rest)).starts_with(root);
+        }
+    }
+    false
 }
 
 /// `a/./b/../c` -> `a/c`, without touching the file system (a leading `..` is kept).
@@ -408,6 +430,20 @@ mod tests {
         let escape = access.join(&root, "../secret.toml").unwrap();
         assert!(matches!(access.read(&escape, FileKind::Scene), Err(FileError::OutsideRoot { .. })));
         assert!(matches!(access.join(&root, "/etc/passwd"), Err(FileError::Absolute { .. })));
+        // A missing file is outside as an existing one is (the error tells nothing of what
+        // exists beyond the root), and missing inside when it would lie inside.
+        for missing in ["../nosuch.toml", "../nodir/x.toml", "sub/../../nosuch.toml", "nodir/../../secret.toml"] {
+            let path = access.join(&root, missing).unwrap();
+            assert!(matches!(access.read(&path, FileKind::Scene), Err(FileError::OutsideRoot { .. })), "{missing}");
+        }
+        for missing in ["nosuch.toml", "nodir/x.toml", "nodir/../nosuch.toml"] {
+            let path = access.join(&root, missing).unwrap();
+            let e = access.read(&path, FileKind::Scene).unwrap_err();
+            assert!(
+                matches!(&e, FileError::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound),
+                "{missing}: {e}"
+            );
+        }
         #[cfg(unix)]
         {
             std::os::unix::fs::symlink(outer.path().join("secret.toml"), root.join("link.toml")).unwrap();
