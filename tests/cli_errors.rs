@@ -709,6 +709,31 @@ fn assumed_gamma_below_one_or_under_path_is_a_warning() {
     assert!(!render("assumed_gamma = 2.2").contains("warning"));
 }
 
+/// `[world] environment` is the path integrator's: under classic it is ignored with a
+/// warning naming the key (the image shows `background`), under path it lights the scene.
+#[test]
+fn an_environment_map_under_classic_is_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = common::repo().join("assets/env/sunset_256x128.exr");
+    std::fs::copy(&map, dir.path().join("sky.exr")).unwrap();
+    let scene = "[render]\nwidth = 8\nheight = 6\n[world]\nenvironment = { file = \"sky.exr\" }\n\
+                 [[light]]\nposition = [0, 5, 5]\n[[object]]\nshape = \"sphere\"\n";
+    std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
+    let render = |args: &[&str]| {
+        let run = prism().current_dir(dir.path()).args(["render", "scene.toml", "-o", "out.png"]).args(args).output();
+        let run = run.unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr).to_string();
+        assert!(run.status.success(), "{stderr}");
+        stderr
+    };
+    let classic = render(&[]);
+    assert!(
+        classic.contains("warning in `world.environment`") && classic.contains("path integrator only"),
+        "{classic}"
+    );
+    assert!(!render(&["--integrator", "path", "--samples", "1"]).contains("world.environment"));
+}
+
 #[test]
 fn a_spot_radius_beyond_its_falloff_is_a_warning() {
     let dir = tempfile::tempdir().unwrap();

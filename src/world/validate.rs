@@ -21,7 +21,7 @@ pub const MAX_SAMPLES: u32 = 1 << 20;
 /// Warnings that depend on the final settings, so they are not among [`Scene::warnings`]: a
 /// camera imported from a file made for another aspect ratio than the image's, POV-Ray's
 /// adaptive focal blur keys, normal patterns and `assumed_gamma` under `path` (ignored
-/// there), an `assumed_gamma` below 1 (POV-Ray's "suspicious value"), and a
+/// there), an environment map under `classic` (ignored there), an `assumed_gamma` below 1 (POV-Ray's "suspicious value"), and a
 /// path-traced scene without any light (call it once the settings are final, after
 /// command-line overrides).
 pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
@@ -73,6 +73,17 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
             "assumed_gamma belongs to the classic integrator: the path integrator takes the scene's colours, \
              and the image maps read into that working space, as linear values",
         ));
+    }
+    if scene.render.integrator == IntegratorKind::Classic && scene.environment.environment.is_some() {
+        let location = Location::file_only(scene.render_origin.file.clone(), "world.environment");
+        out.push(
+            Diagnostic::warning(
+                location,
+                "the environment map is read by the path integrator only: classic ignores it and shows \
+                 `background` where rays leave the scene",
+            )
+            .with_help("render with --integrator path, or give classic a [world] background"),
+        );
     }
     if scene.render.integrator == IntegratorKind::Path && !has_light(scene) {
         out.push(
