@@ -734,6 +734,26 @@ fn an_environment_map_under_classic_is_a_warning() {
     assert!(!render(&["--integrator", "path", "--samples", "1"]).contains("world.environment"));
 }
 
+/// A negative `emission` darkens under classic (POV-Ray's reading, no warning) and emits
+/// nothing under path, with a warning at the key.
+#[test]
+fn negative_emission_under_path_is_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[render]\nwidth = 8\nheight = 6\n[[light]]\nposition = [0, 5, 5]\n\
+                 [[object]]\nshape = \"sphere\"\nmaterial = { emission = [-0.5, 0.2, 0.2] }\n";
+    std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
+    let render = |args: &[&str]| {
+        let run = prism().current_dir(dir.path()).args(["render", "scene.toml", "-o", "out.png"]).args(args).output();
+        let run = run.unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr).to_string();
+        assert!(run.status.success(), "{stderr}");
+        stderr
+    };
+    let path = render(&["--integrator", "path", "--samples", "1"]);
+    assert!(path.contains("scene.toml:6:1: warning in `object[0].material.emission`"), "{path}");
+    assert!(!render(&[]).contains("warning"));
+}
+
 #[test]
 fn a_spot_radius_beyond_its_falloff_is_a_warning() {
     let dir = tempfile::tempdir().unwrap();

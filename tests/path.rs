@@ -160,6 +160,30 @@ fn no_nan_or_infinity_reaches_the_film() {
     }
 }
 
+/// Radiance is not negative: a POV-style `emission` with a negative component (a darkening
+/// term under classic) emits nothing in that component under path, so the image is the one
+/// of the same emission with that component 0, bit for bit, where a point light lights the
+/// emitter's reflecting inside (a negative term would darken the light's contribution).
+#[test]
+fn negative_emission_emits_nothing_under_path() {
+    let scene = |emission: &str| -> &'static str {
+        Box::leak(
+            format!(
+                "[render]\nwidth = 8\nheight = 6\nsamples = 8\nintegrator = \"path\"\n\
+                 [camera]\nposition = [0, 0, 1]\n\
+                 [[light]]\nposition = [0, 1, 0]\ncolor = [1, 0.2, 0.2]\n\
+                 [[object]]\nshape = \"sphere\"\nradius = 10.0\n\
+                 material = {{ color = [1, 1, 1], diffuse = 0.5, emission = {emission}, emission_two_sided = true }}\n"
+            )
+            .into_boxed_str(),
+        )
+    };
+    let negative = render_text(scene("[-1.0, 0.5, 0.25]"), 2);
+    assert_eq!(negative.pixels, render_text(scene("[0.0, 0.5, 0.25]"), 2).pixels);
+    // The emitter's power dwarfs the light's, so few samples pick the light: red in some pixels.
+    assert!(negative.pixels.iter().any(|p| p[0] > 0.0), "the light's red reaches the image");
+}
+
 #[test]
 fn the_image_is_the_same_for_any_thread_count() {
     const SCENE: &str = "[render]\nwidth = 40\nheight = 30\nsamples = 4\nmax_depth = 6\nintegrator = \"path\"\n\

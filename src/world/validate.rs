@@ -21,7 +21,8 @@ pub const MAX_SAMPLES: u32 = 1 << 20;
 /// Warnings that depend on the final settings, so they are not among [`Scene::warnings`]: a
 /// camera imported from a file made for another aspect ratio than the image's, POV-Ray's
 /// adaptive focal blur keys, normal patterns and `assumed_gamma` under `path` (ignored
-/// there), an environment map under `classic` (ignored there), an `assumed_gamma` below 1 (POV-Ray's "suspicious value"), and a
+/// there), negative emission under `path` (emitting nothing there), an environment map
+/// under `classic` (ignored there), an `assumed_gamma` below 1 (POV-Ray's "suspicious value"), and a
 /// path-traced scene without any light (call it once the settings are final, after
 /// command-line overrides).
 pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
@@ -84,6 +85,19 @@ pub fn warnings(scene: &Scene) -> Vec<Diagnostic> {
             )
             .with_help("render with --integrator path, or give classic a [world] background"),
         );
+    }
+    if scene.render.integrator == IntegratorKind::Path {
+        for (entity, m) in scene.world.query::<(hecs::Entity, &MaterialComponent)>().iter() {
+            let e = &m.material.emission;
+            if e.radiance.0.min_element() < 0.0 || e.times_color.0.min_element() < 0.0 {
+                let location = scene.entity_keys(entity, || scene.render_origin.clone()).child("material.emission");
+                out.push(Diagnostic::warning(
+                    location,
+                    "negative emission darkens under classic, as in POV-Ray; under path radiance cannot be \
+                     negative, and the negative components emit nothing",
+                ));
+            }
+        }
     }
     if scene.render.integrator == IntegratorKind::Path && !has_light(scene) {
         out.push(

@@ -185,7 +185,9 @@ impl LightSampler {
         for emitter in &scene.lights.area_emitters {
             let primitive = &scene.primitives[emitter.primitive as usize];
             let material = &scene.materials[primitive.material as usize];
-            let radiance = material.emission.radiance.0 + material.emission.times_color.0;
+            // Negative components emit nothing under path (`PathMaterial`'s emission).
+            let radiance =
+                material.emission.radiance.0.max(DVec3::ZERO) + material.emission.times_color.0.max(DVec3::ZERO);
             let area = primitive.shape.area().unwrap_or(1.0)
                 * primitive.shape.sample_area(DVec2::splat(0.5)).map_or(1.0, |s| primitive.area_scale(s.normal));
             lights.push(LightRef::Emitter(emitter.primitive));

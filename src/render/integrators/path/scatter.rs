@@ -283,12 +283,14 @@ impl PathMaterial {
     }
 
     /// The emitted radiance where the surface colour is `color` (before the emission texture).
+    /// Radiance is not negative: a negative component (POV-Ray's darkening `emission`, which
+    /// classic reads as written) emits nothing here.
     fn emission(&self, color: DVec3, uv: DVec2) -> DVec3 {
         let e = &self.material.emission;
         if !e.can_emit() {
             return DVec3::ZERO;
         }
-        e.radiance_at(Rgb(color), Rgb(rgb_of(texel(&e.texture, uv)))).0
+        e.radiance_at(Rgb(color), Rgb(rgb_of(texel(&e.texture, uv)))).0.max(DVec3::ZERO)
     }
 
     /// Emitted radiance alone at `point` (no scattering built), for emitter hits.
@@ -297,7 +299,7 @@ impl PathMaterial {
             return DVec3::ZERO;
         }
         if let SurfaceModel::Layered(layers) = &self.material.surface {
-            return layered_scatter(layers, point, self.material.interior.ior).emitted;
+            return layered_scatter(layers, point, self.material.interior.ior).emitted.max(DVec3::ZERO);
         }
         self.emission(self.surface_color(point).0, point.uv)
     }
@@ -322,7 +324,8 @@ impl PathMaterial {
     /// The scattering and emission at `point`.
     pub fn shade(&self, point: &SurfacePoint) -> Shaded {
         if let SurfaceModel::Layered(layers) = &self.material.surface {
-            return layered_scatter(layers, point, self.material.interior.ior);
+            let shaded = layered_scatter(layers, point, self.material.interior.ior);
+            return Shaded { emitted: shaded.emitted.max(DVec3::ZERO), ..shaded };
         }
         let uv = point.uv;
         let (color, patterned) = self.surface_color(point);
