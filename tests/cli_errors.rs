@@ -709,6 +709,14 @@ fn assumed_gamma_below_one_or_under_path_is_a_warning() {
     assert!(!render("assumed_gamma = 2.2").contains("warning"));
 }
 
+/// Renders `scene.toml` in `dir` with `args`, which must succeed; its standard error.
+fn render_successfully(dir: &Path, args: &[&str]) -> String {
+    let run = prism().current_dir(dir).args(["render", "scene.toml", "-o", "out.png"]).args(args).output().unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr).to_string();
+    assert!(run.status.success(), "{stderr}");
+    stderr
+}
+
 /// `[world] environment` is the path integrator's: under classic it is ignored with a
 /// warning naming the key (the image shows `background`), under path it lights the scene.
 #[test]
@@ -719,13 +727,7 @@ fn an_environment_map_under_classic_is_a_warning() {
     let scene = "[render]\nwidth = 8\nheight = 6\n[world]\nenvironment = { file = \"sky.exr\" }\n\
                  [[light]]\nposition = [0, 5, 5]\n[[object]]\nshape = \"sphere\"\n";
     std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
-    let render = |args: &[&str]| {
-        let run = prism().current_dir(dir.path()).args(["render", "scene.toml", "-o", "out.png"]).args(args).output();
-        let run = run.unwrap();
-        let stderr = String::from_utf8_lossy(&run.stderr).to_string();
-        assert!(run.status.success(), "{stderr}");
-        stderr
-    };
+    let render = |args: &[&str]| render_successfully(dir.path(), args);
     let classic = render(&[]);
     assert!(
         classic.contains("warning in `world.environment`") && classic.contains("path integrator only"),
@@ -742,13 +744,7 @@ fn negative_emission_under_path_is_a_warning() {
     let scene = "[render]\nwidth = 8\nheight = 6\n[[light]]\nposition = [0, 5, 5]\n\
                  [[object]]\nshape = \"sphere\"\nmaterial = { emission = [-0.5, 0.2, 0.2] }\n";
     std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
-    let render = |args: &[&str]| {
-        let run = prism().current_dir(dir.path()).args(["render", "scene.toml", "-o", "out.png"]).args(args).output();
-        let run = run.unwrap();
-        let stderr = String::from_utf8_lossy(&run.stderr).to_string();
-        assert!(run.status.success(), "{stderr}");
-        stderr
-    };
+    let render = |args: &[&str]| render_successfully(dir.path(), args);
     let path = render(&["--integrator", "path", "--samples", "1"]);
     assert!(path.contains("scene.toml:6:1: warning in `object[0].material.emission`"), "{path}");
     assert!(!render(&[]).contains("warning"));

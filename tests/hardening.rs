@@ -16,24 +16,8 @@ fn prism() -> Command {
     Command::new(env!("CARGO_BIN_EXE_prism"))
 }
 
-/// Runs `command`, killing it (and failing the test) if it runs longer than `limit`: a hang
-/// is a failure, not a stuck test suite.
-fn run_within(mut command: Command, limit: Duration) -> Output {
-    let mut child = command.stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
-    let start = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > limit {
-            child.kill().unwrap();
-            let out = child.wait_with_output().unwrap();
-            panic!("still running after {limit:?}: {}", String::from_utf8_lossy(&out.stderr));
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    child.wait_with_output().unwrap()
-}
-
 fn run(command: Command) -> Output {
-    run_within(command, Duration::from_secs(60))
+    common::run_within(command, Duration::from_secs(60))
 }
 
 fn stderr(out: &Output) -> String {
@@ -101,7 +85,7 @@ fn non_regular_files_are_refused_without_blocking() {
         } else {
             scene
         };
-        let out = run_within(render(d, &file), Duration::from_secs(20));
+        let out = common::run_within(render(d, &file), Duration::from_secs(20));
         let problems = failed_run_problems(&out, &[expect]);
         assert!(problems.is_empty(), "{name}: {}\n{}", problems.join("; "), stderr(&out));
     }
@@ -114,7 +98,7 @@ fn files_over_their_cap_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let big = std::fs::File::create(dir.path().join("big.toml")).unwrap();
     big.set_len(prism::files::MAX_SCENE_BYTES + 1).unwrap();
-    let out = run_within(render(dir.path(), "big.toml"), Duration::from_secs(20));
+    let out = common::run_within(render(dir.path(), "big.toml"), Duration::from_secs(20));
     assert_fails(&out, &["big.toml", "larger than the limit"]);
 }
 
@@ -128,7 +112,7 @@ fn diamond_includes_load_each_file_once() {
         std::fs::write(dir.path().join(format!("f{i}.toml")), text).unwrap();
     }
     std::fs::write(dir.path().join("f40.toml"), SPHERE).unwrap();
-    let out = run_within(render(dir.path(), "f0.toml"), Duration::from_secs(30));
+    let out = common::run_within(render(dir.path(), "f0.toml"), Duration::from_secs(30));
     assert!(out.status.success(), "{}", stderr(&out));
 }
 
@@ -141,7 +125,7 @@ fn deep_include_chains_do_not_overflow_the_stack() {
         std::fs::write(dir.path().join(format!("f{i}.toml")), format!("include = \"f{}.toml\"\n", i + 1)).unwrap();
     }
     std::fs::write(dir.path().join(format!("f{depth}.toml")), SPHERE).unwrap();
-    let out = run_within(render(dir.path(), "f0.toml"), Duration::from_secs(60));
+    let out = common::run_within(render(dir.path(), "f0.toml"), Duration::from_secs(60));
     assert!(out.status.success(), "{}", stderr(&out));
 }
 
@@ -207,7 +191,7 @@ fn outputs_are_regular_files_only() {
     for (target, what) in [("dir.png", "a directory"), ("fifo.png", "a FIFO")] {
         let mut c = prism();
         c.current_dir(d).args(["render", "scene.toml", "-o", target, "--width", "4", "--height", "4"]);
-        let out = run_within(c, Duration::from_secs(20));
+        let out = common::run_within(c, Duration::from_secs(20));
         assert_fails(&out, &[target, what]);
     }
     std::fs::write(d.join("victim.txt"), "keep me").unwrap();
@@ -795,10 +779,10 @@ fn huge_obj_faces_are_triangulated_quickly_or_refused() {
     }
     // In f32 a million points on a circle are not strictly convex (rounding makes some
     // corners reflex): the face is refused at once, naming the cap, instead of clipped for hours.
-    let out = run_within(render(dir.path(), "round.toml"), Duration::from_secs(20));
+    let out = common::run_within(render(dir.path(), "round.toml"), Duration::from_secs(20));
     if !out.status.success() {
         assert_fails(&out, &["round.obj", "1000000 vertices", "16384"]);
     }
-    let out = run_within(render(dir.path(), "spiky.toml"), Duration::from_secs(20));
+    let out = common::run_within(render(dir.path(), "spiky.toml"), Duration::from_secs(20));
     assert_fails(&out, &["spiky.obj", "100000 vertices", "16384"]);
 }

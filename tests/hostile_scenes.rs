@@ -7,27 +7,16 @@ mod common;
 
 use common::failed_run_problems;
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::{Command, Output};
+use std::time::Duration;
 
 fn prism() -> Command {
     Command::new(env!("CARGO_BIN_EXE_prism"))
 }
 
 /// Runs `command`, killing it (and failing the test) if it runs longer than a minute.
-fn run(mut command: Command) -> Output {
-    let limit = Duration::from_secs(60);
-    let mut child = command.stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
-    let start = Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > limit {
-            child.kill().unwrap();
-            let out = child.wait_with_output().unwrap();
-            panic!("still running after {limit:?}: {}", String::from_utf8_lossy(&out.stderr));
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    child.wait_with_output().unwrap()
+fn run(command: Command) -> Output {
+    common::run_within(command, Duration::from_secs(60))
 }
 
 fn stderr(out: &Output) -> String {

@@ -3,7 +3,8 @@
 #![allow(dead_code, reason = "each test file includes this module and uses only some of its helpers")]
 
 use std::path::PathBuf;
-use std::process::Output;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 /// The repository root.
 pub fn repo() -> PathBuf {
@@ -51,4 +52,20 @@ pub fn failed_run_problems(run: &Output, expect: &[&str]) -> Vec<String> {
         }
     }
     problems
+}
+
+/// Runs `command`, killing it (and failing the test) if it runs longer than `limit`: a hang
+/// is a failure, not a stuck test suite.
+pub fn run_within(mut command: Command, limit: Duration) -> Output {
+    let mut child = command.stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > limit {
+            child.kill().unwrap();
+            let out = child.wait_with_output().unwrap();
+            panic!("still running after {limit:?}: {}", String::from_utf8_lossy(&out.stderr));
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
 }
