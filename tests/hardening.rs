@@ -7,21 +7,13 @@
 
 mod common;
 
-use common::failed_run_problems;
+use common::{failed_run_problems, run, stderr};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 fn prism() -> Command {
     Command::new(env!("CARGO_BIN_EXE_prism"))
-}
-
-fn run(command: Command) -> Output {
-    common::run_within(command, Duration::from_secs(60))
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
 /// A render of `scene` in `dir` at 8 x 6 to `out.png`.

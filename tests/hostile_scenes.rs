@@ -5,22 +5,12 @@
 
 mod common;
 
-use common::failed_run_problems;
+use common::{failed_run_problems, run, stderr};
 use std::path::Path;
 use std::process::{Command, Output};
-use std::time::Duration;
 
 fn prism() -> Command {
     Command::new(env!("CARGO_BIN_EXE_prism"))
-}
-
-/// Runs `command`, killing it (and failing the test) if it runs longer than a minute.
-fn run(command: Command) -> Output {
-    common::run_within(command, Duration::from_secs(60))
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
 /// Writes `scene` as `scene.toml` in `dir` and renders it at 8 x 6 to `out.png`.

@@ -375,11 +375,12 @@ impl MaterialSpec {
                     return Err((key, format!("must be between 0 and 1, got {v}")));
                 }
             }
-            if !p.emissive.is_finite() || p.emissive.0.min_element() < 0.0 {
-                return Err(("pbr.emissive", "must be finite and not negative".into()));
-            }
-            // A colour like `emission`: beyond the limit its products overflow.
+            // A colour like `emission` (finite, within the limit beyond which its products
+            // overflow), and radiance, so not negative.
             super::check_finite(&[("pbr.emissive", p.emissive)], &[])?;
+            if p.emissive.0.min_element() < 0.0 {
+                return Err(("pbr.emissive", "must not be negative".into()));
+            }
             for t in [&p.metallic_roughness_texture, &p.emissive_texture].into_iter().flatten() {
                 t.check()?;
             }

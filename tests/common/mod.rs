@@ -69,3 +69,13 @@ pub fn run_within(mut command: Command, limit: Duration) -> Output {
     }
     child.wait_with_output().unwrap()
 }
+
+/// [`run_within`] a minute: what a test's command is given before it counts as hung.
+pub fn run(command: Command) -> Output {
+    run_within(command, Duration::from_secs(60))
+}
+
+/// A finished command's standard error as text.
+pub fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
