@@ -427,13 +427,19 @@ fn bench(name: &str, mesh: &Mesh, mesh_file: &Path, sets: &[(&str, PathBuf, Rays
     }
     let bvh = bvh.expect("built");
     println!(
-        "  prism build (obvhs PLOC + BVH8 collapse) best of 3: {build_best:.3} s, cpu best of 3: {build_cpu_best:.3} s; BVH {:.1} bytes/triangle (nodes + packets)",
+        "  prism build (obvhs PLOC + BVH8 collapse) best of 3: {build_best:.3} s, cpu best of 3: {build_cpu_best:.3} s; BVH {:.1} bytes/triangle (nodes + leaves)",
         bvh.memory_bytes() as f64 / mesh.triangles.len() as f64
     );
     let stats = bvh.stats();
     println!(
-        "  prism BVH8: {} nodes ({:.2} children each), {} packets ({:.2} triangles each), expected cost {:.3} per ray entering the root",
-        stats.nodes, stats.children_per_node, stats.packets, stats.triangles_per_packet, stats.expected_cost
+        "  prism BVH8: {} nodes ({:.2} children each), {} leaves in {} triangle groups ({:.2} triangles over {:.2} vertices each), expected cost {:.3} per ray entering the root",
+        stats.nodes,
+        stats.children_per_node,
+        stats.leaves,
+        stats.groups,
+        stats.triangles_per_group,
+        stats.vertices_per_group,
+        stats.expected_cost
     );
     let builder =
         MeshBuilder { positions: mesh.positions.clone(), triangles: mesh.triangles.clone(), ..MeshBuilder::default() };

@@ -3,28 +3,29 @@
 //!
 //! obvhs builds a binary tree (PLOC, reinsertion, one triangle per leaf); it is then
 //! collapsed into the 8-wide tree shared with the top level (`accel::wide`) of least
-//! expected cost, whose leaves are one to four packets of up to four triangles
-//! ([`TrianglePacket`]). A ray is tested against a node's eight boxes and a
-//! packet's four triangles at once by the SIMD kernels
-//! (`accel::simd`: AVX2 where the CPU has it, plain loops otherwise, with the same hits);
-//! children are visited nearest first.
+//! expected cost, whose leaves hold up to sixteen triangles as groups over shared vertices
+//! ([`crate::accel::triangle_groups`]). A ray is tested against a node's eight boxes and a
+//! group's triangles eight at a time by the SIMD kernels (`accel::simd`: AVX2 where the CPU
+//! has it, plain loops otherwise, with the same hits); children are visited nearest first.
 
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::ploc::PlocSearchDistance;
 
-use super::pages::{PageArray, PageBuffer};
+use super::pages::PageArray;
 use super::simd::{self, BoxRay, Dispatch, Kernels};
-use super::triangle::{PACKET, PacketHits, TriangleHit, TrianglePacket, WatertightRay};
+use super::triangle::{TriangleHit, WatertightRay};
+use super::triangle_groups::{GroupHits, GroupWriter, TriangleGroups};
 use super::wide::{
-    CollapseCost, EMPTY, LeafMaker, LeafVisitor, Node, StackEntry, WideTree, build_binary, with_traversal_stack,
+    CollapseCost, EMPTY, LEAF, LeafMaker, LeafVisitor, Node, StackEntry, WideTree, build_binary, with_traversal_stack,
 };
 
 /// A BVH over triangles.
 #[derive(Clone)]
 pub struct TriangleBvh {
     nodes: PageArray<Node>,
-    packets: PageArray<TrianglePacket>,
+    /// The leaves' triangle groups; a leaf reference is the word at which its first starts.
+    groups: TriangleGroups,
     /// Vertices of each triangle, in input order (for refining hits in f64).
     triangles: Vec<[Vec3; 3]>,
     /// Deepest stack a traversal can need.
@@ -38,15 +39,19 @@ pub struct TriangleBvh {
 pub struct TreeStats {
     /// Wide nodes.
     pub nodes: usize,
-    /// Leaf packets.
-    pub packets: usize,
+    /// Leaves.
+    pub leaves: usize,
+    /// Triangle groups (a leaf has one or more).
+    pub groups: usize,
     /// Mean children per node.
     pub children_per_node: f64,
-    /// Mean distinct triangles per packet.
-    pub triangles_per_packet: f64,
+    /// Mean triangles per group.
+    pub triangles_per_group: f64,
+    /// Mean distinct vertices per group.
+    pub vertices_per_group: f64,
     /// The expected cost of a ray entering the root's box, in the collapse's units (a node
-    /// test 1, a packet of four triangles 0.1): lower is better, and unlike a timing it is
-    /// the same on every run.
+    /// test 1, a leaf 0.1 per started four triangles): lower is better, and unlike a timing
+    /// it is the same on every run.
     pub expected_cost: f32,
 }
 
@@ -54,46 +59,54 @@ impl std::fmt::Debug for TriangleBvh {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "TriangleBvh({} triangles, {} nodes, {} packets)",
+            "TriangleBvh({} triangles, {} nodes, {} words of triangle groups)",
             self.triangles.len(),
             self.nodes.len(),
-            self.packets.len()
+            self.groups.len()
         )
     }
 }
 
-/// Most packets in one leaf (the leaf reference's two count bits).
-const LEAF_PACKETS: usize = 4;
+/// Most triangles in one leaf.
+const LEAF_TRIANGLES: usize = 16;
 
-/// What the collapse weighs: an 8-wide node test costs 1, a leaf 0.1 per started packet of
-/// four triangles. A packet costs far less than a node because the packets of a leaf lie
-/// side by side and are fetched together, while each node is one more dependent cache miss
-/// down the tree. Measured on the terrain and the dragon with incoherent rays (best of three
-/// runs each, Mrays/s through the f32 API, on the trees of stop 32): packet cost 1 gave 2.73
-/// and 2.88, 0.5 3.17 and 3.26, 0.25 3.40 and 3.69, 0.1 3.33 and 3.50. On the trees built
-/// with the Morton cube (`wide::build_binary`), two trees in one process timed in turn (six
-/// or eight rounds, median speed-up of each against 0.2): 0.12 gave 1.006 and 1.032 (terrain,
-/// two runs) and 1.072 and 1.040 (dragon), 0.1 1.031 and 1.020, 0.08 1.021 and 1.036, 0.05
-/// 1.022 and 0.998, 0.3 0.988 and 0.960.
+/// What the collapse weighs: an 8-wide node test costs 1, a leaf 0.1 per started four
+/// triangles. A leaf costs far less than a node because its triangles lie side by side and
+/// are fetched together, while each node is one more dependent cache miss down the tree.
+/// Measured on the terrain and the dragon with incoherent rays when leaves were packets of
+/// four triangles with their own vertices (best of three runs each, Mrays/s through the f32
+/// API, on the trees of stop 32): packet cost 1 gave 2.73 and 2.88, 0.5 3.17 and 3.26, 0.25
+/// 3.40 and 3.69, 0.1 3.33 and 3.50. On the trees built with the Morton cube
+/// (`wide::build_binary`), two trees in one process timed in turn (six or eight rounds,
+/// median speed-up of each against 0.2): 0.12 gave 1.006 and 1.032 (terrain, two runs) and
+/// 1.072 and 1.040 (dragon), 0.1 1.031 and 1.020, 0.08 1.021 and 1.036, 0.05 1.022 and
+/// 0.998, 0.3 0.988 and 0.960. With leaves as groups over shared vertices (eight rounds
+/// each against this cost): 0.1, 0.15 or 0.2 per started eight triangles, 0.05 per four,
+/// 0.05 plus 0.02 per triangle all gave 0.99-1.08, within the rounds' spread.
 const LEAF_COST: CollapseCost = CollapseCost {
     node: 1.0,
-    leaf: |triangles| (triangles <= PACKET * LEAF_PACKETS).then(|| 0.1 * triangles.div_ceil(PACKET) as f32),
+    leaf: |triangles| (triangles <= LEAF_TRIANGLES).then(|| 0.1 * triangles.div_ceil(4) as f32),
 };
 
-/// Makes the collapse's leaves: packets of the triangles, in the order the collapse lists
-/// them, in a buffer of their own.
-struct LeafPackets<'a> {
+/// Bytes prefetched for a leaf about to be tested. Its size is in its header, which is what
+/// is being fetched: ask for the three lines a leaf of eight triangles over nine vertices
+/// (168 bytes) reaches.
+const LEAF_PREFETCH_BYTES: usize = 192;
+
+/// Makes the collapse's leaves: groups of the triangles, in the order the collapse lists
+/// them.
+struct LeafGroups<'a> {
     triangles: &'a [[Vec3; 3]],
-    packets: PageBuffer<TrianglePacket>,
+    writer: GroupWriter<'a>,
 }
 
-impl LeafMaker for &mut LeafPackets<'_> {
+impl LeafMaker for &mut LeafGroups<'_> {
     fn make(&mut self, prims: &[u32]) -> u32 {
-        let first = self.packets.len() as u32;
-        for chunk in prims.chunks(PACKET) {
-            self.packets.push(TrianglePacket::new(self.triangles, chunk));
-        }
-        leaf_reference(first, self.packets.len() as u32 - first)
+        let start = self.writer.leaf(prims);
+        u32::try_from(start)
+            .ok()
+            .filter(|start| start & LEAF == 0)
+            .expect("too many triangle groups for a leaf reference")
     }
 
     /// The triangles lie in input order, not the tree's.
@@ -102,14 +115,6 @@ impl LeafMaker for &mut LeafPackets<'_> {
             simd::prefetch(self.triangles.as_ptr().wrapping_add(prim as usize));
         }
     }
-}
-
-/// The leaf reference of packets `first..first + count` (`count` from 1 to 4): the first
-/// packet's index, shifted past two bits that hold `count - 1`.
-fn leaf_reference(first: u32, count: u32) -> u32 {
-    assert!(first < 1 << 29, "too many packets for a leaf reference");
-    debug_assert!((1..=4).contains(&count));
-    first << 2 | (count - 1)
 }
 
 /// A ray prepared for traversal: the watertight test's shear and the slab test's
@@ -165,12 +170,12 @@ impl TriangleBvh {
             ..BvhBuildParams::medium_build()
         };
         let bvh2 = build_binary(boxes, params);
-        // At most one packet per triangle: the buffer never outgrows its mapping.
-        let mut leaves = LeafPackets { triangles: &triangles, packets: PageBuffer::with_capacity(triangles.len()) };
+        let mut leaves = LeafGroups { triangles: &triangles, writer: GroupWriter::new(&triangles) };
         let tree = WideTree::collapse(&bvh2, LEAF_COST, &mut leaves);
+        let groups = leaves.writer.finish();
         TriangleBvh {
             nodes: PageArray::new(tree.nodes),
-            packets: leaves.packets.finish(),
+            groups,
             triangles,
             stack_size: tree.stack_size,
             expected_cost: tree.expected_cost,
@@ -201,20 +206,28 @@ impl TriangleBvh {
     /// The tree's shape and expected cost.
     pub fn stats(&self) -> TreeStats {
         let children: usize = self.nodes.iter().map(|n| n.child.iter().filter(|&&c| c != EMPTY).count()).sum();
-        let distinct: usize = self.packets.iter().map(TrianglePacket::distinct).sum();
+        let leaves = self.nodes.iter().flat_map(|n| n.child).filter(|&c| c != EMPTY && c & LEAF != 0).count();
+        let (mut groups, mut triangles, mut vertices) = (0, 0, 0);
+        for group in self.groups.iter() {
+            groups += 1;
+            triangles += group.triangle_count();
+            vertices += group.vertex_count();
+        }
         TreeStats {
             nodes: self.nodes.len(),
-            packets: self.packets.len(),
+            leaves,
+            groups,
             children_per_node: children as f64 / self.nodes.len() as f64,
-            triangles_per_packet: distinct as f64 / self.packets.len() as f64,
+            triangles_per_group: triangles as f64 / groups as f64,
+            vertices_per_group: vertices as f64 / groups as f64,
             expected_cost: self.expected_cost,
         }
     }
 
-    /// Bytes used by the nodes and the leaf packets (not the triangle list kept for
-    /// shading).
+    /// Bytes used by the nodes and the leaves' triangle groups (not the triangle list kept
+    /// for shading).
     pub fn memory_bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node>() + self.packets.len() * std::mem::size_of::<TrianglePacket>()
+        self.nodes.len() * std::mem::size_of::<Node>() + 4 * self.groups.len()
     }
 
     /// Visits the triangles the ray may hit, nearest boxes first. `accept(triangle, hit,
@@ -310,34 +323,34 @@ impl<A: Acceptor, const ANY: bool> Dispatch for Query<'_, A, ANY> {
     }
 }
 
-/// The leaves of a mesh BVH: packets of triangles, whose hits go to the acceptor.
-struct PacketLeaves<'a, A, const ANY: bool> {
-    /// The tree's packets, dereferenced once per query rather than once per leaf.
-    packets: &'a [TrianglePacket],
+/// The leaves of a mesh BVH: groups of triangles, whose hits go to the acceptor.
+struct GroupLeaves<'a, A, const ANY: bool> {
+    groups: &'a TriangleGroups,
     /// A copy of the ray, kept in registers.
     ray: WatertightRay,
-    hits: PacketHits,
+    hits: GroupHits,
     acceptor: &'a mut A,
 }
 
-impl<A: Acceptor, const ANY: bool> LeafVisitor for PacketLeaves<'_, A, ANY> {
+impl<A: Acceptor, const ANY: bool> LeafVisitor for GroupLeaves<'_, A, ANY> {
     #[inline(always)]
     fn prefetch<K: Kernels>(&self, kernels: K, leaf: u32) {
-        let packet: *const TrianglePacket = self.packets.as_ptr().wrapping_add((leaf >> 2) as usize);
-        kernels.prefetch(packet.cast(), std::mem::size_of::<TrianglePacket>() * ((leaf & 3) as usize + 1));
+        kernels.prefetch(self.groups.as_ptr().wrapping_add(leaf as usize).cast(), LEAF_PREFETCH_BYTES);
     }
 
     #[inline(always)]
     fn visit<K: Kernels>(&mut self, kernels: K, leaf: u32, t_max: &mut f32) -> bool {
-        let first = (leaf >> 2) as usize;
-        for packet in &self.packets[first..=first + (leaf & 3) as usize] {
-            let mut mask = kernels.triangles(packet, &self.ray, *t_max, &mut self.hits);
+        let mut start = leaf as usize;
+        loop {
+            let group = self.groups.group(start);
+            let mut mask = kernels.group(&group, &self.ray, *t_max, &mut self.hits);
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
                 let hit = self.hits.get(lane);
                 if hit.t < *t_max
-                    && let Some(bound) = self.acceptor.offer(packet.prim[lane] as usize, hit, packet.vertices(lane))
+                    && let Some(bound) =
+                        self.acceptor.offer(group.prim(lane) as usize, hit, group.triangle_vertices(lane))
                 {
                     if ANY && self.acceptor.done() {
                         return true;
@@ -345,8 +358,11 @@ impl<A: Acceptor, const ANY: bool> LeafVisitor for PacketLeaves<'_, A, ANY> {
                     *t_max = t_max.min(bound);
                 }
             }
+            if !group.more() {
+                return false;
+            }
+            start = group.end();
         }
-        false
     }
 }
 
@@ -361,7 +377,7 @@ fn traverse<K: Kernels, const ANY: bool>(
     acceptor: &mut impl Acceptor,
 ) -> bool {
     let mut leaves =
-        PacketLeaves::<_, ANY> { packets: &bvh.packets, ray: ray.triangle, hits: PacketHits::default(), acceptor };
+        GroupLeaves::<_, ANY> { groups: &bvh.groups, ray: ray.triangle, hits: GroupHits::default(), acceptor };
     super::wide::traverse::<K, true>(kernels, &bvh.nodes, &ray.boxes, t_max, stack, &mut leaves)
 }
 

@@ -9,4 +9,5 @@ pub mod primitive;
 pub mod scene_bvh;
 pub(crate) mod simd;
 pub mod triangle;
+pub mod triangle_groups;
 pub(crate) mod wide;

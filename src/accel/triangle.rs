@@ -6,8 +6,8 @@
 //!
 //! The test runs in f32 (mesh data is f32). The ray direction need not be unit length: `t`
 //! is in units of the direction, as everywhere in Prism. [`WatertightRay::intersect`] is the
-//! scalar test; a BVH leaf is a [`TrianglePacket`] of four triangles, which the SIMD
-//! kernels (`accel::simd`) test in lanes with exactly its results.
+//! scalar test; the SIMD kernels (`accel::simd`) test a BVH leaf's triangles
+//! (`accel::triangle_groups`) in lanes with exactly its results.
 
 use glam::{DVec3, Vec3};
 use prism_api::Hit;
@@ -134,86 +134,6 @@ impl WatertightRay {
             return None;
         }
         Some(TriangleHit { t, b1: v * inv, b2: w * inv })
-    }
-}
-
-/// Triangles per leaf packet (and at most per leaf of a mesh BVH). Four, tested in SSE
-/// lanes: leaves of real meshes hold three to four triangles, and wider packets mostly carry
-/// padding through the cache.
-pub const PACKET: usize = 4;
-
-/// Four triangles, vertices as structure of arrays (`a[axis][lane]`), tested together by
-/// the SIMD kernels (`accel::simd`), lane by lane as [`WatertightRay::intersect`]. Unused lanes repeat the last triangle, so they
-/// can only report hits that are already reported.
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(16))]
-pub struct TrianglePacket {
-    /// First vertices.
-    pub a: [[f32; PACKET]; 3],
-    /// Second vertices.
-    pub b: [[f32; PACKET]; 3],
-    /// Third vertices.
-    pub c: [[f32; PACKET]; 3],
-    /// Triangle index (into the mesh's triangle list) of each lane.
-    pub prim: [u32; PACKET],
-}
-
-impl TrianglePacket {
-    /// The packet of `prims` (one to `PACKET` indices into `triangles`).
-    pub fn new(triangles: &[[Vec3; 3]], prims: &[u32]) -> Self {
-        let count = prims.len().clamp(1, PACKET);
-        let mut packet =
-            Self { a: [[0.0; PACKET]; 3], b: [[0.0; PACKET]; 3], c: [[0.0; PACKET]; 3], prim: [0; PACKET] };
-        for lane in 0..PACKET {
-            let prim = prims[lane.min(count - 1)];
-            let [a, b, c] = triangles[prim as usize];
-            for axis in 0..3 {
-                packet.a[axis][lane] = a[axis];
-                packet.b[axis][lane] = b[axis];
-                packet.c[axis][lane] = c[axis];
-            }
-            packet.prim[lane] = prim;
-        }
-        packet
-    }
-
-    /// The vertices of the triangle in `lane`.
-    #[inline(always)]
-    pub fn vertices(&self, lane: usize) -> [Vec3; 3] {
-        let vertex = |m: &[[f32; PACKET]; 3]| Vec3::new(m[0][lane], m[1][lane], m[2][lane]);
-        [vertex(&self.a), vertex(&self.b), vertex(&self.c)]
-    }
-
-    /// Distinct triangles in the packet (lanes that do not repeat their predecessor).
-    pub fn distinct(&self) -> usize {
-        (0..PACKET).filter(|&lane| lane == 0 || self.prim[lane] != self.prim[lane - 1]).count()
-    }
-}
-
-/// The hits of one ray with a packet's lanes, as structure of arrays.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct PacketHits {
-    /// Ray parameter of each lane's hit.
-    pub t: [f32; PACKET],
-    /// Weight of vertex 1 of each lane's hit.
-    pub b1: [f32; PACKET],
-    /// Weight of vertex 2 of each lane's hit.
-    pub b2: [f32; PACKET],
-}
-
-impl PacketHits {
-    /// The hit in `lane`.
-    #[inline(always)]
-    pub fn get(&self, lane: usize) -> TriangleHit {
-        TriangleHit { t: self.t[lane], b1: self.b1[lane], b2: self.b2[lane] }
-    }
-
-    /// Stores `hit` in `lane`.
-    #[inline(always)]
-    pub fn set(&mut self, lane: usize, hit: TriangleHit) {
-        self.t[lane] = hit.t;
-        self.b1[lane] = hit.b1;
-        self.b2[lane] = hit.b2;
     }
 }
 

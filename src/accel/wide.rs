@@ -1,7 +1,7 @@
 //! The 8-wide BVH both levels of Prism's acceleration share: nodes holding their eight
 //! children's boxes as structure-of-arrays (tested against a ray at once by the box kernel
 //! of [`crate::accel::simd`]), built by collapsing an obvhs binary tree, and traversed depth
-//! first, nearest child first. What a leaf is belongs to the user: a packet of triangles in
+//! first, nearest child first. What a leaf is belongs to the user: groups of triangles in
 //! a mesh ([`crate::accel::mesh_bvh`]), one primitive at the top level
 //! ([`crate::accel::scene_bvh`]).
 

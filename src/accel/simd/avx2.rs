@@ -1,11 +1,12 @@
-//! The kernels in AVX2 lanes (x86-64): eight boxes in one 256-bit register per plane, four
-//! triangles in 128-bit lanes.
+//! The kernels in AVX2 lanes (x86-64): eight boxes in one 256-bit register per plane, and a
+//! group's vertices and triangles eight to a register.
 
 use std::arch::x86_64::*;
 use std::sync::OnceLock;
 
 use super::{BOXES, BoxLanes, BoxRay, Dispatch, FAR_SCALE, Kernels};
-use crate::accel::triangle::{PacketHits, TrianglePacket, WatertightRay};
+use crate::accel::triangle::WatertightRay;
+use crate::accel::triangle_groups::{Group, GroupHits};
 
 /// Proof that the CPU runs AVX2, FMA, POPCNT and BMI1: only [`Avx2::detect`] makes one.
 #[derive(Clone, Copy, Debug)]
@@ -85,77 +86,114 @@ impl Kernels for Avx2 {
     }
 
     #[inline(always)]
-    fn triangles(self, packet: &TrianglePacket, ray: &WatertightRay, t_max: f32, hits: &mut PacketHits) -> u32 {
-        // SAFETY: `self` proves the CPU has AVX; the loads read rows of a `TrianglePacket`,
-        // 16 bytes each and 16-byte aligned, and the stores write `PacketHits` rows of four.
-        let (mut mask, mut edge) = unsafe {
+    fn group(self, group: &Group<'_>, ray: &WatertightRay, t_max: f32, hits: &mut GroupHits) -> u32 {
+        let (vertices, triangles) = (group.vertex_count(), group.triangle_count());
+        let coordinates = group.coordinates();
+        let corner_indices = group.corner_indices();
+        let mut mask = 0u32;
+        let mut edge = 0u32;
+        // SAFETY: `self` proves the CPU has AVX2; `Group` guarantees its counts (at most 16
+        // vertices and 16 triangles) and that the words after its coordinates and index
+        // bytes are readable for at least 16 words, which covers every 8-lane load below.
+        unsafe {
             let [kx, ky, kz] = ray.axes();
             let org = ray.permuted_origin();
             let shear = ray.shear();
-            let (ox, oy, oz) = (_mm_set1_ps(org[0]), _mm_set1_ps(org[1]), _mm_set1_ps(org[2]));
-            let (sx, sy, sz) = (_mm_set1_ps(shear[0]), _mm_set1_ps(shear[1]), _mm_set1_ps(shear[2]));
-            // The same operations, in the same order, as the scalar test (no fused
-            // multiply-adds): shared edges then give exactly opposite edge functions.
+            let (ox, oy, oz) = (_mm256_set1_ps(org[0]), _mm256_set1_ps(org[1]), _mm256_set1_ps(org[2]));
+            let (sx, sy, sz) = (_mm256_set1_ps(shear[0]), _mm256_set1_ps(shear[1]), _mm256_set1_ps(shear[2]));
+            // Each vertex sheared once, with the scalar test's operations in its order (no
+            // fused multiply-adds): corners that are the same vertex get the same numbers.
             macro_rules! sheared {
-                ($v:expr) => {{
-                    let x = _mm_sub_ps(_mm_load_ps($v[kx].as_ptr()), ox);
-                    let y = _mm_sub_ps(_mm_load_ps($v[ky].as_ptr()), oy);
-                    let z = _mm_sub_ps(_mm_load_ps($v[kz].as_ptr()), oz);
-                    (_mm_sub_ps(x, _mm_mul_ps(sx, z)), _mm_sub_ps(y, _mm_mul_ps(sy, z)), z)
+                ($first:expr) => {{
+                    let x = _mm256_sub_ps(_mm256_loadu_ps(coordinates.add(kx * vertices + $first)), ox);
+                    let y = _mm256_sub_ps(_mm256_loadu_ps(coordinates.add(ky * vertices + $first)), oy);
+                    let z = _mm256_sub_ps(_mm256_loadu_ps(coordinates.add(kz * vertices + $first)), oz);
+                    (
+                        _mm256_sub_ps(x, _mm256_mul_ps(sx, z)),
+                        _mm256_sub_ps(y, _mm256_mul_ps(sy, z)),
+                        _mm256_mul_ps(sz, z),
+                    )
                 }};
             }
-            let (ax, ay, az) = sheared!(packet.a);
-            let (bx, by, bz) = sheared!(packet.b);
-            let (cx, cy, cz) = sheared!(packet.c);
-            let u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
-            let v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
-            let w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
-            let zero = _mm_setzero_ps();
-            macro_rules! any3 {
-                ($op:ident) => {
-                    _mm_or_ps(
-                        _mm_or_ps(_mm_cmp_ps::<$op>(u, zero), _mm_cmp_ps::<$op>(v, zero)),
-                        _mm_cmp_ps::<$op>(w, zero),
-                    )
-                };
+            // Both halves always (the loads past a group of eight vertices or fewer read
+            // words that no index names): a branch on the count would be mispredicted.
+            let low = sheared!(0);
+            let high = sheared!(8);
+            // A corner's value: the lane its index names, from the low or the high eight.
+            macro_rules! gather {
+                ($low:expr, $high:expr, $index:expr) => {{
+                    let from_low = _mm256_permutevar8x32_ps($low, $index);
+                    let from_high = _mm256_permutevar8x32_ps($high, $index);
+                    _mm256_blendv_ps(from_low, from_high, _mm256_castsi256_ps(_mm256_slli_epi32::<28>($index)))
+                }};
             }
-            let negative = any3!(_CMP_LT_OQ);
-            let positive = any3!(_CMP_GT_OQ);
-            let on_edge = any3!(_CMP_EQ_OQ);
-            let outside = _mm_and_ps(negative, positive);
-            // Most packets a ray reaches lie beside it: stop before the division.
-            if _mm_movemask_ps(outside) == 0b1111 {
-                return 0;
+            let zero = _mm256_setzero_ps();
+            let mut first = 0;
+            while first < triangles {
+                let lanes = (1u32 << (triangles - first).min(8)) - 1;
+                macro_rules! corner {
+                    ($k:expr) => {{
+                        let index = _mm256_cvtepu8_epi32(_mm_loadl_epi64(
+                            corner_indices.add($k * triangles + first).cast::<__m128i>(),
+                        ));
+                        (gather!(low.0, high.0, index), gather!(low.1, high.1, index), gather!(low.2, high.2, index))
+                    }};
+                }
+                let (ax, ay, az) = corner!(0);
+                let (bx, by, bz) = corner!(1);
+                let (cx, cy, cz) = corner!(2);
+                let u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
+                let v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
+                let w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
+                macro_rules! any3 {
+                    ($op:ident) => {
+                        _mm256_or_ps(
+                            _mm256_or_ps(_mm256_cmp_ps::<$op>(u, zero), _mm256_cmp_ps::<$op>(v, zero)),
+                            _mm256_cmp_ps::<$op>(w, zero),
+                        )
+                    };
+                }
+                let negative = any3!(_CMP_LT_OQ);
+                let positive = any3!(_CMP_GT_OQ);
+                let on_edge = any3!(_CMP_EQ_OQ);
+                let outside = _mm256_and_ps(negative, positive);
+                let inside = !(_mm256_movemask_ps(outside) as u32) & lanes;
+                if inside != 0 {
+                    edge |= (_mm256_movemask_ps(on_edge) as u32 & inside) << first;
+                    let det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+                    // az, bz, cz are already scaled by sz (the scalar test's `sz * a[kz]`).
+                    let t_scaled =
+                        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, az), _mm256_mul_ps(v, bz)), _mm256_mul_ps(w, cz));
+                    let inv = _mm256_div_ps(_mm256_set1_ps(1.0), det);
+                    let t = _mm256_mul_ps(t_scaled, inv);
+                    let in_range = _mm256_and_ps(
+                        _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
+                        _mm256_cmp_ps::<_CMP_LT_OQ>(t, _mm256_set1_ps(t_max)),
+                    );
+                    let valid = _mm256_andnot_ps(
+                        _mm256_or_ps(outside, on_edge),
+                        _mm256_and_ps(_mm256_cmp_ps::<_CMP_NEQ_OQ>(det, zero), in_range),
+                    );
+                    let found = _mm256_movemask_ps(valid) as u32 & lanes;
+                    if found != 0 {
+                        _mm256_storeu_ps(hits.t.as_mut_ptr().add(first), t);
+                        _mm256_storeu_ps(hits.b1.as_mut_ptr().add(first), _mm256_mul_ps(v, inv));
+                        _mm256_storeu_ps(hits.b2.as_mut_ptr().add(first), _mm256_mul_ps(w, inv));
+                        mask |= found << first;
+                    }
+                }
+                first += 8;
             }
-            // Lanes with a zero edge function are left to the scalar test (which redoes them
-            // in f64) unless they are already certainly outside.
-            let edge = _mm_movemask_ps(_mm_andnot_ps(outside, on_edge)) as u32;
-            let det = _mm_add_ps(_mm_add_ps(u, v), w);
-            let t_scaled = _mm_add_ps(
-                _mm_add_ps(_mm_mul_ps(u, _mm_mul_ps(sz, az)), _mm_mul_ps(v, _mm_mul_ps(sz, bz))),
-                _mm_mul_ps(w, _mm_mul_ps(sz, cz)),
-            );
-            let inv = _mm_div_ps(_mm_set1_ps(1.0), det);
-            let t = _mm_mul_ps(t_scaled, inv);
-            let in_range =
-                _mm_and_ps(_mm_cmp_ps::<_CMP_GT_OQ>(t, zero), _mm_cmp_ps::<_CMP_LT_OQ>(t, _mm_set1_ps(t_max)));
-            let valid =
-                _mm_andnot_ps(_mm_or_ps(outside, on_edge), _mm_and_ps(_mm_cmp_ps::<_CMP_NEQ_OQ>(det, zero), in_range));
-            let mask = _mm_movemask_ps(valid) as u32;
-            if mask != 0 {
-                _mm_storeu_ps(hits.t.as_mut_ptr(), t);
-                _mm_storeu_ps(hits.b1.as_mut_ptr(), _mm_mul_ps(v, inv));
-                _mm_storeu_ps(hits.b2.as_mut_ptr(), _mm_mul_ps(w, inv));
-            }
-            (mask, edge)
-        };
+        }
+        // Triangles with a zero edge function are left to the scalar test (which redoes
+        // them in f64) unless they are already certainly outside.
         while edge != 0 {
-            let lane = edge.trailing_zeros() as usize;
+            let triangle = edge.trailing_zeros() as usize;
             edge &= edge - 1;
-            let [a, b, c] = packet.vertices(lane);
+            let [a, b, c] = group.triangle_vertices(triangle);
             if let Some(hit) = ray.intersect(a, b, c, t_max) {
-                hits.set(lane, hit);
-                mask |= 1 << lane;
+                hits.set(triangle, hit);
+                mask |= 1 << triangle;
             }
         }
         mask
@@ -169,7 +207,6 @@ mod tests {
 
     use super::*;
     use crate::accel::simd::Scalar;
-    use crate::accel::triangle::PACKET;
 
     /// A multiple of `step` with up to `bits` significant bits.
     fn grid(rng: &mut TestRng, bits: u32, step: f32) -> f32 {
@@ -272,70 +309,79 @@ mod tests {
         }
     }
 
-    /// A random packet of four triangles; on `integer` cases vertices lie on a coarse grid
-    /// and rays run along grid lines, so edge functions are often exactly zero (rays through
-    /// edges and vertices, which the kernel hands to the scalar test).
-    fn triangles_case(rng: &mut TestRng, integer: bool) -> ([[Vec3; 3]; PACKET], WatertightRay) {
-        let point = |rng: &mut TestRng| {
-            if integer {
-                Vec3::from_array([0; 3].map(|_| (rng.range(-3.0, 3.0)).round() as f32))
-            } else {
-                Vec3::from_array([0; 3].map(|_| rng.range(-1.0, 1.0) as f32))
-            }
-        };
-        let mut triangles = [[Vec3::ZERO; 3]; PACKET];
-        for lane in 0..PACKET {
-            triangles[lane] = [point(rng), point(rng), point(rng)];
-            // Neighbours share an edge now and then, and a triangle is degenerate now and then.
-            if lane > 0 && rng.uniform() < 0.3 {
-                triangles[lane][0] = triangles[lane - 1][1];
-                triangles[lane][1] = triangles[lane - 1][0];
-            }
-            if rng.uniform() < 0.05 {
-                triangles[lane][2] = triangles[lane][1];
-            }
-        }
-        let origin = point(rng) * 2.0;
-        let target = if integer { point(rng) } else { triangles[rng.next_u64() as usize % PACKET][0] * 0.9 };
-        let direction = if integer {
-            // Along an axis or a grid diagonal, in either sense.
+    /// A ray at `triangles`: on `integer` cases, where vertices lie on a coarse grid, along
+    /// an axis or a grid diagonal through a grid point, so that edge functions are often
+    /// exactly zero (rays through edges and vertices, which the kernel hands to the scalar
+    /// test); otherwise from a random point towards a point inside one of the triangles.
+    fn ray_case(rng: &mut TestRng, integer: bool, triangles: &[[Vec3; 3]]) -> WatertightRay {
+        let origin = Vec3::from_array([0; 3].map(|_| rng.range(-2.0, 2.0) as f32));
+        let [a, b, c] = triangles[rng.next_u64() as usize % triangles.len()];
+        let ray = if integer {
+            let target = Vec3::from_array([0; 3].map(|_| (rng.range(-3.0, 3.0)).round() as f32));
             let axis = rng.next_u64() as usize % 3;
             let mut d = Vec3::ZERO;
             d[axis] = if rng.uniform() < 0.5 { 1.0 } else { -1.0 };
             if rng.uniform() < 0.3 {
                 d[(axis + 1) % 3] = 1.0;
             }
-            d
+            WatertightRay::new(target - d * 4.0, d)
         } else {
-            target - origin
+            let (u, v) = (rng.uniform() as f32, rng.uniform() as f32);
+            let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
+            WatertightRay::new(origin, a + (b - a) * u + (c - a) * v - origin)
         };
-        let ray = WatertightRay::new(if integer { target - direction * 4.0 } else { origin }, direction)
-            .unwrap_or_else(|| WatertightRay::new(origin, Vec3::X).expect("a ray"));
-        (triangles, ray)
+        ray.unwrap_or_else(|| WatertightRay::new(origin, Vec3::X).expect("a ray"))
     }
 
-    /// The packet test returns exactly the scalar test's hits, lane by lane and bit for bit,
-    /// including lanes on edges and vertices.
+    /// The group test returns exactly the scalar test's hits, triangle by triangle and bit
+    /// for bit: groups of one to sixteen triangles over one to sixteen shared vertices,
+    /// on rays through edges and vertices too.
     #[test]
-    fn triangles_equal_scalar_bit_for_bit() {
+    fn groups_equal_scalar_bit_for_bit() {
+        use crate::accel::triangle_groups::{GroupHits, GroupWriter};
         let Some(avx2) = Avx2::detect() else { return };
-        let mut rng = TestRng::new(23);
-        let (mut hits_total, mut on_edges) = (0, 0);
-        for case in 0..40_000 {
-            let (triangles, ray) = triangles_case(&mut rng, case % 2 == 0);
-            let prims: Vec<u32> = (0..(1 + case % PACKET) as u32).collect();
-            let packet = TrianglePacket::new(&triangles, &prims);
+        let mut rng = TestRng::new(24);
+        let (mut hits_total, mut on_edges, mut wide_groups) = (0, 0, 0);
+        for case in 0..20_000 {
+            let integer = case % 2 == 0;
+            let point = |rng: &mut TestRng| {
+                if integer {
+                    Vec3::from_array([0; 3].map(|_| (rng.range(-3.0, 3.0)).round() as f32))
+                } else {
+                    Vec3::from_array([0; 3].map(|_| rng.range(-1.0, 1.0) as f32))
+                }
+            };
+            // Triangles over a small pool of points, so that they share vertices and edges.
+            let pool: Vec<Vec3> = (0..3 + case % 20).map(|_| point(&mut rng)).collect();
+            let count = 1 + case % 24;
+            let triangles: Vec<[Vec3; 3]> =
+                (0..count).map(|_| [0; 3].map(|_| pool[rng.next_u64() as usize % pool.len()])).collect();
+            let ray = ray_case(&mut rng, integer, &triangles);
             let t_max = if case % 3 == 0 { rng.range(0.5, 8.0) as f32 } else { f32::INFINITY };
-            let (mut scalar, mut simd) = (PacketHits::default(), PacketHits::default());
-            let mask = Scalar.triangles(&packet, &ray, t_max, &mut scalar);
-            assert_eq!(avx2.triangles(&packet, &ray, t_max, &mut simd), mask, "case {case}");
-            for lane in (0..PACKET).filter(|lane| mask & (1 << lane) != 0) {
-                let (a, b) = (scalar.get(lane), simd.get(lane));
-                assert_eq!([a.t, a.b1, a.b2].map(f32::to_bits), [b.t, b.b1, b.b2].map(f32::to_bits), "case {case}");
-                hits_total += 1;
-                on_edges += usize::from(a.b1 == 0.0 || a.b2 == 0.0 || a.b1 + a.b2 == 1.0);
+            let mut writer = GroupWriter::new(&triangles);
+            let mut start = writer.leaf(&(0..count as u32).collect::<Vec<u32>>());
+            let groups = writer.finish();
+            loop {
+                let group = groups.group(start);
+                wide_groups += usize::from(group.vertex_count() > 8 && group.triangle_count() > 8);
+                let (mut scalar, mut simd) = (GroupHits::default(), GroupHits::default());
+                let mask = Scalar.group(&group, &ray, t_max, &mut scalar);
+                assert_eq!(avx2.group(&group, &ray, t_max, &mut simd), mask, "case {case}");
+                for k in (0..group.triangle_count()).filter(|k| mask & (1 << k) != 0) {
+                    let (a, b) = (scalar.get(k), simd.get(k));
+                    assert_eq!([a.t, a.b1, a.b2].map(f32::to_bits), [b.t, b.b1, b.b2].map(f32::to_bits), "case {case}");
+                    hits_total += 1;
+                    on_edges += usize::from(a.b1 == 0.0 || a.b2 == 0.0 || a.b1 + a.b2 == 1.0);
+                }
+                if !group.more() {
+                    break;
+                }
+                start = group.end();
             }
         }
-        assert!(hits_total > 5_000 && on_edges > 500, "{hits_total} hits, {on_edges} on edges");
+        assert!(
+            hits_total > 5_000 && on_edges > 500 && wide_groups > 1_000,
+            "{hits_total} hits, {on_edges} on edges, {wide_groups} wide"
+        );
     }
 }

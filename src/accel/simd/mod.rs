@@ -1,6 +1,6 @@
 //! The SIMD kernels of both BVH levels, each written once per instruction set: the test of
-//! one ray against eight boxes (a wide node's children) and against a leaf packet of four
-//! triangles.
+//! one ray against eight boxes (a wide node's children) and against a group of up to sixteen
+//! triangles over shared vertices (a mesh leaf, `accel::triangle_groups`).
 //!
 //! An instruction set is a zero-sized token type that implements [`Kernels`]: [`Scalar`]
 //! (plain loops, always available, the reference the others are tested against) and, on
@@ -18,7 +18,8 @@ pub use avx2::Avx2;
 use glam::{Vec3, Vec3A};
 pub use scalar::Scalar;
 
-use super::triangle::{PacketHits, TrianglePacket, WatertightRay};
+use super::triangle::WatertightRay;
+use super::triangle_groups::{Group, GroupHits};
 
 /// Hints the CPU to fetch every cache line of `*item`, which is about to be read.
 #[inline(always)]
@@ -118,10 +119,10 @@ pub trait Kernels: Copy {
     /// in `near` (written for every box). Far distances are scaled by [`FAR_SCALE`].
     fn boxes(self, boxes: &BoxLanes, ray: &BoxRay, t_max: f32, near: &mut [f32; BOXES]) -> u32;
 
-    /// Bit mask of the packet's lanes that [`WatertightRay::intersect`] hits with
-    /// `0 < t < t_max`, and those hits in `hits` (other lanes are left as they were).
-    /// Every implementation returns exactly the scalar test's hits, bit for bit.
-    fn triangles(self, packet: &TrianglePacket, ray: &WatertightRay, t_max: f32, hits: &mut PacketHits) -> u32;
+    /// Bit mask of the group's triangles that [`WatertightRay::intersect`] hits with
+    /// `0 < t < t_max`, and those hits in `hits` (other triangles' entries are left as they
+    /// were). Every implementation returns exactly the scalar test's hits, bit for bit.
+    fn group(self, group: &Group<'_>, ray: &WatertightRay, t_max: f32, hits: &mut GroupHits) -> u32;
 
     /// Hints the CPU to bring the `bytes` at `address` into the cache (any address is
     /// allowed: a prefetch never faults). By default nothing.

@@ -2,7 +2,8 @@
 //! other instruction sets are tested against.
 
 use super::{BOXES, BoxLanes, BoxRay, FAR_SCALE, Kernels};
-use crate::accel::triangle::{PACKET, PacketHits, TrianglePacket, WatertightRay};
+use crate::accel::triangle::WatertightRay;
+use crate::accel::triangle_groups::{Group, GroupHits};
 
 /// The scalar kernels; every CPU runs them.
 #[derive(Clone, Copy, Debug, Default)]
@@ -31,13 +32,13 @@ impl Kernels for Scalar {
     }
 
     #[inline(always)]
-    fn triangles(self, packet: &TrianglePacket, ray: &WatertightRay, t_max: f32, hits: &mut PacketHits) -> u32 {
+    fn group(self, group: &Group<'_>, ray: &WatertightRay, t_max: f32, hits: &mut GroupHits) -> u32 {
         let mut mask = 0;
-        for lane in 0..PACKET {
-            let [a, b, c] = packet.vertices(lane);
+        for triangle in 0..group.triangle_count() {
+            let [a, b, c] = group.triangle_vertices(triangle);
             if let Some(hit) = ray.intersect(a, b, c, t_max) {
-                hits.set(lane, hit);
-                mask |= 1 << lane;
+                hits.set(triangle, hit);
+                mask |= 1 << triangle;
             }
         }
         mask

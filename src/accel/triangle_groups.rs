@@ -1,0 +1,405 @@
+//! Mesh BVH leaves as groups of triangles over shared vertices: each distinct vertex of a
+//! group is stored once (as structure of arrays) and each triangle names its three by
+//! one-byte indices. The neighbouring triangles of a leaf share most of their vertices (a
+//! leaf of eight terrain triangles has nine), so a group takes about half the bytes of the
+//! same triangles with three vertices each, and the watertight test's shear is applied once
+//! per vertex rather than once per corner. A leaf is one or more groups stored one after the
+//! other.
+//!
+//! Layout of a group, in 32-bit words:
+//!
+//! | words | content |
+//! |---|---|
+//! | 1 | header: vertex count (bits 0-7), triangle count (8-15), "another group follows" (16) |
+//! | 3 × vertices | x of every vertex, then y, then z (f32 bits) |
+//! | ⌈3 × triangles / 4⌉ | first-corner index bytes of every triangle, then second, then third |
+//! | triangles | the triangle's index in the mesh's triangle list |
+//!
+//! Vertices are deduplicated by value (bit for bit), so two triangles that share an edge in
+//! the mesh read the same numbers for it and the test stays watertight.
+
+use glam::Vec3;
+
+use super::pages::{PageArray, PageBuffer};
+use super::triangle::TriangleHit;
+
+/// Most triangles in one group.
+pub const GROUP_TRIANGLES: usize = 16;
+/// Most distinct vertices in one group (two 8-lane registers per coordinate).
+pub const GROUP_VERTICES: usize = 16;
+/// Words the kernels may read past the end of a group: an 8-lane load of a group's last
+/// coordinates or index bytes reaches up to 8 words beyond them. The buffer ends with this
+/// many zero words.
+const TAIL_WORDS: usize = 16;
+const MORE: u32 = 1 << 16;
+
+/// The number of words of a group of `vertices` and `triangles`.
+#[inline(always)]
+const fn group_words(vertices: usize, triangles: usize) -> usize {
+    1 + 3 * vertices + (3 * triangles).div_ceil(4) + triangles
+}
+
+/// The groups of every leaf of a mesh BVH, one after the other; a leaf is named by the word
+/// at which its first group starts.
+#[derive(Clone, Debug)]
+pub struct TriangleGroups {
+    words: PageArray<u32>,
+}
+
+impl TriangleGroups {
+    /// The group starting at word `start` (the start of a leaf, or the end of the group
+    /// before it when that one said another follows).
+    ///
+    /// # Panics
+    ///
+    /// When no valid group starts there (a corrupted reference: never for references made
+    /// by [`GroupWriter::leaf`]).
+    #[inline(always)]
+    pub fn group(&self, start: usize) -> Group<'_> {
+        Group::at(&self.words, start)
+    }
+
+    /// Words in use (each four bytes).
+    pub fn len(&self) -> usize {
+        self.words.len()
+    }
+
+    /// True when there are no groups.
+    pub fn is_empty(&self) -> bool {
+        self.words.len() <= TAIL_WORDS
+    }
+
+    /// The first word of the buffer, for prefetching a leaf by its reference.
+    #[inline(always)]
+    pub fn as_ptr(&self) -> *const u32 {
+        self.words.as_ptr()
+    }
+
+    /// Every group, in storage order.
+    pub fn iter(&self) -> impl Iterator<Item = Group<'_>> {
+        let mut start = 0;
+        std::iter::from_fn(move || {
+            (start + TAIL_WORDS < self.words.len()).then(|| {
+                let group = self.group(start);
+                start = group.end();
+                group
+            })
+        })
+    }
+}
+
+/// One group of a [`TriangleGroups`], checked when made: its counts are within the limits
+/// and its words, with [`TAIL_WORDS`] after them, lie in the buffer, which is what the SIMD
+/// kernels' loads rely on.
+#[derive(Clone, Copy, Debug)]
+pub struct Group<'a> {
+    /// The group's words and at least `TAIL_WORDS` after them.
+    words: &'a [u32],
+    start: usize,
+    vertices: usize,
+    triangles: usize,
+    more: bool,
+}
+
+impl<'a> Group<'a> {
+    #[inline(always)]
+    fn at(buffer: &'a [u32], start: usize) -> Self {
+        let header = buffer[start];
+        let (vertices, triangles) = ((header & 0xff) as usize, (header >> 8 & 0xff) as usize);
+        assert!(
+            (1..=GROUP_VERTICES).contains(&vertices) && (1..=GROUP_TRIANGLES).contains(&triangles),
+            "not a triangle group"
+        );
+        let end = start + group_words(vertices, triangles);
+        Self { words: &buffer[start..end + TAIL_WORDS], start, vertices, triangles, more: header & MORE != 0 }
+    }
+
+    /// Distinct vertices (1 to [`GROUP_VERTICES`]).
+    #[inline(always)]
+    pub fn vertex_count(&self) -> usize {
+        self.vertices
+    }
+
+    /// Triangles (1 to [`GROUP_TRIANGLES`]).
+    #[inline(always)]
+    pub fn triangle_count(&self) -> usize {
+        self.triangles
+    }
+
+    /// True when the leaf has another group after this one.
+    #[inline(always)]
+    pub fn more(&self) -> bool {
+        self.more
+    }
+
+    /// The word after this group: where the next one starts.
+    #[inline(always)]
+    pub fn end(&self) -> usize {
+        self.start + group_words(self.vertices, self.triangles)
+    }
+
+    /// The coordinates: `3 × vertex_count` floats (x of every vertex, then y, then z),
+    /// followed by at least [`TAIL_WORDS`] readable words.
+    #[inline(always)]
+    pub fn coordinates(&self) -> *const f32 {
+        self.words[1..].as_ptr().cast()
+    }
+
+    /// The corner index bytes: `3 × triangle_count` (first corners, then second, then
+    /// third), followed by at least [`TAIL_WORDS`] readable words.
+    #[inline(always)]
+    pub fn corner_indices(&self) -> *const u8 {
+        self.words[1 + 3 * self.vertices..].as_ptr().cast()
+    }
+
+    /// Vertex `vertex` of the group.
+    #[inline(always)]
+    pub fn vertex(&self, vertex: usize) -> Vec3 {
+        let n = self.vertices;
+        let coordinate = |axis: usize| f32::from_bits(self.words[1 + axis * n + vertex]);
+        Vec3::new(coordinate(0), coordinate(1), coordinate(2))
+    }
+
+    /// The group-vertex indices of triangle `triangle`'s corners.
+    #[inline(always)]
+    pub fn corners(&self, triangle: usize) -> [usize; 3] {
+        let bytes = &self.words[1 + 3 * self.vertices..];
+        let byte = |k: usize| {
+            let at = k * self.triangles + triangle;
+            (bytes[at / 4] >> (8 * (at % 4)) & 0xff) as usize
+        };
+        [byte(0), byte(1), byte(2)]
+    }
+
+    /// The vertices of triangle `triangle` (below [`Self::triangle_count`]), read without
+    /// bounds checks: what a hit hands on, on the traversal's path.
+    #[inline(always)]
+    pub fn triangle_vertices(&self, triangle: usize) -> [Vec3; 3] {
+        assert!(triangle < self.triangles);
+        let (indices, coordinates, n) = (self.corner_indices(), self.coordinates(), self.vertices);
+        [0, 1, 2].map(|k| {
+            // SAFETY: the group holds 3 × triangles index bytes, each below `vertices`
+            // (`GroupWriter` writes no other, and the buffer is written by it alone), and
+            // 3 × vertices coordinates.
+            unsafe {
+                let v = usize::from(*indices.add(k * self.triangles + triangle));
+                Vec3::new(*coordinates.add(v), *coordinates.add(n + v), *coordinates.add(2 * n + v))
+            }
+        })
+    }
+
+    /// The index in the mesh's triangle list of triangle `triangle`.
+    #[inline(always)]
+    pub fn prim(&self, triangle: usize) -> u32 {
+        self.words[self.end() - self.start - self.triangles + triangle]
+    }
+}
+
+/// True when `a` and `b` are the same numbers, bit for bit.
+fn same(a: Vec3, b: Vec3) -> bool {
+    a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)
+}
+
+/// Writes leaves into a [`TriangleGroups`].
+pub struct GroupWriter<'a> {
+    triangles: &'a [[Vec3; 3]],
+    words: PageBuffer<u32>,
+}
+
+impl<'a> GroupWriter<'a> {
+    /// A writer for leaves over `triangles` (given by their vertices).
+    pub fn new(triangles: &'a [[Vec3; 3]]) -> Self {
+        // A group of one triangle is the largest per triangle: 1 + 9 + 1 + 1 words.
+        let capacity = triangles.len() * group_words(3, 1) + TAIL_WORDS;
+        Self { triangles, words: PageBuffer::with_capacity(capacity) }
+    }
+
+    /// Writes a leaf of the triangles `prims` (at least one) and returns the word at which
+    /// it starts. Triangles are taken in order into groups of at most
+    /// [`GROUP_TRIANGLES`] triangles and [`GROUP_VERTICES`] distinct vertices.
+    pub fn leaf(&mut self, prims: &[u32]) -> usize {
+        assert!(!prims.is_empty(), "a leaf holds at least one triangle");
+        let start = self.words.len();
+        let mut rest = prims;
+        while !rest.is_empty() {
+            let mut pool = [Vec3::ZERO; GROUP_VERTICES];
+            let mut vertices = 0;
+            let mut corners = [[0u8; 3]; GROUP_TRIANGLES];
+            let mut taken = 0;
+            for &prim in rest.iter().take(GROUP_TRIANGLES) {
+                let triangle = self.triangles[prim as usize];
+                let (mut grown, mut corner) = (vertices, [0u8; 3]);
+                for (k, &v) in triangle.iter().enumerate() {
+                    let index =
+                        pool[..grown.min(GROUP_VERTICES)].iter().position(|&p| same(p, v)).unwrap_or_else(|| {
+                            if grown < GROUP_VERTICES {
+                                pool[grown] = v;
+                            }
+                            grown += 1;
+                            grown - 1
+                        });
+                    corner[k] = index as u8;
+                }
+                if grown > GROUP_VERTICES {
+                    break;
+                }
+                vertices = grown;
+                corners[taken] = corner;
+                taken += 1;
+            }
+            let (group, after) = rest.split_at(taken);
+            rest = after;
+            self.words.push(vertices as u32 | (taken as u32) << 8 | if rest.is_empty() { 0 } else { MORE });
+            for axis in 0..3 {
+                for v in &pool[..vertices] {
+                    self.words.push(v[axis].to_bits());
+                }
+            }
+            let mut word = 0u32;
+            for (n, byte) in (0..3).flat_map(|k| corners[..taken].iter().map(move |c| c[k])).enumerate() {
+                word |= u32::from(byte) << (8 * (n % 4));
+                if n % 4 == 3 {
+                    self.words.push(word);
+                    word = 0;
+                }
+            }
+            if (3 * taken) % 4 != 0 {
+                self.words.push(word);
+            }
+            for &prim in group {
+                self.words.push(prim);
+            }
+        }
+        start
+    }
+
+    /// The finished groups.
+    pub fn finish(mut self) -> TriangleGroups {
+        for _ in 0..TAIL_WORDS {
+            self.words.push(0);
+        }
+        TriangleGroups { words: self.words.finish() }
+    }
+}
+
+/// The hits of one ray with a group's triangles, as structure of arrays.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GroupHits {
+    /// Ray parameter of each triangle's hit.
+    pub t: [f32; GROUP_TRIANGLES],
+    /// Weight of vertex 1 of each triangle's hit.
+    pub b1: [f32; GROUP_TRIANGLES],
+    /// Weight of vertex 2 of each triangle's hit.
+    pub b2: [f32; GROUP_TRIANGLES],
+}
+
+impl GroupHits {
+    /// The hit of triangle `triangle`.
+    #[inline(always)]
+    pub fn get(&self, triangle: usize) -> TriangleHit {
+        TriangleHit { t: self.t[triangle], b1: self.b1[triangle], b2: self.b2[triangle] }
+    }
+
+    /// Stores `hit` for triangle `triangle`.
+    #[inline(always)]
+    pub fn set(&mut self, triangle: usize, hit: TriangleHit) {
+        self.t[triangle] = hit.t;
+        self.b1[triangle] = hit.b1;
+        self.b2[triangle] = hit.b2;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The two triangles of each cell of an `n` by `n` grid.
+    fn grid(n: usize) -> Vec<[Vec3; 3]> {
+        let p = |i: usize, j: usize| Vec3::new(i as f32, (i * j) as f32 * 0.01, j as f32);
+        let mut out = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                out.push([p(i, j), p(i, j + 1), p(i + 1, j)]);
+                out.push([p(i + 1, j), p(i, j + 1), p(i + 1, j + 1)]);
+            }
+        }
+        out
+    }
+
+    /// The groups of the leaf starting at `start`.
+    fn leaf_groups(groups: &TriangleGroups, start: usize) -> Vec<Group<'_>> {
+        let mut out = vec![groups.group(start)];
+        while out.last().unwrap().more() {
+            let next = out.last().unwrap().end();
+            out.push(groups.group(next));
+        }
+        out
+    }
+
+    #[test]
+    fn a_leaf_reads_back_its_triangles_in_order_with_shared_vertices_stored_once() {
+        let triangles = grid(2);
+        let mut writer = GroupWriter::new(&triangles);
+        let prims = [0, 1, 2, 3, 4, 5, 6, 7];
+        let start = writer.leaf(&prims);
+        let groups = writer.finish();
+        let read = leaf_groups(&groups, start);
+        assert_eq!(read.len(), 1);
+        // A 2 by 2 grid has nine vertices.
+        assert_eq!((read[0].vertex_count(), read[0].triangle_count()), (9, 8));
+        for (k, &prim) in prims.iter().enumerate() {
+            assert_eq!(read[0].prim(k), prim);
+            assert_eq!(read[0].triangle_vertices(k), triangles[prim as usize]);
+        }
+        assert_eq!(groups.iter().count(), 1);
+    }
+
+    #[test]
+    fn leaves_split_into_groups_at_sixteen_vertices_or_sixteen_triangles() {
+        // Sixteen triangles without a shared vertex: five to a group (15 vertices).
+        let soup: Vec<[Vec3; 3]> = (0..16)
+            .map(|k| {
+                let o = Vec3::splat(k as f32 * 10.0);
+                [o, o + Vec3::X, o + Vec3::Y]
+            })
+            .collect();
+        let mut writer = GroupWriter::new(&soup);
+        let first = writer.leaf(&(0..16).collect::<Vec<u32>>());
+        let second = writer.leaf(&[3, 9]);
+        let groups = writer.finish();
+        let read = leaf_groups(&groups, first);
+        assert_eq!(read.iter().map(Group::triangle_count).collect::<Vec<_>>(), [5, 5, 5, 1]);
+        assert_eq!(read.iter().map(Group::vertex_count).collect::<Vec<_>>(), [15, 15, 15, 3]);
+        let prims: Vec<u32> = read.iter().flat_map(|g| (0..g.triangle_count()).map(|k| g.prim(k))).collect();
+        assert_eq!(prims, (0..16).collect::<Vec<u32>>());
+        for g in &read {
+            for k in 0..g.triangle_count() {
+                assert_eq!(g.triangle_vertices(k), soup[g.prim(k) as usize]);
+            }
+        }
+        assert_eq!(read.last().unwrap().end(), second);
+        let read = leaf_groups(&groups, second);
+        assert_eq!((read.len(), read[0].prim(0), read[0].prim(1)), (1, 3, 9));
+        // A 4 by 4 grid's 32 triangles: at most sixteen to a group.
+        let triangles = grid(4);
+        let mut writer = GroupWriter::new(&triangles);
+        let start = writer.leaf(&(0..32).collect::<Vec<u32>>());
+        let groups = writer.finish();
+        let read = leaf_groups(&groups, start);
+        assert!(read.iter().all(|g| g.triangle_count() <= GROUP_TRIANGLES && g.vertex_count() <= GROUP_VERTICES));
+        assert_eq!(read.iter().map(Group::triangle_count).sum::<usize>(), 32);
+    }
+
+    #[test]
+    fn vertices_are_shared_by_value_not_by_sign_of_zero() {
+        // 0.0 and -0.0 compare equal but are different numbers: both are kept, so that each
+        // triangle reads back exactly the vertices it was given.
+        let triangles = vec![[Vec3::ZERO, Vec3::X, Vec3::Y], [Vec3::new(-0.0, 0.0, 0.0), Vec3::X, Vec3::Y]];
+        let mut writer = GroupWriter::new(&triangles);
+        let start = writer.leaf(&[0, 1]);
+        let groups = writer.finish();
+        let group = groups.group(start);
+        assert_eq!(group.vertex_count(), 4);
+        assert_eq!(group.triangle_vertices(1)[0].x.to_bits(), (-0.0f32).to_bits());
+    }
+}
