@@ -101,6 +101,22 @@ impl<T: Copy> PageBuffer<T> {
         }
     }
 
+    /// Appends `items`.
+    #[inline]
+    pub fn extend_from_slice(&mut self, items: &[T]) {
+        match &mut self.storage {
+            Storage::Heap(heap) => heap.extend_from_slice(items),
+            #[cfg(target_os = "linux")]
+            Storage::Mapped(mapping) => {
+                if !mapping.extend_from_slice(items) {
+                    let mut heap = mapping.as_slice().to_vec();
+                    heap.extend_from_slice(items);
+                    self.storage = Storage::Heap(heap);
+                }
+            }
+        }
+    }
+
     /// The finished array.
     pub fn finish(self) -> PageArray<T> {
         match self.storage {
@@ -226,6 +242,20 @@ mod mapped {
             // refers to it yet.
             unsafe { self.ptr.as_ptr().add(self.len).write(item) };
             self.len += 1;
+            true
+        }
+
+        /// Appends `items`; false (and nothing written) when they do not fit.
+        #[inline]
+        pub fn extend_from_slice(&mut self, items: &[T]) -> bool {
+            if self.capacity - self.len < items.len() {
+                return false;
+            }
+            // SAFETY: `len + items.len() <= capacity`, so the slots lie inside the mapping,
+            // nothing refers to them yet, and they cannot overlap `items` (borrowed
+            // elsewhere while `self` is borrowed mutably).
+            unsafe { std::ptr::copy_nonoverlapping(items.as_ptr(), self.ptr.as_ptr().add(self.len), items.len()) };
+            self.len += items.len();
             true
         }
 

@@ -195,9 +195,16 @@ impl<'a> Group<'a> {
     }
 }
 
-/// True when `a` and `b` are the same numbers, bit for bit.
-fn same(a: Vec3, b: Vec3) -> bool {
-    a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits)
+/// Slots of the table that finds a group's vertices while it is written (four times the
+/// most vertices, so that probes are short).
+const TABLE_SLOTS: usize = 64;
+
+/// Where the table looks first for the vertex with these bits.
+#[inline(always)]
+fn table_slot(bits: [u32; 3]) -> usize {
+    let hash =
+        bits[0].wrapping_mul(0x9e37_79b1) ^ bits[1].wrapping_mul(0x85eb_ca77) ^ bits[2].wrapping_mul(0xc2b2_ae3d);
+    (hash >> 26) as usize
 }
 
 /// Writes leaves into a [`TriangleGroups`].
@@ -222,53 +229,62 @@ impl<'a> GroupWriter<'a> {
         let start = self.words.len();
         let mut rest = prims;
         while !rest.is_empty() {
-            let mut pool = [Vec3::ZERO; GROUP_VERTICES];
+            // The distinct vertices so far, as their bits (equal bits: the same vertex),
+            // found through a small open-addressing table of their indices plus one.
+            let mut pool = [[0u32; 3]; GROUP_VERTICES];
+            let mut table = [0u8; TABLE_SLOTS];
             let mut vertices = 0;
-            let mut corners = [[0u8; 3]; GROUP_TRIANGLES];
+            // Corner k's vertex index of triangle t, at byte k * taken + t once taken is known.
+            let mut corners = [[0u8; GROUP_TRIANGLES]; 3];
             let mut taken = 0;
             for &prim in rest.iter().take(GROUP_TRIANGLES) {
-                let triangle = self.triangles[prim as usize];
-                let (mut grown, mut corner) = (vertices, [0u8; 3]);
+                let triangle = self.triangles[prim as usize].map(|v| v.to_array().map(f32::to_bits));
+                let mut grown = vertices;
+                let mut corner = [0u8; 3];
                 for (k, &v) in triangle.iter().enumerate() {
-                    let index =
-                        pool[..grown.min(GROUP_VERTICES)].iter().position(|&p| same(p, v)).unwrap_or_else(|| {
-                            if grown < GROUP_VERTICES {
-                                pool[grown] = v;
+                    let mut slot = table_slot(v);
+                    corner[k] = loop {
+                        match table[slot] {
+                            0 => {
+                                // New: stored while there is room (a triangle that does not fit
+                                // ends the group, and what it stored is not written).
+                                if grown < GROUP_VERTICES {
+                                    pool[grown] = v;
+                                    table[slot] = grown as u8 + 1;
+                                }
+                                grown += 1;
+                                break (grown - 1) as u8;
                             }
-                            grown += 1;
-                            grown - 1
-                        });
-                    corner[k] = index as u8;
+                            entry if pool[usize::from(entry - 1)] == v => break entry - 1,
+                            _ => slot = (slot + 1) % TABLE_SLOTS,
+                        }
+                    };
                 }
                 if grown > GROUP_VERTICES {
                     break;
                 }
                 vertices = grown;
-                corners[taken] = corner;
+                for k in 0..3 {
+                    corners[k][taken] = corner[k];
+                }
                 taken += 1;
             }
             let (group, after) = rest.split_at(taken);
             rest = after;
-            self.words.push(vertices as u32 | (taken as u32) << 8 | if rest.is_empty() { 0 } else { MORE });
+            let mut words = [0u32; group_words(GROUP_VERTICES, GROUP_TRIANGLES)];
+            words[0] = vertices as u32 | (taken as u32) << 8 | if rest.is_empty() { 0 } else { MORE };
             for axis in 0..3 {
-                for v in &pool[..vertices] {
-                    self.words.push(v[axis].to_bits());
+                for (word, v) in words[1 + axis * vertices..1 + (axis + 1) * vertices].iter_mut().zip(&pool) {
+                    *word = v[axis];
                 }
             }
-            let mut word = 0u32;
-            for (n, byte) in (0..3).flat_map(|k| corners[..taken].iter().map(move |c| c[k])).enumerate() {
-                word |= u32::from(byte) << (8 * (n % 4));
-                if n % 4 == 3 {
-                    self.words.push(word);
-                    word = 0;
-                }
+            let indices = 1 + 3 * vertices;
+            for (n, &byte) in corners.iter().flat_map(|c| &c[..taken]).enumerate() {
+                words[indices + n / 4] |= u32::from(byte) << (8 * (n % 4));
             }
-            if (3 * taken) % 4 != 0 {
-                self.words.push(word);
-            }
-            for &prim in group {
-                self.words.push(prim);
-            }
+            let prims = indices + (3 * taken).div_ceil(4);
+            words[prims..prims + taken].copy_from_slice(group);
+            self.words.extend_from_slice(&words[..prims + taken]);
         }
         start
     }
