@@ -87,121 +87,152 @@ impl Kernels for Avx2 {
 
     #[inline(always)]
     fn group(self, group: &Group<'_>, ray: &WatertightRay, t_max: f32, hits: &mut GroupHits) -> u32 {
-        let (vertices, triangles) = (group.vertex_count(), group.triangle_count());
-        let coordinates = group.coordinates();
-        let corner_indices = group.corner_indices();
-        let mut mask = 0u32;
-        let mut edge = 0u32;
-        // SAFETY: `self` proves the CPU has AVX2; `Group` guarantees its counts (at most 16
-        // vertices and 16 triangles) and that the words after its coordinates and index
-        // bytes are readable for at least 16 words, which covers every 8-lane load below.
-        unsafe {
-            let [kx, ky, kz] = ray.axes();
-            let org = ray.permuted_origin();
-            let shear = ray.shear();
-            let (ox, oy, oz) = (_mm256_set1_ps(org[0]), _mm256_set1_ps(org[1]), _mm256_set1_ps(org[2]));
-            let (sx, sy, sz) = (_mm256_set1_ps(shear[0]), _mm256_set1_ps(shear[1]), _mm256_set1_ps(shear[2]));
-            // Each vertex sheared once, with the scalar test's operations in its order (no
-            // fused multiply-adds): corners that are the same vertex get the same numbers.
-            macro_rules! sheared {
-                ($first:expr) => {{
-                    let x = _mm256_sub_ps(_mm256_loadu_ps(coordinates.add(kx * vertices + $first)), ox);
-                    let y = _mm256_sub_ps(_mm256_loadu_ps(coordinates.add(ky * vertices + $first)), oy);
-                    let z = _mm256_sub_ps(_mm256_loadu_ps(coordinates.add(kz * vertices + $first)), oz);
-                    (
-                        _mm256_sub_ps(x, _mm256_mul_ps(sx, z)),
-                        _mm256_sub_ps(y, _mm256_mul_ps(sy, z)),
-                        _mm256_mul_ps(sz, z),
-                    )
-                }};
-            }
-            // Both halves always (the loads past a group of eight vertices or fewer read
-            // words that no index names): a branch on the count would be mispredicted.
-            let low = sheared!(0);
-            let high = sheared!(8);
-            // A corner's value: the lane its index names, from the low or the high eight.
-            macro_rules! gather {
-                ($low:expr, $high:expr, $index:expr) => {{
-                    let from_low = _mm256_permutevar8x32_ps($low, $index);
-                    let from_high = _mm256_permutevar8x32_ps($high, $index);
-                    _mm256_blendv_ps(from_low, from_high, _mm256_castsi256_ps(_mm256_slli_epi32::<28>($index)))
-                }};
-            }
-            let zero = _mm256_setzero_ps();
-            let mut first = 0;
-            while first < triangles {
-                let lanes = (1u32 << (triangles - first).min(8)) - 1;
-                macro_rules! corner {
-                    ($k:expr) => {{
-                        let index = _mm256_cvtepu8_epi32(_mm_loadl_epi64(
-                            corner_indices.add($k * triangles + first).cast::<__m128i>(),
-                        ));
-                        (gather!(low.0, high.0, index), gather!(low.1, high.1, index), gather!(low.2, high.2, index))
-                    }};
-                }
-                let (ax, ay, az) = corner!(0);
-                let (bx, by, bz) = corner!(1);
-                let (cx, cy, cz) = corner!(2);
-                let u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
-                let v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
-                let w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
-                macro_rules! any3 {
-                    ($op:ident) => {
-                        _mm256_or_ps(
-                            _mm256_or_ps(_mm256_cmp_ps::<$op>(u, zero), _mm256_cmp_ps::<$op>(v, zero)),
-                            _mm256_cmp_ps::<$op>(w, zero),
-                        )
-                    };
-                }
-                let negative = any3!(_CMP_LT_OQ);
-                let positive = any3!(_CMP_GT_OQ);
-                let on_edge = any3!(_CMP_EQ_OQ);
-                let outside = _mm256_and_ps(negative, positive);
-                let inside = !(_mm256_movemask_ps(outside) as u32) & lanes;
-                if inside != 0 {
-                    edge |= (_mm256_movemask_ps(on_edge) as u32 & inside) << first;
-                    let det = _mm256_add_ps(_mm256_add_ps(u, v), w);
-                    // az, bz, cz are already scaled by sz (the scalar test's `sz * a[kz]`).
-                    let t_scaled =
-                        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, az), _mm256_mul_ps(v, bz)), _mm256_mul_ps(w, cz));
-                    let inv = _mm256_div_ps(_mm256_set1_ps(1.0), det);
-                    let t = _mm256_mul_ps(t_scaled, inv);
-                    let in_range = _mm256_and_ps(
-                        _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
-                        _mm256_cmp_ps::<_CMP_LT_OQ>(t, _mm256_set1_ps(t_max)),
-                    );
-                    let valid = _mm256_andnot_ps(
-                        _mm256_or_ps(outside, on_edge),
-                        _mm256_and_ps(_mm256_cmp_ps::<_CMP_NEQ_OQ>(det, zero), in_range),
-                    );
-                    let found = _mm256_movemask_ps(valid) as u32 & lanes;
-                    if found != 0 {
-                        _mm256_storeu_ps(hits.t.as_mut_ptr().add(first), t);
-                        _mm256_storeu_ps(hits.b1.as_mut_ptr().add(first), _mm256_mul_ps(v, inv));
-                        _mm256_storeu_ps(hits.b2.as_mut_ptr().add(first), _mm256_mul_ps(w, inv));
-                        mask |= found << first;
-                    }
-                }
-                first += 8;
-            }
-        }
-        // Triangles with a zero edge function are left to the scalar test (which redoes
-        // them in f64) unless they are already certainly outside.
-        while edge != 0 {
-            let triangle = edge.trailing_zeros() as usize;
-            edge &= edge - 1;
-            let [a, b, c] = group.triangle_vertices(triangle);
-            if let Some(hit) = ray.intersect(a, b, c, t_max) {
-                hits.set(triangle, hit);
-                mask |= 1 << triangle;
-            }
-        }
-        mask
+        // SAFETY: `self` proves the CPU has AVX2, all that `PermuteBlend` uses.
+        unsafe { group_lanes::<PermuteBlend>(group, ray, t_max, hits) }
     }
 }
 
+/// How a group kernel reads each lane's corner from the sixteen sheared vertices held in
+/// two registers (the low and the high eight), by the lane's index.
+pub(super) trait CornerGather {
+    /// The value at lane `index & 15` of (low, high), lane by lane.
+    ///
+    /// # Safety
+    ///
+    /// The CPU must have the instructions the implementation uses.
+    unsafe fn gather(low: __m256, high: __m256, index: __m256i) -> __m256;
+}
+
+/// AVX2: both halves permuted, then blended on the index's bit 3.
+pub(super) struct PermuteBlend;
+
+impl CornerGather for PermuteBlend {
+    #[inline(always)]
+    unsafe fn gather(low: __m256, high: __m256, index: __m256i) -> __m256 {
+        // SAFETY: the caller's CPU has AVX2.
+        unsafe {
+            let from_low = _mm256_permutevar8x32_ps(low, index);
+            let from_high = _mm256_permutevar8x32_ps(high, index);
+            _mm256_blendv_ps(from_low, from_high, _mm256_castsi256_ps(_mm256_slli_epi32::<28>(index)))
+        }
+    }
+}
+
+/// The group test of [`Kernels::group`] with AVX2 lanes and corners read by `G`.
+///
+/// # Safety
+///
+/// The CPU must have AVX2 and what `G` uses.
+#[inline(always)]
+pub(super) unsafe fn group_lanes<G: CornerGather>(
+    group: &Group<'_>,
+    ray: &WatertightRay,
+    t_max: f32,
+    hits: &mut GroupHits,
+) -> u32 {
+    let (vertices, triangles) = (group.vertex_count(), group.triangle_count());
+    let coordinates = group.coordinates();
+    let corner_indices = group.corner_indices();
+    let mut mask = 0u32;
+    let mut edge = 0u32;
+    // SAFETY: the caller's CPU has AVX2 and what `G` uses; `Group` guarantees its counts
+    // (at most 16 vertices and 16 triangles) and that the words after its coordinates and
+    // index bytes are readable for at least 16 words, which covers every 8-lane load below.
+    unsafe {
+        let [kx, ky, kz] = ray.axes();
+        let org = ray.permuted_origin();
+        let shear = ray.shear();
+        let (ox, oy, oz) = (_mm256_set1_ps(org[0]), _mm256_set1_ps(org[1]), _mm256_set1_ps(org[2]));
+        let (sx, sy, sz) = (_mm256_set1_ps(shear[0]), _mm256_set1_ps(shear[1]), _mm256_set1_ps(shear[2]));
+        // Each vertex sheared once, with the scalar test's operations in its order (no
+        // fused multiply-adds): corners that are the same vertex get the same numbers.
+        macro_rules! sheared {
+            ($first:expr) => {{
+                let x = _mm256_sub_ps(_mm256_loadu_ps(coordinates.add(kx * vertices + $first)), ox);
+                let y = _mm256_sub_ps(_mm256_loadu_ps(coordinates.add(ky * vertices + $first)), oy);
+                let z = _mm256_sub_ps(_mm256_loadu_ps(coordinates.add(kz * vertices + $first)), oz);
+                (_mm256_sub_ps(x, _mm256_mul_ps(sx, z)), _mm256_sub_ps(y, _mm256_mul_ps(sy, z)), _mm256_mul_ps(sz, z))
+            }};
+        }
+        // Both halves always (the loads past a group of eight vertices or fewer read
+        // words that no index names): a branch on the count would be mispredicted.
+        let low = sheared!(0);
+        let high = sheared!(8);
+        // A corner's value: the lane its index names, from the low or the high eight.
+        let zero = _mm256_setzero_ps();
+        let mut first = 0;
+        while first < triangles {
+            let lanes = (1u32 << (triangles - first).min(8)) - 1;
+            macro_rules! corner {
+                ($k:expr) => {{
+                    let index = _mm256_cvtepu8_epi32(_mm_loadl_epi64(
+                        corner_indices.add($k * triangles + first).cast::<__m128i>(),
+                    ));
+                    (G::gather(low.0, high.0, index), G::gather(low.1, high.1, index), G::gather(low.2, high.2, index))
+                }};
+            }
+            let (ax, ay, az) = corner!(0);
+            let (bx, by, bz) = corner!(1);
+            let (cx, cy, cz) = corner!(2);
+            let u = _mm256_sub_ps(_mm256_mul_ps(cx, by), _mm256_mul_ps(cy, bx));
+            let v = _mm256_sub_ps(_mm256_mul_ps(ax, cy), _mm256_mul_ps(ay, cx));
+            let w = _mm256_sub_ps(_mm256_mul_ps(bx, ay), _mm256_mul_ps(by, ax));
+            macro_rules! any3 {
+                ($op:ident) => {
+                    _mm256_or_ps(
+                        _mm256_or_ps(_mm256_cmp_ps::<$op>(u, zero), _mm256_cmp_ps::<$op>(v, zero)),
+                        _mm256_cmp_ps::<$op>(w, zero),
+                    )
+                };
+            }
+            let negative = any3!(_CMP_LT_OQ);
+            let positive = any3!(_CMP_GT_OQ);
+            let on_edge = any3!(_CMP_EQ_OQ);
+            let outside = _mm256_and_ps(negative, positive);
+            let inside = !(_mm256_movemask_ps(outside) as u32) & lanes;
+            if inside != 0 {
+                edge |= (_mm256_movemask_ps(on_edge) as u32 & inside) << first;
+                let det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+                // az, bz, cz are already scaled by sz (the scalar test's `sz * a[kz]`).
+                let t_scaled =
+                    _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, az), _mm256_mul_ps(v, bz)), _mm256_mul_ps(w, cz));
+                let inv = _mm256_div_ps(_mm256_set1_ps(1.0), det);
+                let t = _mm256_mul_ps(t_scaled, inv);
+                let in_range = _mm256_and_ps(
+                    _mm256_cmp_ps::<_CMP_GT_OQ>(t, zero),
+                    _mm256_cmp_ps::<_CMP_LT_OQ>(t, _mm256_set1_ps(t_max)),
+                );
+                let valid = _mm256_andnot_ps(
+                    _mm256_or_ps(outside, on_edge),
+                    _mm256_and_ps(_mm256_cmp_ps::<_CMP_NEQ_OQ>(det, zero), in_range),
+                );
+                let found = _mm256_movemask_ps(valid) as u32 & lanes;
+                if found != 0 {
+                    _mm256_storeu_ps(hits.t.as_mut_ptr().add(first), t);
+                    _mm256_storeu_ps(hits.b1.as_mut_ptr().add(first), _mm256_mul_ps(v, inv));
+                    _mm256_storeu_ps(hits.b2.as_mut_ptr().add(first), _mm256_mul_ps(w, inv));
+                    mask |= found << first;
+                }
+            }
+            first += 8;
+        }
+    }
+    // Triangles with a zero edge function are left to the scalar test (which redoes
+    // them in f64) unless they are already certainly outside.
+    while edge != 0 {
+        let triangle = edge.trailing_zeros() as usize;
+        edge &= edge - 1;
+        let [a, b, c] = group.triangle_vertices(triangle);
+        if let Some(hit) = ray.intersect(a, b, c, t_max) {
+            hits.set(triangle, hit);
+            mask |= 1 << triangle;
+        }
+    }
+    mask
+}
+
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use glam::Vec3;
     use prism_api::contract::TestRng;
 
@@ -338,8 +369,33 @@ mod tests {
     /// on rays through edges and vertices too.
     #[test]
     fn groups_equal_scalar_bit_for_bit() {
+        if let Some(avx2) = Avx2::detect() {
+            groups_match_scalar(|test| avx2.run(test));
+        }
+    }
+
+    /// One group test, run by a token's `run` (inside the function compiled with its
+    /// instructions, as the traversal runs it).
+    pub(in crate::accel::simd) struct GroupTest<'a> {
+        group: &'a Group<'a>,
+        ray: &'a WatertightRay,
+        t_max: f32,
+    }
+
+    impl Dispatch for GroupTest<'_> {
+        type Output = (u32, GroupHits);
+
+        #[inline(always)]
+        fn run<K: Kernels>(self, kernels: K) -> Self::Output {
+            let mut hits = GroupHits::default();
+            let mask = kernels.group(self.group, self.ray, self.t_max, &mut hits);
+            (mask, hits)
+        }
+    }
+
+    /// [`groups_equal_scalar_bit_for_bit`] for the kernels that `run` runs a test with.
+    pub(in crate::accel::simd) fn groups_match_scalar(run: impl Fn(GroupTest<'_>) -> (u32, GroupHits)) {
         use crate::accel::triangle_groups::{GroupHits, GroupWriter};
-        let Some(avx2) = Avx2::detect() else { return };
         let mut rng = TestRng::new(24);
         let (mut hits_total, mut on_edges, mut wide_groups) = (0, 0, 0);
         for case in 0..20_000 {
@@ -364,9 +420,10 @@ mod tests {
             loop {
                 let group = groups.group(start);
                 wide_groups += usize::from(group.vertex_count() > 8 && group.triangle_count() > 8);
-                let (mut scalar, mut simd) = (GroupHits::default(), GroupHits::default());
+                let mut scalar = GroupHits::default();
                 let mask = Scalar.group(&group, &ray, t_max, &mut scalar);
-                assert_eq!(avx2.group(&group, &ray, t_max, &mut simd), mask, "case {case}");
+                let (simd_mask, simd) = run(GroupTest { group: &group, ray: &ray, t_max });
+                assert_eq!(simd_mask, mask, "case {case}");
                 for k in (0..group.triangle_count()).filter(|k| mask & (1 << k) != 0) {
                     let (a, b) = (scalar.get(k), simd.get(k));
                     assert_eq!([a.t, a.b1, a.b2].map(f32::to_bits), [b.t, b.b1, b.b2].map(f32::to_bits), "case {case}");

@@ -4,17 +4,22 @@
 //!
 //! An instruction set is a zero-sized token type that implements [`Kernels`]: [`Scalar`]
 //! (plain loops, always available, the reference the others are tested against) and, on
-//! x86-64, [`Avx2`], whose only constructor is the run-time CPU check. A safe kernel taking
-//! an `Avx2` is therefore sound by construction: holding one proves the CPU has the
+//! x86-64, [`Avx2`] and [`Avx512`] (the AVX2 kernels with AVX-512's thirty-two registers and
+//! two-register permutes), whose only constructors are the run-time CPU checks. A safe
+//! kernel taking one is therefore sound by construction: holding it proves the CPU has the
 //! instructions. [`dispatch`] runs work generic over the kernels with the fastest set the
 //! CPU has, inside a function compiled for that set so that the kernels inline into it.
 
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+#[cfg(target_arch = "x86_64")]
+mod avx512;
 mod scalar;
 
 #[cfg(target_arch = "x86_64")]
 pub use avx2::Avx2;
+#[cfg(target_arch = "x86_64")]
+pub use avx512::Avx512;
 use glam::{Vec3, Vec3A};
 pub use scalar::Scalar;
 
@@ -140,10 +145,14 @@ pub trait Dispatch {
     fn run<K: Kernels>(self, kernels: K) -> Self::Output;
 }
 
-/// Runs `work` with the fastest kernels the CPU has: AVX2 where the CPU has it, else the
-/// scalar ones.
+/// Runs `work` with the fastest kernels the CPU has: AVX-512 (F and VL) with AVX2 where the
+/// CPU has both, AVX2 where it has that, else the scalar ones.
 #[inline(always)]
 pub fn dispatch<D: Dispatch>(work: D) -> D::Output {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(avx512) = Avx512::detect() {
+        return avx512.run(work);
+    }
     #[cfg(target_arch = "x86_64")]
     if let Some(avx2) = Avx2::detect() {
         return avx2.run(work);
