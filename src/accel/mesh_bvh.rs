@@ -382,12 +382,12 @@ fn traverse<K: Kernels, const ANY: bool>(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use prism_api::contract::TestRng;
 
-    /// A bumpy grid of triangles.
-    fn grid(n: usize) -> Vec<[Vec3; 3]> {
+    /// A bumpy grid of triangles: two per cell of an `n` by `n` grid over the unit square.
+    pub(in crate::accel) fn grid(n: usize) -> Vec<[Vec3; 3]> {
         let p = |i: usize, j: usize| {
             let (x, z) = (i as f32 / n as f32, j as f32 / n as f32);
             Vec3::new(x, 0.1 * (7.0 * x).sin() * (5.0 * z).cos(), z)

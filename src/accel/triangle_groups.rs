@@ -238,7 +238,10 @@ impl<'a> GroupWriter<'a> {
             let mut corners = [[0u8; GROUP_TRIANGLES]; 3];
             let mut taken = 0;
             for &prim in rest.iter().take(GROUP_TRIANGLES) {
-                let triangle = self.triangles[prim as usize].map(|v| v.to_array().map(f32::to_bits));
+                // Spelled out: `array::map` here compiled to calls that went through the stack.
+                let bits = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+                let [a, b, c] = self.triangles[prim as usize];
+                let triangle = [bits(a), bits(b), bits(c)];
                 let mut grown = vertices;
                 let mut corner = [0u8; 3];
                 for (k, &v) in triangle.iter().enumerate() {
@@ -328,19 +331,7 @@ impl GroupHits {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The two triangles of each cell of an `n` by `n` grid.
-    fn grid(n: usize) -> Vec<[Vec3; 3]> {
-        let p = |i: usize, j: usize| Vec3::new(i as f32, (i * j) as f32 * 0.01, j as f32);
-        let mut out = Vec::new();
-        for i in 0..n {
-            for j in 0..n {
-                out.push([p(i, j), p(i, j + 1), p(i + 1, j)]);
-                out.push([p(i + 1, j), p(i, j + 1), p(i + 1, j + 1)]);
-            }
-        }
-        out
-    }
+    use crate::accel::mesh_bvh::tests::grid;
 
     /// The groups of the leaf starting at `start`.
     fn leaf_groups(groups: &TriangleGroups, start: usize) -> Vec<Group<'_>> {
