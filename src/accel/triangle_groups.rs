@@ -52,8 +52,9 @@ impl TriangleGroups {
     ///
     /// # Panics
     ///
-    /// When no valid group starts there (a corrupted reference: never for references made
-    /// by [`GroupWriter::leaf`]).
+    /// When the word there cannot be a group's header, or the group it describes would end
+    /// past the buffer (never for references made by [`GroupWriter::leaf`]). Any other
+    /// wrong start reads a meaningless group, but only from the buffer.
     #[inline(always)]
     pub fn group(&self, start: usize) -> Group<'_> {
         Group::at(&self.words, start)
@@ -178,11 +179,12 @@ impl<'a> Group<'a> {
         assert!(triangle < self.triangles);
         let (indices, coordinates, n) = (self.corner_indices(), self.coordinates(), self.vertices);
         [0, 1, 2].map(|k| {
-            // SAFETY: the group holds 3 × triangles index bytes, each below `vertices`
-            // (`GroupWriter` writes no other, and the buffer is written by it alone), and
-            // 3 × vertices coordinates.
+            // SAFETY: the group holds 3 × triangles index bytes and 3 × vertices coordinates
+            // (`Group::at` checked that they lie in the buffer), and `v` is kept below
+            // `vertices` (`GroupWriter` writes no larger index; the clamp keeps a group read
+            // from a wrong start in bounds too).
             unsafe {
-                let v = usize::from(*indices.add(k * self.triangles + triangle));
+                let v = usize::from(*indices.add(k * self.triangles + triangle)).min(n - 1);
                 Vec3::new(*coordinates.add(v), *coordinates.add(n + v), *coordinates.add(2 * n + v))
             }
         })
