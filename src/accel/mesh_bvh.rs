@@ -154,18 +154,20 @@ impl TriangleBvh {
         // to collapse at one triangle per leaf): the second pass took a third of the build
         // and did not make traversal measurably faster. PLOC searches two clusters each way
         // for a merge partner (obvhs's `VeryLow`, not `medium_build`'s fourteen) and the pass
-        // reinserts 4% of the nodes. On the Morton curve laid in a cube (`build_binary`) a
+        // reinserts 3% of the nodes. On the Morton curve laid in a cube (`build_binary`) a
         // wider search made the terrain's tree worse: the collapsed tree's expected cost
-        // (`WideTree::collapse`'s) was 8.964 and 12.567 (terrain and dragon) against 9.096 and
-        // 12.588 with six and 3% (under the earlier packet price of 0.2, fourteen and 3% gave
-        // 9.822 and 13.514 against six's 9.707 and 13.395), and PLOC's time falls with the
-        // search distance (the extra reinsertion costs about as much as it saves).
-        // Incoherent rays ran 1-3% faster on the terrain than with six and 3% (two trees timed
-        // in turn in one process).
+        // (`WideTree::collapse`'s) was 8.964 and 12.567 (terrain and dragon, two and 4%)
+        // against 9.096 and 12.588 with six and 3% (under the earlier packet price of 0.2,
+        // fourteen and 3% gave 9.822 and 13.514 against six's 9.707 and 13.395), and PLOC's
+        // time falls with the search distance. Incoherent rays ran 1-3% faster on the terrain
+        // with two and 4% than with six and 3% (two trees timed in turn in one process). With
+        // triangle groups the build had grown by their writer, and two and 3% (8.988 and
+        // 12.627) builds the terrain in 0.290-0.291 s instead of 0.297-0.304 and the dragon in
+        // 0.240-0.258 s instead of 0.291-0.299 (three alternating runs each).
         let params = BvhBuildParams {
             max_prims_per_leaf: 1,
             ploc_search_distance: PlocSearchDistance::VeryLow,
-            reinsertion_batch_ratio: 0.04,
+            reinsertion_batch_ratio: 0.03,
             post_collapse_reinsertion_batch_ratio_multiplier: 0.0,
             ..BvhBuildParams::medium_build()
         };
