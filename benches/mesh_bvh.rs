@@ -477,7 +477,7 @@ fn main() {
     let filter = Filter::from_args();
     let dir = PathBuf::from("/tmp/perf");
     std::fs::create_dir_all(&dir).expect("/tmp/perf");
-    println!("single thread; simd kernels: {}", kernels_name());
+    println!("single thread; simd kernels: {}", prism::accel::instruction_set());
 
     match (load_mesh_bin(&dir.join("terrain.bin")), load_rays_bin(&dir.join("rays.bin"))) {
         _ if !filter.mesh("terrain") => {}
@@ -517,22 +517,4 @@ fn main() {
         }
         Err(e) => println!("SKIPPED dragon: {e}"),
     }
-}
-
-/// The instruction set `simd::dispatch` picks on this CPU.
-fn kernels_name() -> &'static str {
-    #[cfg(target_arch = "x86_64")]
-    {
-        let avx2 = is_x86_feature_detected!("avx2")
-            && is_x86_feature_detected!("fma")
-            && is_x86_feature_detected!("popcnt")
-            && is_x86_feature_detected!("bmi1");
-        if avx2 && is_x86_feature_detected!("avx512f") && is_x86_feature_detected!("avx512vl") {
-            return "AVX-512 F/VL + AVX2 + FMA";
-        }
-        if avx2 {
-            return "AVX2 + FMA";
-        }
-    }
-    "scalar"
 }

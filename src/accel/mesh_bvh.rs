@@ -95,25 +95,19 @@ const LEAF_PREFETCH_BYTES: usize = 192;
 
 /// Makes the collapse's leaves: groups of the triangles, in the order the collapse lists
 /// them.
-struct LeafGroups<'a> {
-    triangles: &'a [[Vec3; 3]],
-    writer: GroupWriter<'a>,
-}
+struct LeafGroups<'a>(GroupWriter<'a>);
 
 impl LeafMaker for &mut LeafGroups<'_> {
     fn make(&mut self, prims: &[u32]) -> u32 {
-        let start = self.writer.leaf(prims);
+        let start = self.0.leaf(prims);
         u32::try_from(start)
             .ok()
             .filter(|start| start & LEAF == 0)
             .expect("too many triangle groups for a leaf reference")
     }
 
-    /// The triangles lie in input order, not the tree's.
     fn prefetch(&self, prims: &[u32]) {
-        for &prim in prims {
-            simd::prefetch(self.triangles.as_ptr().wrapping_add(prim as usize));
-        }
+        self.0.prefetch(prims);
     }
 }
 
@@ -172,9 +166,9 @@ impl TriangleBvh {
             ..BvhBuildParams::medium_build()
         };
         let bvh2 = build_binary(boxes, params);
-        let mut leaves = LeafGroups { triangles: &triangles, writer: GroupWriter::new(&triangles) };
+        let mut leaves = LeafGroups(GroupWriter::new(&triangles));
         let tree = WideTree::collapse(&bvh2, LEAF_COST, &mut leaves);
-        let groups = leaves.writer.finish();
+        let groups = leaves.0.finish();
         TriangleBvh {
             nodes: PageArray::new(tree.nodes),
             groups,

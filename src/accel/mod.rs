@@ -11,3 +11,5 @@ pub(crate) mod simd;
 pub mod triangle;
 pub mod triangle_groups;
 pub(crate) mod wide;
+
+pub use simd::instruction_set;

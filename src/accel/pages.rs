@@ -7,7 +7,7 @@
 //! array of at least [`MIN_MAPPED`] bytes is copied into its own anonymous mapping, marked
 //! `MADV_HUGEPAGE` before it is first touched, so the kernel backs it with 2 MiB pages
 //! where transparent huge pages are enabled (`always` or `madvise`). A [`PageBuffer`]
-//! fills such a mapping directly, push by push, so a large array is written once, with no
+//! fills such a mapping directly, slice by slice, so a large array is written once, with no
 //! 4 KiB page faults and no copy. Elsewhere, when the mapping fails, and for small arrays
 //! it is a plain `Vec`. The contents are the same either way: only the speed differs.
 
@@ -82,22 +82,6 @@ impl<T: Copy> PageBuffer<T> {
             Storage::Heap(items) => items.len(),
             #[cfg(target_os = "linux")]
             Storage::Mapped(mapping) => mapping.as_slice().len(),
-        }
-    }
-
-    /// Appends `item`.
-    #[inline]
-    pub fn push(&mut self, item: T) {
-        match &mut self.storage {
-            Storage::Heap(items) => items.push(item),
-            #[cfg(target_os = "linux")]
-            Storage::Mapped(mapping) => {
-                if !mapping.push(item) {
-                    let mut items = mapping.as_slice().to_vec();
-                    items.push(item);
-                    self.storage = Storage::Heap(items);
-                }
-            }
         }
     }
 
@@ -232,19 +216,6 @@ mod mapped {
             Some(Self { ptr, len: 0, capacity, bytes })
         }
 
-        /// Appends `item`; false (and nothing written) when the mapping is full.
-        #[inline]
-        pub fn push(&mut self, item: T) -> bool {
-            if self.len == self.capacity {
-                return false;
-            }
-            // SAFETY: `len < capacity`, so slot `len` lies inside the mapping, and nothing
-            // refers to it yet.
-            unsafe { self.ptr.as_ptr().add(self.len).write(item) };
-            self.len += 1;
-            true
-        }
-
         /// Appends `items`; false (and nothing written) when they do not fit.
         #[inline]
         pub fn extend_from_slice(&mut self, items: &[T]) -> bool {
@@ -300,7 +271,7 @@ mod tests {
         for (capacity, len) in [(0usize, 3usize), (10, 10), (big, 1000), (big, big + 7), (2 * big, big + 7)] {
             let mut buffer = PageBuffer::with_capacity(capacity);
             for i in 0..len as u64 {
-                buffer.push(i * 3);
+                buffer.extend_from_slice(&[i * 3]);
                 assert_eq!(buffer.len(), i as usize + 1);
             }
             let array = buffer.finish();

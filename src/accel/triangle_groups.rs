@@ -153,25 +153,6 @@ impl<'a> Group<'a> {
         self.words[1 + 3 * self.vertices..].as_ptr().cast()
     }
 
-    /// Vertex `vertex` of the group.
-    #[inline(always)]
-    pub fn vertex(&self, vertex: usize) -> Vec3 {
-        let n = self.vertices;
-        let coordinate = |axis: usize| f32::from_bits(self.words[1 + axis * n + vertex]);
-        Vec3::new(coordinate(0), coordinate(1), coordinate(2))
-    }
-
-    /// The group-vertex indices of triangle `triangle`'s corners.
-    #[inline(always)]
-    pub fn corners(&self, triangle: usize) -> [usize; 3] {
-        let bytes = &self.words[1 + 3 * self.vertices..];
-        let byte = |k: usize| {
-            let at = k * self.triangles + triangle;
-            (bytes[at / 4] >> (8 * (at % 4)) & 0xff) as usize
-        };
-        [byte(0), byte(1), byte(2)]
-    }
-
     /// The vertices of triangle `triangle` (below [`Self::triangle_count`]), read without
     /// bounds checks: what a hit hands on, on the traversal's path.
     #[inline(always)]
@@ -221,6 +202,14 @@ impl<'a> GroupWriter<'a> {
         // A group of one triangle is the largest per triangle: 1 + 9 + 1 + 1 words.
         let capacity = triangles.len() * group_words(3, 1) + TAIL_WORDS;
         Self { triangles, words: PageBuffer::with_capacity(capacity) }
+    }
+
+    /// Asks the CPU for the triangles `prims` ahead of [`Self::leaf`] (they lie in input
+    /// order, not the tree's).
+    pub fn prefetch(&self, prims: &[u32]) {
+        for &prim in prims {
+            super::simd::prefetch(self.triangles.as_ptr().wrapping_add(prim as usize));
+        }
     }
 
     /// Writes a leaf of the triangles `prims` (at least one) and returns the word at which
@@ -296,9 +285,7 @@ impl<'a> GroupWriter<'a> {
 
     /// The finished groups.
     pub fn finish(mut self) -> TriangleGroups {
-        for _ in 0..TAIL_WORDS {
-            self.words.push(0);
-        }
+        self.words.extend_from_slice(&[0; TAIL_WORDS]);
         TriangleGroups { words: self.words.finish() }
     }
 }

@@ -125,8 +125,8 @@ pub trait Kernels: Copy {
     fn boxes(self, boxes: &BoxLanes, ray: &BoxRay, t_max: f32, near: &mut [f32; BOXES]) -> u32;
 
     /// Bit mask of the group's triangles that [`WatertightRay::intersect`] hits with
-    /// `0 < t < t_max`, and those hits in `hits` (other triangles' entries are left as they
-    /// were). Every implementation returns exactly the scalar test's hits, bit for bit.
+    /// `0 < t < t_max`, and those hits in `hits` (the entries of other triangles may be
+    /// overwritten with meaningless values). Every implementation returns exactly the scalar test's hits, bit for bit.
     fn group(self, group: &Group<'_>, ray: &WatertightRay, t_max: f32, hits: &mut GroupHits) -> u32;
 
     /// Hints the CPU to bring the `bytes` at `address` into the cache (any address is
@@ -143,6 +143,19 @@ pub trait Dispatch {
     /// Does the work with `kernels`. Mark implementations `#[inline(always)]`: [`dispatch`]
     /// compiles them inside a function with the instruction set enabled only if they inline.
     fn run<K: Kernels>(self, kernels: K) -> Self::Output;
+}
+
+/// The name of the instruction set [`dispatch`] runs with on this CPU.
+pub fn instruction_set() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    if Avx512::detect().is_some() {
+        return "AVX-512 F/VL + AVX2 + FMA";
+    }
+    #[cfg(target_arch = "x86_64")]
+    if Avx2::detect().is_some() {
+        return "AVX2 + FMA";
+    }
+    "scalar"
 }
 
 /// Runs `work` with the fastest kernels the CPU has: AVX-512 (F and VL) with AVX2 where the
