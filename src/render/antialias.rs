@@ -6,6 +6,14 @@
 //! Both methods work on 32 x 32 blocks of the image (POV-Ray's default `Render_Block_Size`).
 //! Method 1's decisions depend on the order pixels are visited inside a block but never on
 //! other blocks, so a block is one task and the image does not depend on the thread count.
+//!
+//! A trace is a function of its image position alone (its random numbers are keyed by the
+//! position's bits), so a position traced twice gives the same colour twice. POV-Ray traces
+//! the samples on a block's edge again for each block that reads them; here the blocks of one
+//! frame share them through [`BorderSamples`], and a supersampled pixel reuses its centre
+//! where the sub-pixel grid passes through it.
+
+use std::sync::OnceLock;
 
 use glam::{DVec2, DVec3};
 
@@ -55,9 +63,86 @@ impl PovMethod {
     }
 }
 
+/// The samples on the lines where neighbouring blocks meet, shared by the blocks of one
+/// frame: method 1's pixel centres on each block's last row and column (the next blocks
+/// compare their first pixels with them), method 2's pixel corners on each block's first row
+/// and column (the previous blocks' last ones). Each is traced by whichever block needs it
+/// first and read by the other; both would trace the same colour.
+pub struct BorderSamples {
+    /// Sample-grid coordinate (pixel for method 1, corner for method 2) of the lines modulo
+    /// [`BLOCK_SIZE`].
+    phase: i64,
+    /// The first sample-grid column and row stored, and the number of each.
+    x0: i64,
+    y0: i64,
+    columns_wide: i64,
+    rows_high: i64,
+    /// The shared rows (one per block row, `columns_wide` samples each) and columns (one per
+    /// block column, `rows_high` samples each).
+    rows: Vec<OnceLock<DVec3>>,
+    columns: Vec<OnceLock<DVec3>>,
+}
+
+impl BorderSamples {
+    /// The shared samples of the blocks from (`block_x0`, `block_y0`) to (`block_x1`,
+    /// `block_y1`) (exclusive, in blocks) rendered with `method`.
+    pub fn new(method: PovMethod, (block_x0, block_y0): (u32, u32), (block_x1, block_y1): (u32, u32)) -> Self {
+        let size = i64::from(BLOCK_SIZE);
+        let phase = match method {
+            PovMethod::NonAdaptive { .. } => size - 1,
+            PovMethod::Adaptive { .. } => 0,
+        };
+        // Method 1 reads one pixel before each block, method 2 one corner after it.
+        let (x0, y0) = (i64::from(block_x0) * size - 1, i64::from(block_y0) * size - 1);
+        let columns_wide = i64::from(block_x1 - block_x0) * size + 2;
+        let rows_high = i64::from(block_y1 - block_y0) * size + 2;
+        let lines = |n: u32| n as usize + 1;
+        let cells = |count: usize, len: i64| (0..count * len as usize).map(|_| OnceLock::new()).collect();
+        Self {
+            phase,
+            x0,
+            y0,
+            columns_wide,
+            rows_high,
+            rows: cells(lines(block_y1 - block_y0), columns_wide),
+            columns: cells(lines(block_x1 - block_x0), rows_high),
+        }
+    }
+
+    /// Bytes [`BorderSamples::new`] allocates for the same arguments.
+    pub fn bytes((block_x0, block_y0): (u32, u32), (block_x1, block_y1): (u32, u32)) -> u64 {
+        let size = u64::from(BLOCK_SIZE);
+        let (wide, high) = (u64::from(block_x1 - block_x0) * size + 2, u64::from(block_y1 - block_y0) * size + 2);
+        let rows = (u64::from(block_y1 - block_y0) + 1) * wide;
+        let columns = (u64::from(block_x1 - block_x0) + 1) * high;
+        (rows + columns) * std::mem::size_of::<OnceLock<DVec3>>() as u64
+    }
+
+    /// The slot of sample-grid point (x, y) when it lies on a shared line.
+    fn slot(&self, x: i64, y: i64) -> Option<&OnceLock<DVec3>> {
+        let size = i64::from(BLOCK_SIZE);
+        let (dx, dy) = (x - self.x0, y - self.y0);
+        if !(0..self.columns_wide).contains(&dx) || !(0..self.rows_high).contains(&dy) {
+            return None;
+        }
+        // Lines are counted from the first one at or after the origin.
+        let line =
+            |v: i64, origin: i64| (v - self.phase).div_euclid(size) - (origin - self.phase + size - 1).div_euclid(size);
+        if (y - self.phase).rem_euclid(size) == 0 {
+            self.rows.get((line(y, self.y0) * self.columns_wide + dx) as usize)
+        } else if (x - self.phase).rem_euclid(size) == 0 {
+            self.columns.get((line(x, self.x0) * self.rows_high + dy) as usize)
+        } else {
+            None
+        }
+    }
+}
+
 /// Traces single positions on the image plane in POV-Ray's pixel coordinates.
 struct Sampler<'a, I: Integrator> {
     scene: &'a RenderScene,
+    /// Samples shared with the neighbouring blocks, if any.
+    borders: Option<&'a BorderSamples>,
     integrator: &'a I,
     width: f64,
     height: f64,
@@ -114,6 +199,22 @@ impl<I: Integrator> Sampler<'_, I> {
             sum += self.radiance(x0, y0, lens, stream);
         }
         sum / f64::from(samples)
+    }
+
+    /// The colour of sample-grid point (`x`, `y`) at image position `at`: read from the
+    /// neighbouring blocks' shared samples when it lies on a block border and was traced
+    /// already, traced (and shared) otherwise.
+    fn grid_trace(&mut self, (x, y): (i64, i64), at: (f64, f64)) -> DVec3 {
+        let Some(slot) = self.borders.and_then(|b| b.slot(x, y)) else {
+            return self.trace(at.0, at.1);
+        };
+        if let Some(colour) = slot.get() {
+            return *colour;
+        }
+        let colour = self.trace(at.0, at.1);
+        // Another block may have traced it meanwhile: the same colour.
+        let _ = slot.set(colour);
+        colour
     }
 
     fn radiance(&mut self, x0: f64, y0: f64, lens: DVec2, stream: SampleStream) -> DVec3 {
@@ -219,21 +320,30 @@ pub struct Block {
     pub primary_rays: u64,
 }
 
-/// Renders the block whose top-left pixel is (`left`, `top`) with `method`.
+/// Renders the block whose top-left pixel is (`left`, `top`) with `method`, sharing the
+/// samples on its borders through `borders` (made for the same method) when given.
 pub fn render_block<I: Integrator>(
     scene: &RenderScene,
     integrator: &I,
     method: PovMethod,
-    left: u32,
-    top: u32,
+    (left, top): (u32, u32),
+    borders: Option<&BorderSamples>,
 ) -> Block {
     let (width, height) = (scene.settings.width, scene.settings.height);
     let w = BLOCK_SIZE.min(width - left) as usize;
     let h = BLOCK_SIZE.min(height - top) as usize;
     let working = integrator.working_gamma();
     let grade = AaGrade::new(working);
-    let mut sampler =
-        Sampler { scene, integrator, width: f64::from(width), height: f64::from(height), rays: 0, primary: 0, grade };
+    let mut sampler = Sampler {
+        scene,
+        borders,
+        integrator,
+        width: f64::from(width),
+        height: f64::from(height),
+        rays: 0,
+        primary: 0,
+        grade,
+    };
     let block = BlockArea { left: f64::from(left), top: f64::from(top), w, h };
     let colours = match method {
         PovMethod::NonAdaptive { threshold, depth } => non_adaptive(&mut sampler, block, threshold, depth),
@@ -270,17 +380,19 @@ fn non_adaptive<I: Integrator>(s: &mut Sampler<I>, block: BlockArea, threshold: 
     let BlockArea { left, top, w, h } = block;
     let grade = s.grade;
     // Each colour is graded for comparison once, when it is traced or supersampled.
-    let above: Vec<DVec3> = (0..w).map(|x| grade.of(s.trace(left + x as f64, top - 1.0))).collect();
+    let (gx, gy) = (left as i64, top as i64);
+    let above: Vec<DVec3> =
+        (0..w).map(|x| grade.of(s.grid_trace((gx + x as i64, gy - 1), (left + x as f64, top - 1.0)))).collect();
     let mut pixels = vec![DVec3::ZERO; w * h];
     let mut graded = vec![DVec3::ZERO; w * h];
     let mut done = vec![false; w * h];
     for y in 0..h {
         let py = top + y as f64;
-        let before_row = grade.of(s.trace(left - 1.0, py));
+        let before_row = grade.of(s.grid_trace((gx - 1, gy + y as i64), (left - 1.0, py)));
         for (x, &above_graded) in above.iter().enumerate() {
             let px = left + x as f64;
             let i = y * w + x;
-            let current = s.trace(px, py);
+            let current = s.grid_trace((gx + x as i64, gy + y as i64), (px, py));
             pixels[i] = current;
             // Flat regions (a background) repeat the left neighbour's colour exactly: its
             // grade then needs no recomputing (`graded` always grades `pixels`).
@@ -319,7 +431,10 @@ fn supersample<I: Integrator>(s: &mut Sampler<I>, x: f64, y: f64, centre: DVec3,
     while yy <= range + EPSILON {
         let mut xx = -range;
         while xx <= range + EPSILON {
-            sum += s.trace(x + xx, y + yy);
+            let (sx, sy) = (x + xx, y + yy);
+            // At odd depths the grid's middle sample is the centre itself (POV-Ray traces it
+            // again).
+            sum += if sx.to_bits() == x.to_bits() && sy.to_bits() == y.to_bits() { centre } else { s.trace(sx, sy) };
             xx += step;
         }
         yy += step;
@@ -334,7 +449,8 @@ fn adaptive<I: Integrator>(s: &mut Sampler<I>, block: BlockArea, threshold: f64,
     let mut corners = Vec::with_capacity((w + 1) * (h + 1));
     for y in 0..=h {
         for x in 0..=w {
-            corners.push(s.trace(left + x as f64 - 0.5, top + y as f64 - 0.5));
+            let grid = (left as i64 + x as i64, top as i64 + y as i64);
+            corners.push(s.grid_trace(grid, (left + x as f64 - 0.5, top + y as f64 - 0.5)));
         }
     }
     let size = 1usize << depth;
@@ -473,6 +589,7 @@ mod tests {
     fn sampler<'a>(scene: &'a RenderScene, integrator: &'a Classic<'a>) -> Sampler<'a, Classic<'a>> {
         Sampler {
             scene,
+            borders: None,
             integrator,
             width: 40.0,
             height: 24.0,
@@ -528,6 +645,51 @@ mod tests {
             }
             sum / 16.0
         });
+    }
+
+    /// Renders a 70 x 40 frame block by block in order on one thread, sharing border samples
+    /// or not: the pixels and the camera rays traced.
+    fn blocks_in_order(antialias: Antialias, shared: bool) -> (Vec<[f32; 3]>, u64) {
+        const FILES: Embedded = Embedded(&[("s.toml", SCENE)]);
+        let mut loaded = load_from(&FILES, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+        loaded.render.antialias = antialias;
+        (loaded.render.width, loaded.render.height) = (70, 40);
+        let scene = crate::prepare(&mut loaded).unwrap();
+        let integrator = Classic::new(&scene);
+        let method = PovMethod::from_setting(antialias).unwrap();
+        let borders = BorderSamples::new(method, (0, 0), (3, 2));
+        let (mut pixels, mut primary) = (Vec::new(), 0);
+        for top in [0, 32] {
+            for left in [0, 32, 64] {
+                let block = render_block(&scene, &integrator, method, (left, top), shared.then_some(&borders));
+                pixels.extend(block.pixels);
+                primary += block.primary_rays;
+            }
+        }
+        (pixels, primary)
+    }
+
+    #[test]
+    fn blocks_share_their_border_samples_and_pixels_reuse_their_centre() {
+        // Threshold 0 supersamples every pixel once. Method 1 traces per block the row above,
+        // the column to the left and nine samples per pixel (the centre and eight sub-pixel
+        // samples: the ninth is the centre again, except in row and column 0, where the
+        // accumulated offset, 1e-17 or so, is not lost to rounding). Blocks of 32 x 32,
+        // 32 x 32, 6 x 32 over 32 x 8, 32 x 8, 6 x 8: 260 border reads, 150 of them of a
+        // neighbour's pixels.
+        let method_1 = Antialias::Pov1 { threshold: 0.0, depth: 3 };
+        let (alone, alone_rays) = blocks_in_order(method_1, false);
+        let (shared, shared_rays) = blocks_in_order(method_1, true);
+        assert_eq!(alone, shared);
+        assert_eq!(alone_rays, 260 + 9 * 70 * 40 + (70 + 40 - 1));
+        assert_eq!(shared_rays, alone_rays - 150);
+        // Method 2 traces every block's corners; 155 of them are a previous block's (its
+        // first row and column, counted once at their shared corner).
+        let method_2 = Antialias::Pov2 { threshold: 0.1, depth: 3 };
+        let (alone, alone_rays) = blocks_in_order(method_2, false);
+        let (shared, shared_rays) = blocks_in_order(method_2, true);
+        assert_eq!(alone, shared);
+        assert_eq!(shared_rays, alone_rays - 155);
     }
 
     #[test]

@@ -439,20 +439,22 @@ fn render_samples<I: Integrator>(
         + std::mem::size_of::<PixelStats>() as u64
         + 4
         + if want_hits { std::mem::size_of::<Option<FirstHit>>() as u64 } else { 0 };
-    let estimate = u64::from(region.width()) * u64::from(region.height()) * per_pixel;
-    options.budget.check(|| format!("a {} x {} film", region.width(), region.height()), estimate)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|source| RenderError::Threads { threads, source })?;
     // POV-Ray's antialiasing works on whole 32 x 32 blocks of the frame, each one task; a
     // region renders every block it touches whole and keeps its part, so its pixels are
     // those of the full frame.
     let tile_size = if pov_method.is_some() { antialias::BLOCK_SIZE } else { TILE_SIZE };
     let (tx0, ty0) = (region.x0 / tile_size, region.y0 / tile_size);
     let (tx1, ty1) = (region.x1.div_ceil(tile_size), region.y1.div_ceil(tile_size));
+    let estimate = u64::from(region.width()) * u64::from(region.height()) * per_pixel
+        + if pov_method.is_some() { antialias::BorderSamples::bytes((tx0, ty0), (tx1, ty1)) } else { 0 };
+    options.budget.check(|| format!("a {} x {} film", region.width(), region.height()), estimate)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|source| RenderError::Threads { threads, source })?;
     let tiles_x = tx1 - tx0;
     let tile_count = u64::from(tiles_x) * u64::from(ty1 - ty0);
+    let borders = pov_method.map(|method| antialias::BorderSamples::new(method, (tx0, ty0), (tx1, ty1)));
 
     let progress = if options.progress {
         let bar = ProgressBar::with_draw_target(Some(tile_count), ProgressDrawTarget::stderr());
@@ -498,7 +500,7 @@ fn render_samples<I: Integrator>(
                 }
                 let (result, tile_rays, tile_primary) = match pov_method {
                     Some(method) => {
-                        let block = antialias::render_block(scene, integrator, method, tx, ty);
+                        let block = antialias::render_block(scene, integrator, method, (tx, ty), borders.as_ref());
                         let first_hits = if want_hits { centre_hits(scene, integrator, area) } else { Vec::new() };
                         let tile = TileResult {
                             area,
