@@ -324,17 +324,16 @@ impl ImageMap {
     /// POV-Ray's `image_colour_at`: the colour at texel coordinates (x, y) of `image`, with the
     /// map's interpolation.
     pub fn colour_at(&self, image: &MapImage, x: f64, y: f64) -> Rgbft {
-        let (taps, n) = self.taps(x, y);
-        if n == 1 {
-            return self.texel(image, taps[0].0.0, taps[0].0.1);
+        if self.interpolate == Interpolate::None {
+            return self.texel(image, x, y);
         }
         let mut out = Rgbft { rgb: DVec3::ZERO, filter: 0.0, transmit: 0.0 };
-        for &((tx, ty), w) in &taps[..n] {
+        self.for_each_tap(x, y, |tx, ty, w| {
             let c = self.texel(image, tx, ty);
             out.rgb += c.rgb * w;
             out.filter += c.filter * w;
             out.transmit += c.transmit * w;
-        }
+        });
         out
     }
 
@@ -345,22 +344,17 @@ impl ImageMap {
         if image.indices.is_empty() {
             return None;
         }
-        let (taps, n) = self.taps(x, y);
-        let sum: f64 = taps[..n]
-            .iter()
-            .map(|&((tx, ty), w)| f64::from(image.indices[self.texel_position(image, tx, ty)]) * w)
-            .sum();
+        let mut sum = 0.0;
+        self.for_each_tap(x, y, |tx, ty, w| sum += f64::from(image.indices[self.texel_position(image, tx, ty)]) * w);
         Some(sum.trunc())
     }
 
-    /// The texels an interpolated lookup at (x, y) reads, with their weights (the first `n`).
-    fn taps(&self, x: f64, y: f64) -> (Taps, usize) {
-        let mut taps = [((0.0, 0.0), 0.0); 16];
+    /// Calls `visit` with each texel an interpolated lookup at (x, y) reads and its weight,
+    /// in POV-Ray's order.
+    #[inline(always)]
+    fn for_each_tap(&self, x: f64, y: f64, mut visit: impl FnMut(f64, f64, f64)) {
         match self.interpolate {
-            Interpolate::None => {
-                taps[0] = ((x, y), 1.0);
-                (taps, 1)
-            }
+            Interpolate::None => visit(x, y, 1.0),
             Interpolate::Bilinear | Interpolate::NormalizedDistance => {
                 let (x, y) = (x + 0.5, y + 0.5);
                 let (ix, iy) = (x.trunc(), y.trunc());
@@ -371,10 +365,9 @@ impl ImageMap {
                 } else {
                     normalized_distance(p, q)
                 };
-                for (k, (c, f)) in corners.into_iter().zip(factors).enumerate() {
-                    taps[k] = (c, f);
+                for ((cx, cy), f) in corners.into_iter().zip(factors) {
+                    visit(cx, cy, f);
                 }
-                (taps, 4)
             }
             Interpolate::Bicubic => {
                 let (x, y) = (x + 0.5, y + 0.5);
@@ -382,10 +375,9 @@ impl ImageMap {
                 let (fx, fy) = (cubic(x - ix), cubic(y - iy));
                 for (i, wx) in fx.iter().enumerate() {
                     for (j, wy) in fy.iter().enumerate() {
-                        taps[i * 4 + j] = ((ix + i as f64 - 2.0, iy + j as f64 - 2.0), wx * wy);
+                        visit(ix + i as f64 - 2.0, iy + j as f64 - 2.0, wx * wy);
                     }
                 }
-                (taps, 16)
             }
         }
     }
@@ -459,7 +451,6 @@ impl ImageMap {
 }
 
 /// Up to sixteen texel positions with their interpolation weights.
-type Taps = [((f64, f64), f64); 16];
 
 impl ImageMap {
     /// The index into `image`'s texels of texel coordinates (x, y): wrapped, or with `once`
@@ -493,6 +484,16 @@ fn longitude(x: f64, z: f64) -> Option<f64> {
 
 /// POV-Ray's `wrap`: `val` into `[0, upper)` (fmod, negatives lifted, `upper` itself to 0).
 fn wrap(val: f64, upper: f64) -> f64 {
+    // Interpolation reads whole texel positions, where the remainder is an integer one
+    // (exact either way; `fmod` is a slow library call).
+    if val.trunc() == val
+        && val.abs() < 4_503_599_627_370_496.0
+        && upper.trunc() == upper
+        && upper >= 1.0
+        && upper < 4_503_599_627_370_496.0
+    {
+        return (val as i64).rem_euclid(upper as i64) as f64;
+    }
     let mut v = val % upper;
     if v < 0.0 {
         v += upper;
