@@ -450,8 +450,6 @@ impl ImageMap {
     }
 }
 
-/// Up to sixteen texel positions with their interpolation weights.
-
 impl ImageMap {
     /// The index into `image`'s texels of texel coordinates (x, y): wrapped, or with `once`
     /// clamped to the edge (POV-Ray's `no_interpolation`).
@@ -486,12 +484,8 @@ fn longitude(x: f64, z: f64) -> Option<f64> {
 fn wrap(val: f64, upper: f64) -> f64 {
     // Interpolation reads whole texel positions, where the remainder is an integer one
     // (exact either way; `fmod` is a slow library call).
-    if val.trunc() == val
-        && val.abs() < 4_503_599_627_370_496.0
-        && upper.trunc() == upper
-        && upper >= 1.0
-        && upper < 4_503_599_627_370_496.0
-    {
+    const WHOLE: f64 = 4_503_599_627_370_496.0;
+    if val.trunc() == val && val.abs() < WHOLE && upper.trunc() == upper && (1.0..WHOLE).contains(&upper) {
         return (val as i64).rem_euclid(upper as i64) as f64;
     }
     let mut v = val % upper;
