@@ -97,6 +97,51 @@ fn a_spherical_lamp_lights_a_diffuse_floor_as_the_formula_says() {
     assert_mean(&film, [expected; 3], "direct light from a sphere");
 }
 
+#[test]
+fn an_emissive_csg_group_is_sampled_as_a_light() {
+    // A small lamp (r = 0.1 at h = 2: one cosine-distributed direction in 400 reaches it) lit
+    // as the formula of the test above says, built as CSG groups whose boundary seen from the
+    // floor is the lamp's sphere: the sphere inside a larger box (an intersection) and the
+    // sphere less a box through its top (a difference, whose hollow the floor does not see).
+    // The group is sampled through its members' surfaces; found only by the rays that happen
+    // to reach it (as before groups were sampled), the 1024 samples of the image would meet
+    // it about 2.6 times.
+    let lamp = |shape: &str| -> &'static str {
+        Box::leak(
+            format!(
+                "[render]\nwidth = 8\nheight = 8\nsamples = 16\nmax_depth = 2\nintegrator = \"path\"\n\
+                 [camera]\nposition = [0, 1, 0]\nlook_at = [0, 0, 0]\nup = [0, 0, -1]\nvfov = 0.5\n\
+                 [[object]]\nshape = \"plane\"\nnormal = [0, 1, 0]\noffset = 0.0\n\
+                 material = {{ color = 0.8, bsdf = {{ type = \"diffuse\" }} }}\n\
+                 [[object]]\n{shape}\ntransform = {{ translate = [0, 2, 0] }}\n\
+                 material = {{ color = 0.0, bsdf = {{ type = \"diffuse\" }}, emission = 3.0 }}\n"
+            )
+            .into_boxed_str(),
+        )
+    };
+    let sphere = "{ shape = \"sphere\", radius = 0.1 }";
+    let expected = 0.8 * 3.0 * (0.1f64 / 2.0).powi(2);
+    for (what, shape) in [
+        (
+            "intersection",
+            format!(
+                "shape = \"intersection\"\nmembers = [{sphere}, {{ shape = \"box\", min = [-1, -1, -1], max = [1, 1, 1] }}]"
+            ),
+        ),
+        (
+            "difference",
+            format!(
+                "shape = \"difference\"\nmembers = [{sphere}, {{ shape = \"box\", min = [-0.05, 0.06, -0.05], max = [0.05, 1, 0.05] }}]"
+            ),
+        ),
+    ] {
+        let film = render_text(lamp(&shape), 2);
+        let (mean, error) = mean_and_error(&film, 1);
+        assert_mean(&film, [expected; 3], what);
+        assert!(error < 0.02 * mean, "{what}: standard error {error} of {mean}: the group is not sampled as a light");
+    }
+}
+
 /// A sphere under a sun and a dim sky, with the material `normal` given (or none).
 fn bumped_sphere(normal: &str) -> Film {
     let text = format!(

@@ -370,7 +370,7 @@ impl SceneLights {
         let mut area_emitters = Vec::new();
         let emitter_of_primitive = (0..primitives.len() as u32)
             .map(|primitive| {
-                emits(&materials[primitives[primitive as usize].material as usize]).then(|| {
+                emitting_materials(&primitives[primitive as usize], materials).next().is_some().then(|| {
                     area_emitters.push(AreaEmitter { primitive });
                     area_emitters.len() as u32 - 1
                 })
@@ -388,6 +388,13 @@ impl SceneLights {
         let index = (*self.emitter_of_primitive.get(primitive as usize)?)?;
         Some(&self.area_emitters[index as usize])
     }
+}
+
+/// The materials of `primitive` that emit light ([`emits`]): its own, or for a CSG group
+/// its leaves' (each its own or the group's it inherits; they may repeat).
+pub fn emitting_materials<'m>(primitive: &Primitive, materials: &'m [Material]) -> impl Iterator<Item = &'m Material> {
+    let own = std::slice::from_ref(&primitive.material);
+    primitive.leaf_materials.as_deref().unwrap_or(own).iter().map(|&m| &materials[m as usize]).filter(|m| emits(m))
 }
 
 /// True when a surface of this material emits light ([`Emission::can_emit`]). The classic
@@ -433,6 +440,23 @@ mod tests {
             assert_eq!(lights.emitter_of_primitive[emitter.primitive as usize], Some(index as u32));
         }
         assert_eq!(lights.emitter_of(99), None);
+    }
+
+    #[test]
+    fn a_csg_group_emits_when_a_leaf_material_does() {
+        const SCENE: Embedded = Embedded(&[(
+            "s.toml",
+            "[materials.lamp]\nemission = 2.0\n\
+             [[object]]\nshape = \"union\"\nmembers = [{ shape = \"sphere\" }, { shape = \"sphere\", material = \"lamp\" }]\n\
+             [[object]]\nshape = \"union\"\nmaterial = \"lamp\"\nmembers = [{ shape = \"sphere\", material = { color = 1.0 } }]\n\
+             [[object]]\nshape = \"union\"\nmaterial = \"lamp\"\nmembers = [{ shape = \"sphere\" }]\n",
+        )]);
+        let mut scene = load_from(&SCENE, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+        let scene = crate::prepare(&mut scene).unwrap();
+        let emitting: Vec<u32> = scene.lights.area_emitters.iter().map(|e| e.primitive).collect();
+        // A member's own emissive material makes the group a light; the group's material
+        // does only where a member inherits it.
+        assert_eq!(emitting, [0, 2]);
     }
 
     #[test]

@@ -6,8 +6,9 @@
 use glam::{DVec2, DVec3};
 
 use super::scatter::luminance;
+use crate::geometry::csg::CsgShape;
 use crate::render::extract::RenderScene;
-use crate::render::lights::{EnvironmentMapLight, LightSource, SpotCone};
+use crate::render::lights::{EnvironmentMapLight, LightSource, SpotCone, emitting_materials};
 
 /// What surrounds the scene under the path integrator.
 #[derive(Clone, Debug)]
@@ -184,12 +185,22 @@ impl LightSampler {
         }
         for emitter in &scene.lights.area_emitters {
             let primitive = &scene.primitives[emitter.primitive as usize];
-            let material = &scene.materials[primitive.material as usize];
-            // Negative components emit nothing under path (`PathMaterial`'s emission).
-            let radiance =
-                material.emission.radiance.0.max(DVec3::ZERO) + material.emission.times_color.0.max(DVec3::ZERO);
-            let area = primitive.shape.area().unwrap_or(1.0)
-                * primitive.shape.sample_area(DVec2::splat(0.5)).map_or(1.0, |s| primitive.area_scale(s.normal));
+            // Negative components emit nothing under path (`PathMaterial`'s emission); a CSG
+            // group counts its brightest leaf material.
+            let radiance = emitting_materials(primitive, &scene.materials)
+                .map(|m| m.emission.radiance.0.max(DVec3::ZERO) + m.emission.times_color.0.max(DVec3::ZERO))
+                .fold(DVec3::ZERO, DVec3::max);
+            let shape: &dyn std::any::Any = primitive.shape.as_ref();
+            let area = match shape.downcast_ref::<CsgShape>() {
+                // About the area sampled, scaled as a uniform scale would.
+                Some(group) => {
+                    group.sampled_area() * primitive.world_from_object.matrix3.determinant().abs().powf(2.0 / 3.0)
+                }
+                None => {
+                    primitive.shape.area().unwrap_or(1.0)
+                        * primitive.shape.sample_area(DVec2::splat(0.5)).map_or(1.0, |s| primitive.area_scale(s.normal))
+                }
+            };
             lights.push(LightRef::Emitter(emitter.primitive));
             power.push((pi * area * luminance(radiance)).max(0.0));
         }
