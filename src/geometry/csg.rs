@@ -22,7 +22,7 @@
 //! no sample.
 
 use std::ops::ControlFlow;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use glam::{DAffine3, DMat3, DVec2, DVec3};
 use prism_api::{Aabb, DirectionSample, Hit, Ray, Shape, Surface, for_each_crossing, math};
@@ -170,11 +170,21 @@ pub struct CsgShape {
     members: Vec<CsgMember>,
     bounds: Aabb,
     leaves: u32,
-    /// The leaves it samples as a light, nested groups' included, and about the area of them
-    /// the group shows.
-    sampling: Vec<SamplingLeaf>,
-    sampled_area: f64,
+    /// How it samples itself as a light, made when first asked (most groups never are).
+    sampling: OnceLock<LightSampling>,
 }
+
+/// The leaves a group samples as a light, nested groups' included, each with its
+/// probability, and about the area of them the group shows.
+#[derive(Clone, Debug, Default)]
+struct LightSampling {
+    leaves: Vec<SamplingLeaf>,
+    shown_area: f64,
+}
+
+/// The most leaves a group samples as a light: each light sample and each density looks at
+/// every one of them. A larger group lights the scene only through the rays that reach it.
+pub const MAX_SAMPLED_LEAVES: u32 = 64;
 
 /// The box both `a` and `b` cover ([`Aabb::EMPTY`] when they do not meet).
 fn overlap(a: Aabb, b: Aabb) -> Aabb {
@@ -207,34 +217,36 @@ impl CsgShape {
                 members.iter().fold(Aabb::INFINITE, |b, m| overlap(b, m.bounds))
             }
         };
-        let mut sampling = Vec::new();
-        for m in &members {
-            let shape: &dyn std::any::Any = m.shape.as_ref();
-            match shape.downcast_ref::<CsgShape>() {
-                Some(group) => sampling.extend(
-                    group
-                        .sampling
-                        .iter()
-                        .map(|leaf| SamplingLeaf::new(leaf.shape.clone(), m.group_from_member * leaf.group_from_leaf)),
-                ),
-                None if m.shape.bounds().is_bounded() && m.shape.can_emit() => {
-                    sampling.push(SamplingLeaf::new(m.shape.clone(), m.group_from_member));
-                }
-                None => {}
+        Self { operation, members, bounds, leaves, sampling: OnceLock::new() }
+    }
+
+    /// The group's light sampling, made on first use: its leaves that can sample points on
+    /// themselves, each chosen in proportion to the area it shows (its area times the
+    /// fraction of probe points on it that lie on the group's boundary, with a floor, so that
+    /// a leaf whose little boundary the probes missed is still sampled). None for a group of
+    /// more than [`MAX_SAMPLED_LEAVES`] leaves.
+    fn light_sampling(&self) -> &LightSampling {
+        self.sampling.get_or_init(|| {
+            if self.leaves > MAX_SAMPLED_LEAVES {
+                return LightSampling::default();
             }
-        }
-        let mut group = Self { operation, members, bounds, leaves, sampling, sampled_area: 0.0 };
-        // Each leaf is sampled in proportion to the area it shows: its area times the
-        // fraction of probe points on it that lie on the group's boundary (with a floor, so
-        // that a leaf whose little boundary the probes missed is still sampled).
-        let weights: Vec<f64> =
-            group.sampling.iter().map(|leaf| leaf.area_estimate() * (group.shown_fraction(leaf) + 1e-3)).collect();
-        let total: f64 = weights.iter().sum();
-        for (leaf, weight) in group.sampling.iter_mut().zip(&weights) {
-            leaf.probability = weight / total;
-        }
-        group.sampled_area = group.sampling.iter().map(|leaf| leaf.area_estimate() * group.shown_fraction(leaf)).sum();
-        group
+            let mut leaves = Vec::new();
+            collect_sampling_leaves(&self.members, DAffine3::IDENTITY, &mut leaves);
+            // A leaf scaled beyond f64's range has no usable size.
+            leaves.retain(|leaf| leaf.area_estimate().is_finite() && leaf.area_estimate() > 0.0);
+            let shown: Vec<f64> = leaves.iter().map(|leaf| self.shown_fraction(leaf)).collect();
+            let weights: Vec<f64> =
+                leaves.iter().zip(&shown).map(|(leaf, fraction)| leaf.area_estimate() * (fraction + 1e-3)).collect();
+            let total: f64 = weights.iter().sum();
+            if !(total.is_finite() && total > 0.0) {
+                return LightSampling::default();
+            }
+            for (leaf, weight) in leaves.iter_mut().zip(&weights) {
+                leaf.probability = weight / total;
+            }
+            let shown_area = leaves.iter().zip(&shown).map(|(leaf, fraction)| leaf.area_estimate() * fraction).sum();
+            LightSampling { leaves, shown_area }
+        })
     }
 
     /// The fraction of 64 points spread over `leaf`'s surface that the group shows: a probe
@@ -261,7 +273,7 @@ impl CsgShape {
     /// space; 0 when none can be sampled): the light's size, for weighing it against other
     /// lights.
     pub fn sampled_area(&self) -> f64 {
-        self.sampled_area
+        self.light_sampling().shown_area
     }
 
     /// The density, with respect to solid angle at `reference`, with which the leaves'
@@ -269,7 +281,7 @@ impl CsgShape {
     /// probability times its area density there in the group's space.
     fn leaf_direction_pdf(&self, reference: DVec3, direction: DVec3) -> f64 {
         let mut pdf = 0.0;
-        for leaf in &self.sampling {
+        for leaf in &self.light_sampling().leaves {
             let ray = Ray::new(
                 leaf.leaf_from_group.transform_point3(reference),
                 leaf.leaf_from_group.transform_vector3(direction),
@@ -375,6 +387,22 @@ impl CsgShape {
     }
 }
 
+/// Appends to `out` the leaves below `members` (placed in some group's space by
+/// `group_from_members`) that can sample points on themselves, nested groups' included.
+fn collect_sampling_leaves(members: &[CsgMember], group_from_members: DAffine3, out: &mut Vec<SamplingLeaf>) {
+    for m in members {
+        let group_from_member = group_from_members * m.group_from_member;
+        let shape: &dyn std::any::Any = m.shape.as_ref();
+        match shape.downcast_ref::<CsgShape>() {
+            Some(group) => collect_sampling_leaves(&group.members, group_from_member, out),
+            None if m.shape.bounds().is_bounded() && m.shape.can_emit() => {
+                out.push(SamplingLeaf::new(m.shape.clone(), group_from_member));
+            }
+            None => {}
+        }
+    }
+}
+
 impl Shape for CsgShape {
     fn bounds(&self) -> Aabb {
         self.bounds
@@ -414,9 +442,10 @@ impl Shape for CsgShape {
     /// through it; `None` when that ray misses the group (the point lay off its boundary).
     fn sample_toward(&self, reference: DVec3, u: DVec2) -> Option<DirectionSample> {
         // The leaf whose share of [0, 1) holds u.x, and u.x's place within that share.
+        let leaves = &self.light_sampling().leaves;
         let mut rest = u.x;
-        let mut chosen = self.sampling.last()?;
-        for leaf in &self.sampling {
+        let mut chosen = leaves.last()?;
+        for leaf in leaves {
             if rest < leaf.probability {
                 chosen = leaf;
                 break;
@@ -440,7 +469,9 @@ impl Shape for CsgShape {
     /// [`CsgShape::sample_toward`]'s density: 0 for a direction that misses the group,
     /// else the leaves' density of it.
     fn pdf_toward(&self, reference: DVec3, direction: DVec3) -> f64 {
-        if self.sampling.is_empty() || self.intersect(&Ray::new(reference, direction), 0.0, f64::INFINITY).is_none() {
+        if self.light_sampling().leaves.is_empty()
+            || self.intersect(&Ray::new(reference, direction), 0.0, f64::INFINITY).is_none()
+        {
             return 0.0;
         }
         self.leaf_direction_pdf(reference, direction)
@@ -686,7 +717,7 @@ mod tests {
         ];
         let references = [DVec3::new(0.3, 2.6, -1.1), DVec3::new(-3.5, 0.2, 0.4), DVec3::new(0.45, 0.05, 0.0)];
         for (group, leaves) in groups.iter().zip([2, 2, 2, 2, 4]) {
-            assert_eq!(group.sampling.len(), leaves);
+            assert_eq!(group.light_sampling().leaves.len(), leaves);
             check_sampling_toward(group, &references, &config);
         }
     }
