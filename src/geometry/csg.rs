@@ -27,6 +27,8 @@ use std::sync::{Arc, OnceLock};
 use glam::{DAffine3, DMat3, DVec2, DVec3};
 use prism_api::{Aabb, DirectionSample, Hit, Ray, Shape, Surface, for_each_crossing, math};
 
+use super::member_tree::MemberTree;
+
 /// How a CSG group combines its members.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CsgOperation {
@@ -172,7 +174,12 @@ pub struct CsgShape {
     leaves: u32,
     /// How it samples itself as a light, made when first asked (most groups never are).
     sampling: OnceLock<LightSampling>,
+    /// A union's or merge's members in a tree, when they are many.
+    tree: Option<MemberTree>,
 }
+
+/// Members from which a union or merge puts its members in a [`MemberTree`].
+const TREE_MEMBERS: usize = 8;
 
 /// The leaves a group samples as a light, nested groups' included, each with its
 /// probability, and about the area of them the group shows.
@@ -217,7 +224,18 @@ impl CsgShape {
                 members.iter().fold(Aabb::INFINITE, |b, m| overlap(b, m.bounds))
             }
         };
-        Self { operation, members, bounds, leaves, sampling: OnceLock::new() }
+        let tree = (matches!(operation, CsgOperation::Union | CsgOperation::Merge) && members.len() >= TREE_MEMBERS)
+            .then(|| MemberTree::new(&members.iter().map(|m| m.bounds).collect::<Vec<_>>()));
+        Self { operation, members, bounds, leaves, sampling: OnceLock::new(), tree }
+    }
+
+    /// True when some member other than `except` contains the group-space `point`.
+    fn another_contains(&self, point: DVec3, except: Option<usize>) -> bool {
+        let contains = |j: usize| Some(j) != except && self.members[j].contains(point);
+        match &self.tree {
+            Some(tree) => tree.any_at(point, &mut |j| contains(j as usize)),
+            None => (0..self.members.len()).any(contains),
+        }
     }
 
     /// The group's light sampling, made on first use: its leaves that can sample points on
@@ -316,11 +334,12 @@ impl CsgShape {
     /// True when a crossing of member `index` at group-space `point` lies on the boundary the
     /// group shows.
     fn keeps(&self, index: usize, point: DVec3) -> bool {
-        let mut others = self.members.iter().enumerate().filter(|&(j, _)| j != index).map(|(_, m)| m);
         match self.operation {
             CsgOperation::Union => true,
-            CsgOperation::Merge => others.all(|m| !m.contains(point)),
-            CsgOperation::Intersection | CsgOperation::Difference => others.all(|m| m.contains(point)),
+            CsgOperation::Merge => !self.another_contains(point, Some(index)),
+            CsgOperation::Intersection | CsgOperation::Difference => {
+                self.members.iter().enumerate().all(|(j, m)| j == index || m.contains(point))
+            }
         }
     }
 
@@ -354,28 +373,32 @@ impl CsgShape {
         }
     }
 
+    /// The part of `(t_min, t_max)` where `ray` (its direction's reciprocal `inverse`) can
+    /// meet member `index`: within its bounds, widened a little (the interval is rounded, the
+    /// member's own test is exact). `None` when it cannot.
+    fn member_range(&self, index: usize, ray: &Ray, inverse: DVec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
+        let bounds = &self.members[index].bounds;
+        if !bounds.is_bounded() {
+            return Some((t_min, t_max));
+        }
+        let (near, far) = bounds.ray_interval_inverse(ray.origin, inverse, t_min, t_max)?;
+        Some(((near - 1e-9 * (1.0 + near.abs())).max(t_min), (far * (1.0 + 1e-9) + 1e-9).min(t_max)))
+    }
+
     /// Calls `visit` with every kept crossing of member `index` in `(t_min, t_max)`, nearest
-    /// first, until it breaks; the hits carry the group's leaf numbering.
+    /// first, until it breaks; the hits carry the group's leaf numbering. `inverse` is the
+    /// reciprocal of the ray's direction.
     fn member_crossings(
         &self,
         index: usize,
         ray: &Ray,
+        inverse: DVec3,
         t_min: f64,
         t_max: f64,
         visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>,
     ) {
+        let Some((t_min, t_max)) = self.member_range(index, ray, inverse, t_min, t_max) else { return };
         let member = &self.members[index];
-        let (t_min, t_max) = if member.bounds.is_bounded() {
-            match member.bounds.ray_interval(ray, t_min, t_max) {
-                // Widened a little: the interval is rounded, the member's own test is exact.
-                Some((near, far)) => {
-                    ((near - 1e-9 * (1.0 + near.abs())).max(t_min), (far * (1.0 + 1e-9) + 1e-9).min(t_max))
-                }
-                None => return,
-            }
-        } else {
-            (t_min, t_max)
-        };
         let member_ray = member.ray(ray);
         member.shape.crossings(&member_ray, t_min, t_max, &mut |hit| {
             if self.keeps(index, ray.at(hit.t)) {
@@ -384,6 +407,23 @@ impl CsgShape {
                 ControlFlow::Continue(())
             }
         });
+    }
+
+    /// The nearest kept crossing of member `index` in `(t_min, t_max)`: for a union, which
+    /// keeps every crossing, the member's own nearest hit (no list of its crossings).
+    fn member_nearest(&self, index: usize, ray: &Ray, inverse: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
+        if self.operation == CsgOperation::Union {
+            let (t_min, t_max) = self.member_range(index, ray, inverse, t_min, t_max)?;
+            let member = &self.members[index];
+            let hit = member.shape.intersect(&member.ray(ray), t_min, t_max)?;
+            return Some(Hit { part: hit.part + (member.leaf_base << PART_BITS), ..hit });
+        }
+        let mut nearest = None;
+        self.member_crossings(index, ray, inverse, t_min, t_max, &mut |hit| {
+            nearest = Some(*hit);
+            ControlFlow::Break(())
+        });
+        nearest
     }
 }
 
@@ -409,13 +449,27 @@ impl Shape for CsgShape {
     }
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        let inverse = DVec3::ONE / ray.direction;
+        if let Some(tree) = &self.tree {
+            // Members in the tree's order; on a tie in t the first member wins, as below.
+            let mut nearest: Option<(Hit, u32)> = None;
+            tree.visit_ray(ray, t_min, t_max, &mut |index, limit| {
+                let range_end = nearest.map_or(t_max, |(hit, _)| hit.t.next_up());
+                if let Some(hit) = self.member_nearest(index as usize, ray, inverse, t_min, range_end)
+                    && nearest.is_none_or(|(best, at)| hit.t < best.t || (hit.t == best.t && index < at))
+                {
+                    nearest = Some((hit, index));
+                }
+                nearest.map_or(limit, |(hit, _)| hit.t.next_up())
+            });
+            return nearest.map(|(hit, _)| hit);
+        }
         let mut nearest: Option<Hit> = None;
         for index in 0..self.members.len() {
             let limit = nearest.map_or(t_max, |h| h.t);
-            self.member_crossings(index, ray, t_min, limit, &mut |hit| {
-                nearest = Some(*hit);
-                ControlFlow::Break(())
-            });
+            if let Some(hit) = self.member_nearest(index, ray, inverse, t_min, limit) {
+                nearest = Some(hit);
+            }
         }
         nearest
     }
@@ -432,7 +486,7 @@ impl Shape for CsgShape {
 
     fn inside(&self, point: DVec3) -> bool {
         match self.operation {
-            CsgOperation::Union | CsgOperation::Merge => self.members.iter().any(|m| m.contains(point)),
+            CsgOperation::Union | CsgOperation::Merge => self.another_contains(point, None),
             CsgOperation::Intersection | CsgOperation::Difference => self.members.iter().all(|m| m.contains(point)),
         }
     }
@@ -479,14 +533,23 @@ impl Shape for CsgShape {
 
     fn crossings(&self, ray: &Ray, t_min: f64, t_max: f64, visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>) {
         // Every member's kept crossings, merged in t order.
+        let inverse = DVec3::ONE / ray.direction;
         let mut all = Vec::new();
-        for index in 0..self.members.len() {
-            self.member_crossings(index, ray, t_min, t_max, &mut |hit| {
+        let mut collect = |index: usize| {
+            self.member_crossings(index, ray, inverse, t_min, t_max, &mut |hit| {
                 all.push(*hit);
                 ControlFlow::Continue(())
             });
+        };
+        match &self.tree {
+            Some(tree) => tree.visit_ray(ray, t_min, t_max, &mut |index, limit| {
+                collect(index as usize);
+                limit
+            }),
+            None => (0..self.members.len()).for_each(&mut collect),
         }
-        all.sort_by(|a, b| a.t.total_cmp(&b.t));
+        // Equal t in member order (leaves are numbered in member order).
+        all.sort_by(|a, b| a.t.total_cmp(&b.t).then(a.part.cmp(&b.part)));
         for hit in &all {
             if visit(hit).is_break() {
                 return;
@@ -686,6 +749,46 @@ mod tests {
             ],
         );
         prism_api::contract::check_shape(&nested);
+    }
+
+    /// A union or merge of many members finds its hits through a tree of them: the same hits,
+    /// crossings and inside tests as the plain loop over every member, ties included
+    /// (members that share surfaces).
+    #[test]
+    fn many_members_answer_through_their_tree_as_through_all() {
+        use prism_api::contract::TestRng;
+        let mut rng = TestRng::new(11);
+        for operation in [CsgOperation::Union, CsgOperation::Merge] {
+            let mut members: Vec<CsgMember> = (0..24)
+                .map(|i| {
+                    let centre = DVec3::new((i % 6) as f64 * 0.7, (i / 6) as f64 * 0.7, rng.range(-0.2, 0.2));
+                    member(sphere(centre, rng.range(0.2, 0.6)))
+                })
+                .collect();
+            // A repeated member (ties in t) and an inverted one (met everywhere).
+            members.push(members[3].clone());
+            members.push(CsgMember::new(sphere(DVec3::new(1.0, 1.0, 0.0), 5.0), DAffine3::IDENTITY, true));
+            let tree = CsgShape::new(operation, members);
+            assert!(tree.tree.is_some());
+            let plain = CsgShape { tree: None, ..tree.clone() };
+            let region = Aabb { min: DVec3::splat(-1.5), max: DVec3::new(5.0, 3.5, 1.5) };
+            for _ in 0..4000 {
+                let ray = Ray::new(rng.point_in(&region), rng.unit_vector());
+                let hit = |g: &CsgShape| g.intersect(&ray, 1e-9, f64::INFINITY).map(|h| (h.t, h.part));
+                assert_eq!(hit(&tree), hit(&plain), "{operation:?} {ray:?}");
+                let all = |g: &CsgShape| {
+                    let mut ts = Vec::new();
+                    g.crossings(&ray, 1e-9, f64::INFINITY, &mut |h| {
+                        ts.push((h.t, h.part));
+                        ControlFlow::Continue(())
+                    });
+                    ts
+                };
+                assert_eq!(all(&tree), all(&plain), "{operation:?} {ray:?}");
+                let p = rng.point_in(&region);
+                assert_eq!(tree.inside(p), plain.inside(p), "{operation:?} {p}");
+            }
+        }
     }
 
     /// An emissive group's directions follow their density from references outside it, in

@@ -2,4 +2,5 @@
 //! mesh shape with its bottom-level BVH, area sampling) and CSG groups over any shapes.
 
 pub mod csg;
+pub mod member_tree;
 pub mod mesh;

@@ -76,12 +76,20 @@ impl Aabb {
 
     /// The parametric interval in which `ray` is inside the box, if any, clipped to [t_min, t_max].
     pub fn ray_interval(&self, ray: &crate::Ray, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
+        self.ray_interval_inverse(ray.origin, DVec3::ONE / ray.direction, t_min, t_max)
+    }
+
+    /// [`Aabb::ray_interval`] for a ray from `origin` given by the reciprocal of its
+    /// direction (`1 / d` per axis), computed once for the many boxes one ray meets: the same
+    /// result.
+    #[inline]
+    pub fn ray_interval_inverse(&self, origin: DVec3, inverse: DVec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
         let mut t0 = t_min;
         let mut t1 = t_max;
         for axis in 0..3 {
-            let inv = 1.0 / ray.direction[axis];
-            let mut near = (self.min[axis] - ray.origin[axis]) * inv;
-            let mut far = (self.max[axis] - ray.origin[axis]) * inv;
+            let inv = inverse[axis];
+            let mut near = (self.min[axis] - origin[axis]) * inv;
+            let mut far = (self.max[axis] - origin[axis]) * inv;
             if near > far {
                 std::mem::swap(&mut near, &mut far);
             }

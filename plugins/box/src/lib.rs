@@ -2,9 +2,10 @@
 
 #![forbid(unsafe_code)]
 
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
-use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
+use prism_api::{Aabb, AreaSample, CROSSING_GAP, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -69,19 +70,9 @@ fn face_uv_axes(axis: usize) -> (usize, usize) {
 }
 
 impl BoxShape {
-    /// Areas of the faces perpendicular to x, y and z (each one of a pair).
-    fn face_areas(&self) -> DVec3 {
-        let size = self.max - self.min;
-        DVec3::new(size.y * size.z, size.z * size.x, size.x * size.y)
-    }
-}
-
-impl Shape for BoxShape {
-    fn bounds(&self) -> Aabb {
-        Aabb { min: self.min, max: self.max }
-    }
-
-    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+    /// Where the ray enters and leaves the box (t and face), whatever their sign; `None`
+    /// when it misses.
+    fn slabs(&self, ray: &Ray) -> Option<((f64, u32), (f64, u32))> {
         let mut enter = (f64::NEG_INFINITY, 0u32);
         let mut exit = (f64::INFINITY, 0u32);
         for axis in 0..3 {
@@ -106,11 +97,43 @@ impl Shape for BoxShape {
                 exit = far;
             }
         }
-        if enter.0 > exit.0 {
-            return None;
-        }
+        (enter.0 <= exit.0).then_some((enter, exit))
+    }
+
+    /// Areas of the faces perpendicular to x, y and z (each one of a pair).
+    fn face_areas(&self) -> DVec3 {
+        let size = self.max - self.min;
+        DVec3::new(size.y * size.z, size.z * size.x, size.x * size.y)
+    }
+}
+
+impl Shape for BoxShape {
+    fn bounds(&self) -> Aabb {
+        Aabb { min: self.min, max: self.max }
+    }
+
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        let (enter, exit) = self.slabs(ray)?;
         // The entry when it is in range, else the exit (the ray starts inside).
         [enter, exit].into_iter().find(|&(t, _)| t > t_min && t < t_max).map(|(t, face)| Hit::on_part(t, face))
+    }
+
+    /// Both crossings from one slab test: the entry, then the exit, each when in range and
+    /// the exit only when it lies beyond the entry by the gap `crossings_by_intersect`
+    /// steps over (so the same crossings as the trait's default, which would test the
+    /// slabs once per crossing).
+    fn crossings(&self, ray: &Ray, t_min: f64, t_max: f64, visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>) {
+        let Some((enter, exit)) = self.slabs(ray) else { return };
+        let gap = CROSSING_GAP * (self.max - self.min).max_element() / ray.direction.length();
+        let mut t_min = t_min;
+        for (t, face) in [enter, exit] {
+            if t > t_min && t < t_max {
+                if visit(&Hit::on_part(t, face)).is_break() {
+                    return;
+                }
+                t_min = t + gap.max(t.abs() * 1e-14);
+            }
+        }
     }
 
     fn inside(&self, point: DVec3) -> bool {
@@ -202,6 +225,37 @@ mod tests {
         check_shape(&BoxShape { min: DVec3::new(-50.0, -0.01, -30.0), max: DVec3::new(50.0, 0.01, 30.0) });
         check_shape(&BoxShape { min: DVec3::new(0.1, 0.2, 0.3), max: DVec3::new(0.1005, 0.2002, 0.3001) });
         check_dpdu(&BoxShape { min: DVec3::new(-1.0, 0.0, 2.0), max: DVec3::new(3.0, 0.5, 2.25) });
+    }
+
+    #[test]
+    fn crossings_are_the_defaults_from_one_slab_test() {
+        use prism_api::contract::TestRng;
+        let boxes = [cube(), BoxShape { min: DVec3::new(0.1, 0.2, 0.3), max: DVec3::new(0.1005, 0.2002, 0.3001) }];
+        let mut rng = TestRng::new(7);
+        fn collect(each: impl FnOnce(&mut dyn FnMut(&Hit) -> ControlFlow<()>)) -> Vec<(f64, u32)> {
+            let mut hits = Vec::new();
+            each(&mut |hit| {
+                hits.push((hit.t, hit.part));
+                ControlFlow::Continue(())
+            });
+            hits
+        }
+        for b in &boxes {
+            let around = Aabb { min: b.min - (b.max - b.min), max: b.max + (b.max - b.min) };
+            for i in 0..20_000 {
+                let origin = rng.point_in(&around);
+                // Some rays along an axis (parallel to two slabs), some grazing a face.
+                let mut direction = rng.unit_vector() * rng.range(0.5, 3.0);
+                if i % 7 == 0 {
+                    direction = DVec3::X * direction.x.signum();
+                }
+                let ray = Ray::new(origin, direction);
+                let t_min = if i % 3 == 0 { rng.range(-1.0, 1.0) } else { 0.0 };
+                let native = collect(|visit| b.crossings(&ray, t_min, f64::INFINITY, visit));
+                let default = collect(|visit| prism_api::crossings_by_intersect(b, &ray, t_min, f64::INFINITY, visit));
+                assert_eq!(native, default, "{ray:?} from {t_min}");
+            }
+        }
     }
 
     #[test]

@@ -1,0 +1,193 @@
+//! A bounding volume hierarchy over the members of a CSG group, so that a ray or a point
+//! meets the few members near it instead of every one: POV-Ray puts a union's members into
+//! its scene-wide hierarchy (`Split_Unions`); a group here keeps them together, with a tree
+//! of its own.
+
+use glam::DVec3;
+use prism_api::{Aabb, Ray};
+
+/// Members per leaf at most.
+const LEAF_MEMBERS: usize = 2;
+
+/// A tree over members' bounds (in the group's space); members without finite bounds are
+/// met by every query.
+#[derive(Clone, Debug)]
+pub struct MemberTree {
+    /// Root first; an interior node's children are `first` and `first + 1`.
+    nodes: Vec<Node>,
+    /// Member indices; each leaf holds a run of them.
+    order: Vec<u32>,
+    /// The bounds of the members in `order`.
+    order_bounds: Vec<Aabb>,
+    /// Members every query meets (unbounded, or inverted: they fill all space but a hole).
+    everywhere: Vec<u32>,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    bounds: Aabb,
+    /// Leaf: the first of its members in `order`; interior: its first child.
+    first: u32,
+    /// Members of a leaf; 0 for an interior node.
+    count: u32,
+}
+
+impl MemberTree {
+    /// The tree over members with bounds `bounds` (indexed like the members; infinite for
+    /// those met everywhere).
+    pub fn new(bounds: &[Aabb]) -> Self {
+        let (mut bounded, mut everywhere) = (Vec::new(), Vec::new());
+        for (index, b) in bounds.iter().enumerate() {
+            if b.is_bounded() && !b.is_empty() {
+                bounded.push((index as u32, *b));
+            } else {
+                everywhere.push(index as u32);
+            }
+        }
+        let mut tree = Self {
+            nodes: Vec::new(),
+            order: Vec::with_capacity(bounded.len()),
+            order_bounds: Vec::with_capacity(bounded.len()),
+            everywhere,
+        };
+        if !bounded.is_empty() {
+            tree.nodes.push(Node { bounds: Aabb::EMPTY, first: 0, count: 0 });
+            tree.build(0, &mut bounded);
+        }
+        tree
+    }
+
+    /// Fills node `at` with `members`: a leaf when few, else split at the median centre along
+    /// the axis where the centres spread most.
+    fn build(&mut self, at: usize, members: &mut [(u32, Aabb)]) {
+        let bounds = members.iter().fold(Aabb::EMPTY, |b, (_, m)| b.union(*m));
+        if members.len() <= LEAF_MEMBERS {
+            self.nodes[at] = Node { bounds, first: self.order.len() as u32, count: members.len() as u32 };
+            self.order.extend(members.iter().map(|(index, _)| *index));
+            self.order_bounds.extend(members.iter().map(|(_, b)| *b));
+            return;
+        }
+        let centres = members.iter().fold(Aabb::EMPTY, |b, (_, m)| b.grow(m.center()));
+        let extent = centres.max - centres.min;
+        let axis = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
+        let half = members.len() / 2;
+        members.select_nth_unstable_by(half, |a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
+        let first = self.nodes.len();
+        self.nodes[at] = Node { bounds, first: first as u32, count: 0 };
+        self.nodes.push(Node { bounds: Aabb::EMPTY, first: 0, count: 0 });
+        self.nodes.push(Node { bounds: Aabb::EMPTY, first: 0, count: 0 });
+        let (low, high) = members.split_at_mut(half);
+        self.build(first, low);
+        self.build(first + 1, high);
+    }
+
+    /// Calls `visit` with each member whose bounds the ray meets in `(t_min, limit)`, nearer
+    /// boxes first; `visit` returns the new limit (the nearest hit found so far), which
+    /// prunes what is left. Members met everywhere come first.
+    pub fn visit_ray(&self, ray: &Ray, t_min: f64, limit: f64, visit: &mut dyn FnMut(u32, f64) -> f64) {
+        let mut limit = limit;
+        for &index in &self.everywhere {
+            limit = visit(index, limit);
+        }
+        if self.nodes.is_empty() {
+            return;
+        }
+        let inverse = DVec3::ONE / ray.direction;
+        let entry = |at: usize, limit: f64| {
+            self.nodes[at].bounds.ray_interval_inverse(ray.origin, inverse, t_min, limit).map(|(t, _)| t)
+        };
+        // Each node's box is tested once, when its parent is opened; popped, a node is
+        // skipped when a hit found since lies before its entry.
+        let mut stack = Stack::new();
+        match entry(0, limit) {
+            Some(t) => stack.push((0, t)),
+            None => return,
+        }
+        while let Some((at, t_entry)) = stack.pop() {
+            if t_entry > limit {
+                continue;
+            }
+            let node = self.nodes[at];
+            if node.count > 0 {
+                for &index in &self.order[node.first as usize..(node.first + node.count) as usize] {
+                    limit = visit(index, limit);
+                }
+                continue;
+            }
+            let (a, b) = (node.first as usize, node.first as usize + 1);
+            // The nearer child is popped first.
+            match (entry(a, limit), entry(b, limit)) {
+                (Some(ta), Some(tb)) if ta <= tb => {
+                    stack.push((b, tb));
+                    stack.push((a, ta));
+                }
+                (Some(ta), Some(tb)) => {
+                    stack.push((a, ta));
+                    stack.push((b, tb));
+                }
+                (Some(ta), None) => stack.push((a, ta)),
+                (None, Some(tb)) => stack.push((b, tb)),
+                (None, None) => {}
+            }
+        }
+    }
+
+    /// True when `test` holds for some member whose bounds hold `point` (members met
+    /// everywhere included), asking no more members once one holds.
+    pub fn any_at(&self, point: DVec3, test: &mut dyn FnMut(u32) -> bool) -> bool {
+        if self.everywhere.iter().any(|&index| test(index)) {
+            return true;
+        }
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let mut stack = Stack::new();
+        stack.push(0usize);
+        while let Some(at) = stack.pop() {
+            let node = self.nodes[at];
+            if !node.bounds.contains(point, 0.0) {
+                continue;
+            }
+            if node.count > 0 {
+                let run = node.first as usize..(node.first + node.count) as usize;
+                let mut members = self.order[run.clone()].iter().zip(&self.order_bounds[run]);
+                if members.any(|(&index, bounds)| bounds.contains(point, 0.0) && test(index)) {
+                    return true;
+                }
+            } else {
+                stack.push(node.first as usize);
+                stack.push(node.first as usize + 1);
+            }
+        }
+        false
+    }
+}
+
+/// The nodes still to visit, on the stack frame (a median split over at most 2^16 leaves
+/// is at most 17 levels deep; each level leaves one node behind).
+struct Stack<T: Copy + Default> {
+    items: [T; 64],
+    len: usize,
+}
+
+impl<T: Copy + Default> Stack<T> {
+    fn new() -> Self {
+        Self { items: [T::default(); 64], len: 0 }
+    }
+
+    fn push(&mut self, item: T) {
+        self.items[self.len] = item;
+        self.len += 1;
+    }
+
+    fn pop(&mut self) -> Option<T> {
+        self.len = self.len.checked_sub(1)?;
+        Some(self.items[self.len])
+    }
+}
