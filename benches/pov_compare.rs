@@ -1,6 +1,8 @@
 //! Prism and POV-Ray side by side on the same scenes: every parity scene and the seed room,
 //! at 1000 x 563 with and without antialiasing, each renderer as a whole process (`prism
-//! render` and `povray` on the file `prism export pov` writes), same size, same samples.
+//! render` and `povray` on the file `prism export pov` writes), same size, same samples; and
+//! POV-Ray's sample scenes of `scenes/povray-examples` (rows `example-NAME`), where POV-Ray
+//! renders the original file, at the benchmark's width and the scene's own aspect ratio.
 //! Prints wall time, CPU time, their ratios, each renderer's own render-only time, and the
 //! difference between the two images.
 //!
@@ -209,6 +211,16 @@ fn main() {
         .collect();
     scenes.sort();
     scenes.push(("seed-room".into(), root.join("scenes/room.toml")));
+    // POV-Ray's own sample scenes, which POV-Ray renders from the original file.
+    let mut examples: Vec<(String, PathBuf)> = std::fs::read_dir(root.join("scenes/povray-examples"))
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            (p.extension()? == "toml").then(|| (format!("example-{}", p.file_stem().unwrap().to_string_lossy()), p))
+        })
+        .collect();
+    examples.sort();
+    scenes.extend(examples);
     if !o.names.is_empty() {
         scenes.retain(|(n, _)| o.names.contains(n));
     }
@@ -244,6 +256,17 @@ fn main() {
             );
             variants.push(("equal-error".into(), variants[0].1.clone(), Some(prism_samples)));
         }
+        // An original sample scene keeps its aspect ratio at the benchmark's width.
+        let original_options = text.lines().find_map(|l| l.strip_prefix("# povray-options:")).map(str::trim);
+        let (w, h) = match original_options {
+            Some(options) => {
+                let size = |flag: &str| -> f64 {
+                    options.split_whitespace().find_map(|t| t.strip_prefix(flag)?.parse().ok()).expect("+W and +H")
+                };
+                (w, (f64::from(w) * size("+H") / size("+W")).round() as u32)
+            }
+            None => (w, h),
+        };
         for (variant, antialias, prism_samples) in &variants {
             // The scene at the benchmark size and sampling, by including it.
             let tag = format!("{name}-{variant}");
@@ -254,11 +277,27 @@ fn main() {
                 format!("include = [\"{include}\"]\n\n[render]\nwidth = {w}\nheight = {h}\n{antialias}\n"),
             )
             .unwrap();
-            let pov = work.join(format!("{tag}.pov"));
-            let status = Command::new(prism).args(["export", "pov"]).arg(&toml).arg("-o").arg(&pov).status().unwrap();
-            assert!(status.success(), "export of {tag} failed");
-            let pov_text = std::fs::read_to_string(&pov).unwrap();
-            let pov_options = prism::export::pov::options_of(&pov_text).expect("options line").to_string();
+            let (pov, pov_options) = match original_options {
+                Some(options) => {
+                    // The original file, at the benchmark's size with the antialiasing asked for.
+                    let aa = if variant == "noaa" { "-A" } else { "+A0.3 +AM1 +R3" };
+                    let kept: Vec<&str> = options
+                        .split_whitespace()
+                        .filter(|t| {
+                            !t.starts_with("+W") && !t.starts_with("+H") && !t.starts_with("+A") && !t.starts_with("+R")
+                        })
+                        .collect();
+                    (path.with_extension("pov"), format!("+W{w} +H{h} {aa} {}", kept.join(" ")))
+                }
+                None => {
+                    let pov = work.join(format!("{tag}.pov"));
+                    let status =
+                        Command::new(prism).args(["export", "pov"]).arg(&toml).arg("-o").arg(&pov).status().unwrap();
+                    assert!(status.success(), "export of {tag} failed");
+                    let pov_text = std::fs::read_to_string(&pov).unwrap();
+                    (pov, prism::export::pov::options_of(&pov_text).expect("options line").to_string())
+                }
+            };
             let aa_label: String = pov_options
                 .split_whitespace()
                 .filter(|t| !t.starts_with("+W") && !t.starts_with("+H"))
