@@ -14,6 +14,7 @@
 
 #![forbid(unsafe_code)]
 
+use std::cell::RefCell;
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
@@ -117,12 +118,60 @@ pub struct Blob {
     bounds: Aabb,
 }
 
+thread_local! {
+    /// Each thread's scratch lists for [`Blob::nearest_root`] (component spans, piece
+    /// breaks), kept between rays instead of allocated for each.
+    static SCRATCH: RefCell<(Vec<Span>, Vec<f64>)> = const { RefCell::new((Vec::new(), Vec::new())) };
+}
+
 /// Where a ray is inside one component's sphere, in distance along the unit direction.
 #[derive(Clone, Copy, Debug)]
 struct Span {
     enter: f64,
     exit: f64,
     component: usize,
+}
+
+/// True when the quartic with `coefficients` (constant first) certainly has no root in
+/// `[lo, hi]`: on that interval in Bernstein form, all its coefficients have one sign and
+/// clear the rounding of their computation (the polynomial lies within their hull). False
+/// means nothing: the roots are then searched.
+fn certainly_no_root(coefficients: &[f64; 5], lo: f64, hi: f64) -> bool {
+    let h = hi - lo;
+    // Power coefficients of q(x) = p(lo + h x), and the same sums over absolute values to
+    // bound the rounding (a Taylor shift by lo, then a scaling by h).
+    let (mut q, mut q_abs) = (*coefficients, coefficients.map(f64::abs));
+    for i in 0..4 {
+        for j in (i..4).rev() {
+            q[j] += lo * q[j + 1];
+            q_abs[j] += lo.abs() * q_abs[j + 1];
+        }
+    }
+    let mut scale = 1.0;
+    for (c, a) in q.iter_mut().zip(q_abs.iter_mut()) {
+        *c *= scale;
+        *a *= scale;
+        scale *= h;
+    }
+    // Bernstein coefficients b_j = sum over i <= j of C(j, i) / C(4, i) q_i.
+    const WEIGHTS: [[f64; 5]; 5] = [
+        [1.0, 0.0, 0.0, 0.0, 0.0],
+        [1.0, 0.25, 0.0, 0.0, 0.0],
+        [1.0, 0.5, 1.0 / 6.0, 0.0, 0.0],
+        [1.0, 0.75, 0.5, 0.25, 0.0],
+        [1.0, 1.0, 1.0, 1.0, 1.0],
+    ];
+    let (mut positive, mut negative) = (true, true);
+    for weights in &WEIGHTS {
+        let (b, bound) = weights
+            .iter()
+            .zip(q.iter().zip(&q_abs))
+            .fold((0.0, 0.0), |(b, bound), (w, (c, a))| (b + w * c, bound + w * a));
+        let slack = 1e-12 * bound;
+        positive &= b > slack;
+        negative &= b < -slack;
+    }
+    (positive || negative) && q.iter().all(|c| c.is_finite())
 }
 
 impl Blob {
@@ -155,24 +204,24 @@ impl Blob {
     }
 }
 
-impl Shape for Blob {
-    fn bounds(&self) -> Aabb {
-        self.bounds
-    }
-
-    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        let (t_enter, t_exit) = self.bounds.ray_interval(ray, t_min, t_max)?;
+impl Blob {
+    /// The nearest root of the field in range along `ray`, from the bounds' entry `t_enter`
+    /// over `span` (unit-direction length): the pieces between component boundaries in
+    /// order, each a quartic. `spans` and `breaks` are scratch space.
+    fn nearest_root(
+        &self,
+        ray: &Ray,
+        (t_min, t_max): (f64, f64),
+        (t_enter, span): (f64, f64),
+        spans: &mut Vec<Span>,
+        breaks: &mut Vec<f64>,
+    ) -> Option<Hit> {
         let length = ray.direction.length();
-        if !(length > 0.0 && length.is_finite() && t_enter.is_finite() && t_exit.is_finite()) {
-            return None;
-        }
-        // Work from the bounds' entry along the unit direction: u = (t - t_enter) * length.
         let dir = ray.direction / length;
         let o = ray.at(t_enter);
-        let span = (t_exit - t_enter) * length;
-
-        let mut spans: Vec<Span> = Vec::new();
-        let mut breaks: Vec<f64> = vec![0.0, span];
+        spans.clear();
+        breaks.clear();
+        breaks.extend([0.0, span]);
         for (component, c) in self.components.iter().enumerate() {
             if c.strength == 0.0 {
                 continue;
@@ -234,6 +283,9 @@ impl Shape for Blob {
             // The field and its slope are continuous across sphere boundaries, so a root on a
             // breakpoint is searched slightly beyond both ends of the piece: rounding cannot
             // then hide it between two pieces.
+            if certainly_no_root(&coefficients, -margin, s1 - s0 + margin) {
+                continue;
+            }
             let roots = polynomial_roots(&coefficients, -margin, s1 - s0 + margin);
             if let Some(t) =
                 roots.as_slice().iter().map(|&w| t_enter + (s0 + w) / length).find(|&t| t > t_min && t < t_max)
@@ -242,6 +294,24 @@ impl Shape for Blob {
             }
         }
         None
+    }
+}
+
+impl Shape for Blob {
+    fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        let (t_enter, t_exit) = self.bounds.ray_interval(ray, t_min, t_max)?;
+        let length = ray.direction.length();
+        if !(length > 0.0 && length.is_finite() && t_enter.is_finite() && t_exit.is_finite()) {
+            return None;
+        }
+        // Work from the bounds' entry along the unit direction: u = (t - t_enter) * length.
+        let span = (t_exit - t_enter) * length;
+        SCRATCH
+            .with_borrow_mut(|(spans, breaks)| self.nearest_root(ray, (t_min, t_max), (t_enter, span), spans, breaks))
     }
 
     fn inside(&self, point: DVec3) -> bool {
@@ -290,6 +360,35 @@ impl Shape for Blob {
 mod tests {
     use super::*;
     use prism_api::contract::{TestRng, check_dpdu, check_shape};
+
+    #[test]
+    fn a_piece_is_skipped_only_when_it_has_no_root() {
+        // Random quartics, and quartics with a root placed near an end of the interval.
+        let mut rng = TestRng::new(3);
+        let (mut skipped, mut total) = (0, 0);
+        for i in 0..200_000 {
+            let (lo, hi) = (rng.range(-0.1, 0.0), rng.range(0.01, 3.0));
+            let coefficients = if i % 2 == 0 {
+                [0.0; 5].map(|_| rng.range(-2.0, 2.0))
+            } else {
+                // (w - r) times a random cubic, r just inside or outside [lo, hi].
+                let r = if i % 4 == 1 { hi + rng.range(-1e-9, 1e-9) } else { lo + rng.range(-1e-9, 1e-9) };
+                let c = [0.0; 4].map(|_| rng.range(-2.0, 2.0));
+                [-r * c[0], c[0] - r * c[1], c[1] - r * c[2], c[2] - r * c[3], c[3]]
+            };
+            total += 1;
+            if certainly_no_root(&coefficients, lo, hi) {
+                skipped += 1;
+                let roots = polynomial_roots(&coefficients, lo, hi);
+                assert!(
+                    roots.as_slice().is_empty(),
+                    "{coefficients:?} on [{lo}, {hi}] has roots {:?}",
+                    roots.as_slice()
+                );
+            }
+        }
+        assert!(skipped > total / 4, "only {skipped} of {total} pieces skipped");
+    }
 
     fn single(threshold: f64) -> Blob {
         Blob::new(threshold, vec![Component::new(DVec3::ZERO, 1.0, 1.0)])
