@@ -766,6 +766,28 @@ mod tests {
         prism_api::contract::check_shape(&nested);
     }
 
+    /// Asserts that two groups give the same nearest hits, crossings and inside tests for
+    /// 4000 random rays and points in `region`.
+    fn assert_same_answers(a: &CsgShape, b: &CsgShape, region: &Aabb, rng: &mut prism_api::contract::TestRng) {
+        let operation = a.operation;
+        for _ in 0..4000 {
+            let ray = Ray::new(rng.point_in(region), rng.unit_vector());
+            let hit = |g: &CsgShape| g.intersect(&ray, 1e-9, f64::INFINITY).map(|h| (h.t, h.part));
+            assert_eq!(hit(a), hit(b), "{operation:?} {ray:?}");
+            let all = |g: &CsgShape| {
+                let mut ts = Vec::new();
+                g.crossings(&ray, 1e-9, f64::INFINITY, &mut |h| {
+                    ts.push((h.t, h.part));
+                    ControlFlow::Continue(())
+                });
+                ts
+            };
+            assert_eq!(all(a), all(b), "{operation:?} {ray:?}");
+            let p = rng.point_in(region);
+            assert_eq!(a.inside(p), b.inside(p), "{operation:?} {p}");
+        }
+    }
+
     /// A union or merge of many members finds its hits through a tree of them: the same hits,
     /// crossings and inside tests as the plain loop over every member, ties included
     /// (members that share surfaces).
@@ -787,22 +809,7 @@ mod tests {
             assert!(tree.tree.is_some());
             let plain = CsgShape { tree: None, ..tree.clone() };
             let region = Aabb { min: DVec3::splat(-1.5), max: DVec3::new(5.0, 3.5, 1.5) };
-            for _ in 0..4000 {
-                let ray = Ray::new(rng.point_in(&region), rng.unit_vector());
-                let hit = |g: &CsgShape| g.intersect(&ray, 1e-9, f64::INFINITY).map(|h| (h.t, h.part));
-                assert_eq!(hit(&tree), hit(&plain), "{operation:?} {ray:?}");
-                let all = |g: &CsgShape| {
-                    let mut ts = Vec::new();
-                    g.crossings(&ray, 1e-9, f64::INFINITY, &mut |h| {
-                        ts.push((h.t, h.part));
-                        ControlFlow::Continue(())
-                    });
-                    ts
-                };
-                assert_eq!(all(&tree), all(&plain), "{operation:?} {ray:?}");
-                let p = rng.point_in(&region);
-                assert_eq!(tree.inside(p), plain.inside(p), "{operation:?} {p}");
-            }
+            assert_same_answers(&tree, &plain, &region, &mut rng);
         }
     }
 
@@ -831,22 +838,7 @@ mod tests {
             }
             assert!(bounded.members[1..].iter().all(|m| m.surface_bounds.is_bounded()));
             let region = Aabb { min: DVec3::splat(-3.0), max: DVec3::splat(3.0) };
-            for _ in 0..4000 {
-                let ray = Ray::new(rng.point_in(&region), rng.unit_vector());
-                let hit = |g: &CsgShape| g.intersect(&ray, 1e-9, f64::INFINITY).map(|h| (h.t, h.part));
-                assert_eq!(hit(&bounded), hit(&unbounded), "{operation:?} {ray:?}");
-                let all = |g: &CsgShape| {
-                    let mut ts = Vec::new();
-                    g.crossings(&ray, 1e-9, f64::INFINITY, &mut |h| {
-                        ts.push((h.t, h.part));
-                        ControlFlow::Continue(())
-                    });
-                    ts
-                };
-                assert_eq!(all(&bounded), all(&unbounded), "{operation:?} {ray:?}");
-                let p = rng.point_in(&region);
-                assert_eq!(bounded.inside(p), unbounded.inside(p), "{operation:?} {p}");
-            }
+            assert_same_answers(&bounded, &unbounded, &region, &mut rng);
         }
     }
 
