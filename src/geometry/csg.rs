@@ -247,7 +247,7 @@ impl CsgShape {
     fn another_contains(&self, point: DVec3, except: Option<usize>) -> bool {
         let contains = |j: usize| Some(j) != except && self.members[j].contains(point);
         match &self.tree {
-            Some(tree) => tree.any_at(point, &mut |j| contains(j as usize)),
+            Some(tree) => tree.any_at(point, |j| contains(j as usize)),
             None => (0..self.members.len()).any(contains),
         }
     }
@@ -265,7 +265,10 @@ impl CsgShape {
             let mut leaves = Vec::new();
             collect_sampling_leaves(&self.members, DAffine3::IDENTITY, &mut leaves);
             // A leaf scaled beyond f64's range has no usable size.
-            leaves.retain(|leaf| leaf.area_estimate().is_finite() && leaf.area_estimate() > 0.0);
+            leaves.retain(|leaf| {
+                let area = leaf.area_estimate();
+                area.is_finite() && area > 0.0
+            });
             let shown: Vec<f64> = leaves.iter().map(|leaf| self.shown_fraction(leaf)).collect();
             let weights: Vec<f64> =
                 leaves.iter().zip(&shown).map(|(leaf, fraction)| leaf.area_estimate() * (fraction + 1e-3)).collect();
@@ -468,9 +471,9 @@ impl Shape for CsgShape {
         if let Some(tree) = &self.tree {
             // Members in the tree's order; on a tie in t the first member wins, as below.
             let mut nearest: Option<(Hit, u32)> = None;
-            tree.visit_ray(ray, t_min, t_max, &mut |index, limit| {
-                let range_end = nearest.map_or(t_max, |(hit, _)| hit.t.next_up());
-                if let Some(hit) = self.member_nearest(index as usize, ray, inverse, t_min, range_end)
+            // The limit is t_max, then just past the nearest hit so far (ties are searched).
+            tree.visit_ray(ray, t_min, t_max, |index, limit| {
+                if let Some(hit) = self.member_nearest(index as usize, ray, inverse, t_min, limit)
                     && nearest.is_none_or(|(best, at)| hit.t < best.t || (hit.t == best.t && index < at))
                 {
                     nearest = Some((hit, index));
@@ -513,15 +516,14 @@ impl Shape for CsgShape {
         // The leaf whose share of [0, 1) holds u.x, and u.x's place within that share.
         let leaves = &self.light_sampling().leaves;
         let mut rest = u.x;
-        let mut chosen = leaves.last()?;
-        for leaf in leaves {
-            if rest < leaf.probability {
-                chosen = leaf;
+        let mut leaf = leaves.last()?;
+        for candidate in leaves {
+            if rest < candidate.probability {
+                leaf = candidate;
                 break;
             }
-            rest -= leaf.probability;
+            rest -= candidate.probability;
         }
-        let leaf = chosen;
         let reuse = (rest / leaf.probability).clamp(0.0, 1.0 - f64::EPSILON);
         let sample = leaf.shape.sample_area(DVec2::new(reuse, u.y))?;
         let ray = Ray::new(reference, leaf.group_from_leaf.transform_point3(sample.point) - reference);
@@ -557,7 +559,7 @@ impl Shape for CsgShape {
             });
         };
         match &self.tree {
-            Some(tree) => tree.visit_ray(ray, t_min, t_max, &mut |index, limit| {
+            Some(tree) => tree.visit_ray(ray, t_min, t_max, |index, limit| {
                 collect(index as usize);
                 limit
             }),

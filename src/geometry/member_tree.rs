@@ -90,7 +90,7 @@ impl MemberTree {
     /// Calls `visit` with each member whose bounds the ray meets in `(t_min, limit)`, nearer
     /// boxes first; `visit` returns the new limit (the nearest hit found so far), which
     /// prunes what is left. Members met everywhere come first.
-    pub fn visit_ray(&self, ray: &Ray, t_min: f64, limit: f64, visit: &mut dyn FnMut(u32, f64) -> f64) {
+    pub fn visit_ray(&self, ray: &Ray, t_min: f64, limit: f64, mut visit: impl FnMut(u32, f64) -> f64) {
         let mut limit = limit;
         for &index in &self.everywhere {
             limit = visit(index, limit);
@@ -140,7 +140,7 @@ impl MemberTree {
 
     /// True when `test` holds for some member whose bounds hold `point` (members met
     /// everywhere included), asking no more members once one holds.
-    pub fn any_at(&self, point: DVec3, test: &mut dyn FnMut(u32) -> bool) -> bool {
+    pub fn any_at(&self, point: DVec3, mut test: impl FnMut(u32) -> bool) -> bool {
         if self.everywhere.iter().any(|&index| test(index)) {
             return true;
         }

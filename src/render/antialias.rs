@@ -94,9 +94,8 @@ impl BorderSamples {
         };
         // Method 1 reads one pixel before each block, method 2 one corner after it.
         let (x0, y0) = (i64::from(block_x0) * size - 1, i64::from(block_y0) * size - 1);
-        let columns_wide = i64::from(block_x1 - block_x0) * size + 2;
-        let rows_high = i64::from(block_y1 - block_y0) * size + 2;
-        let lines = |n: u32| n as usize + 1;
+        let (columns_wide, rows_high, row_lines, column_lines) =
+            Self::layout((block_x0, block_y0), (block_x1, block_y1));
         let cells = |count: usize, len: i64| (0..count * len as usize).map(|_| OnceLock::new()).collect();
         Self {
             phase,
@@ -104,18 +103,29 @@ impl BorderSamples {
             y0,
             columns_wide,
             rows_high,
-            rows: cells(lines(block_y1 - block_y0), columns_wide),
-            columns: cells(lines(block_x1 - block_x0), rows_high),
+            rows: cells(row_lines, columns_wide),
+            columns: cells(column_lines, rows_high),
         }
     }
 
     /// Bytes [`BorderSamples::new`] allocates for the same arguments.
-    pub fn bytes((block_x0, block_y0): (u32, u32), (block_x1, block_y1): (u32, u32)) -> u64 {
-        let size = u64::from(BLOCK_SIZE);
-        let (wide, high) = (u64::from(block_x1 - block_x0) * size + 2, u64::from(block_y1 - block_y0) * size + 2);
-        let rows = (u64::from(block_y1 - block_y0) + 1) * wide;
-        let columns = (u64::from(block_x1 - block_x0) + 1) * high;
-        (rows + columns) * std::mem::size_of::<OnceLock<DVec3>>() as u64
+    pub fn bytes(from: (u32, u32), to: (u32, u32)) -> u64 {
+        let (columns_wide, rows_high, row_lines, column_lines) = Self::layout(from, to);
+        let samples = row_lines as u64 * columns_wide as u64 + column_lines as u64 * rows_high as u64;
+        samples * std::mem::size_of::<OnceLock<DVec3>>() as u64
+    }
+
+    /// For the blocks from `from` to `to`: the samples along each shared row and each shared
+    /// column (the blocks' span and one beyond each end), and how many rows and columns.
+    fn layout((block_x0, block_y0): (u32, u32), (block_x1, block_y1): (u32, u32)) -> (i64, i64, usize, usize) {
+        let size = i64::from(BLOCK_SIZE);
+        let (blocks_wide, blocks_high) = (block_x1 - block_x0, block_y1 - block_y0);
+        (
+            i64::from(blocks_wide) * size + 2,
+            i64::from(blocks_high) * size + 2,
+            blocks_high as usize + 1,
+            blocks_wide as usize + 1,
+        )
     }
 
     /// The slot of sample-grid point (x, y) when it lies on a shared line.

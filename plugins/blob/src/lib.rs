@@ -205,18 +205,18 @@ impl Blob {
 }
 
 impl Blob {
-    /// The nearest root of the field in range along `ray`, from the bounds' entry `t_enter`
-    /// over `span` (unit-direction length): the pieces between component boundaries in
-    /// order, each a quartic. `spans` and `breaks` are scratch space.
+    /// The nearest root of the field in range along `ray` (direction of length `length`),
+    /// from the bounds' entry `t_enter` over `span` (unit-direction length): the pieces
+    /// between component boundaries in order, each a quartic. `spans` and `breaks` are
+    /// scratch space.
     fn nearest_root(
         &self,
         ray: &Ray,
         (t_min, t_max): (f64, f64),
-        (t_enter, span): (f64, f64),
+        (t_enter, span, length): (f64, f64, f64),
         spans: &mut Vec<Span>,
         breaks: &mut Vec<f64>,
     ) -> Option<Hit> {
-        let length = ray.direction.length();
         let dir = ray.direction / length;
         let o = ray.at(t_enter);
         spans.clear();
@@ -310,8 +310,9 @@ impl Shape for Blob {
         }
         // Work from the bounds' entry along the unit direction: u = (t - t_enter) * length.
         let span = (t_exit - t_enter) * length;
-        SCRATCH
-            .with_borrow_mut(|(spans, breaks)| self.nearest_root(ray, (t_min, t_max), (t_enter, span), spans, breaks))
+        SCRATCH.with_borrow_mut(|(spans, breaks)| {
+            self.nearest_root(ray, (t_min, t_max), (t_enter, span, length), spans, breaks)
+        })
     }
 
     fn inside(&self, point: DVec3) -> bool {

@@ -126,7 +126,8 @@ pub trait Kernels: Copy {
 
     /// Bit mask of the group's triangles that [`WatertightRay::intersect`] hits with
     /// `0 < t < t_max`, and those hits in `hits` (the entries of other triangles may be
-    /// overwritten with meaningless values). Every implementation returns exactly the scalar test's hits, bit for bit.
+    /// overwritten with meaningless values). Every implementation returns exactly the
+    /// scalar test's hits, bit for bit.
     fn group(self, group: &Group<'_>, ray: &WatertightRay, t_max: f32, hits: &mut GroupHits) -> u32;
 
     /// Hints the CPU to bring the `bytes` at `address` into the cache (any address is
