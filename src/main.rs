@@ -1141,7 +1141,7 @@ fn render_part(mut scene: Scene, args: &RenderArgs, path: &Path) -> Result<(), C
     let whole = samples == (0..total);
     let (film, sums, stats) = match scene.render.integrator {
         IntegratorKind::Classic => {
-            let integrator = prism::render::integrators::classic::Classic::new(&render_scene);
+            let integrator = prism::render::classic(&render_scene, &options);
             part_render(&render_scene, &integrator, region, samples.clone(), whole, &options)?
         }
         IntegratorKind::Path => {

@@ -25,7 +25,7 @@ use std::ops::ControlFlow;
 use std::sync::{Arc, OnceLock};
 
 use glam::{DAffine3, DMat3, DVec2, DVec3};
-use prism_api::{Aabb, DirectionSample, Hit, Ray, Shape, Surface, for_each_crossing, math};
+use prism_api::{Aabb, DirectionSample, Hit, HitPoint, Ray, Shape, Surface, for_each_crossing, math};
 
 use super::member_tree::MemberTree;
 
@@ -373,20 +373,22 @@ impl CsgShape {
 
     /// Group space from the member's surface; normals flipped for inverted members.
     fn to_group(member: &CsgMember, surface: Surface) -> Surface {
-        let sign = if member.inverted { -1.0 } else { 1.0 };
-        let normal = (member.normal_to_group * surface.normal).normalize() * sign;
-        let shading_normal = (member.normal_to_group * surface.shading_normal).normalize() * sign;
+        let HitPoint { point, normal, shading_normal } = Self::point_to_group(member, surface.point_and_normals());
         let dpdu = member.group_from_member.transform_vector3(surface.dpdu);
         // uv units per length: the member's, over how much the transform stretches along dpdu.
         let stretch = dpdu.length() / surface.dpdu.length();
         let uv_density = if stretch > 0.0 && stretch.is_finite() { surface.uv_density / stretch } else { 0.0 };
-        Surface {
+        Surface { point, normal, shading_normal, uv: surface.uv, uv_density, dpdu }
+    }
+
+    /// A member's surface point and normals in the group's space (an inverted member's
+    /// normals turned around).
+    fn point_to_group(member: &CsgMember, surface: HitPoint) -> HitPoint {
+        let sign = if member.inverted { -1.0 } else { 1.0 };
+        HitPoint {
             point: member.group_from_member.transform_point3(surface.point),
-            normal,
-            shading_normal,
-            uv: surface.uv,
-            uv_density,
-            dpdu,
+            normal: (member.normal_to_group * surface.normal).normalize() * sign,
+            shading_normal: (member.normal_to_group * surface.shading_normal).normalize() * sign,
         }
     }
 
@@ -500,6 +502,11 @@ impl Shape for CsgShape {
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
         let (member, member_hit) = self.member_hit(hit);
         Self::to_group(member, member.shape.surface_geometry(&member.ray(ray), &member_hit))
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
+        let (member, member_hit) = self.member_hit(hit);
+        Self::point_to_group(member, member.shape.hit_point(&member.ray(ray), &member_hit))
     }
 
     fn inside(&self, point: DVec3) -> bool {

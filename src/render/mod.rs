@@ -226,9 +226,15 @@ pub enum RenderError {
 pub fn render_frame(scene: &RenderScene, options: &RenderOptions) -> Result<(Film, RenderStats), RenderError> {
     let region = Region::full(scene.settings.width, scene.settings.height);
     match scene.settings.integrator {
-        IntegratorKind::Classic => render(scene, &Classic::new(scene), region, options),
+        IntegratorKind::Classic => render(scene, &classic(scene, options), region, options),
         IntegratorKind::Path => render(scene, &Path::new(scene), region, options),
     }
+}
+
+/// The classic integrator for a render with `options`: first hits carry their uv when
+/// the `uv` AOV is asked for.
+pub fn classic<'a>(scene: &'a RenderScene, options: &RenderOptions) -> Classic<'a> {
+    Classic::new(scene).with_first_hit_uv(options.aovs.contains(&Aov::Uv))
 }
 
 /// A render that fits a time budget: what it made and how.
@@ -361,7 +367,7 @@ pub fn render_remaining(
     let range = 0..scene.settings.samples;
     match scene.settings.integrator {
         IntegratorKind::Classic => {
-            render_samples(scene, &Classic::new(scene), region, range, false, Some(done), options)
+            render_samples(scene, &classic(scene, options), region, range, false, Some(done), options)
         }
         IntegratorKind::Path => render_samples(scene, &Path::new(scene), region, range, false, Some(done), options),
     }

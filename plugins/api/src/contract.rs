@@ -12,7 +12,7 @@
 //! edge, a disc's rim): there rounding legitimately decides, so such a ray is not counted
 //! against the transform-invariance budget. Rays that hit either way must agree. Each hit's
 //! tangent `dpdu` is finite, non-zero, perpendicular to the normal and the same from
-//! `surface` and `surface_geometry`; [`check_dpdu`] checks that it is the derivative of the uv.
+//! `surface` and `surface_geometry`, whose point and normals `hit_point` repeats; [`check_dpdu`] checks that it is the derivative of the uv.
 //! [`Shape::crossings`] lists the ray's crossings in order within the range, the first being
 //! `intersect`'s hit, and for a shape with an inside, `inside` flips across each of them
 //! (what CSG relies on), but for a small budget of grazing rays.
@@ -266,6 +266,11 @@ pub fn check_shape_with(shape: &dyn Shape, config: &ContractConfig) {
             (geometry.point, geometry.normal, geometry.shading_normal, geometry.dpdu)
                 == (surface.point, surface.normal, surface.shading_normal, surface.dpdu),
             "surface_geometry() {geometry:?} differs from surface() {surface:?} in point, normals or dpdu for {ray:?}"
+        );
+        let point = shape.hit_point(&ray, &hit);
+        assert!(
+            point == surface.point_and_normals(),
+            "hit_point() {point:?} differs from surface() {surface:?} in point or normals for {ray:?}"
         );
 
         // A hull holding the segment up to the hit must not be missed.

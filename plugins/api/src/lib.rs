@@ -30,7 +30,7 @@ pub use glam::{DAffine3, DMat3, DVec2, DVec3};
 pub use ray::Ray;
 pub use registry::{ParamError, ShapeParams, ShapeType, shape_type};
 pub use shape::{
-    AreaSample, CROSSING_GAP, DirectionSample, Hit, MAX_CROSSINGS, Shape, Surface, crossings_by_intersect,
+    AreaSample, CROSSING_GAP, DirectionSample, Hit, HitPoint, MAX_CROSSINGS, Shape, Surface, crossings_by_intersect,
     for_each_crossing, pdf_toward_by_area, sample_toward_by_area, sample_toward_flat,
 };
 

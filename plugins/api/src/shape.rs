@@ -63,11 +63,37 @@ impl Surface {
         Self { point, normal, shading_normal: normal, uv, uv_density: 0.0, dpdu: math::tangent(normal) }
     }
 
+    /// The point and normals of this surface, without its uv and tangent.
+    pub fn point_and_normals(&self) -> HitPoint {
+        HitPoint { point: self.point, normal: self.normal, shading_normal: self.shading_normal }
+    }
+
     /// The same surface with tangent `dpdu`, which must be perpendicular to the normal. Where
     /// it cannot be normalised (zero or not finite: a degenerate point of the
     /// parameterisation, a disc's centre) the unit tangent of [`Surface::new`] is kept.
     pub fn with_dpdu(self, dpdu: DVec3) -> Self {
-        if dpdu.try_normalize().is_some() { Self { dpdu, ..self } } else { self }
+        let length_squared = dpdu.length_squared();
+        // What `try_normalize` accepts, without its square root and division.
+        if length_squared > 0.0 && length_squared.is_finite() { Self { dpdu, ..self } } else { self }
+    }
+}
+
+/// A hit point and its normals, in object space: all of a [`Surface`] that shading without
+/// textures or tangents needs (the classic integrator's untextured finishes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HitPoint {
+    /// The hit point.
+    pub point: DVec3,
+    /// Unit geometric normal, as [`Surface::normal`].
+    pub normal: DVec3,
+    /// Unit shading normal, as [`Surface::shading_normal`].
+    pub shading_normal: DVec3,
+}
+
+impl HitPoint {
+    /// A point on an analytic surface: its shading normal is its geometric normal.
+    pub fn new(point: DVec3, normal: DVec3) -> Self {
+        Self { point, normal, shading_normal: normal }
     }
 }
 
@@ -165,6 +191,16 @@ pub trait Shape: Any + Send + Sync + Debug {
     /// `surface` add the uv to it so the two cannot drift apart. The default is `surface`.
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
         self.surface(ray, hit)
+    }
+
+    /// The hit point and normals alone: exactly [`Shape::surface`]'s `point`, `normal` and
+    /// `shading_normal`. The classic integrator calls it for untextured materials, which
+    /// read neither uv nor tangent; override it where the tangent costs work the normals do
+    /// not need (a sphere's longitude tangent takes two square roots and a division), and
+    /// let `surface_geometry` build on it so the two cannot drift apart. The default takes
+    /// them from `surface_geometry`.
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
+        self.surface_geometry(ray, hit).point_and_normals()
     }
 
     /// True when `point` (object space) lies inside the solid. Prism asks it once per render

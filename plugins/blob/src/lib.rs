@@ -19,7 +19,7 @@ use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
 use prism_api::math::polynomial_roots;
-use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
+use prism_api::{Aabb, DVec2, DVec3, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -331,9 +331,14 @@ impl Shape for Blob {
     }
 
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let HitPoint { point, normal, .. } = self.hit_point(ray, hit);
+        Surface::new(point, normal, DVec2::ZERO).with_dpdu(math::longitude_dpdu(point - self.bounds.center(), normal))
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
         let point = ray.at(hit.t);
         let normal = (-self.gradient(point)).try_normalize().unwrap_or_else(|| (-ray.direction).normalize_or(DVec3::Y));
-        Surface::new(point, normal, DVec2::ZERO).with_dpdu(math::longitude_dpdu(point - self.bounds.center(), normal))
+        HitPoint::new(point, normal)
     }
 
     /// No: a blob's surface is an iso-surface of a sum of fields with neither a closed-form

@@ -6,7 +6,9 @@
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
-use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
+use prism_api::{
+    Aabb, AreaSample, DVec2, DVec3, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math, pov,
+};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -151,6 +153,23 @@ impl Cone {
     fn side_normal(&self, radial: DVec3) -> DVec3 {
         (radial - self.slope * self.axis).normalize()
     }
+
+    /// The surface point and normals at a hit, and the point's offset from the axis.
+    fn point_and_radial(&self, ray: &Ray, hit: &Hit) -> (HitPoint, DVec3) {
+        let point = ray.at(hit.t);
+        let local = point - self.base;
+        let s = local.dot(self.axis);
+        let radial = local - s * self.axis;
+        let point = match hit.part {
+            SIDE => HitPoint::new(point, self.side_normal(radial.normalize_or_zero())),
+            part => {
+                let (s_cap, normal) = if part == BASE_CAP { (0.0, -self.axis) } else { (self.height, self.axis) };
+                // Project onto the cap's plane: removes the rounding of ray.at(t) along it.
+                HitPoint::new(self.base + s_cap * self.axis + radial, normal)
+            }
+        };
+        (point, radial)
+    }
 }
 
 impl Shape for Cone {
@@ -241,21 +260,14 @@ impl Shape for Cone {
     }
 
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
-        let point = ray.at(hit.t);
-        let local = point - self.base;
-        let s = local.dot(self.axis);
-        let radial = local - s * self.axis;
+        let (HitPoint { point, normal, .. }, radial) = self.point_and_radial(ray, hit);
         // On the side and the caps alike, u turns the point about the axis by a full turn
         // (zero at the tip and the caps' centres, where the tangent of Surface::new stays).
-        let dpdu = TAU * self.axis.cross(radial);
-        match hit.part {
-            SIDE => Surface::new(point, self.side_normal(radial.normalize_or_zero()), DVec2::ZERO).with_dpdu(dpdu),
-            part => {
-                let (s_cap, normal) = if part == BASE_CAP { (0.0, -self.axis) } else { (self.height, self.axis) };
-                // Project onto the cap's plane: removes the rounding of ray.at(t) along it.
-                Surface::new(self.base + s_cap * self.axis + radial, normal, DVec2::ZERO).with_dpdu(dpdu)
-            }
-        }
+        Surface::new(point, normal, DVec2::ZERO).with_dpdu(TAU * self.axis.cross(radial))
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
+        self.point_and_radial(ray, hit).0
     }
 
     fn area(&self) -> Option<f64> {

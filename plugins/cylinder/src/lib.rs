@@ -6,7 +6,9 @@
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
-use prism_api::{Aabb, AreaSample, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
+use prism_api::{
+    Aabb, AreaSample, DVec2, DVec3, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math, pov,
+};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -102,6 +104,26 @@ impl Cylinder {
         let (sin, cos) = (TAU * u).sin_cos();
         cos * self.tangent + sin * self.bitangent
     }
+
+    /// The surface point and normals at a hit, and the point's offset from the axis
+    /// (before projecting onto the side).
+    fn point_and_radial(&self, ray: &Ray, hit: &Hit) -> (HitPoint, DVec3) {
+        let local = ray.at(hit.t) - self.base;
+        let s = local.dot(self.axis);
+        let radial = local - s * self.axis;
+        let point = match hit.part {
+            SIDE => {
+                let normal = radial.normalize_or(self.tangent);
+                // Project onto the side: removes the rounding of ray.at(t) along the normal.
+                HitPoint::new(self.base + s * self.axis + normal * self.radius, normal)
+            }
+            part => {
+                let (s_cap, normal) = if part == BASE_CAP { (0.0, -self.axis) } else { (self.height, self.axis) };
+                HitPoint::new(self.base + s_cap * self.axis + radial, normal)
+            }
+        };
+        (point, radial)
+    }
 }
 
 impl Shape for Cylinder {
@@ -180,23 +202,18 @@ impl Shape for Cylinder {
     }
 
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
-        let local = ray.at(hit.t) - self.base;
-        let s = local.dot(self.axis);
-        let radial = local - s * self.axis;
-        match hit.part {
-            SIDE => {
-                let normal = radial.normalize_or(self.tangent);
-                // Project onto the side: removes the rounding of ray.at(t) along the normal.
-                let point = self.base + s * self.axis + normal * self.radius;
-                // u turns the normal about the axis by a full turn.
-                Surface::new(point, normal, DVec2::ZERO).with_dpdu(TAU * self.radius * self.axis.cross(normal))
-            }
-            part => {
-                let (s_cap, normal) = if part == BASE_CAP { (0.0, -self.axis) } else { (self.height, self.axis) };
-                Surface::new(self.base + s_cap * self.axis + radial, normal, DVec2::ZERO)
-                    .with_dpdu(TAU * self.axis.cross(radial))
-            }
-        }
+        let (HitPoint { point, normal, .. }, radial) = self.point_and_radial(ray, hit);
+        let dpdu = match hit.part {
+            // u turns the normal about the axis by a full turn.
+            SIDE => TAU * self.radius * self.axis.cross(normal),
+            // On a cap, u turns the point about the axis (no tangent at the centre itself).
+            _ => TAU * self.axis.cross(radial),
+        };
+        Surface::new(point, normal, DVec2::ZERO).with_dpdu(dpdu)
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
+        self.point_and_radial(ray, hit).0
     }
 
     fn area(&self) -> Option<f64> {

@@ -6,7 +6,8 @@ use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
 use prism_api::{
-    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov,
+    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math,
+    pov,
 };
 use schemars::JsonSchema;
 use serde::Deserialize;
@@ -94,6 +95,13 @@ impl Disc {
         let (tangent, bitangent) = math::orthonormal_basis(normal);
         Self { center, normal, radius, hole_radius, tangent, bitangent }
     }
+
+    /// A hit's offset from the centre, projected onto the plane: removes the rounding of
+    /// `ray.at(t)` along the normal.
+    fn in_plane(&self, ray: &Ray, hit: &Hit) -> DVec3 {
+        let local = ray.at(hit.t) - self.center;
+        local - self.normal * self.normal.dot(local)
+    }
 }
 
 impl Shape for Disc {
@@ -126,11 +134,13 @@ impl Shape for Disc {
     }
 
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
-        // Project onto the plane: removes the rounding error of ray.at(t) along the normal.
-        let local = ray.at(hit.t) - self.center;
-        let local = local - self.normal * self.normal.dot(local);
+        let local = self.in_plane(ray, hit);
         // u turns the point about the centre by a full turn (no tangent at the centre itself).
         Surface::new(self.center + local, self.normal, DVec2::ZERO).with_dpdu(TAU * self.normal.cross(local))
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
+        HitPoint::new(self.center + self.in_plane(ray, hit), self.normal)
     }
 
     fn area(&self) -> Option<f64> {

@@ -6,7 +6,7 @@ use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
 use prism_api::{
-    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math,
+    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math,
     pdf_toward_by_area, pov, sample_toward_by_area,
 };
 use schemars::JsonSchema;
@@ -108,10 +108,14 @@ impl Shape for Sphere {
     }
 
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let HitPoint { point, normal, .. } = self.hit_point(ray, hit);
+        Surface::new(point, normal, DVec2::ZERO).with_dpdu(math::longitude_dpdu(normal * self.radius, normal))
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
         let normal = (ray.at(hit.t) - self.center).normalize();
         // Project exactly onto the sphere: removes the error of ray.at(t) along the normal.
-        Surface::new(self.center + normal * self.radius, normal, DVec2::ZERO)
-            .with_dpdu(math::longitude_dpdu(normal * self.radius, normal))
+        HitPoint::new(self.center + normal * self.radius, normal)
     }
 
     fn inside(&self, point: DVec3) -> bool {

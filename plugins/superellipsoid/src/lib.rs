@@ -32,7 +32,7 @@
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
-use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
+use prism_api::{Aabb, DVec2, DVec3, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -680,12 +680,16 @@ impl Shape for Superellipsoid {
     }
 
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let HitPoint { point, normal, .. } = self.hit_point(ray, hit);
+        Surface::new(point, normal, DVec2::ZERO).with_dpdu(math::longitude_dpdu(point, normal))
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
         let p = ray.at(hit.t);
         // G is homogeneous: p / G(p) lies exactly on the surface, along the radial direction.
         let (g, grad) = self.gauge_and_gradient(p);
         let point = if g > 0.0 && g.is_finite() { p / g } else { p };
-        let normal = Self::normal_from_gradient(grad, point);
-        Surface::new(point, normal, DVec2::ZERO).with_dpdu(math::longitude_dpdu(point, normal))
+        HitPoint::new(point, Self::normal_from_gradient(grad, point))
     }
 
     /// No: the superellipsoid's area has no closed form, and uniform area sampling would

@@ -14,7 +14,8 @@ use std::sync::Arc;
 
 use prism_api::math::{PolynomialRoots, polynomial_roots};
 use prism_api::{
-    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov,
+    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math,
+    pov,
 };
 use schemars::JsonSchema;
 use serde::Deserialize;
@@ -242,14 +243,18 @@ impl Shape for Torus {
     }
 
     fn surface_geometry(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let HitPoint { point, normal, .. } = self.hit_point(ray, hit);
+        // u turns the point about the y axis by a full turn, keeping its place around the tube.
+        Surface::new(point, normal, DVec2::ZERO).with_dpdu(TAU * DVec3::new(point.z, 0.0, -point.x))
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
         let p = ray.at(hit.t);
         let normal = self.normal(p);
         let rho = (p.x * p.x + p.z * p.z).sqrt();
         let core = if rho > 0.0 { DVec3::new(p.x, 0.0, p.z) * (self.major / rho) } else { p };
         // Project exactly onto the tube: removes the error of ray.at(t) along the normal.
-        let point = core + normal * self.minor;
-        // u turns the point about the y axis by a full turn, keeping its place around the tube.
-        Surface::new(point, normal, DVec2::ZERO).with_dpdu(TAU * DVec3::new(point.z, 0.0, -point.x))
+        HitPoint::new(core + normal * self.minor, normal)
     }
 
     fn area(&self) -> Option<f64> {

@@ -7,7 +7,7 @@
 
 pub mod lights;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use prism_api::Ray;
 
 use crate::accel::primitive::Primitive;
@@ -125,6 +125,9 @@ pub struct Classic<'a> {
     pinhole_interiors: Option<Interiors>,
     /// The scene's lights as POV-Ray shades them.
     lights: Vec<PovLight>,
+    /// Whether a camera ray's first hit carries its uv on untextured materials too (for the
+    /// `uv` AOV; shading reads the uv of textured materials only).
+    first_hit_uv: bool,
 }
 
 impl<'a> Classic<'a> {
@@ -140,11 +143,25 @@ impl<'a> Classic<'a> {
             .collect();
         let views = scene.materials.iter().map(PovView::new).collect();
         let lights = scene.lights.sources.iter().map(PovLight::new).collect();
-        let mut integrator = Self { scene, views, pixel_spread, camera_candidates, pinhole_interiors: None, lights };
+        let mut integrator = Self {
+            scene,
+            views,
+            pixel_spread,
+            camera_candidates,
+            pinhole_interiors: None,
+            lights,
+            first_hit_uv: false,
+        };
         if scene.camera.has_single_origin() {
             integrator.pinhole_interiors = Some(integrator.interiors_at(scene.camera.position));
         }
         integrator
+    }
+
+    /// The same integrator, giving every first hit its uv when `uv` is true (the `uv` AOV),
+    /// not only those on textured materials.
+    pub fn with_first_hit_uv(self, uv: bool) -> Self {
+        Self { first_hit_uv: uv, ..self }
     }
 
     /// The interiors a camera ray from `origin` starts in (POV-Ray's ray containers): every
@@ -162,18 +179,19 @@ impl<'a> Classic<'a> {
 
     /// The finish at a hit with textures looked up: the footprint of a pixel's ray cone
     /// (from the camera, or from the last bounce for deeper rays, which underestimates it)
-    /// picks the mip level.
+    /// picks the mip level. `textured` is the full surface, there when the material varies
+    /// over it.
     fn shade<'m>(
         &self,
         view: &'m PovView,
         primitive: &Primitive,
-        surface: &prism_api::Surface,
+        textured: Option<&prism_api::Surface>,
         distance: f64,
         cosine: f64,
     ) -> ShadedFinish<'m> {
-        if !view.varies_over_surface() {
+        let Some(surface) = textured.filter(|_| view.varies_over_surface()) else {
             return ShadedFinish { finish: std::borrow::Cow::Borrowed(&view.base), emitted: DVec3::ZERO };
-        }
+        };
         let area_scale = primitive.area_scale(surface.normal);
         // A pixel's ray cone widens with distance; an orthographic pixel is a fixed width.
         let width = if self.scene.camera.orthographic { self.pixel_spread } else { self.pixel_spread * distance };
@@ -216,11 +234,12 @@ impl<'a> Classic<'a> {
         let primitive = &scene.primitives[closest.primitive as usize];
         let material_id = primitive.material_at(&closest.hit);
         let view = &self.views[material_id as usize];
-        // The uv costs trigonometry on curved shapes; only textured materials look at it.
-        let surface = if view.varies_over_surface() {
-            primitive.shape.surface(&closest.object_ray, &closest.hit)
-        } else {
-            primitive.shape.surface_geometry(&closest.object_ray, &closest.hit)
+        // The uv costs trigonometry on curved shapes, and the tangent square roots; only
+        // textured materials look at them.
+        let textured = view.varies_over_surface().then(|| primitive.shape.surface(&closest.object_ray, &closest.hit));
+        let surface = match &textured {
+            Some(surface) => surface.point_and_normals(),
+            None => primitive.shape.hit_point(&closest.object_ray, &closest.hit),
         };
         let point = primitive.world_point(surface.point);
         let shading = primitive.world_normal(surface.shading_normal);
@@ -258,7 +277,7 @@ impl<'a> Classic<'a> {
                 Some(field) => primitive.world_normal(field.perturb(surface.point, object_normal)).normalize(),
                 None => raw,
             };
-            let shaded = self.shade(layer, primitive, &surface, distance, n.dot(d) / d.length());
+            let shaded = self.shade(layer, primitive, textured.as_ref(), distance, n.dot(d) / d.length());
             let material: &PovFinish = &shaded.finish;
             if index == 0 {
                 top_normal = n;
@@ -268,7 +287,11 @@ impl<'a> Classic<'a> {
                         normal: n,
                         position: point,
                         depth: distance,
-                        uv: surface.uv,
+                        uv: match &textured {
+                            Some(surface) => surface.uv,
+                            None if self.first_hit_uv => primitive.shape.surface(&closest.object_ray, &closest.hit).uv,
+                            None => DVec2::ZERO,
+                        },
                         primitive: closest.primitive,
                         material: material_id,
                     });
@@ -1036,6 +1059,39 @@ mod tests {
         assert_ne!(tinted, render_sphere(&format!("{{ ior = 1.3, {below} }}")));
         let layered = render_sphere(&format!("{{ ior = 1.3, layers = [{{ {dented} }}, {{ transmit = 1.0 }}] }}"));
         assert_ne!(layered, render_sphere(&format!("{{ ior = 1.3, {dented} }}")));
+    }
+
+    /// The `uv` AOV holds the first surface's uv whether or not its material is textured
+    /// (shading reads the uv of textured materials only).
+    #[test]
+    fn the_uv_aov_holds_the_uv_of_untextured_surfaces() {
+        use crate::film::Aov;
+        use crate::scene::load::{Embedded, load_from};
+        const FILES: Embedded = Embedded(&[(
+            "s.toml",
+            "[render]\nwidth = 9\nheight = 9\n\
+             [camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nvfov = 30.0\n\
+             [[object]]\nshape = \"sphere\"\nradius = 1.0\nmaterial = { color = [0.5, 0.5, 0.5] }\n",
+        )]);
+        let mut scene = load_from(&FILES, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+        let scene = crate::prepare(&mut scene).unwrap();
+        let options = crate::render::RenderOptions { aovs: vec![Aov::Uv], ..Default::default() };
+        let (film, _) = crate::render::render_frame(&scene, &options).unwrap();
+        let uv = &film.layer(Aov::Uv).unwrap().data;
+        // The untextured sphere's uv where the centre pixel's ray meets it, as its shape gives it.
+        let ray = Ray::new(DVec3::new(0.0, 0.0, 3.0), DVec3::NEG_Z);
+        let primitive = &scene.primitives[0];
+        let hit = primitive.shape.intersect(&ray, 0.0, f64::MAX).unwrap();
+        let expected = primitive.shape.surface(&ray, &hit).uv;
+        let centre = 4 * 9 + 4;
+        assert!(expected.x > 0.1 && expected.y > 0.1, "{expected}");
+        assert!((f64::from(uv[2 * centre]) - expected.x).abs() < 1e-5, "u {} against {}", uv[2 * centre], expected.x);
+        assert!(
+            (f64::from(uv[2 * centre + 1]) - expected.y).abs() < 1e-5,
+            "v {} against {}",
+            uv[2 * centre + 1],
+            expected.y
+        );
     }
 
     #[test]
