@@ -919,6 +919,39 @@ pub fn check_t_range(shape: &dyn Shape, origin: DVec3, toward: DVec3, t_enter: f
     exit
 }
 
+/// Checks that a shape's own [`Shape::crossings`] lists exactly what the trait's default,
+/// [`crate::crossings_by_intersect`], lists (the same `t` and `part`, in the same order), for
+/// a shape that overrides it only to find its crossings faster: 40,000 rays from around the
+/// bounds, half aimed into them, some along an axis, some starting past the first crossing
+/// (a random `t_min`) or stopping early (a finite `t_max`).
+pub fn check_crossings_match_intersect(shape: &dyn Shape) {
+    fn listed(each: impl FnOnce(&mut dyn FnMut(&crate::Hit) -> ControlFlow<()>)) -> Vec<(f64, u32)> {
+        let mut hits = Vec::new();
+        each(&mut |hit| {
+            hits.push((hit.t, hit.part));
+            ControlFlow::Continue(())
+        });
+        hits
+    }
+    let mut rng = TestRng::new(0xC055);
+    let bounds = shape.bounds();
+    let size = bounds.max - bounds.min;
+    let around = Aabb { min: bounds.min - size, max: bounds.max + size };
+    for i in 0..40_000 {
+        let origin = rng.point_in(&around);
+        let mut direction = if i % 2 == 0 { rng.point_in(&bounds) - origin } else { rng.unit_vector() };
+        if i % 7 == 0 {
+            direction = DVec3::X * direction.x.signum();
+        }
+        let ray = Ray::new(origin, direction * rng.range(0.5, 3.0));
+        let t_min = if i % 3 == 0 { rng.range(-1.0, 1.0) } else { 0.0 };
+        let t_max = if i % 5 == 0 { rng.range(0.0, 2.0) } else { f64::INFINITY };
+        let own = listed(|visit| shape.crossings(&ray, t_min, t_max, visit));
+        let default = listed(|visit| crate::crossings_by_intersect(shape, &ray, t_min, t_max, visit));
+        assert_eq!(own, default, "crossings() against the default for {ray:?} in ({t_min}, {t_max})");
+    }
+}
+
 /// Checks that each hit's `dpdu` is the derivative of the uv: for hits whose neighbours (rays
 /// moved sideways by a millionth of the shape's size) land on the same part with a
 /// well-conditioned change of uv, ∂p/∂u from the finite differences must match `dpdu` to

@@ -3,11 +3,12 @@
 #![forbid(unsafe_code)]
 
 use std::f64::consts::{PI, TAU};
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
 use prism_api::{
-    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math,
-    pdf_toward_by_area, pov, sample_toward_by_area,
+    Aabb, AreaSample, CROSSING_GAP, DVec2, DVec3, DirectionSample, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams,
+    Surface, math, pdf_toward_by_area, pov, sample_toward_by_area,
 };
 use schemars::JsonSchema;
 use serde::Deserialize;
@@ -67,17 +68,10 @@ impl Sphere {
             one_minus_cos_max: sin2_max / (1.0 + (1.0 - sin2_max).sqrt()),
         })
     }
-}
 
-/// Squared half chords up to this count as tangent and miss (POV-Ray's `EPSILON`).
-pub const TANGENT_EPSILON: f64 = 1e-10;
-
-impl Shape for Sphere {
-    fn bounds(&self) -> Aabb {
-        Aabb::from_corners(self.center - self.radius, self.center + self.radius)
-    }
-
-    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+    /// The ray's two parameters on the sphere, nearer first; `None` when it misses or only
+    /// grazes it.
+    fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
         // Hearn-Baker form: the discriminant is computed from the distance of the closest
         // approach, which keeps precision for rays that start far away.
         let oc = ray.origin - self.center;
@@ -94,8 +88,38 @@ impl Shape for Sphere {
         let c = oc.length_squared() - self.radius * self.radius;
         let q = -(b_half + b_half.signum() * disc.sqrt());
         let (t0, t1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
-        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+        Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+    }
+}
+
+/// Squared half chords up to this count as tangent and miss (POV-Ray's `EPSILON`).
+pub const TANGENT_EPSILON: f64 = 1e-10;
+
+impl Shape for Sphere {
+    fn bounds(&self) -> Aabb {
+        Aabb::from_corners(self.center - self.radius, self.center + self.radius)
+    }
+
+    fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        let (near, far) = self.roots(ray)?;
         [near, far].into_iter().find(|&t| t > t_min && t < t_max).map(Hit::at)
+    }
+
+    /// Both roots from one solve: what [`prism_api::crossings_by_intersect`] lists, which
+    /// solves the same quadratic once per crossing (CSG walks crossings of every member).
+    fn crossings(&self, ray: &Ray, t_min: f64, t_max: f64, visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>) {
+        let Some((near, far)) = self.roots(ray) else { return };
+        let bounds = self.bounds();
+        let gap = CROSSING_GAP * (bounds.max - bounds.min).max_element() / ray.direction.length();
+        let mut t_min = t_min;
+        for t in [near, far] {
+            if t > t_min && t < t_max {
+                if visit(&Hit::at(t)).is_break() {
+                    return;
+                }
+                t_min = t + gap.max(t.abs() * 1e-14);
+            }
+        }
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
@@ -192,6 +216,19 @@ mod tests {
         check_shape(&Sphere { center: DVec3::new(3.0, -2.0, 1.0), radius: 0.25 });
         check_shape(&Sphere { center: DVec3::ZERO, radius: 1e3 });
         check_dpdu(&unit());
+    }
+
+    #[test]
+    fn crossings_are_the_defaults_from_one_solve() {
+        prism_api::contract::check_crossings_match_intersect(&unit());
+        prism_api::contract::check_crossings_match_intersect(&Sphere {
+            center: DVec3::new(3.0, -2.0, 1.0),
+            radius: 1e-3,
+        });
+        prism_api::contract::check_crossings_match_intersect(&Sphere {
+            center: DVec3::new(0.0, 1e3, 0.0),
+            radius: 1e3,
+        });
     }
 
     #[test]
