@@ -320,6 +320,69 @@ fn graded_distance(a: DVec3, b: DVec3) -> f64 {
     (a - b).abs().element_sum()
 }
 
+/// Whether two colours differ by the antialiasing threshold, grading them only where that is
+/// not certain without: in linear light the grade x^(2/5) is concave and 0 at 0, so a
+/// channel's graded difference is at most its difference to the 2/5, and colours within
+/// `(threshold / 3)^(5/2)` of each other in every channel are closer than the threshold. The
+/// decisions are exactly those of grading both colours (a margin covers the rounding).
+#[derive(Clone, Copy, Debug)]
+struct Threshold {
+    grade: AaGrade,
+    threshold: f64,
+    /// Per-channel differences below this are certainly below the threshold; 0 where no
+    /// such bound is used (other working spaces, thresholds too small for the margin).
+    close: f64,
+}
+
+/// Colours are compared without grading only when every channel is below this magnitude,
+/// where the grade's rounding (1e-13 relative, about 4e3 at most) stays far inside the margin.
+const UNGRADED_LIMIT: f64 = 1e9;
+
+impl Threshold {
+    fn new(grade: AaGrade, threshold: f64) -> Self {
+        // Half the bound: three channels then reach at most 0.76 of the threshold.
+        let close =
+            if grade.from_working.is_none() && threshold >= 1e-6 { 0.5 * (threshold / 3.0).powf(2.5) } else { 0.0 };
+        Self { grade, threshold, close }
+    }
+
+    /// True when `a` and `b` certainly grade closer than the threshold (false for NaN).
+    fn certainly_close(&self, a: DVec3, b: DVec3) -> bool {
+        let limit = DVec3::splat(UNGRADED_LIMIT);
+        (a - b).abs().cmplt(DVec3::splat(self.close)).all() && a.abs().cmplt(limit).all() && b.abs().cmplt(limit).all()
+    }
+
+    /// True when `a` and `b` differ by the threshold or more.
+    fn differ(&self, a: DVec3, b: DVec3) -> bool {
+        !self.certainly_close(a, b) && self.grade.distance(a, b) >= self.threshold
+    }
+
+    /// [`Threshold::differ`] of two colours whose grades are kept once computed.
+    fn differ_graded(&self, a: &mut Graded, b: &mut Graded) -> bool {
+        if self.certainly_close(a.colour, b.colour) {
+            return false;
+        }
+        graded_distance(a.graded(self.grade), b.graded(self.grade)) >= self.threshold
+    }
+}
+
+/// A colour and, once something needed it, its grade.
+#[derive(Clone, Copy, Debug, Default)]
+struct Graded {
+    colour: DVec3,
+    grade: Option<DVec3>,
+}
+
+impl Graded {
+    fn new(colour: DVec3) -> Self {
+        Self { colour, grade: None }
+    }
+
+    fn graded(&mut self, grade: AaGrade) -> DVec3 {
+        *self.grade.get_or_insert_with(|| grade.of(self.colour))
+    }
+}
+
 /// What rendering one block produced.
 pub struct Block {
     /// Pixels row by row, `min(BLOCK_SIZE, width - left)` wide.
@@ -388,32 +451,38 @@ struct BlockArea {
 /// pixel left of each row are traced only to compare with and are never supersampled.
 fn non_adaptive<I: Integrator>(s: &mut Sampler<I>, block: BlockArea, threshold: f64, depth: u32) -> Vec<DVec3> {
     let BlockArea { left, top, w, h } = block;
-    let grade = s.grade;
-    // Each colour is graded for comparison once, when it is traced or supersampled.
+    let threshold = Threshold::new(s.grade, threshold);
+    // Each colour is graded at most once, when a comparison first needs its grade.
     let (gx, gy) = (left as i64, top as i64);
-    let above: Vec<DVec3> =
-        (0..w).map(|x| grade.of(s.grid_trace((gx + x as i64, gy - 1), (left + x as f64, top - 1.0)))).collect();
-    let mut pixels = vec![DVec3::ZERO; w * h];
-    let mut graded = vec![DVec3::ZERO; w * h];
+    let mut above: Vec<Graded> =
+        (0..w).map(|x| Graded::new(s.grid_trace((gx + x as i64, gy - 1), (left + x as f64, top - 1.0)))).collect();
+    let mut pixels = vec![Graded::default(); w * h];
     let mut done = vec![false; w * h];
     for y in 0..h {
         let py = top + y as f64;
-        let before_row = grade.of(s.grid_trace((gx - 1, gy + y as i64), (left - 1.0, py)));
-        for (x, &above_graded) in above.iter().enumerate() {
+        let mut before_row = Graded::new(s.grid_trace((gx - 1, gy + y as i64), (left - 1.0, py)));
+        for (x, above) in above.iter_mut().enumerate() {
             let px = left + x as f64;
             let i = y * w + x;
-            let current = s.grid_trace((gx + x as i64, gy + y as i64), (px, py));
+            let mut current = Graded::new(s.grid_trace((gx + x as i64, gy + y as i64), (px, py)));
+            // Flat regions (a background) repeat the left neighbour's colour exactly, and
+            // with it any grade it has.
+            if x > 0 && current.colour == pixels[i - 1].colour {
+                current = pixels[i - 1];
+            }
+            let (left_differs, left_done) = if x == 0 {
+                (threshold.differ_graded(&mut before_row, &mut current), true)
+            } else {
+                (threshold.differ_graded(&mut pixels[i - 1], &mut current), done[i - 1])
+            };
+            let (top_differs, top_done) = if y == 0 {
+                (threshold.differ_graded(above, &mut current), true)
+            } else {
+                (threshold.differ_graded(&mut pixels[i - w], &mut current), done[i - w])
+            };
             pixels[i] = current;
-            // Flat regions (a background) repeat the left neighbour's colour exactly: its
-            // grade then needs no recomputing (`graded` always grades `pixels`).
-            graded[i] = if x > 0 && current == pixels[i - 1] { graded[i - 1] } else { grade.of(current) };
-            let (left_graded, left_done) = if x == 0 { (before_row, true) } else { (graded[i - 1], done[i - 1]) };
-            let (top_graded, top_done) = if y == 0 { (above_graded, true) } else { (graded[i - w], done[i - w]) };
-            let left_differs = graded_distance(left_graded, graded[i]) >= threshold;
-            let top_differs = graded_distance(top_graded, graded[i]) >= threshold;
             let mut refine = |j: usize, px: f64, py: f64| {
-                pixels[j] = supersample(s, px, py, pixels[j], depth);
-                graded[j] = grade.of(pixels[j]);
+                pixels[j] = Graded::new(supersample(s, px, py, pixels[j].colour, depth));
                 done[j] = true;
             };
             if left_differs && !left_done {
@@ -427,7 +496,7 @@ fn non_adaptive<I: Integrator>(s: &mut Sampler<I>, block: BlockArea, threshold: 
             }
         }
     }
-    pixels
+    pixels.into_iter().map(|p| p.colour).collect()
 }
 
 /// `depth` x `depth` samples at (k + 0.5) / depth across the pixel, added to the centre
@@ -463,6 +532,7 @@ fn adaptive<I: Integrator>(s: &mut Sampler<I>, block: BlockArea, threshold: f64,
             corners.push(s.grid_trace(grid, (left + x as f64 - 0.5, top + y as f64 - 0.5)));
         }
     }
+    let threshold = Threshold::new(s.grade, threshold);
     let size = 1usize << depth;
     let mut grid = SubdivisionGrid { size: size + 1, samples: vec![None; (size + 1) * (size + 1)] };
     let mut pixels = Vec::with_capacity(w * h);
@@ -523,14 +593,13 @@ fn subdivide<I: Integrator>(
     grid: &mut SubdivisionGrid,
     q: Square,
     level: i32,
-    threshold: f64,
+    threshold: Threshold,
 ) -> DVec3 {
     let c00 = grid.get(q.bx, q.by);
     let c02 = grid.get(q.bx, q.by + q.step);
     let c20 = grid.get(q.bx + q.step, q.by);
     let c22 = grid.get(q.bx + q.step, q.by + q.step);
-    let grade = s.grade;
-    let differ = |a: DVec3, b: DVec3| grade.distance(a, b) >= threshold;
+    let differ = |a: DVec3, b: DVec3| threshold.differ(a, b);
     let split = level > 0
         && (differ(c00, c02)
             || differ(c00, c20)
@@ -577,6 +646,44 @@ mod tests {
         for x in [0.0, -0.0, -1.0, f64::NAN, f64::NEG_INFINITY] {
             assert_eq!(two_fifths_power(x), 0.0, "{x}");
         }
+    }
+
+    /// Deciding closeness without grading gives every decision grading both colours gives,
+    /// at thresholds from 1e-6 to 3, for colours near each other (the worst case sits at 0,
+    /// where the grade is steepest), far apart, negative, huge and NaN; and it does decide
+    /// most pairs of nearby colours.
+    #[test]
+    fn ungraded_comparisons_decide_as_graded_ones() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let grade = AaGrade::new(GammaCurve::Neutral);
+        let (mut pairs, mut ungraded) = (0, 0);
+        for threshold in [1e-6, 1e-3, 0.01, 0.1, 0.3, 1.0, 3.0] {
+            let test = Threshold::new(grade, threshold);
+            let bound = (threshold / 3.0).powf(2.5);
+            for i in 0..100_000 {
+                let base = match i % 5 {
+                    0 => DVec3::ZERO,
+                    1 => DVec3::new(next(), next(), next()) * 1e-6,
+                    2 => DVec3::new(next(), next(), next()),
+                    3 => DVec3::new(next() - 0.5, next(), next()) * 1e8,
+                    _ => DVec3::new(next(), f64::NAN, next()),
+                };
+                let step = DVec3::new(next(), next(), next()) * if i % 3 == 0 { 10.0 * bound } else { bound };
+                let other = base + step;
+                let graded = grade.distance(base, other) >= threshold;
+                assert_eq!(test.differ(base, other), graded, "{base} and {other} at {threshold}");
+                assert_eq!(test.differ(other, base), graded, "{other} and {base} at {threshold}");
+                let (mut a, mut b) = (Graded::new(base), Graded::new(other));
+                assert_eq!(test.differ_graded(&mut a, &mut b), graded);
+                pairs += 1;
+                ungraded += usize::from(a.grade.is_none());
+            }
+        }
+        assert!(ungraded > pairs / 20, "{ungraded} of {pairs} decided without grading");
     }
 
     use super::*;
