@@ -5,7 +5,9 @@
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
-use prism_api::{Aabb, AreaSample, CROSSING_GAP, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, pov};
+use prism_api::{
+    Aabb, AreaSample, CROSSING_GAP, DVec2, DVec3, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, pov,
+};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -141,6 +143,17 @@ impl Shape for BoxShape {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let HitPoint { point, normal, .. } = self.hit_point(ray, hit);
+        let (ua, va) = face_uv_axes((hit.part / 2) as usize);
+        let size = self.max - self.min;
+        let rel = (point - self.min) / size;
+        // u runs along the face's first texture axis, across the box's full size there.
+        let mut dpdu = DVec3::ZERO;
+        dpdu[ua] = size[ua];
+        Surface::new(point, normal, DVec2::new(rel[ua], rel[va])).with_dpdu(dpdu)
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
         let axis = (hit.part / 2) as usize;
         let at_max = hit.part % 2 == 1;
         // Snap onto the face and clamp into it: removes the rounding of ray.at(t).
@@ -148,13 +161,7 @@ impl Shape for BoxShape {
         point[axis] = if at_max { self.max[axis] } else { self.min[axis] };
         let mut normal = DVec3::ZERO;
         normal[axis] = if at_max { 1.0 } else { -1.0 };
-        let (ua, va) = face_uv_axes(axis);
-        let size = self.max - self.min;
-        let rel = (point - self.min) / size;
-        // u runs along the face's first texture axis, across the box's full size there.
-        let mut dpdu = DVec3::ZERO;
-        dpdu[ua] = size[ua];
-        Surface::new(point, normal, DVec2::new(rel[ua], rel[va])).with_dpdu(dpdu)
+        HitPoint::new(point, normal)
     }
 
     fn area(&self) -> Option<f64> {

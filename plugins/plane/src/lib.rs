@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use prism_api::{Aabb, DVec2, DVec3, Hit, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
+use prism_api::{Aabb, DVec2, DVec3, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -114,11 +114,15 @@ impl Shape for Plane {
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
+        let HitPoint { point, normal, .. } = self.hit_point(ray, hit);
+        let uv = DVec2::new(point.dot(self.tangent), point.dot(self.bitangent));
+        Surface::new(point, normal, uv).with_dpdu(self.tangent)
+    }
+
+    fn hit_point(&self, ray: &Ray, hit: &Hit) -> HitPoint {
         let p = ray.at(hit.t);
         // Project onto the plane: removes the rounding error of ray.at(t) along the normal.
-        let point = p - self.normal * (self.normal.dot(p) - self.offset);
-        let uv = DVec2::new(point.dot(self.tangent), point.dot(self.bitangent));
-        Surface::new(point, self.normal, uv).with_dpdu(self.tangent)
+        HitPoint::new(p - self.normal * (self.normal.dot(p) - self.offset), self.normal)
     }
 
     /// An infinite plane has no finite area to sample uniformly: it cannot be an area light.

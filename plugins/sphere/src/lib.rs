@@ -71,6 +71,7 @@ impl Sphere {
 
     /// The ray's two parameters on the sphere, nearer first; `None` when it misses or only
     /// grazes it.
+    #[inline]
     fn roots(&self, ray: &Ray) -> Option<(f64, f64)> {
         // Hearn-Baker form: the discriminant is computed from the distance of the closest
         // approach, which keeps precision for rays that start far away.
