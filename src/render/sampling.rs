@@ -604,35 +604,45 @@ pub fn concentric_disc(u: DVec2) -> DVec2 {
 
 /// `(sin x, cos x)` for |x| <= pi/4 from their Taylor series to x^17 and x^18, whose first
 /// omitted terms are below 1e-19 there: as accurate as libm's, without its range reduction.
+/// Both polynomials in x^2 are evaluated by Estrin's scheme (pairs, then pairs of pairs), a
+/// dependency chain half as long as nesting them (lens sampling calls this per camera ray).
 fn sin_cos_eighth_turn(x: f64) -> (f64, f64) {
-    let x2 = x * x;
-    // Nested (Horner) form, innermost factor first: sin x = x (1 - x^2/(2*3) (1 - x^2/(4*5)
-    // (...))) and cos x = 1 - x^2/(1*2) (1 - x^2/(3*4) (...)).
-    let mut sin = 1.0;
-    for inverse in SINE_FACTORS.iter().rev() {
-        sin = 1.0 - x2 * inverse * sin;
-    }
-    let mut cos = 1.0;
-    for inverse in COSINE_FACTORS.iter().rev() {
-        cos = 1.0 - x2 * inverse * cos;
-    }
+    let z = x * x;
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let z8 = z4 * z4;
+    let [s0, s1, s2, s3, s4, s5, s6, s7, s8] = SINE_TERMS;
+    let sin_low = (s0 + s1 * z) + z2 * (s2 + s3 * z);
+    let sin_high = (s4 + s5 * z) + z2 * (s6 + s7 * z);
+    let sin = (sin_low + z4 * sin_high) + z8 * s8;
+    let [c0, c1, c2, c3, c4, c5, c6, c7, c8, c9] = COSINE_TERMS;
+    let cos_low = (c0 + c1 * z) + z2 * (c2 + c3 * z);
+    let cos_high = (c4 + c5 * z) + z2 * (c6 + c7 * z);
+    let cos = (cos_low + z4 * cos_high) + z8 * (c8 + c9 * z);
     (x * sin, cos)
 }
 
-/// 1 / ((2k) (2k + 1)) for k = 1..=8.
-const SINE_FACTORS: [f64; 8] = taylor_factors(0);
-/// 1 / ((2k - 1) (2k)) for k = 1..=9.
-const COSINE_FACTORS: [f64; 9] = taylor_factors(1);
+/// (-1)^k / (2k + 1)! for k = 0..=8: sin x = x (sum of these times x^2k).
+const SINE_TERMS: [f64; 9] = taylor_terms(1);
+/// (-1)^k / (2k)! for k = 0..=9: cos x = sum of these times x^2k.
+const COSINE_TERMS: [f64; 10] = taylor_terms(0);
 
-const fn taylor_factors<const N: usize>(shift: u32) -> [f64; N] {
-    let mut factors = [0.0; N];
-    let mut k = 1;
-    while k <= N as u32 {
-        let low = 2 * k - shift;
-        factors[k as usize - 1] = 1.0 / (low as f64 * (low + 1) as f64);
+/// (-1)^k / (2k + shift)! for k = 0..N.
+const fn taylor_terms<const N: usize>(shift: u64) -> [f64; N] {
+    let mut terms = [0.0; N];
+    let mut k = 0;
+    while k < N {
+        let mut factorial = 1u64;
+        let mut i = 2;
+        while i <= 2 * k as u64 + shift {
+            factorial *= i;
+            i += 1;
+        }
+        let magnitude = 1.0 / factorial as f64;
+        terms[k] = if k % 2 == 0 { magnitude } else { -magnitude };
         k += 1;
     }
-    factors
+    terms
 }
 
 #[cfg(test)]
