@@ -334,8 +334,9 @@ struct Threshold {
     close: f64,
 }
 
-/// Colours are compared without grading only when every channel is below this magnitude,
-/// where the grade's rounding (1e-13 relative, about 4e3 at most) stays far inside the margin.
+/// Colours are compared without grading only when every channel is below this magnitude:
+/// their grades are then below 4e3, whose rounding (1e-13 relative) stays far inside the
+/// margin the bound leaves (a quarter of a threshold of at least 1e-6).
 const UNGRADED_LIMIT: f64 = 1e9;
 
 impl Threshold {
