@@ -1145,7 +1145,7 @@ fn render_part(mut scene: Scene, args: &RenderArgs, path: &Path) -> Result<(), C
             part_render(&render_scene, &integrator, region, samples.clone(), whole, &options)?
         }
         IntegratorKind::Path => {
-            let integrator = prism::render::integrators::path::Path::new(&render_scene);
+            let integrator = prism::render::path(&render_scene, &options);
             part_render(&render_scene, &integrator, region, samples.clone(), whole, &options)?
         }
     };

@@ -227,7 +227,7 @@ pub fn render_frame(scene: &RenderScene, options: &RenderOptions) -> Result<(Fil
     let region = Region::full(scene.settings.width, scene.settings.height);
     match scene.settings.integrator {
         IntegratorKind::Classic => render(scene, &classic(scene, options), region, options),
-        IntegratorKind::Path => render(scene, &Path::new(scene), region, options),
+        IntegratorKind::Path => render(scene, &path(scene, options), region, options),
     }
 }
 
@@ -235,6 +235,12 @@ pub fn render_frame(scene: &RenderScene, options: &RenderOptions) -> Result<(Fil
 /// the `uv` AOV is asked for.
 pub fn classic<'a>(scene: &'a RenderScene, options: &RenderOptions) -> Classic<'a> {
     Classic::new(scene).with_first_hit_uv(options.aovs.contains(&Aov::Uv))
+}
+
+/// The path integrator for a render with `options`: first hits carry their uv when the
+/// `uv` AOV is asked for.
+pub fn path<'a>(scene: &'a RenderScene, options: &RenderOptions) -> Path<'a> {
+    Path::new(scene).with_first_hit_uv(options.aovs.contains(&Aov::Uv))
 }
 
 /// A render that fits a time budget: what it made and how.
@@ -369,7 +375,7 @@ pub fn render_remaining(
         IntegratorKind::Classic => {
             render_samples(scene, &classic(scene, options), region, range, false, Some(done), options)
         }
-        IntegratorKind::Path => render_samples(scene, &Path::new(scene), region, range, false, Some(done), options),
+        IntegratorKind::Path => render_samples(scene, &path(scene, options), region, range, false, Some(done), options),
     }
     .map(|r| RemainingRender { film: r.film, tiles: r.tiles, sample_counts: r.sample_counts, stats: r.stats })
 }
@@ -997,6 +1003,38 @@ pub fn render_pixel_samples<I: Integrator>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The `uv` AOV holds the first surface's uv whether or not its material is textured,
+    /// under both integrators (shading reads the uv of textured materials only).
+    #[test]
+    fn the_uv_aov_holds_the_uv_of_untextured_surfaces() {
+        use crate::scene::load::{Embedded, load_from};
+        for integrator in ["classic", "path"] {
+            let text = format!(
+                "[render]\nwidth = 9\nheight = 9\nsamples = 4\nintegrator = \"{integrator}\"\n\
+                 [camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nvfov = 30.0\n\
+                 [[object]]\nshape = \"sphere\"\nradius = 1.0\nmaterial = {{ color = [0.5, 0.5, 0.5] }}\n\
+                 [[light]]\nposition = [0.0, 0.0, 5.0]\n"
+            );
+            let text: &'static str = Box::leak(text.into_boxed_str());
+            let files = Embedded(Box::leak(Box::new([("s.toml", text)])));
+            let mut scene = load_from(&files, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+            let scene = crate::prepare(&mut scene).unwrap();
+            let options = RenderOptions { aovs: vec![Aov::Uv], ..Default::default() };
+            let (film, _) = render_frame(&scene, &options).unwrap();
+            let uv = &film.layer(Aov::Uv).unwrap().data;
+            // The sphere's uv where the centre pixel's ray meets it, as its shape gives it;
+            // path's first sample lies somewhere in the pixel (a pixel spans about 0.03 in u).
+            let ray = prism_api::Ray::new(DVec3::new(0.0, 0.0, 3.0), DVec3::NEG_Z);
+            let primitive = &scene.primitives[0];
+            let hit = primitive.shape.intersect(&ray, 0.0, f64::MAX).unwrap();
+            let expected = primitive.shape.surface(&ray, &hit).uv;
+            let centre = 4 * 9 + 4;
+            let got = DVec2::new(f64::from(uv[2 * centre]), f64::from(uv[2 * centre + 1]));
+            assert!(expected.x > 0.1 && expected.y > 0.1, "{expected}");
+            assert!((got - expected).abs().max_element() < 0.05, "{integrator}: {got} against {expected}");
+        }
+    }
 
     /// Feeds `value(i)` (a grey radiance) to a fresh spread until `has_enough(noise)`, checked
     /// after every batch from the first check on as `render_pixel_samples` does; returns the

@@ -1061,39 +1061,6 @@ mod tests {
         assert_ne!(layered, render_sphere(&format!("{{ ior = 1.3, {dented} }}")));
     }
 
-    /// The `uv` AOV holds the first surface's uv whether or not its material is textured
-    /// (shading reads the uv of textured materials only).
-    #[test]
-    fn the_uv_aov_holds_the_uv_of_untextured_surfaces() {
-        use crate::film::Aov;
-        use crate::scene::load::{Embedded, load_from};
-        const FILES: Embedded = Embedded(&[(
-            "s.toml",
-            "[render]\nwidth = 9\nheight = 9\n\
-             [camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nvfov = 30.0\n\
-             [[object]]\nshape = \"sphere\"\nradius = 1.0\nmaterial = { color = [0.5, 0.5, 0.5] }\n",
-        )]);
-        let mut scene = load_from(&FILES, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
-        let scene = crate::prepare(&mut scene).unwrap();
-        let options = crate::render::RenderOptions { aovs: vec![Aov::Uv], ..Default::default() };
-        let (film, _) = crate::render::render_frame(&scene, &options).unwrap();
-        let uv = &film.layer(Aov::Uv).unwrap().data;
-        // The untextured sphere's uv where the centre pixel's ray meets it, as its shape gives it.
-        let ray = Ray::new(DVec3::new(0.0, 0.0, 3.0), DVec3::NEG_Z);
-        let primitive = &scene.primitives[0];
-        let hit = primitive.shape.intersect(&ray, 0.0, f64::MAX).unwrap();
-        let expected = primitive.shape.surface(&ray, &hit).uv;
-        let centre = 4 * 9 + 4;
-        assert!(expected.x > 0.1 && expected.y > 0.1, "{expected}");
-        assert!((f64::from(uv[2 * centre]) - expected.x).abs() < 1e-5, "u {} against {}", uv[2 * centre], expected.x);
-        assert!(
-            (f64::from(uv[2 * centre + 1]) - expected.y).abs() < 1e-5,
-            "v {} against {}",
-            uv[2 * centre + 1],
-            expected.y
-        );
-    }
-
     #[test]
     fn camera_rays_start_in_the_interiors_around_the_camera() {
         use crate::scene::load::{Embedded, load_from};

@@ -42,6 +42,9 @@ pub struct Path<'a> {
     materials: Vec<PathMaterial>,
     lights: LightSampler,
     environment: Environment,
+    /// Whether a camera ray's first hit carries its uv on untextured materials too (for the
+    /// `uv` AOV; shading reads the uv of textured materials only).
+    first_hit_uv: bool,
 }
 
 /// The power heuristic (beta = 2) weight of a strategy with density `a` against one with `b`.
@@ -73,7 +76,13 @@ impl<'a> Path<'a> {
         let environment = Environment::of(scene);
         let radius = scene_radius(scene);
         let lights = LightSampler::new(scene, radius, &environment);
-        Self { scene, materials, lights, environment }
+        Self { scene, materials, lights, environment, first_hit_uv: false }
+    }
+
+    /// The same integrator, giving every first hit its uv when `uv` is true (the `uv` AOV),
+    /// not only those on textured materials.
+    pub fn with_first_hit_uv(self, uv: bool) -> Self {
+        Self { first_hit_uv: uv, ..self }
     }
 
     fn closest(&self, ray: &Ray, t_max: f64) -> Option<ClosestHit> {
@@ -174,6 +183,11 @@ impl<'a> Path<'a> {
                 break;
             };
             let mut vertex = self.vertex(&ray, &closest);
+            if depth == 1 && self.first_hit_uv && !self.materials[vertex.material as usize].is_textured() {
+                // For the uv AOV only: an untextured material does not read it.
+                let primitive = &scene.primitives[closest.primitive as usize];
+                vertex.uv = primitive.shape.surface(&closest.object_ray, &closest.hit).uv;
+            }
             let emitted = self.emitted(&vertex, -direction);
             if emitted.max_element() > 0.0 {
                 let weight = if previous_delta {
