@@ -1,6 +1,7 @@
 //! Small numerical helpers shared by shapes.
 
 use std::f64::consts::TAU;
+use std::ops::ControlFlow;
 
 use glam::{DMat3, DVec3};
 
@@ -167,6 +168,27 @@ impl PolynomialRoots {
 /// When the degree exceeds [`MAX_POLYNOMIAL_DEGREE`].
 pub fn polynomial_roots(coefficients: &[f64], lo: f64, hi: f64) -> PolynomialRoots {
     let mut roots = PolynomialRoots::default();
+    let _ = visit_polynomial_roots(coefficients, lo, hi, &mut |t| {
+        roots.push(t);
+        ControlFlow::Continue(())
+    });
+    roots
+}
+
+/// [`polynomial_roots`] one root at a time: `visit` gets each root in ascending order until
+/// it breaks, and no root beyond the one it breaks at is searched for (nor are the
+/// derivatives' roots beyond it). The nearest hit of a ray wants the first root past its
+/// start, not all of them. The roots visited are exactly those [`polynomial_roots`] lists.
+///
+/// # Panics
+///
+/// When the degree exceeds [`MAX_POLYNOMIAL_DEGREE`].
+pub fn visit_polynomial_roots(
+    coefficients: &[f64],
+    lo: f64,
+    hi: f64,
+    visit: &mut dyn FnMut(f64) -> ControlFlow<()>,
+) -> ControlFlow<()> {
     let degree = coefficients.iter().rposition(|&c| c != 0.0).unwrap_or(0);
     assert!(
         degree <= MAX_POLYNOMIAL_DEGREE,
@@ -175,45 +197,77 @@ pub fn polynomial_roots(coefficients: &[f64], lo: f64, hi: f64) -> PolynomialRoo
     // Also rejects NaN bounds.
     let ordered = lo <= hi;
     if !ordered || !coefficients.iter().all(|c| c.is_finite()) {
-        return roots;
+        return ControlFlow::Continue(());
     }
     let coefficients = &coefficients[..=degree];
+    // Roots arrive in ascending order; a root shared by two pieces is visited once, and no
+    // more than the degree allows.
+    let (mut last, mut count) = (f64::NEG_INFINITY, 0);
+    let mut emit = |t: f64| {
+        if (count > 0 && last >= t) || count == MAX_POLYNOMIAL_DEGREE {
+            return ControlFlow::Continue(());
+        }
+        (last, count) = (t, count + 1);
+        visit(t)
+    };
     match degree {
-        0 => {}
+        0 => ControlFlow::Continue(()),
         1 => {
             let t = -coefficients[0] / coefficients[1];
-            if t >= lo && t <= hi {
-                roots.push(t);
+            if t >= lo && t <= hi { emit(t) } else { ControlFlow::Continue(()) }
+        }
+        2 if let Some((r0, r1)) = distinct_quadratic_roots(coefficients) => {
+            for r in [r0, r1] {
+                if r >= lo && r <= hi {
+                    emit(r)?;
+                }
             }
+            ControlFlow::Continue(())
         }
         _ => {
             let mut derivative = [0.0; MAX_POLYNOMIAL_DEGREE];
             for i in 1..=degree {
                 derivative[i - 1] = coefficients[i] * i as f64;
             }
-            let critical = polynomial_roots(&derivative[..degree], lo, hi);
             let tolerance = 4.0 * f64::EPSILON * lo.abs().max(hi.abs());
-            let mut x0 = lo;
-            let mut y0 = eval_polynomial(coefficients, lo);
-            for &x1 in critical.as_slice().iter().chain(std::iter::once(&hi)) {
+            // The piece from the last critical point (x0, with value y0) to the next.
+            let (mut x0, mut y0) = (lo, eval_polynomial(coefficients, lo));
+            let mut piece = |x1: f64| {
                 if x1 <= x0 && x1 != hi {
-                    continue;
+                    return ControlFlow::Continue(());
                 }
                 let y1 = eval_polynomial(coefficients, x1);
-                if y0 == 0.0 {
-                    roots.push(x0);
+                let flow = if y0 == 0.0 {
+                    emit(x0)
                 } else if y1 != 0.0 && (y0 < 0.0) != (y1 < 0.0) {
-                    roots.push(refine_root(coefficients, x0, x1, y0, tolerance));
-                }
-                x0 = x1;
-                y0 = y1;
-            }
-            if y0 == 0.0 {
-                roots.push(x0);
-            }
+                    emit(refine_root(coefficients, x0, x1, y0, tolerance))
+                } else {
+                    ControlFlow::Continue(())
+                };
+                (x0, y0) = (x1, y1);
+                flow
+            };
+            visit_polynomial_roots(&derivative[..degree], lo, hi, &mut piece)?;
+            piece(hi)?;
+            if y0 == 0.0 { emit(x0) } else { ControlFlow::Continue(()) }
         }
     }
-    roots
+}
+
+/// The two distinct real roots of the quadratic `c + b t + a t^2` (ascending coefficients,
+/// `a` != 0), ascending, from the formula in its stable form; `None` when the discriminant
+/// is not positive (a double root or none, left to the search, which reports a double root
+/// only where the quadratic is exactly 0) or overflows.
+fn distinct_quadratic_roots(coefficients: &[f64]) -> Option<(f64, f64)> {
+    let [c, b, a] = *coefficients else { return None };
+    let discriminant = b * b - 4.0 * a * c;
+    if !(discriminant > 0.0 && discriminant.is_finite()) {
+        return None;
+    }
+    // |q| >= sqrt(discriminant) / 2 > 0: no division by zero, and no cancellation.
+    let q = -0.5 * (b + b.signum() * discriminant.sqrt());
+    let (r0, r1) = (q / a, c / q);
+    Some(if r0 <= r1 { (r0, r1) } else { (r1, r0) })
 }
 
 /// The root of a polynomial that is monotonic on `[a, b]` and changes sign there
@@ -379,6 +433,83 @@ mod tests {
         assert_eq!(roots.len(), 2);
         assert!((roots.as_slice()[1] - 2f64.sqrt()).abs() < 1e-15);
         assert_eq!(eval_polynomial(&[1.0, 2.0, 3.0], 2.0), 17.0);
+    }
+
+    #[test]
+    fn quadratics_are_solved_accurately_in_every_case() {
+        // b dominates: the small root needs the stable form (1e-8 and 1e8).
+        let roots = polynomial_roots(&[1.0, -1e8 - 1e-8, 1.0], -1.0, 2e8);
+        assert_eq!(roots.len(), 2);
+        assert!((roots.as_slice()[0] - 1e-8).abs() < 1e-23, "{roots:?}");
+        assert!((roots.as_slice()[1] - 1e8).abs() < 1e-7, "{roots:?}");
+        // Only the roots inside the interval, a negative leading coefficient.
+        assert_eq!(polynomial_roots(&[6.0, 1.0, -1.0], 0.0, 10.0).as_slice(), &[3.0]);
+        assert_eq!(polynomial_roots(&[6.0, 1.0, -1.0], -10.0, 10.0).as_slice(), &[-2.0, 3.0]);
+        // A double root is reported where the quadratic is exactly 0, once; none without roots.
+        assert_eq!(polynomial_roots(&[1.0, -2.0, 1.0], -5.0, 5.0).as_slice(), &[1.0]);
+        assert!(polynomial_roots(&[1.0, 0.0, 1.0], -5.0, 5.0).is_empty());
+        // Roots at the interval's ends count.
+        assert_eq!(polynomial_roots(&[-1.0, 0.0, 1.0], -1.0, 1.0).as_slice(), &[-1.0, 1.0]);
+    }
+
+    #[test]
+    fn visiting_roots_finds_known_roots_in_order_and_stops_when_asked() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut uniform = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        // Multiplies the ascending coefficients by (t - r).
+        let times_root = |c: &[f64], r: f64| -> Vec<f64> {
+            let mut out = vec![0.0; c.len() + 1];
+            for (i, &ci) in c.iter().enumerate() {
+                out[i + 1] += ci;
+                out[i] -= r * ci;
+            }
+            out
+        };
+        for case in 0..6000 {
+            // 1 to 4 real roots at least 0.1 apart, times (t^2 + 1) in every other case, and a
+            // leading coefficient of either sign.
+            let count = 1 + case % 4;
+            let mut roots: Vec<f64> = Vec::new();
+            while roots.len() < count {
+                let r = uniform() * 6.0 - 3.0;
+                if roots.iter().all(|q| (q - r).abs() > 0.1) {
+                    roots.push(r);
+                }
+            }
+            roots.sort_by(f64::total_cmp);
+            let scale = (uniform() * 4.0 - 2.0).max(0.1);
+            let mut coefficients = if case % 2 == 0 { vec![scale] } else { vec![scale, 0.0, scale] };
+            for &r in &roots {
+                coefficients = times_root(&coefficients, r);
+            }
+            let (lo, hi) = (uniform() * 4.0 - 3.5, uniform() * 4.0 - 0.5);
+            let expected: Vec<f64> = roots.iter().copied().filter(|r| (lo..=hi).contains(r)).collect();
+            let mut visited = Vec::new();
+            let _ = visit_polynomial_roots(&coefficients, lo, hi, &mut |t| {
+                visited.push(t);
+                ControlFlow::Continue(())
+            });
+            assert_eq!(visited.len(), expected.len(), "{coefficients:?} on [{lo}, {hi}]: {visited:?} vs {expected:?}");
+            for (found, root) in visited.iter().zip(&expected) {
+                assert!((found - root).abs() < 1e-9, "{found} vs {root} of {coefficients:?}");
+            }
+            assert_eq!(polynomial_roots(&coefficients, lo, hi).as_slice(), visited, "the list is the visits");
+            // Breaking at the k-th root visits exactly the first k.
+            for stop in 1..visited.len() {
+                let mut first = Vec::new();
+                let flow = visit_polynomial_roots(&coefficients, lo, hi, &mut |t| {
+                    first.push(t);
+                    if first.len() == stop { ControlFlow::Break(()) } else { ControlFlow::Continue(()) }
+                });
+                assert!(flow.is_break());
+                assert_eq!(first, visited[..stop]);
+            }
+        }
     }
 
     #[test]

@@ -16,9 +16,10 @@
 
 use std::cell::RefCell;
 use std::f64::consts::{PI, TAU};
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
-use prism_api::math::polynomial_roots;
+use prism_api::math::visit_polynomial_roots;
 use prism_api::{Aabb, DVec2, DVec3, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math, pov};
 use schemars::JsonSchema;
 use serde::Deserialize;
@@ -286,11 +287,19 @@ impl Blob {
             if certainly_no_root(&coefficients, -margin, s1 - s0 + margin) {
                 continue;
             }
-            let roots = polynomial_roots(&coefficients, -margin, s1 - s0 + margin);
-            if let Some(t) =
-                roots.as_slice().iter().map(|&w| t_enter + (s0 + w) / length).find(|&t| t > t_min && t < t_max)
-            {
-                return Some(Hit::at(t));
+            // Roots in ascending order until one lies in the range; farther ones are never
+            // searched for.
+            let mut nearest = None;
+            let _ = visit_polynomial_roots(&coefficients, -margin, s1 - s0 + margin, &mut |w| {
+                let t = t_enter + (s0 + w) / length;
+                if t > t_min && t < t_max {
+                    nearest = Some(Hit::at(t));
+                    return ControlFlow::Break(());
+                }
+                ControlFlow::Continue(())
+            });
+            if nearest.is_some() {
+                return nearest;
             }
         }
         None
@@ -366,6 +375,7 @@ impl Shape for Blob {
 mod tests {
     use super::*;
     use prism_api::contract::{TestRng, check_dpdu, check_shape};
+    use prism_api::math::polynomial_roots;
 
     #[test]
     fn a_piece_is_skipped_only_when_it_has_no_root() {

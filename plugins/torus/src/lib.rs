@@ -10,9 +10,10 @@
 #![forbid(unsafe_code)]
 
 use std::f64::consts::{PI, TAU};
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
-use prism_api::math::{PolynomialRoots, polynomial_roots};
+use prism_api::math::{polynomial_roots, visit_polynomial_roots};
 use prism_api::{
     Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math,
     pov,
@@ -68,7 +69,7 @@ pub struct Torus {
 }
 
 /// The torus's quartic along a ray, set up from the entry of the bounds along the unit
-/// direction, with its real roots there.
+/// direction, and the span of distance along it where its roots are searched.
 struct Quartic {
     /// Ray parameter of the bounds' entry.
     t_enter: f64,
@@ -78,8 +79,10 @@ struct Quartic {
     dir: DVec3,
     /// Length of the ray's direction.
     length: f64,
-    /// Roots in distance along `dir` from `origin`, ascending.
-    roots: PolynomialRoots,
+    /// Coefficients in distance along `dir` from `origin`, constant first.
+    coefficients: [f64; 5],
+    /// Where roots are searched: the bounds' span, a little widened.
+    range: (f64, f64),
 }
 
 impl Quartic {
@@ -121,15 +124,15 @@ impl Torus {
         // lost to rounding at the ends of the interval: search slightly beyond both ends;
         // anything found there is still a point of the surface, and t is checked by the caller.
         let margin = 1e-9 * (self.major + self.minor);
-        let roots = polynomial_roots(&coefficients, -margin, span + margin);
-        Some(Quartic { t_enter, origin: o, dir, length, roots })
+        Some(Quartic { t_enter, origin: o, dir, length, coefficients, range: (-margin, span + margin) })
     }
 
     /// Every crossing of `ray` at `t > 0` from one solution of the quartic (rather than one
     /// per crossing, as the API's defaults would): `visit` gets each surface, nearest first.
     fn for_each_crossing(&self, ray: &Ray, mut visit: impl FnMut(&Surface)) {
         let Some(quartic) = self.quartic(ray, 0.0, f64::INFINITY) else { return };
-        for t in quartic.roots.as_slice().iter().map(|&u| quartic.t(self, u)).filter(|&t| t > 0.0) {
+        let roots = polynomial_roots(&quartic.coefficients, quartic.range.0, quartic.range.1);
+        for t in roots.as_slice().iter().map(|&u| quartic.t(self, u)).filter(|&t| t > 0.0) {
             visit(&self.surface_geometry(ray, &Hit::at(t)));
         }
     }
@@ -223,7 +226,18 @@ impl Shape for Torus {
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         let quartic = self.quartic(ray, t_min, t_max)?;
-        quartic.roots.as_slice().iter().map(|&u| quartic.t(self, u)).find(|&t| t > t_min && t < t_max).map(Hit::at)
+        // Roots in ascending order, until one lies in the range: the farther ones are never
+        // searched for.
+        let mut nearest = None;
+        let _ = visit_polynomial_roots(&quartic.coefficients, quartic.range.0, quartic.range.1, &mut |u| {
+            let t = quartic.t(self, u);
+            if t > t_min && t < t_max {
+                nearest = Some(Hit::at(t));
+                return ControlFlow::Break(());
+            }
+            ControlFlow::Continue(())
+        });
+        nearest
     }
 
     fn inside(&self, p: DVec3) -> bool {
