@@ -338,13 +338,14 @@ impl<'a> Classic<'a> {
 
         // Refraction about the top layer's normal, filtered by every layer.
         let n = top_normal;
-        let c = -d.dot(n);
-        let n_from = self.medium_ior(&interiors);
-        let inner = if entering { interiors.entering(closest.primitive) } else { interiors.leaving(closest.primitive) };
-        let interior = &view.base;
-        let n_to = if entering { interior.interior.ior } else { self.medium_ior(&inner) };
         let mut total_internal = false;
         if trans > scene.settings.adc_bailout {
+            let c = -d.dot(n);
+            let n_from = self.medium_ior(&interiors);
+            let inner =
+                if entering { interiors.entering(closest.primitive) } else { interiors.leaving(closest.primitive) };
+            let interior = &view.base;
+            let n_to = if entering { interior.interior.ior } else { self.medium_ior(&inner) };
             let child_weight = weight * filter.abs().max_element();
             let eta = n_from / n_to;
             let transmitted = if (eta - 1.0).abs() < IOR_EPSILON {
