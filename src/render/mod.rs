@@ -984,6 +984,7 @@ pub fn render_pixel_samples<I: Integrator>(
     let mut non_finite_samples = 0;
     let adaptive = settings.noise.filter(|_| range == (0..samples));
     let mut taken = range.len() as u32;
+    let spread_wanted = taken > 1;
     let working = integrator.working_gamma();
     for s in range {
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
@@ -1025,8 +1026,11 @@ pub fn render_pixel_samples<I: Integrator>(
         sum += weight * radiance;
         weights += weight;
         // The mean is taken in the integrator's working space (POV-Ray's), the error
-        // estimates in linear light.
-        spread.add(gamma::decode_rgb(working, radiance));
+        // estimates in linear light; a single sample has no spread to estimate (its variance
+        // and display error are 0), and skips the tone map per sample.
+        if spread_wanted {
+            spread.add(gamma::decode_rgb(working, radiance));
+        }
         if let Some(noise) = adaptive
             && (s + 1) % SAMPLE_BATCH == 0
             && s + 1 >= SAMPLE_BATCH * MIN_BATCHES
