@@ -89,6 +89,9 @@ pub struct CsgMember {
     pub inverse: bool,
     member_from_group: DAffine3,
     normal_to_group: DMat3,
+    /// The member's space is the group's (as often inside a group): rays and points pass
+    /// as they are.
+    identity: bool,
     /// Inside and outside swapped in the group's combination (inverse, or a difference's
     /// subtracted member, or both, which cancel).
     inverted: bool,
@@ -117,6 +120,7 @@ impl CsgMember {
             inverse,
             member_from_group,
             normal_to_group: member_from_group.matrix3.transpose(),
+            identity: group_from_member == DAffine3::IDENTITY,
             inverted: inverse,
             bounds: Aabb::INFINITE,
             surface_bounds: Aabb::INFINITE,
@@ -127,6 +131,9 @@ impl CsgMember {
     }
 
     fn ray(&self, ray: &Ray) -> Ray {
+        if self.identity {
+            return *ray;
+        }
         Ray::new(
             self.member_from_group.transform_point3(ray.origin),
             self.member_from_group.transform_vector3(ray.direction),
@@ -139,7 +146,8 @@ impl CsgMember {
         if self.surface_bounds.is_bounded() && !self.surface_bounds.contains(point, self.outside_margin) {
             return self.inverted;
         }
-        self.shape.inside(self.member_from_group.transform_point3(point)) != self.inverted
+        let point = if self.identity { point } else { self.member_from_group.transform_point3(point) };
+        self.shape.inside(point) != self.inverted
     }
 }
 
