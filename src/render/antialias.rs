@@ -628,6 +628,10 @@ fn subdivide<I: Integrator>(
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+    use crate::render::integrators::classic::Classic;
+    use crate::render::{RenderOptions, render_frame};
+    use crate::scene::load::{Embedded, load_from};
 
     #[test]
     fn the_two_fifths_power_matches_powf() {
@@ -686,11 +690,6 @@ mod tests {
         }
         assert!(ungraded > pairs / 20, "{ungraded} of {pairs} decided without grading");
     }
-
-    use super::*;
-    use crate::render::integrators::classic::Classic;
-    use crate::render::{RenderOptions, render_frame};
-    use crate::scene::load::{Embedded, load_from};
 
     const SCENE: &str = "[render]\nwidth = 40\nheight = 24\n\
         [[object]]\nshape = \"sphere\"\nradius = 0.6\nmaterial = { color = [1.0, 0.5, 0.2], phong = 0.8 }\n\

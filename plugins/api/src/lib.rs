@@ -31,7 +31,7 @@ pub use ray::Ray;
 pub use registry::{ParamError, ShapeParams, ShapeType, shape_type};
 pub use shape::{
     AreaSample, CROSSING_GAP, DirectionSample, Hit, HitPoint, MAX_CROSSINGS, Shape, Surface, crossings_by_intersect,
-    for_each_crossing, pdf_toward_by_area, sample_toward_by_area, sample_toward_flat,
+    for_each_crossing, pdf_toward_by_area, sample_toward_by_area, sample_toward_flat, visit_solved_crossings,
 };
 
 /// Re-exported so that plugins derive their parameter schema with the same version Prism uses.

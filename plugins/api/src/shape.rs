@@ -154,17 +154,57 @@ pub fn crossings_by_intersect<S: Shape + ?Sized>(
     t_max: f64,
     visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>,
 ) {
-    let bounds = shape.bounds();
-    let size = if bounds.is_bounded() { (bounds.max - bounds.min).max_element() } else { 0.0 };
-    let gap = CROSSING_GAP * size / ray.direction.length();
+    let step = CrossingStep::along(&shape.bounds(), ray);
     let mut t_min = t_min;
     for _ in 0..MAX_CROSSINGS {
         let Some(hit) = shape.intersect(ray, t_min, t_max) else { return };
         if visit(&hit).is_break() {
             return;
         }
-        // The relative step keeps the search moving for unbounded shapes and far crossings.
-        t_min = hit.t + gap.max(hit.t.abs() * 1e-14);
+        t_min = step.beyond(hit.t);
+    }
+}
+
+/// [`Shape::crossings`] for a shape that finds all its crossings along a ray at once (the
+/// roots of one equation, the slabs of one test): visits those of `hits` (nearest first)
+/// that [`crossings_by_intersect`] would, in `(t_min, t_max)` and each a hair beyond the
+/// one visited before it, until `visit` breaks. `bounds` are the shape's.
+pub fn visit_solved_crossings(
+    bounds: &Aabb,
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+    hits: impl IntoIterator<Item = Hit>,
+    visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>,
+) {
+    let step = CrossingStep::along(bounds, ray);
+    let mut t_min = t_min;
+    for hit in hits {
+        if hit.t > t_min && hit.t < t_max {
+            if visit(&hit).is_break() {
+                return;
+            }
+            t_min = step.beyond(hit.t);
+        }
+    }
+}
+
+/// How far past one crossing the next is looked for along a ray: [`CROSSING_GAP`] of the
+/// shape's size, or a relative step where that is smaller (unbounded shapes, far crossings).
+#[derive(Clone, Copy)]
+struct CrossingStep {
+    gap: f64,
+}
+
+impl CrossingStep {
+    fn along(bounds: &Aabb, ray: &Ray) -> Self {
+        let size = if bounds.is_bounded() { (bounds.max - bounds.min).max_element() } else { 0.0 };
+        Self { gap: CROSSING_GAP * size / ray.direction.length() }
+    }
+
+    /// The start of the search after a crossing at `t`.
+    fn beyond(self, t: f64) -> f64 {
+        t + self.gap.max(t.abs() * 1e-14)
     }
 }
 

@@ -6,7 +6,8 @@ use std::ops::ControlFlow;
 use std::sync::Arc;
 
 use prism_api::{
-    Aabb, AreaSample, CROSSING_GAP, DVec2, DVec3, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, pov,
+    Aabb, AreaSample, DVec2, DVec3, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, pov,
+    visit_solved_crossings,
 };
 use schemars::JsonSchema;
 use serde::Deserialize;
@@ -120,22 +121,12 @@ impl Shape for BoxShape {
         [enter, exit].into_iter().find(|&(t, _)| t > t_min && t < t_max).map(|(t, face)| Hit::on_part(t, face))
     }
 
-    /// Both crossings from one slab test: the entry, then the exit, each when in range and
-    /// the exit only when it lies beyond the entry by the gap `crossings_by_intersect`
-    /// steps over (so the same crossings as the trait's default, which would test the
-    /// slabs once per crossing).
+    /// Both crossings from one slab test, listed as the trait's default (which would test
+    /// the slabs once per crossing) lists them.
     fn crossings(&self, ray: &Ray, t_min: f64, t_max: f64, visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>) {
         let Some((enter, exit)) = self.slabs(ray) else { return };
-        let gap = CROSSING_GAP * (self.max - self.min).max_element() / ray.direction.length();
-        let mut t_min = t_min;
-        for (t, face) in [enter, exit] {
-            if t > t_min && t < t_max {
-                if visit(&Hit::on_part(t, face)).is_break() {
-                    return;
-                }
-                t_min = t + gap.max(t.abs() * 1e-14);
-            }
-        }
+        let hits = [enter, exit].map(|(t, face)| Hit::on_part(t, face));
+        visit_solved_crossings(&self.bounds(), ray, t_min, t_max, hits, visit);
     }
 
     fn inside(&self, point: DVec3) -> bool {

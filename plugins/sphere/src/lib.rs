@@ -7,8 +7,8 @@ use std::ops::ControlFlow;
 use std::sync::Arc;
 
 use prism_api::{
-    Aabb, AreaSample, CROSSING_GAP, DVec2, DVec3, DirectionSample, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams,
-    Surface, math, pdf_toward_by_area, pov, sample_toward_by_area,
+    Aabb, AreaSample, DVec2, DVec3, DirectionSample, Hit, HitPoint, ParamError, Ray, Shape, ShapeParams, Surface, math,
+    pdf_toward_by_area, pov, sample_toward_by_area, visit_solved_crossings,
 };
 use schemars::JsonSchema;
 use serde::Deserialize;
@@ -110,17 +110,7 @@ impl Shape for Sphere {
     /// solves the same quadratic once per crossing (CSG walks crossings of every member).
     fn crossings(&self, ray: &Ray, t_min: f64, t_max: f64, visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>) {
         let Some((near, far)) = self.roots(ray) else { return };
-        let bounds = self.bounds();
-        let gap = CROSSING_GAP * (bounds.max - bounds.min).max_element() / ray.direction.length();
-        let mut t_min = t_min;
-        for t in [near, far] {
-            if t > t_min && t < t_max {
-                if visit(&Hit::at(t)).is_break() {
-                    return;
-                }
-                t_min = t + gap.max(t.abs() * 1e-14);
-            }
-        }
+        visit_solved_crossings(&self.bounds(), ray, t_min, t_max, [near, far].map(Hit::at), visit);
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
