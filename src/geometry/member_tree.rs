@@ -9,6 +9,9 @@ use prism_api::{Aabb, Ray};
 /// Members per leaf at most.
 const LEAF_MEMBERS: usize = 2;
 
+/// Nodes pending in one query at most (see [`Stack`]).
+const STACK_CAPACITY: usize = 24;
+
 /// A tree over members' bounds (in the group's space); members without finite bounds are
 /// met by every query.
 #[derive(Clone, Debug)]
@@ -170,15 +173,16 @@ impl MemberTree {
 }
 
 /// The nodes still to visit, on the stack frame (a median split over at most 2^16 leaves
-/// is at most 17 levels deep; each level leaves one node behind).
+/// is at most 17 levels deep; each level leaves one node behind). Small, because it is
+/// filled with defaults on every query.
 struct Stack<T: Copy + Default> {
-    items: [T; 64],
+    items: [T; STACK_CAPACITY],
     len: usize,
 }
 
 impl<T: Copy + Default> Stack<T> {
     fn new() -> Self {
-        Self { items: [T::default(); 64], len: 0 }
+        Self { items: [T::default(); STACK_CAPACITY], len: 0 }
     }
 
     fn push(&mut self, item: T) {
@@ -189,5 +193,37 @@ impl<T: Copy + Default> Stack<T> {
     fn pop(&mut self) -> Option<T> {
         self.len = self.len.checked_sub(1)?;
         Some(self.items[self.len])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The largest group (2^16 members) builds the deepest tree; its queries must fit the
+    /// fixed stack and meet exactly the members they should.
+    #[test]
+    fn the_largest_group_fits_the_query_stack() {
+        let count = crate::geometry::csg::MAX_LEAVES as usize;
+        // Unit boxes along x, at odd coordinates so that their centres never tie.
+        let bounds: Vec<Aabb> = (0..count)
+            .map(|i| {
+                let x = 2.0 * i as f64;
+                Aabb::from_corners(DVec3::new(x, 0.0, 0.0), DVec3::new(x + 1.0, 1.0, 1.0))
+            })
+            .collect();
+        let tree = MemberTree::new(&bounds);
+        let ray = Ray::new(DVec3::new(-1.0, 0.5, 0.5), DVec3::X);
+        let mut met = Vec::new();
+        tree.visit_ray(&ray, 0.0, f64::INFINITY, |index, limit| {
+            met.push(index);
+            limit
+        });
+        assert_eq!(met, (0..count as u32).collect::<Vec<_>>(), "every box, nearest first");
+        for i in [0, 1, count / 2, count - 1] {
+            let inside = DVec3::new(2.0 * i as f64 + 0.5, 0.5, 0.5);
+            assert!(tree.any_at(inside, |index| index as usize == i));
+            assert!(!tree.any_at(inside + DVec3::X, |_| true), "between boxes");
+        }
     }
 }

@@ -84,27 +84,18 @@ impl Aabb {
     /// result.
     #[inline]
     pub fn ray_interval_inverse(&self, origin: DVec3, inverse: DVec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
-        let mut t0 = t_min;
-        let mut t1 = t_max;
-        for axis in 0..3 {
-            let inv = inverse[axis];
-            let mut near = (self.min[axis] - origin[axis]) * inv;
-            let mut far = (self.max[axis] - origin[axis]) * inv;
-            if near > far {
-                std::mem::swap(&mut near, &mut far);
-            }
-            // NaN (0 * inf) means the ray runs inside a slab's plane: no constraint.
-            if !near.is_nan() {
-                t0 = t0.max(near);
-            }
-            if !far.is_nan() {
-                t1 = t1.min(far);
-            }
-            if t0 > t1 {
-                return None;
-            }
-        }
-        Some((t0, t1))
+        // The slabs' entries and exits per axis, without branches (which axis order or a
+        // miss ends the test is a coin flip per ray). A NaN (0 * inf: the ray runs inside a
+        // slab's plane) sets no constraint: `max` and `min` return the other operand.
+        let a = (self.min - origin) * inverse;
+        let b = (self.max - origin) * inverse;
+        let swap = a.cmpgt(b);
+        let near = DVec3::select(swap, b, a);
+        let far = DVec3::select(swap, a, b);
+        let t0 = t_min.max(near.x).max(near.y).max(near.z);
+        let t1 = t_max.min(far.x).min(far.y).min(far.z);
+        // t0 only grows and t1 only shrinks axis by axis: crossed at the end means crossed.
+        (t0 <= t1).then_some((t0, t1))
     }
 }
 
@@ -144,5 +135,68 @@ mod tests {
         assert_eq!(b.ray_interval(&r, 0.0, f64::INFINITY), Some((4.0, 6.0)));
         let miss = crate::Ray::new(DVec3::new(2.0, 0.0, 5.0), DVec3::new(0.0, 0.0, -1.0));
         assert_eq!(b.ray_interval(&miss, 0.0, f64::INFINITY), None);
+    }
+
+    /// The interval slab by slab, stopping at the first miss: the definition the branchless
+    /// version must reproduce bit for bit.
+    fn slab_by_slab(b: &Aabb, origin: DVec3, inverse: DVec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
+        let (mut t0, mut t1) = (t_min, t_max);
+        for axis in 0..3 {
+            let mut near = (b.min[axis] - origin[axis]) * inverse[axis];
+            let mut far = (b.max[axis] - origin[axis]) * inverse[axis];
+            if near > far {
+                std::mem::swap(&mut near, &mut far);
+            }
+            if !near.is_nan() {
+                t0 = t0.max(near);
+            }
+            if !far.is_nan() {
+                t1 = t1.min(far);
+            }
+            if t0 > t1 {
+                return None;
+            }
+        }
+        Some((t0, t1))
+    }
+
+    #[test]
+    fn ray_interval_matches_the_slab_by_slab_definition() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let b = Aabb::from_corners(DVec3::new(-1.0, -2.0, 0.5), DVec3::new(1.5, 2.0, 3.0));
+        // Coordinates that often lie exactly on a slab's plane, and directions that are
+        // often exactly +0, -0 or parallel to an axis (NaN and infinite slab distances).
+        let coordinate = |r: u64| match r % 6 {
+            0 => -1.0,
+            1 => 2.0,
+            2 => 0.5,
+            _ => (r >> 8) as f64 / (1u64 << 56) as f64 * 8.0 - 4.0,
+        };
+        let component = |r: u64| match r % 5 {
+            0 => 0.0,
+            1 => -0.0,
+            _ => (r >> 8) as f64 / (1u64 << 56) as f64 * 2.0 - 1.0,
+        };
+        let bits = |v: Option<(f64, f64)>| v.map(|(a, b)| (a.to_bits(), b.to_bits()));
+        let mut hits = 0;
+        for _ in 0..200_000 {
+            let origin = DVec3::new(coordinate(next()), coordinate(next()), coordinate(next()));
+            let inverse = DVec3::ONE / DVec3::new(component(next()), component(next()), component(next()));
+            let (t_min, t_max) = if next() % 2 == 0 { (0.0, f64::INFINITY) } else { (0.25, 3.0) };
+            let expected = slab_by_slab(&b, origin, inverse, t_min, t_max);
+            hits += usize::from(expected.is_some());
+            assert_eq!(
+                bits(b.ray_interval_inverse(origin, inverse, t_min, t_max)),
+                bits(expected),
+                "origin {origin}, inverse {inverse}, ({t_min}, {t_max})"
+            );
+        }
+        assert!(hits > 10_000, "the rays must meet the box often: {hits}");
     }
 }
