@@ -683,11 +683,27 @@ fn remove_temps_on_signals() {
     }
 }
 
+/// Holds the work outside the render itself (BVH builds, image encoding) to `--threads` too:
+/// rayon's global pool would otherwise take one thread per core. `render` builds its own pool
+/// of the same size for the tiles.
+fn limit_global_threads(threads: Option<usize>) {
+    if let Some(threads) = threads {
+        // Fails only when the global pool already exists, which nothing builds before this.
+        let _ = rayon::ThreadPoolBuilder::new().num_threads(threads).build_global();
+    }
+}
+
 fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         None => render_default(),
-        Some(Command::Render(args)) => render_command(&args),
-        Some(Command::Watch(args)) => watch_command(&args),
+        Some(Command::Render(args)) => {
+            limit_global_threads(args.threads);
+            render_command(&args)
+        }
+        Some(Command::Watch(args)) => {
+            limit_global_threads(args.threads);
+            watch_command(&args)
+        }
         Some(Command::Merge(args)) => merge_command(&args),
         Some(Command::Farm(FarmCommand::Slurm(args))) => slurm_command(&args),
         Some(Command::Shapes) => write_stdout(&prism::registry::describe(&plugins::registry())),
