@@ -205,7 +205,7 @@ mod tests {
     #[test]
     fn the_largest_group_fits_the_query_stack() {
         let count = crate::geometry::csg::MAX_LEAVES as usize;
-        // Unit boxes along x, at odd coordinates so that their centres never tie.
+        // Unit boxes along x, two apart: none touches another and no two centres tie.
         let bounds: Vec<Aabb> = (0..count)
             .map(|i| {
                 let x = 2.0 * i as f64;
