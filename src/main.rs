@@ -262,7 +262,7 @@ struct RenderArgs {
     half: bool,
     #[command(flatten)]
     frame: FrameArgs,
-    /// Render threads (default: one per core; at most 256).
+    /// Threads for rendering and for encoding the image (default: one per core; at most 256).
     #[arg(long, allow_hyphen_values = true, value_parser = parse_threads)]
     threads: Option<usize>,
     /// Seed of every random number (overrides the scene).
