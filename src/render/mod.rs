@@ -13,6 +13,7 @@ pub mod focal_blur;
 pub mod integrators;
 pub mod lights;
 pub mod sampling;
+pub mod tile_queue;
 
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -34,6 +35,7 @@ use integrators::classic::Classic;
 use integrators::path::Path;
 use integrators::{FirstHit, Integrator, PixelSample};
 use sampling::{SampleStream, hash4};
+use tile_queue::TileQueue;
 
 /// Side of a square render tile in pixels.
 pub const TILE_SIZE: u32 = 16;
@@ -515,77 +517,82 @@ fn render_samples<I: Integrator>(
     let primary_rays = AtomicU64::new(0);
     let cancelled = AtomicBool::new(false);
     let start = Instant::now();
-    let tiles: Vec<TileResult> = pool.install(|| {
-        (0..tile_count)
-            .into_par_iter()
-            .filter_map(|tile| {
-                if options.cancel.as_ref().is_some_and(|c| c.load(Ordering::Relaxed))
-                    || options.deadline.is_some_and(|d| Instant::now() >= d)
-                {
-                    cancelled.store(true, Ordering::Relaxed);
-                    return None;
-                }
-                let tx = (tx0 + (tile % u64::from(tiles_x)) as u32) * tile_size;
-                let ty = (ty0 + (tile / u64::from(tiles_x)) as u32) * tile_size;
-                let area = Region { x0: tx, y0: ty, x1: (tx + tile_size).min(width), y1: (ty + tile_size).min(height) };
-                if let Some(done) = done
-                    && all_done(done, region, area)
-                {
-                    progress.inc(1);
-                    return None;
-                }
-                let (mut result, tile_rays, tile_primary) = match pov_method {
-                    Some(method) => {
-                        let block = antialias::render_block(scene, integrator, method, (tx, ty), borders.as_ref());
-                        let first_hits = if want_hits { centre_hits(scene, integrator, area) } else { Vec::new() };
-                        let tile = TileResult {
-                            area,
-                            pixels: block.pixels,
-                            first_hits,
-                            sums: Vec::new(),
-                            estimates: Vec::new(),
-                        };
-                        (tile, block.rays, block.primary_rays)
-                    }
-                    None => {
-                        let area = Region {
-                            x0: area.x0.max(region.x0),
-                            y0: area.y0.max(region.y0),
-                            x1: area.x1.min(region.x1),
-                            y1: area.y1.min(region.y1),
-                        };
-                        let (result, tile_rays) = render_tile(scene, integrator, area, &range, want_hits, want_sums);
-                        let primary = result.estimates.iter().map(|e| u64::from(e.samples)).sum();
-                        (result, tile_rays, primary)
-                    }
+    // Each thread renders its own run of tiles, then helps with the others' (see
+    // `tile_queue`).
+    let queue = TileQueue::new(tile_count, pool.current_num_threads());
+    let render_one = |tile: u64| -> Option<TileResult> {
+        if options.cancel.as_ref().is_some_and(|c| c.load(Ordering::Relaxed))
+            || options.deadline.is_some_and(|d| Instant::now() >= d)
+        {
+            cancelled.store(true, Ordering::Relaxed);
+            return None;
+        }
+        let tx = (tx0 + (tile % u64::from(tiles_x)) as u32) * tile_size;
+        let ty = (ty0 + (tile / u64::from(tiles_x)) as u32) * tile_size;
+        let area = Region { x0: tx, y0: ty, x1: (tx + tile_size).min(width), y1: (ty + tile_size).min(height) };
+        if let Some(done) = done
+            && all_done(done, region, area)
+        {
+            progress.inc(1);
+            return None;
+        }
+        let (mut result, tile_rays, tile_primary) = match pov_method {
+            Some(method) => {
+                let block = antialias::render_block(scene, integrator, method, (tx, ty), borders.as_ref());
+                let first_hits = if want_hits { centre_hits(scene, integrator, area) } else { Vec::new() };
+                let tile =
+                    TileResult { area, pixels: block.pixels, first_hits, sums: Vec::new(), estimates: Vec::new() };
+                (tile, block.rays, block.primary_rays)
+            }
+            None => {
+                let area = Region {
+                    x0: area.x0.max(region.x0),
+                    y0: area.y0.max(region.y0),
+                    x1: area.x1.min(region.x1),
+                    y1: area.y1.min(region.y1),
                 };
-                rays.fetch_add(tile_rays, Ordering::Relaxed);
-                primary_rays.fetch_add(tile_primary, Ordering::Relaxed);
-                if let Some(hook) = &options.observer {
-                    hook.0.tile(result.area, &result.pixels);
+                let (result, tile_rays) = render_tile(scene, integrator, area, &range, want_hits, want_sums);
+                let primary = result.estimates.iter().map(|e| u64::from(e.samples)).sum();
+                (result, tile_rays, primary)
+            }
+        };
+        rays.fetch_add(tile_rays, Ordering::Relaxed);
+        primary_rays.fetch_add(tile_primary, Ordering::Relaxed);
+        if let Some(hook) = &options.observer {
+            hook.0.tile(result.area, &result.pixels);
+        }
+        let band = &beauty[(result.area.y0 / tile_size - ty0) as usize];
+        band.lock().unwrap_or_else(PoisonError::into_inner).write(result.area, &result.pixels);
+        result.pixels = Vec::new();
+        if options.progress && !result.estimates.is_empty() {
+            let mut totals = running.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            totals.0 += result.estimates.len() as u64;
+            totals.1 += tile_primary;
+            totals.2 += result.estimates.iter().map(|e| f64::from(e.display_error).powi(2)).sum::<f64>();
+            let (pixels, samples, squares) = *totals;
+            drop(totals);
+            let pixels = pixels.max(1) as f64;
+            progress.set_message(format!("{:.1} spp, noise {:.4}", samples as f64 / pixels, (squares / pixels).sqrt()));
+        }
+        progress.inc(1);
+        Some(result)
+    };
+    let mut tiles: Vec<(u64, TileResult)> = pool
+        .broadcast(|worker| {
+            let mut done_here = Vec::new();
+            while let Some(tile) = queue.take(worker.index()) {
+                if let Some(result) = render_one(tile) {
+                    done_here.push((tile, result));
                 }
-                let band = &beauty[(result.area.y0 / tile_size - ty0) as usize];
-                band.lock().unwrap_or_else(PoisonError::into_inner).write(result.area, &result.pixels);
-                result.pixels = Vec::new();
-                if options.progress && !result.estimates.is_empty() {
-                    let mut totals = running.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-                    totals.0 += result.estimates.len() as u64;
-                    totals.1 += tile_primary;
-                    totals.2 += result.estimates.iter().map(|e| f64::from(e.display_error).powi(2)).sum::<f64>();
-                    let (pixels, samples, squares) = *totals;
-                    drop(totals);
-                    let pixels = pixels.max(1) as f64;
-                    progress.set_message(format!(
-                        "{:.1} spp, noise {:.4}",
-                        samples as f64 / pixels,
-                        (squares / pixels).sqrt()
-                    ));
-                }
-                progress.inc(1);
-                Some(result)
-            })
-            .collect()
-    });
+            }
+            done_here
+        })
+        .into_iter()
+        .flatten()
+        .collect();
+    // In raster order, as one loop over the tiles would give them.
+    tiles.sort_unstable_by_key(|&(tile, _)| tile);
+    let tiles: Vec<TileResult> = tiles.into_iter().map(|(_, result)| result).collect();
     progress.finish_and_clear();
     let elapsed = start.elapsed();
     let (mut non_finite, mut saturated) = (0, 0);
