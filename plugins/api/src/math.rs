@@ -454,13 +454,7 @@ mod tests {
 
     #[test]
     fn visiting_roots_finds_known_roots_in_order_and_stops_when_asked() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut uniform = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::contract::TestRng::new(0x9e37_79b9_7f4a_7c15);
         // Multiplies the ascending coefficients by (t - r).
         let times_root = |c: &[f64], r: f64| -> Vec<f64> {
             let mut out = vec![0.0; c.len() + 1];
@@ -476,18 +470,18 @@ mod tests {
             let count = 1 + case % 4;
             let mut roots: Vec<f64> = Vec::new();
             while roots.len() < count {
-                let r = uniform() * 6.0 - 3.0;
+                let r = rng.range(-3.0, 3.0);
                 if roots.iter().all(|q| (q - r).abs() > 0.1) {
                     roots.push(r);
                 }
             }
             roots.sort_by(f64::total_cmp);
-            let scale = (uniform() * 4.0 - 2.0).max(0.1);
+            let scale = rng.range(-2.0, 2.0).max(0.1);
             let mut coefficients = if case % 2 == 0 { vec![scale] } else { vec![scale, 0.0, scale] };
             for &r in &roots {
                 coefficients = times_root(&coefficients, r);
             }
-            let (lo, hi) = (uniform() * 4.0 - 3.5, uniform() * 4.0 - 0.5);
+            let (lo, hi) = (rng.range(-3.5, 0.5), rng.range(-0.5, 3.5));
             let expected: Vec<f64> = roots.iter().copied().filter(|r| (lo..=hi).contains(r)).collect();
             let mut visited = Vec::new();
             let _ = visit_polynomial_roots(&coefficients, lo, hi, &mut |t| {
