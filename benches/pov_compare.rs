@@ -99,9 +99,11 @@ fn best(runs: Vec<Run>) -> Run {
     runs.into_iter().min_by(|a, b| a.wall.total_cmp(&b.wall)).expect("at least one run")
 }
 
-/// Prism's own render time ("rendered ... in X s").
+/// Prism's own render time ("rendered ... in X s"), from its summary line: a warning before
+/// it may say " in " too.
 fn prism_render_time(log: &str) -> Option<f64> {
-    log.split(" in ").nth(1)?.split(" s").next()?.trim().parse().ok()
+    let summary = log.lines().find(|line| line.starts_with("rendered "))?;
+    summary.split(" in ").nth(1)?.split(" s").next()?.trim().parse().ok()
 }
 
 /// POV-Ray's "Trace Time: ... (X seconds)".
