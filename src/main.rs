@@ -572,16 +572,28 @@ fn add_denoise_guides(aovs: &mut Vec<prism::film::Aov>) {
     }
 }
 
-/// Warns when a half-float EXR saturates values beyond half's range (`--half`).
-fn warn_beyond_half(film: &prism::film::Film, half: bool) {
-    let count = if half { output::values_beyond_half(film) } else { 0 };
-    if count > 0 {
+/// Encodes `film` for each of `paths` (format from the extension), warning when a half-float
+/// EXR (`--half`) saturates values beyond half's range.
+fn encode_outputs<'p>(
+    film: &prism::film::Film,
+    paths: impl IntoIterator<Item = &'p PathBuf>,
+    image: &output::ImageSettings,
+) -> Result<Vec<(&'p Path, Vec<u8>)>, CliError> {
+    let mut files = Vec::new();
+    let mut beyond_half = 0;
+    for path in paths {
+        let encoded = output::encode_reporting(film, path, image)?;
+        beyond_half = beyond_half.max(encoded.values_beyond_half);
+        files.push((path.as_path(), encoded.bytes));
+    }
+    if beyond_half > 0 {
         report(&format!(
-            "warning: --half: {count} values exceed the largest half float ({}) and are written as {0}; \
+            "warning: --half: {beyond_half} values exceed the largest half float ({}) and are written as {0}; \
              write a float EXR (without --half) to keep them",
             output::HALF_MAX
         ));
     }
+    Ok(files)
 }
 
 /// Prints warnings to standard error, one `file:line:col: warning in `key`: ...` each.
@@ -997,12 +1009,8 @@ fn render_scene(mut scene: Scene, args: &RenderArgs) -> Result<(), CliError> {
             ));
         }
     }
-    warn_beyond_half(&film, args.half);
     // Every output is encoded, then all are written at once: all of them or none.
-    let mut files = Vec::new();
-    for path in &outputs {
-        files.push((path.as_path(), output::encode(&film, path, &image)?));
-    }
+    let mut files = encode_outputs(&film, &outputs, &image)?;
     for (aov, path) in &previews {
         if let Some(img) = output::layer_preview(&film, *aov) {
             files.push((path.as_path(), output::encode_png(&img, path)?));
@@ -1078,11 +1086,8 @@ fn render_with_checkpoints(
     if run.outcome == Outcome::Complete {
         return Ok(run);
     }
-    warn_beyond_half(&state.film, args.half);
     let mut files = vec![(path, encode_checkpoint(state, path)?)];
-    for out in outputs {
-        files.push((out.as_path(), output::encode(&state.film, out, image)?));
-    }
+    files.extend(encode_outputs(&state.film, outputs, image)?);
     output::write_all_atomically(&files)?;
     let written: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
     Err(CliError::Interrupted(format!(
@@ -1225,12 +1230,8 @@ fn merge_command(args: &MergeArgs) -> Result<(), CliError> {
     }
     let film = merge(&parts, args.limits.budget())?;
     let info = shared_info(&parts).ok_or(prism::farm::merge::MergeError::NoParts)?;
-    warn_beyond_half(&film, args.half);
     let image = output::ImageSettings { exposure: info.exposure, tone_map: info.tone_map, exr_half: args.half };
-    let mut files = Vec::new();
-    for path in &args.output {
-        files.push((path.as_path(), output::encode(&film, path, &image)?));
-    }
+    let files = encode_outputs(&film, &args.output, &image)?;
     output::write_all_atomically(&files)?;
     let names: Vec<String> = args.output.iter().map(|p| p.display().to_string()).collect();
     report(&format_args!("merged {} parts into {}x{} -> {}", parts.len(), film.width, film.height, names.join(", ")));

@@ -717,6 +717,24 @@ fn render_successfully(dir: &Path, args: &[&str]) -> String {
     stderr
 }
 
+/// A half-float EXR saturates values beyond half's range with a warning that counts them;
+/// a float EXR keeps them, and an image without a half-float EXR warns of nothing.
+#[test]
+fn values_beyond_half_are_counted_in_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = "[render]\nwidth = 8\nheight = 6\n[world]\nbackground = [100000.0, 0.5, 0.5]\n";
+    std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
+    let render = |args: &[&str]| render_successfully(dir.path(), args);
+    let half = render(&["--exr", "half.exr", "--half"]);
+    assert!(half.contains("warning: --half: 48 values exceed the largest half float (65504)"), "{half}");
+    let back = prism::output::read_exr(&dir.path().join("half.exr")).unwrap();
+    assert!(back.pixels.iter().all(|p| p[0] == 65504.0), "{:?}", back.pixels[0]);
+    assert!(!render(&["--exr", "float.exr"]).contains("warning"));
+    let back = prism::output::read_exr(&dir.path().join("float.exr")).unwrap();
+    assert!(back.pixels.iter().all(|p| p[0] == 100000.0), "{:?}", back.pixels[0]);
+    assert!(!render(&["--half"]).contains("warning"));
+}
+
 /// `[world] environment` is the path integrator's: under classic it is ignored with a
 /// warning naming the key (the image shows `background`), under path it lights the scene.
 #[test]

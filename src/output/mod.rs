@@ -422,13 +422,31 @@ pub struct ImageSettings {
     pub exr_half: bool,
 }
 
+/// An image encoded for a file, and what the encoding had to change.
+#[derive(Debug)]
+pub struct Encoded {
+    /// The file's bytes.
+    pub bytes: Vec<u8>,
+    /// How many of the film's values (beauty and layers) lie beyond half's range and were
+    /// written as `±HALF_MAX` (a half-float EXR's; 0 for every other format).
+    pub values_beyond_half: usize,
+}
+
 /// Encodes the film for `path`'s format.
 pub fn encode(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Vec<u8>, OutputError> {
+    encode_reporting(film, path, settings).map(|encoded| encoded.bytes)
+}
+
+/// Encodes the film for `path`'s format, saying what the encoding changed.
+pub fn encode_reporting(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Encoded, OutputError> {
     let encode_err =
         |e: &dyn std::fmt::Display| OutputError::Encode { path: path.to_path_buf(), message: e.to_string() };
     let mut bytes = Cursor::new(Vec::new());
     match format_for(path)? {
-        OutputFormat::Exr => return encode_exr(film, settings.exr_half).map_err(|e| encode_err(&e)),
+        OutputFormat::Exr => {
+            let (bytes, values_beyond_half) = encode_exr(film, settings.exr_half).map_err(|e| encode_err(&e))?;
+            return Ok(Encoded { bytes, values_beyond_half });
+        }
         OutputFormat::Hdr => {
             let data: Vec<f32> = film.pixels.iter().flatten().copied().collect();
             let img = image::Rgb32FImage::from_raw(film.width, film.height, data)
@@ -449,7 +467,7 @@ pub fn encode(film: &Film, path: &Path, settings: &ImageSettings) -> Result<Vec<
             image::DynamicImage::ImageRgb8(img).write_to(&mut bytes, format).map_err(|e| encode_err(&e))?;
         }
     }
-    Ok(bytes.into_inner())
+    Ok(Encoded { bytes: bytes.into_inner(), values_beyond_half: 0 })
 }
 
 /// One channel of an EXR being written: its name and its values, every `stride`-th of
@@ -461,18 +479,29 @@ struct ExrChannel<'a> {
     offset: usize,
 }
 
+impl<'a> ExrChannel<'a> {
+    /// The channel's `len` samples from pixel `(x, y)` on, along a row of a film `width`
+    /// pixels wide.
+    fn line(&self, width: usize, (x, y): (usize, usize), len: usize) -> impl Iterator<Item = &'a f32> + use<'a> {
+        let first = (y * width + x) * self.stride + self.offset;
+        self.values[first..].iter().step_by(self.stride).take(len)
+    }
+}
+
 /// The film as an EXR: beauty as `R`, `G`, `B`, each AOV layer's channels as
 /// `layer.channel` (`albedo.R`, `normal.X`, `depth.Z`...), the data window the film's region
 /// and the display window the full frame; ZIP compression of 16-line blocks (OpenEXR's
 /// usual choice for rendered images), in 32-bit or `half` floats. Each block's bytes are
-/// made straight from the film and compressed on all threads.
-fn encode_exr(film: &Film, half: bool) -> exr::error::Result<Vec<u8>> {
+/// made straight from the film and compressed on all threads. Also returns how many values
+/// were beyond half's range and written as `±HALF_MAX` (0 for 32-bit floats).
+fn encode_exr(film: &Film, half: bool) -> exr::error::Result<(Vec<u8>, usize)> {
     use exr::block::chunk::{Chunk, CompressedBlock, CompressedScanLineBlock};
     use exr::block::writer::ChunksWriter;
     use exr::block::{self, BlockIndex};
     use exr::meta::BlockDescription;
     use exr::meta::header::Header;
     use exr::prelude::*;
+    use half::slice::HalfFloatSliceExt;
     use rayon::prelude::*;
 
     let beauty = film.pixels.as_flattened();
@@ -498,81 +527,113 @@ fn encode_exr(film: &Film, half: bool) -> exr::error::Result<Vec<u8>> {
         .with_display_window(IntegerBounds::new((0, 0), (film.frame.0 as usize, film.frame.1 as usize)));
     header.own_attributes.layer_position = Vec2(film.origin.0 as i32, film.origin.1 as i32);
 
-    // A block's bytes: for each of its lines, each channel's samples of that line, little-endian.
-    let block_bytes = |index: &BlockIndex| {
-        use half::slice::HalfFloatSliceExt;
-        let bytes_per_sample = if half { 2 } else { 4 };
-        let line_width = index.pixel_size.width();
-        let line_bytes = line_width * bytes_per_sample;
-        let mut bytes = vec![0u8; index.pixel_size.height() * channels.len() * line_bytes];
-        let mut lines = bytes.chunks_exact_mut(line_bytes);
-        // A line of one channel, clamped to half's range (a value beyond it would be written
-        // as an infinity; the caller warns, see `values_beyond_half`), and as half floats:
-        // converted a line at a time, eight values per instruction where the CPU has F16C.
-        let (mut clamped, mut halves) = (Vec::new(), Vec::new());
-        if half {
-            (clamped, halves) = (vec![0.0f32; line_width], vec![f16::ZERO; line_width]);
-        }
-        for y in index.pixel_position.y()..index.pixel_position.y() + index.pixel_size.height() {
-            for (channel, line) in channels.iter().zip(&mut lines) {
-                let first = (y * width + index.pixel_position.x()) * channel.stride + channel.offset;
-                let samples = channel.values[first..].iter().step_by(channel.stride);
-                if half {
-                    for (out, &v) in clamped.iter_mut().zip(samples) {
-                        *out = v.clamp(-HALF_MAX, HALF_MAX);
-                    }
-                    halves.convert_from_f32_slice(&clamped);
-                    for (out, h) in line.chunks_exact_mut(2).zip(&halves) {
-                        out.copy_from_slice(&h.to_le_bytes());
-                    }
-                } else {
-                    for (out, &v) in line.chunks_exact_mut(4).zip(samples) {
-                        out.copy_from_slice(&v.to_le_bytes());
-                    }
+    // A block's samples, for each of its lines each channel's samples of that line, as
+    // `f32`s or (`half`) as half floats, clamped to half's range (a value beyond it would be
+    // written as an infinity), with how many were clamped. Half floats are converted a line
+    // at a time, eight values per instruction where the CPU has F16C.
+    let line_width = |index: &BlockIndex| index.pixel_size.width();
+    let lines = |index: &BlockIndex| index.pixel_position.y()..index.pixel_position.y() + index.pixel_size.height();
+    let block_halves = |index: &BlockIndex| {
+        let line_width = line_width(index);
+        let mut halves = vec![f16::ZERO; index.pixel_size.height() * channels.len() * line_width];
+        let mut clamped = vec![0.0f32; line_width];
+        let mut beyond = 0;
+        let mut out = halves.chunks_exact_mut(line_width);
+        for y in lines(index) {
+            for (channel, line) in channels.iter().zip(&mut out) {
+                for (c, &v) in clamped.iter_mut().zip(channel.line(width, (index.pixel_position.x(), y), line_width)) {
+                    beyond += usize::from(v.abs() > HALF_MAX);
+                    *c = v.clamp(-HALF_MAX, HALF_MAX);
                 }
+                line.convert_from_f32_slice(&clamped);
+            }
+        }
+        (halves, beyond)
+    };
+    let block_floats = |index: &BlockIndex| {
+        let line_width = line_width(index);
+        let mut bytes = Vec::with_capacity(index.pixel_size.height() * channels.len() * line_width * 4);
+        for y in lines(index) {
+            for channel in &channels {
+                let line = channel.line(width, (index.pixel_position.x(), y), line_width);
+                bytes.extend(line.flat_map(|v| v.to_le_bytes()));
             }
         }
         bytes
     };
     let y_origin = film.origin.1 as i32;
     let mut out = Cursor::new(Vec::new());
+    let mut beyond_half = 0;
     block::write(&mut out, std::iter::once(header).collect(), true, |meta, writer| {
         let blocks: Vec<_> = block::enumerate_ordered_header_block_indices(&meta.headers).collect();
         let chunks: Vec<_> = blocks
             .par_iter()
             .map(|(_, index)| {
                 let y_coordinate = y_origin + index.pixel_position.y() as i32;
-                let compressed_pixels_le = zip_compress(block_bytes(index));
-                Chunk {
+                let (compressed_pixels_le, beyond) = if half {
+                    let (halves, beyond) = block_halves(index);
+                    (zip_compress_halves(halves.reinterpret_cast()), beyond)
+                } else {
+                    (zip_compress(block_floats(index)), 0)
+                };
+                let chunk = Chunk {
                     layer_index: 0,
                     compressed_block: CompressedBlock::ScanLine(CompressedScanLineBlock {
                         y_coordinate,
                         compressed_pixels_le,
                     }),
-                }
+                };
+                (chunk, beyond)
             })
             .collect();
-        for ((index_in_header, _), chunk) in blocks.iter().zip(chunks) {
+        for ((index_in_header, _), (chunk, beyond)) in blocks.iter().zip(chunks) {
+            beyond_half += beyond;
             writer.write_chunk(*index_in_header, chunk)?;
         }
         Ok(())
     })?;
-    Ok(out.into_inner())
+    Ok((out.into_inner(), beyond_half))
 }
 
 /// OpenEXR's ZIP compression of a block's little-endian bytes: the bytes split into those at
 /// even and at odd offsets, each byte replaced by its difference to the one before (plus
-/// 128), then zlib (level 4, zlib-rs: twice miniz's speed at this level, within 3 % of its
-/// size). A block that would not shrink is stored as it is, as the format requires.
+/// 128), then zlib. A block that would not shrink is stored as it is, as the format requires.
 fn zip_compress(bytes: Vec<u8>) -> Vec<u8> {
+    zip_deflate(&zip_predicted(&bytes), bytes.len()).unwrap_or(bytes)
+}
+
+/// [`zip_compress`] of a block of half floats (their bits), predicted straight from the
+/// values: a half's low byte sits at an even offset, its high byte at an odd one.
+fn zip_compress_halves(halves: &[u16]) -> Vec<u8> {
+    zip_deflate(&zip_predicted_halves(halves), 2 * halves.len())
+        .unwrap_or_else(|| halves.iter().flat_map(|h| h.to_le_bytes()).collect())
+}
+
+/// The zlib stream (level 4, zlib-rs: twice miniz's speed at this level, within 3 % of its
+/// size) of a block's `predicted` bytes, when it is shorter than the block's `raw_len` bytes.
+fn zip_deflate(predicted: &[u8], raw_len: usize) -> Option<Vec<u8>> {
     use std::io::Write;
-    let predicted = zip_predicted(&bytes);
-    let mut encoder = flate2::write::ZlibEncoder::new(Vec::with_capacity(bytes.len() / 2), flate2::Compression::new(4));
-    let compressed = encoder.write_all(&predicted).and_then(|()| encoder.finish());
-    match compressed {
-        Ok(compressed) if compressed.len() < bytes.len() => compressed,
-        _ => bytes,
+    let mut encoder = flate2::write::ZlibEncoder::new(Vec::with_capacity(raw_len / 2), flate2::Compression::new(4));
+    let compressed = encoder.write_all(predicted).and_then(|()| encoder.finish()).ok()?;
+    (compressed.len() < raw_len).then_some(compressed)
+}
+
+/// [`zip_predicted`] of the little-endian bytes of `halves`: their low bytes, then their high
+/// bytes, each differenced with the byte before it in that order (plus 128).
+fn zip_predicted_halves(halves: &[u16]) -> Vec<u8> {
+    let n = halves.len();
+    let mut predicted = vec![0u8; 2 * n];
+    let (Some(&first), Some(&last)) = (halves.first(), halves.last()) else { return predicted };
+    let delta = |current: u8, previous: u8| current.wrapping_sub(previous).wrapping_add(128);
+    let (lows, highs) = predicted.split_at_mut(n);
+    for ((low, high), (&h, &previous)) in lows[1..].iter_mut().zip(&mut highs[1..]).zip(halves[1..].iter().zip(halves))
+    {
+        *low = delta(h as u8, previous as u8);
+        *high = delta((h >> 8) as u8, (previous >> 8) as u8);
     }
+    lows[0] = first as u8;
+    highs[0] = delta((first >> 8) as u8, last as u8);
+    predicted
 }
 
 /// The bytes ZIP compression deflates: those at even offsets, then those at odd offsets,
@@ -609,16 +670,6 @@ fn zip_predicted(bytes: &[u8]) -> Vec<u8> {
 
 /// The largest finite half float.
 pub const HALF_MAX: f32 = 65504.0;
-
-/// How many of the film's values (beauty and layers) lie beyond half's range and are written
-/// as `±HALF_MAX` in a half-float EXR.
-pub fn values_beyond_half(film: &Film) -> usize {
-    use rayon::prelude::*;
-    let beyond = |values: &[f32]| {
-        values.par_chunks(1 << 16).map(|c| c.iter().filter(|v| v.abs() > HALF_MAX).count()).sum::<usize>()
-    };
-    beyond(film.pixels.as_flattened()) + film.layers.iter().map(|l| beyond(&l.data)).sum::<usize>()
-}
 
 /// Writes the film to `path` (format from the extension), atomically.
 pub fn write_image(film: &Film, path: &Path, settings: &ImageSettings) -> Result<(), OutputError> {
@@ -670,6 +721,27 @@ mod tests {
         }
     }
 
+    /// Predicting half floats straight from their bits gives what predicting their
+    /// little-endian bytes gives, at every length; and a block of halves that does not
+    /// deflate is stored as those bytes.
+    #[test]
+    fn zip_prediction_of_halves_is_that_of_their_bytes() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for n in (0..40).chain([255, 256, 1001, 4096]) {
+            let halves: Vec<u16> = (0..n)
+                .map(|_| {
+                    state ^= state << 13;
+                    state ^= state >> 7;
+                    state ^= state << 17;
+                    (state >> 24) as u16
+                })
+                .collect();
+            let bytes: Vec<u8> = halves.iter().flat_map(|h| h.to_le_bytes()).collect();
+            assert_eq!(zip_predicted_halves(&halves), zip_predicted(&bytes), "{n} halves");
+            assert_eq!(zip_compress_halves(&halves), zip_compress(bytes), "{n} halves");
+        }
+    }
+
     /// The depth preview spans the depths of surfaces seen (near bright, far dark); escaped
     /// rays (depth f32::MAX) are black and do not stretch the range.
     #[test]
@@ -691,7 +763,7 @@ mod tests {
             *p = [i as f32, 0.5, -1.0];
         }
         film.layers[1].data[4] = 7.25;
-        let bytes = Cursor::new(encode_exr(&film, false).unwrap());
+        let bytes = Cursor::new(encode_exr(&film, false).unwrap().0);
         let image = read()
             .no_deep_data()
             .largest_resolution_level()
@@ -879,7 +951,7 @@ mod tests {
         }
         let raw = (w * h * 3 * 4) as usize;
         for (film, compresses) in [(&smooth, true), (&noise, false)] {
-            let bytes = encode_exr(film, false).unwrap();
+            let (bytes, _) = encode_exr(film, false).unwrap();
             assert_eq!(bytes.len() < raw / 2, compresses, "{} bytes of {raw}", bytes.len());
             let path = std::env::temp_dir().join(format!("prism-exr-blocks-{}-{compresses}.exr", std::process::id()));
             std::fs::write(&path, &bytes).unwrap();
