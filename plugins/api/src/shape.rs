@@ -177,14 +177,19 @@ pub fn visit_solved_crossings(
     hits: impl IntoIterator<Item = Hit>,
     visit: &mut dyn FnMut(&Hit) -> ControlFlow<()>,
 ) {
-    let step = CrossingStep::along(bounds, ray);
+    // The step costs a square root and a division; most visits break at the first crossing.
+    let mut step = None;
     let mut t_min = t_min;
+    let mut visited: Option<f64> = None;
     for hit in hits {
+        if let Some(t) = visited.take() {
+            t_min = step.get_or_insert_with(|| CrossingStep::along(bounds, ray)).beyond(t);
+        }
         if hit.t > t_min && hit.t < t_max {
             if visit(&hit).is_break() {
                 return;
             }
-            t_min = step.beyond(hit.t);
+            visited = Some(hit.t);
         }
     }
 }
