@@ -258,7 +258,7 @@ impl AaGrade {
     /// precision as POV-Ray's.
     fn of(self, c: DVec3) -> DVec3 {
         match self.from_working {
-            None => DVec3::from_array(c.to_array().map(two_fifths_power)),
+            None => DVec3::new(two_fifths_power(c.x), two_fifths_power(c.y), two_fifths_power(c.z)),
             Some(curve) => DVec3::from_array(c.to_array().map(|v| f64::from(curve.encode(v as f32)))),
         }
     }
