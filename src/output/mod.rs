@@ -531,10 +531,9 @@ fn encode_exr(film: &Film, half: bool) -> exr::error::Result<(Vec<u8>, usize)> {
     // `f32`s or (`half`) as half floats, clamped to half's range (a value beyond it would be
     // written as an infinity), with how many were clamped. Half floats are converted a line
     // at a time, eight values per instruction where the CPU has F16C.
-    let line_width = |index: &BlockIndex| index.pixel_size.width();
     let lines = |index: &BlockIndex| index.pixel_position.y()..index.pixel_position.y() + index.pixel_size.height();
     let block_halves = |index: &BlockIndex| {
-        let line_width = line_width(index);
+        let line_width = index.pixel_size.width();
         let mut halves = vec![f16::ZERO; index.pixel_size.height() * channels.len() * line_width];
         let mut clamped = vec![0.0f32; line_width];
         let mut beyond = 0;
@@ -551,7 +550,7 @@ fn encode_exr(film: &Film, half: bool) -> exr::error::Result<(Vec<u8>, usize)> {
         (halves, beyond)
     };
     let block_floats = |index: &BlockIndex| {
-        let line_width = line_width(index);
+        let line_width = index.pixel_size.width();
         let mut bytes = Vec::with_capacity(index.pixel_size.height() * channels.len() * line_width * 4);
         for y in lines(index) {
             for channel in &channels {
