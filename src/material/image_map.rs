@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use glam::DVec3;
+use prism_api::math::fmod;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -391,7 +392,7 @@ impl ImageMap {
                 if self.once && (!(0.0..=1.0).contains(&q.x) || !(0.0..=1.0).contains(&q.y)) {
                     return None;
                 }
-                Some(((q.x * w) % w, (q.y * h) % h))
+                Some((fmod(q.x * w, w), fmod(q.y * h, h)))
             }
             MapType::Spherical => {
                 let len = q.length();
@@ -406,7 +407,7 @@ impl ImageMap {
                 if self.once && !(0.0..=1.0).contains(&q.y) {
                     return None;
                 }
-                let v = (q.y * h) % h;
+                let v = fmod(q.y * h, h);
                 let len = q.length();
                 if len == 0.0 {
                     return None;
@@ -488,7 +489,7 @@ fn wrap(val: f64, upper: f64) -> f64 {
     if val.trunc() == val && val.abs() < WHOLE && upper.trunc() == upper && (1.0..WHOLE).contains(&upper) {
         return (val as i64).rem_euclid(upper as i64) as f64;
     }
-    let mut v = val % upper;
+    let mut v = fmod(val, upper);
     if v < 0.0 {
         v += upper;
     }

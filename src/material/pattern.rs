@@ -12,6 +12,7 @@
 use std::fmt;
 
 use glam::{DAffine3, DMat3, DMat4, DVec3, EulerRot};
+use prism_api::math::fmod;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -1213,7 +1214,7 @@ pub fn shape_wave(raw: f64, frequency: f64, phase: f64, wave: Wave) -> f64 {
     let mut value = raw;
     if frequency != 0.0 {
         // POV-Ray wraps at 1.00001, not 1 (a value of exactly 1 stays 1).
-        value = (value * frequency + phase) % 1.00001;
+        value = fmod(value * frequency + phase, 1.00001);
     }
     if value < 0.0 {
         value -= value.floor();
@@ -1350,7 +1351,7 @@ fn brick(q: DVec3, size: DVec3, mortar: f64) -> usize {
 /// POV-Ray's gradient: the projection on `v`, wrapped above 1.
 fn gradient(q: DVec3, v: DVec3) -> f64 {
     let r = q.dot(v);
-    if r > 1.0 { r % 1.0 } else { r }
+    if r > 1.0 { fmod(r, 1.0) } else { r }
 }
 
 /// POV-Ray's radial: the angle about y from +z (POV-Ray's frame), a quarter turn added.
@@ -1363,7 +1364,7 @@ fn radial(q: DVec3) -> f64 {
 }
 
 fn onion(q: DVec3) -> f64 {
-    q.length() % 1.0
+    fmod(q.length(), 1.0)
 }
 
 fn leopard(q: DVec3) -> f64 {

@@ -94,6 +94,43 @@ pub fn solid_angle_scale(matrix3: DMat3, object_direction: DVec3) -> f64 {
     matrix3.determinant().abs() / (matrix3 * unit).length().powi(3)
 }
 
+/// `x % y` (C's `fmod`: the exact remainder of `x` by `y`, with the sign of `x`), without the
+/// library call where it can: for a quotient below 2^52 and a divisor of ordinary size, the
+/// truncated quotient's product is made exact by Dekker's product (Veltkamp's split), so the
+/// remainder comes out exact, bit for bit what `%` gives. Patterns wrap every value this way.
+#[inline]
+pub fn fmod(x: f64, y: f64) -> f64 {
+    const SPLIT: f64 = 134_217_729.0; // 2^27 + 1
+    const QUOTIENT_LIMIT: f64 = 4_503_599_627_370_496.0; // 2^52
+    let (ax, ay) = (x.abs(), y.abs());
+    // Keeps the split from overflowing and its low parts from underflowing; NaN and the
+    // infinities fail the comparisons too.
+    if !((1e-250..1e250).contains(&ay) && ax < ay * QUOTIENT_LIMIT) {
+        return x % y;
+    }
+    if ax < ay {
+        return x;
+    }
+    // x / y rounds up to the next whole number at most: then the remainder below is in
+    // [-|y|, 0) and one |y| mends it (both sums exact: the results are representable).
+    let quotient = (ax / ay).trunc();
+    let product = quotient * ay;
+    let split = |a: f64| {
+        let c = SPLIT * a;
+        let high = c - (c - a);
+        (high, a - high)
+    };
+    let ((qh, ql), (yh, yl)) = (split(quotient), split(ay));
+    let product_error = ((qh * yh - product) + qh * yl + ql * yh) + ql * yl;
+    // |x| - product is exact (Sterbenz: they are within a factor of two), and the true
+    // remainder is representable, so one rounding of its last step is exact.
+    let mut remainder = (ax - product) - product_error;
+    if remainder < 0.0 {
+        remainder += ay;
+    }
+    remainder.copysign(x)
+}
+
 /// The largest polynomial degree [`polynomial_roots`] accepts.
 pub const MAX_POLYNOMIAL_DEGREE: usize = 8;
 
@@ -299,6 +336,57 @@ fn refine_root(coefficients: &[f64], mut a: f64, mut b: f64, ya: f64, tolerance:
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The inline remainder is `%` bit for bit: random magnitudes and signs, whole numbers,
+    /// quotients at and beyond the fast path's limit, near-whole quotients, and the specials.
+    #[test]
+    fn fmod_is_the_remainder_operator_bit_for_bit() {
+        let mut rng = crate::contract::TestRng::new(17);
+        let check = |x: f64, y: f64| {
+            let (fast, library) = (fmod(x, y), x % y);
+            assert!(
+                fast.to_bits() == library.to_bits() || (fast.is_nan() && library.is_nan()),
+                "fmod({x:e}, {y:e}) = {fast:e}, % gives {library:e}"
+            );
+        };
+        for _ in 0..200_000 {
+            let x = rng.range(-1.0, 1.0) * 10f64.powf(rng.range(-8.0, 17.0));
+            let y = rng.range(-1.0, 1.0) * 10f64.powf(rng.range(-6.0, 6.0));
+            check(x, y);
+            // Quotients just beside whole numbers, where x / y rounds onto one.
+            let whole = (rng.range(1.0, 1e6)).round();
+            for nudge in [-2.0, -1.0, 0.0, 1.0, 2.0] {
+                let near = whole * y + nudge * f64::EPSILON * (whole * y).abs();
+                check(near, y);
+                check(-near, y);
+            }
+            check(rng.range(-5e3, 5e3).round(), rng.range(1.0, 300.0).round());
+            check(x, 1.00001);
+            check(x, 1.0);
+        }
+        let limit = 4_503_599_627_370_496.0;
+        for (x, y) in [
+            (limit, 1.0),
+            (limit * 3.0, 3.0),
+            (limit * 0.75, 0.75),
+            (1e300, 1.00001),
+            (-0.0, 1.0),
+            (0.0, -2.0),
+            (5.0, 0.0),
+            (f64::INFINITY, 2.0),
+            (2.0, f64::INFINITY),
+            (f64::NAN, 1.0),
+            (1.0, f64::NAN),
+            (1e-300, 3e-300),
+            (7e-251, 1e-251),
+            (1e250, 3e249),
+            (f64::MIN_POSITIVE, 1.0),
+            (-6.0, 3.0),
+            (6.0, -3.0),
+        ] {
+            check(x, y);
+        }
+    }
 
     #[test]
     fn quadratic_roots_are_accurate_when_b_dominates() {
