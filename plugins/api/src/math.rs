@@ -94,6 +94,17 @@ pub fn solid_angle_scale(matrix3: DMat3, object_direction: DVec3) -> f64 {
     matrix3.determinant().abs() / (matrix3 * unit).length().powi(3)
 }
 
+/// `v` read one component at a time. A vector its caller has only just stored (a ray built
+/// for this very query) may sit in the store buffer as an (x, y) pair and a z; a load of the
+/// (y, z) pair, which the compiler likes to make for dot products, spans both stores and waits
+/// for them to reach the cache (a store-forwarding stall, measured at half the time of an
+/// infinite plane's test). Single loads forward. `black_box` only keeps the compiler from
+/// pairing the loads again; the value is `*v` exactly.
+#[inline(always)]
+pub fn load_components(v: &DVec3) -> DVec3 {
+    DVec3::new(v.x, std::hint::black_box(v.y), v.z)
+}
+
 /// `x % y` (C's `fmod`: the exact remainder of `x` by `y`, with the sign of `x`), without the
 /// library call where it can: for a quotient below 2^52 and a divisor of ordinary size, the
 /// truncated quotient's product is made exact by Dekker's product (Veltkamp's split), so the

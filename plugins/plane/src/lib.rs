@@ -81,6 +81,8 @@ impl Shape for Plane {
     }
 
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        // Every ray meets the infinite planes first, just after it was built.
+        let ray = &Ray::new(math::load_components(&ray.origin), math::load_components(&ray.direction));
         let along = self.normal.dot(ray.direction);
         // |along| <= eps |d|, squared: no square root on this hot path.
         if along * along <= PARALLEL_EPSILON * PARALLEL_EPSILON * ray.direction.length_squared() {
@@ -102,7 +104,7 @@ impl Shape for Plane {
 
     fn inside(&self, point: DVec3) -> bool {
         // The solid half-space, as in POV-Ray: behind the normal.
-        self.normal.dot(point) < self.offset
+        self.normal.dot(math::load_components(&point)) < self.offset
     }
 
     fn misses_hull(&self, points: &[DVec3]) -> bool {
