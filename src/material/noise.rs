@@ -8,8 +8,6 @@
 //! values) weighted by the smoothstep of the point's position in its cell. The table values
 //! and the generator's constants are POV-Ray's, so the noise is the same function.
 
-use std::sync::LazyLock;
-
 use glam::DVec3;
 
 /// POV-Ray's `EPSILON`: negative coordinates floor through `(int)(x - (1 - EPSILON))`.
@@ -297,28 +295,42 @@ struct Tables {
     random: [f64; 534],
 }
 
-static TABLES: LazyLock<Tables> = LazyLock::new(|| {
+/// Built at compile time: the noise reads them without a first-use check on every call.
+static TABLES: Tables = tables();
+
+const fn tables() -> Tables {
     let mut hash = [0u16; 8192];
-    for (i, h) in hash.iter_mut().take(4096).enumerate() {
-        *h = i as u16;
+    let mut i = 0;
+    while i < 4096 {
+        hash[i] = i as u16;
+        i += 1;
     }
     // POV-Ray's generator: next = next * 1812433253 + 12345 in a C `int` (wrapping), the
     // index from bits 16..31.
     let mut next: i32 = 0;
-    for i in (0..4096).rev() {
-        next = (i64::from(next) * 1812433253 + 12345) as i32;
+    let mut i = 4096;
+    while i > 0 {
+        i -= 1;
+        next = (next as i64 * 1812433253 + 12345) as i32;
         let j = (((next >> 16) & 0x7FFF) % 4096) as usize;
-        hash.swap(i, j);
+        let swapped = hash[i];
+        hash[i] = hash[j];
+        hash[j] = swapped;
     }
-    let (low, high) = hash.split_at_mut(4096);
-    high.copy_from_slice(low);
+    let mut i = 0;
+    while i < 4096 {
+        hash[4096 + i] = hash[i];
+        i += 1;
+    }
     let mut random = [0.0; 534];
-    for (i, v) in RANDOM_VALUES.iter().enumerate() {
-        random[2 * i] = *v;
-        random[2 * i + 1] = v * 0.5;
+    let mut i = 0;
+    while i < RANDOM_VALUES.len() {
+        random[2 * i] = RANDOM_VALUES[i];
+        random[2 * i + 1] = RANDOM_VALUES[i] * 0.5;
+        i += 1;
     }
     Tables { hash, random }
-});
+}
 
 /// POV-Ray's `Hash3d`: the lattice hash of an integer cell, each coordinate taken modulo
 /// 4096 (its low twelve bits, as a two's complement `& 0xfff`), in 0..4096.
@@ -346,25 +358,26 @@ fn scurve(a: f64) -> f64 {
 }
 
 /// The eight corners of the cell of `p`: per corner its random-table index and its weight
-/// and offset from the point.
+/// and offset from the point. Inlined into each noise, so that the corners never go through
+/// memory; the four hashes of the cell's (x, y) edges are shared by the corners above them.
+#[inline(always)]
 fn corners(t: &Tables, p: DVec3) -> [(usize, f64, DVec3); 8] {
     let (ix, fx) = cell(p.x);
     let (iy, fy) = cell(p.y);
     let (iz, fz) = cell(p.z);
-    let s = DVec3::new(scurve(fx), scurve(fy), scurve(fz));
-    let hash2 = |a: usize, b: usize| t.hash[t.hash[a] as usize ^ b] as usize;
-    let index = |h: usize, z: usize| (t.hash[h ^ z] as usize & 0xFF) * 2;
-    let mut out = [(0, 0.0, DVec3::ZERO); 8];
-    for (k, slot) in out.iter_mut().enumerate() {
-        let (dx, dy, dz) = (k & 1, (k >> 1) & 1, (k >> 2) & 1);
-        let wx = if dx == 1 { s.x } else { 1.0 - s.x };
-        let wy = if dy == 1 { s.y } else { 1.0 - s.y };
-        let wz = if dz == 1 { s.z } else { 1.0 - s.z };
-        let h = hash2(ix + dx, iy + dy);
-        let offset = DVec3::new(fx - dx as f64, fy - dy as f64, fz - dz as f64);
-        *slot = (index(h, iz + dz), wx * wy * wz, offset);
-    }
-    out
+    let (sx, sy, sz) = (scurve(fx), scurve(fy), scurve(fz));
+    let (wx, wy, wz) = ([1.0 - sx, sx], [1.0 - sy, sy], [1.0 - sz, sz]);
+    let (ox, oy, oz) = ([fx, fx - 1.0], [fy, fy - 1.0], [fz, fz - 1.0]);
+    // Cells are below 4096 and so are the table's values: every index is below 8192.
+    let hash = |i: usize| t.hash[i & 0x1FFF] as usize;
+    let column = [hash(ix), hash(ix + 1)];
+    let edge = |dx: usize, dy: usize| hash(column[dx] ^ (iy + dy));
+    let edges = [edge(0, 0), edge(1, 0), edge(0, 1), edge(1, 1)];
+    std::array::from_fn(|k| {
+        let (dx, dy, dz) = (k & 1, (k >> 1) & 1, k >> 2);
+        let m = (hash(edges[k & 3] ^ (iz + dz)) & 0xFF) * 2;
+        (m, wx[dx] * wy[dy] * wz[dz], DVec3::new(ox[dx], oy[dy], oz[dz]))
+    })
 }
 
 /// One corner's random linear function at `offset`, from table index `m`.
@@ -374,7 +387,7 @@ fn linear(r: &[f64; 534], m: usize, o: DVec3) -> f64 {
 
 /// POV-Ray's `Noise` with noise generator 2: about uniform over [0, 1], clamped to it.
 pub fn noise(p: DVec3) -> f64 {
-    let t = &*TABLES;
+    let t = &TABLES;
     let sum: f64 = corners(t, p).iter().map(|&(m, w, o)| w * linear(&t.random, m, o)).sum();
     // POV-Ray's measured range of the raw sum, [-1.05242, 0.988997], mapped onto [0, 1].
     ((sum + 1.05242) * 0.48985582).clamp(0.0, 1.0)
@@ -382,7 +395,7 @@ pub fn noise(p: DVec3) -> f64 {
 
 /// POV-Ray's `DNoise`: a vector of three noises (consecutive table entries), not clamped.
 pub fn dnoise(p: DVec3) -> DVec3 {
-    let t = &*TABLES;
+    let t = &TABLES;
     corners(t, p)
         .iter()
         .map(|&(m, w, o)| {
@@ -469,7 +482,7 @@ mod tests {
 
     #[test]
     fn the_permutation_is_povrays_shuffle() {
-        let t = &*TABLES;
+        let t = &TABLES;
         // The generator's first steps by hand: next = 12345 (>> 16 = 0: hash[4095] <-> hash[0]),
         // then 12345 * 1812433253 + 12345 wraps to 2003875766 (>> 16 = 30576, % 4096 = 1904).
         // The ends of the finished table, from a separate emulation of POV-Ray's C loop
@@ -487,7 +500,7 @@ mod tests {
     fn noise_at_lattice_points_is_the_corner_constant() {
         // At a lattice point only one corner has weight, and its offset is 0: the value is
         // the table's half entry r[m + 1], mapped by the range correction.
-        let t = &*TABLES;
+        let t = &TABLES;
         for p in [DVec3::ZERO, DVec3::new(3.0, -2.0, 7.0)] {
             let (ix, _) = cell(p.x);
             let (iy, _) = cell(p.y);
