@@ -1,6 +1,7 @@
 //! Primitives: shapes placed in the world by an affine transform, with the cheapest exact
 //! way to move rays, points and normals between the two spaces.
 
+use std::borrow::Cow;
 use std::sync::Arc;
 
 use glam::{DAffine3, DMat3, DVec3};
@@ -105,6 +106,17 @@ impl Primitive {
                 self.object_from_world.transform_point3(ray.origin),
                 self.object_from_world.transform_vector3(ray.direction),
             ),
+        }
+    }
+
+    /// [`Primitive::object_ray`], borrowing `ray` itself where object space is world space:
+    /// a fresh copy, read back by the shape before its stores retire, would stall the read
+    /// (store forwarding), as in [`Primitive::intersect`].
+    #[inline]
+    pub fn object_ray_of<'a>(&self, ray: &'a Ray) -> Cow<'a, Ray> {
+        match self.placement {
+            Placement::Identity => Cow::Borrowed(ray),
+            _ => Cow::Owned(self.object_ray(ray)),
         }
     }
 

@@ -41,10 +41,9 @@ struct FlatTriangles {
 pub struct ClosestHit {
     /// Index into the render scene's primitives.
     pub primitive: u32,
-    /// The shape's hit (t is shared by world and object space).
+    /// The shape's hit (t is shared by world and object space): the primitive's
+    /// [`Primitive::object_ray`] of the query's ray is the ray it lies on.
     pub hit: Hit,
-    /// The ray in the primitive's object space.
-    pub object_ray: Ray,
 }
 
 fn to_obvhs_aabb(b: &prism_api::Aabb) -> obvhs::aabb::Aabb {
@@ -187,11 +186,7 @@ impl Accel {
                 })
             });
         }
-        best.map(|(primitive, hit)| ClosestHit {
-            primitive,
-            hit,
-            object_ray: primitives[primitive as usize].object_ray(ray),
-        })
+        best.map(|(primitive, hit)| ClosestHit { primitive, hit })
     }
 
     /// True when any primitive for which `accept` is true lies on the ray in (t_min, t_max).

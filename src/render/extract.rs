@@ -257,8 +257,10 @@ mod tests {
                         (e.hit.t, e.hit.part, e.hit.scratch),
                         "case {case}"
                     );
-                    let shape = &primitives[e.primitive as usize].shape;
-                    let (sf, se) = (shape.surface(&f.object_ray, &f.hit), shape.surface(&e.object_ray, &e.hit));
+                    let primitive = &primitives[e.primitive as usize];
+                    let object_ray = primitive.object_ray(&ray);
+                    let (sf, se) =
+                        (primitive.shape.surface(&object_ray, &f.hit), primitive.shape.surface(&object_ray, &e.hit));
                     assert_eq!((sf.point, sf.shading_normal, sf.uv), (se.point, se.shading_normal, se.uv));
                 }
                 (Some(e), Some(f)) if f.primitive == e.primitive && f.hit.part == e.hit.part => {

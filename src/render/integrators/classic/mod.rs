@@ -237,12 +237,13 @@ impl<'a> Classic<'a> {
         let primitive = &scene.primitives[closest.primitive as usize];
         let material_id = primitive.material_at(&closest.hit);
         let view = &self.views[material_id as usize];
+        let object_ray = &*primitive.object_ray_of(ray);
         // The uv costs trigonometry on curved shapes, and the tangent square roots; only
         // textured materials look at them.
-        let textured = view.varies_over_surface().then(|| primitive.shape.surface(&closest.object_ray, &closest.hit));
+        let textured = view.varies_over_surface().then(|| primitive.shape.surface(object_ray, &closest.hit));
         let surface = match &textured {
             Some(surface) => surface.point_and_normals(),
-            None => primitive.shape.hit_point(&closest.object_ray, &closest.hit),
+            None => primitive.shape.hit_point(object_ray, &closest.hit),
         };
         let point = primitive.world_point(surface.point);
         let shading = primitive.world_normal(surface.shading_normal);
@@ -292,7 +293,7 @@ impl<'a> Classic<'a> {
                         depth: distance,
                         uv: match &textured {
                             Some(surface) => surface.uv,
-                            None if self.first_hit_uv => primitive.shape.surface(&closest.object_ray, &closest.hit).uv,
+                            None if self.first_hit_uv => primitive.shape.surface(object_ray, &closest.hit).uv,
                             None => DVec2::ZERO,
                         },
                         primitive: closest.primitive,
@@ -509,13 +510,14 @@ impl<'a> Classic<'a> {
             let Some(hit) = scene.accel.closest(&scene.primitives, &ray, SHADOW_TOLERANCE, t_max, casts) else {
                 return filter;
             };
-            let view = &self.views[scene.primitives[hit.primitive as usize].material_at(&hit.hit) as usize];
+            let primitive = &scene.primitives[hit.primitive as usize];
+            let view = &self.views[primitive.material_at(&hit.hit) as usize];
             if !view.is_transparent() {
                 return DVec3::ZERO;
             }
             // Patterns' filter and transmit vary: they are looked up where the shadow ray
             // crosses (in the object's space, as shading does), every layer's.
-            filter *= view.shadow_filter(hit.object_ray.at(hit.hit.t));
+            filter *= view.shadow_filter(primitive.object_ray(&ray).at(hit.hit.t));
             let m = &view.base;
             if inside.contains(hit.primitive) {
                 filter *= interior_fade(m, hit.hit.t, true);

@@ -93,10 +93,11 @@ impl<'a> Path<'a> {
         let primitive = &self.scene.primitives[closest.primitive as usize];
         // The uv costs trigonometry on curved shapes; only textured materials look at it.
         let material = primitive.material_at(&closest.hit);
+        let object_ray = &*primitive.object_ray_of(ray);
         let surface = if self.materials[material as usize].is_textured() {
-            primitive.shape.surface(&closest.object_ray, &closest.hit)
+            primitive.shape.surface(object_ray, &closest.hit)
         } else {
-            primitive.shape.surface_geometry(&closest.object_ray, &closest.hit)
+            primitive.shape.surface_geometry(object_ray, &closest.hit)
         };
         let geometric_normal = primitive.world_normal(surface.normal);
         let mut shading_normal = primitive.world_normal(surface.shading_normal);
@@ -186,7 +187,7 @@ impl<'a> Path<'a> {
             if depth == 1 && self.first_hit_uv && !self.materials[vertex.material as usize].is_textured() {
                 // For the uv AOV only: an untextured material does not read it.
                 let primitive = &scene.primitives[closest.primitive as usize];
-                vertex.uv = primitive.shape.surface(&closest.object_ray, &closest.hit).uv;
+                vertex.uv = primitive.shape.surface(&primitive.object_ray(&ray), &closest.hit).uv;
             }
             let emitted = self.emitted(&vertex, -direction);
             if emitted.max_element() > 0.0 {
