@@ -453,7 +453,9 @@ impl<'a> Classic<'a> {
                         if let Some(slot) = shadows.get_mut(index) {
                             *slot = Some(visibility);
                         }
-                        visibility
+                        // Returned through memory just now: read singly, as a pair load would
+                        // wait for the callee's stores.
+                        prism_api::math::load_components(&visibility)
                     }
                 };
                 if e == DVec3::ZERO {
