@@ -265,6 +265,8 @@ impl AaGrade {
 
     /// POV-Ray's colour distance after antialiasing gamma: sum over the channels of the
     /// differences of the graded values (the transmit channel is 0 without an alpha channel).
+    /// The tests' reference for [`Threshold::differ_graded`].
+    #[cfg(test)]
     fn distance(self, a: DVec3, b: DVec3) -> f64 {
         graded_distance(self.of(a), self.of(b))
     }
@@ -353,12 +355,8 @@ impl Threshold {
         (a - b).abs().cmplt(DVec3::splat(self.close)).all() && a.abs().cmplt(limit).all() && b.abs().cmplt(limit).all()
     }
 
-    /// True when `a` and `b` differ by the threshold or more.
-    fn differ(&self, a: DVec3, b: DVec3) -> bool {
-        !self.certainly_close(a, b) && self.grade.distance(a, b) >= self.threshold
-    }
-
-    /// [`Threshold::differ`] of two colours whose grades are kept once computed.
+    /// True when two colours differ by the threshold or more; their grades are kept once
+    /// computed (a sample is compared with several neighbours).
     fn differ_graded(&self, a: &mut Graded, b: &mut Graded) -> bool {
         if self.certainly_close(a.colour, b.colour) {
             return false;
@@ -600,14 +598,16 @@ fn subdivide<I: Integrator>(
     let c02 = grid.get(q.bx, q.by + q.step);
     let c20 = grid.get(q.bx + q.step, q.by);
     let c22 = grid.get(q.bx + q.step, q.by + q.step);
-    let differ = |a: DVec3, b: DVec3| threshold.differ(a, b);
+    // Each corner meets three others: its grade is computed once, when first needed.
+    let [mut g00, mut g02, mut g20, mut g22] = [c00, c02, c20, c22].map(Graded::new);
+    let differ = |a: &mut Graded, b: &mut Graded| threshold.differ_graded(a, b);
     let split = level > 0
-        && (differ(c00, c02)
-            || differ(c00, c20)
-            || differ(c00, c22)
-            || differ(c02, c20)
-            || differ(c02, c22)
-            || differ(c20, c22));
+        && (differ(&mut g00, &mut g02)
+            || differ(&mut g00, &mut g20)
+            || differ(&mut g00, &mut g22)
+            || differ(&mut g02, &mut g20)
+            || differ(&mut g02, &mut g22)
+            || differ(&mut g20, &mut g22));
     if !split {
         return (c00 + c02 + c20 + c22) / 4.0;
     }
@@ -680,8 +680,8 @@ mod tests {
                 let step = DVec3::new(next(), next(), next()) * if i % 3 == 0 { 10.0 * bound } else { bound };
                 let other = base + step;
                 let graded = grade.distance(base, other) >= threshold;
-                assert_eq!(test.differ(base, other), graded, "{base} and {other} at {threshold}");
-                assert_eq!(test.differ(other, base), graded, "{other} and {base} at {threshold}");
+                let reversed = test.differ_graded(&mut Graded::new(other), &mut Graded::new(base));
+                assert_eq!(reversed, graded, "{other} and {base} at {threshold}");
                 let (mut a, mut b) = (Graded::new(base), Graded::new(other));
                 assert_eq!(test.differ_graded(&mut a, &mut b), graded);
                 pairs += 1;
