@@ -10,7 +10,7 @@ use prism_api::{Aabb, Ray};
 const LEAF_MEMBERS: usize = 2;
 
 /// Nodes pending in one query at most (see [`Stack`]).
-const STACK_CAPACITY: usize = 24;
+const STACK_CAPACITY: usize = 28;
 
 /// A tree over members' bounds (in the group's space); members without finite bounds are
 /// met by every query.
@@ -24,6 +24,12 @@ pub struct MemberTree {
     order_bounds: Vec<Aabb>,
     /// Members every query meets (unbounded, or inverted: they fill all space but a hole).
     everywhere: Vec<u32>,
+}
+
+/// Half the surface area of a box: what the chance that a ray meets it is proportional to.
+fn half_area(b: &Aabb) -> f64 {
+    let d = b.max - b.min;
+    d.x * d.y + d.y * d.z + d.z * d.x
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -60,8 +66,9 @@ impl MemberTree {
         tree
     }
 
-    /// Fills node `at` with `members`: a leaf when few, else split at the median centre along
-    /// the axis where the centres spread most.
+    /// Fills node `at` with `members`: a leaf when few, else split where the surface area
+    /// heuristic is least (the children's areas weighted by their members, over the centres
+    /// sorted along each axis), within the middle third so that the tree stays shallow.
     fn build(&mut self, at: usize, members: &mut [(u32, Aabb)]) {
         let bounds = members.iter().fold(Aabb::EMPTY, |b, (_, m)| b.union(*m));
         if members.len() <= LEAF_MEMBERS {
@@ -70,22 +77,42 @@ impl MemberTree {
             self.order_bounds.extend(members.iter().map(|(_, b)| *b));
             return;
         }
-        let centres = members.iter().fold(Aabb::EMPTY, |b, (_, m)| b.grow(m.center()));
-        let extent = centres.max - centres.min;
-        let axis = if extent.x >= extent.y && extent.x >= extent.z {
-            0
-        } else if extent.y >= extent.z {
-            1
-        } else {
-            2
+        let n = members.len();
+        // Members on the low side: each side keeps at least a third.
+        let (fewest, most) = (n.div_ceil(3), n - n.div_ceil(3));
+        let by_centre = |axis: usize| {
+            move |a: &(u32, Aabb), b: &(u32, Aabb)| {
+                a.1.center()[axis].total_cmp(&b.1.center()[axis]).then(a.0.cmp(&b.0))
+            }
         };
-        let half = members.len() / 2;
-        members.select_nth_unstable_by(half, |a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
+        let (mut best_cost, mut best_axis, mut best_low) = (f64::INFINITY, 0, n / 2);
+        let mut high_areas = vec![0.0; n + 1];
+        for axis in 0..3 {
+            members.sort_unstable_by(by_centre(axis));
+            let mut high = Aabb::EMPTY;
+            for i in (fewest..n).rev() {
+                high = high.union(members[i].1);
+                high_areas[i] = half_area(&high);
+            }
+            let mut low = Aabb::EMPTY;
+            for (i, (_, b)) in members[..most].iter().enumerate() {
+                low = low.union(*b);
+                let count = i + 1;
+                if count < fewest {
+                    continue;
+                }
+                let cost = half_area(&low) * count as f64 + high_areas[count] * (n - count) as f64;
+                if cost < best_cost {
+                    (best_cost, best_axis, best_low) = (cost, axis, count);
+                }
+            }
+        }
+        members.sort_unstable_by(by_centre(best_axis));
         let first = self.nodes.len();
         self.nodes[at] = Node { bounds, first: first as u32, count: 0 };
         self.nodes.push(Node { bounds: Aabb::EMPTY, first: 0, count: 0 });
         self.nodes.push(Node { bounds: Aabb::EMPTY, first: 0, count: 0 });
-        let (low, high) = members.split_at_mut(half);
+        let (low, high) = members.split_at_mut(best_low);
         self.build(first, low);
         self.build(first + 1, high);
     }
@@ -172,9 +199,9 @@ impl MemberTree {
     }
 }
 
-/// The nodes still to visit, on the stack frame (a median split over at most 2^16 leaves
-/// is at most 17 levels deep; each level leaves one node behind). Small, because it is
-/// filled with defaults on every query.
+/// The nodes still to visit, on the stack frame: each level of the tree leaves at most one
+/// node behind, and a tree over at most 2^16 members whose splits keep a third on each side
+/// is at most 26 levels deep. Small, because it is filled with defaults on every query.
 struct Stack<T: Copy + Default> {
     items: [T; STACK_CAPACITY],
     len: usize,
@@ -199,6 +226,43 @@ impl<T: Copy + Default> Stack<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Nested boxes growing with their index (the centres all tie) make every split as
+    /// uneven as allowed: the deepest tree of the largest group must still fit the stack,
+    /// and a ray through them all meets every box.
+    #[test]
+    fn the_most_uneven_splits_fit_the_query_stack() {
+        let count = crate::geometry::csg::MAX_LEAVES as usize;
+        let bounds: Vec<Aabb> = (0..count)
+            .map(|i| {
+                let half = 1.0 + i as f64;
+                Aabb::from_corners(DVec3::splat(-half), DVec3::splat(half))
+            })
+            .collect();
+        let tree = MemberTree::new(&bounds);
+        let depth = |at: usize| {
+            let mut stack = vec![(at, 0usize)];
+            let mut deepest = 0;
+            while let Some((at, level)) = stack.pop() {
+                deepest = deepest.max(level);
+                let node = tree.nodes[at];
+                if node.count == 0 {
+                    stack.push((node.first as usize, level + 1));
+                    stack.push((node.first as usize + 1, level + 1));
+                }
+            }
+            deepest
+        };
+        let levels = depth(0);
+        assert!(levels >= 20 && levels < STACK_CAPACITY, "{levels} levels");
+        let mut met = 0;
+        tree.visit_ray(&Ray::new(DVec3::ZERO, DVec3::X), 0.0, f64::INFINITY, |_, limit| {
+            met += 1;
+            limit
+        });
+        assert_eq!(met, count);
+        assert!(tree.any_at(DVec3::splat(count as f64 - 0.5), |index| index as usize == count - 1));
+    }
 
     /// The largest group (2^16 members) builds the deepest tree; its queries must fit the
     /// fixed stack and meet exactly the members they should.

@@ -74,7 +74,8 @@ impl Aabb {
         Self { min, max }
     }
 
-    /// The parametric interval in which `ray` is inside the box, if any, clipped to [t_min, t_max].
+    /// The parametric interval in which `ray` is inside the box, if any, clipped to [t_min, t_max]
+    /// (`None` when either limit is NaN).
     pub fn ray_interval(&self, ray: &crate::Ray, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
         self.ray_interval_inverse(ray.origin, DVec3::ONE / ray.direction, t_min, t_max)
     }
@@ -92,8 +93,12 @@ impl Aabb {
         let swap = a.cmpgt(b);
         let near = DVec3::select(swap, b, a);
         let far = DVec3::select(swap, a, b);
-        let t0 = t_min.max(near.x).max(near.y).max(near.z);
-        let t1 = t_max.min(far.x).min(far.y).min(far.z);
+        // `later`/`earlier` keep the first operand when the second is NaN: one instruction
+        // each, where `f64::max`/`min` also test the first for NaN (t_min and t_max are not).
+        let later = |t: f64, candidate: f64| if candidate > t { candidate } else { t };
+        let earlier = |t: f64, candidate: f64| if candidate < t { candidate } else { t };
+        let t0 = later(later(later(t_min, near.x), near.y), near.z);
+        let t1 = earlier(earlier(earlier(t_max, far.x), far.y), far.z);
         // t0 only grows and t1 only shrinks axis by axis: crossed at the end means crossed.
         (t0 <= t1).then_some((t0, t1))
     }
