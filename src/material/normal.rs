@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 use super::crackle::nearest_facet_point;
 use super::image_map::ImageMap;
-use super::noise::{Octaves, dnoise, dturbulence, noise};
+use super::noise::{Octaves, dnoise, dnoise_pair, dturbulence, noise};
 use super::pattern::{
     MAX_METRIC, MAX_NESTED_PIGMENTS, MAX_PIGMENT_MAP_DEPTH, MAX_PIGMENT_MAP_ENTRIES, PatternKind, PatternScale,
     Pigment, PigmentField, TurbulenceAmount, Wave, check_map_values, check_transform, check_turbulence, check_weights,
@@ -960,9 +960,13 @@ impl NormalField {
             NormalKind::Wrinkles => {
                 let mut sum = DVec3::ZERO;
                 let mut scale = 1.0;
-                for _ in 0..10 {
-                    sum += (dnoise(q * scale) / scale).abs();
-                    scale *= 2.0;
+                // Octaves in pairs (see `dnoise_pair`), summed in order.
+                for _ in 0..5 {
+                    let next = scale * 2.0;
+                    let [a, b] = dnoise_pair(q * scale, q * next);
+                    sum += (a / scale).abs();
+                    sum += (b / next).abs();
+                    scale = next * 2.0;
                 }
                 amount * sum
             }

@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use super::crackle::{CrackleParams, crackle};
 use super::image_map::ImageMap;
-use super::noise::{Octaves, dturbulence, noise, turbulence};
+use super::noise::{Octaves, dturbulence, noise, noise_pair, turbulence};
 use crate::color::Rgb;
 use crate::limits::{MAX_COEFFICIENT, MAX_COLOR_COMPONENT};
 
@@ -1397,11 +1397,16 @@ fn spiral2(q: DVec3, arms: i32, turbulence: f64) -> f64 {
 
 /// POV-Ray 3.7's granite (noise generator 2): six octaves of |1 - 2 noise|, each at most 0.5.
 fn granite(q: DVec3) -> f64 {
+    let term = |n: f64, frequency: f64| (1.0 - 2.0 * n).abs().min(0.5) / frequency;
     let mut value = 0.0;
     let mut frequency = 1.0;
-    for _ in 0..6 {
-        value += (1.0 - 2.0 * noise(q * 4.0 * frequency)).abs().min(0.5) / frequency;
-        frequency *= 2.0;
+    // Octaves in pairs (see `noise_pair`), summed in order.
+    for _ in 0..3 {
+        let next = frequency * 2.0;
+        let [a, b] = noise_pair(q * 4.0 * frequency, q * 4.0 * next);
+        value += term(a, frequency);
+        value += term(b, next);
+        frequency = next * 2.0;
     }
     value
 }
@@ -1455,13 +1460,17 @@ fn agate(q: DVec3, octaves: &Octaves) -> f64 {
 /// POV-Ray 3.7's wrinkles pigment (noise generator 2): ten octaves of 2 noise - 0.5, each
 /// clamped to [0, 1], halved.
 pub(super) fn wrinkles(q: DVec3) -> f64 {
-    let term = |p: DVec3| (2.0 * noise(p) - 0.5).clamp(0.0, 1.0);
-    let mut value = term(q);
-    let (mut lambda, mut omega) = (2.0, 0.5);
-    for _ in 1..10 {
-        value += omega * term(q * lambda);
-        lambda *= 2.0;
-        omega *= 0.5;
+    let term = |n: f64| (2.0 * n - 0.5).clamp(0.0, 1.0);
+    let [first, second] = noise_pair(q, q * 2.0);
+    let mut value = term(first) + 0.5 * term(second);
+    let (mut lambda, mut omega) = (4.0, 0.25);
+    // The other eight octaves in pairs (see `noise_pair`), summed in order.
+    for _ in 0..4 {
+        let [a, b] = noise_pair(q * lambda, q * (lambda * 2.0));
+        value += omega * term(a);
+        value += (omega * 0.5) * term(b);
+        lambda *= 4.0;
+        omega *= 0.25;
     }
     value / 2.0
 }
