@@ -151,15 +151,16 @@ pub fn eval_polynomial(coefficients: &[f64], t: f64) -> f64 {
     coefficients.iter().rev().fold(0.0, |acc, &c| acc * t + c)
 }
 
-/// The value and the first derivative of the polynomial at `t` (ascending coefficients).
-fn eval_polynomial_with_derivative(coefficients: &[f64], t: f64) -> (f64, f64) {
-    let mut value = 0.0;
-    let mut derivative = 0.0;
+/// The value, the first derivative and half the second derivative of the polynomial at `t`
+/// (ascending coefficients), from one Horner pass.
+fn eval_polynomial_with_derivatives(coefficients: &[f64], t: f64) -> (f64, f64, f64) {
+    let (mut value, mut derivative, mut half_second) = (0.0, 0.0, 0.0);
     for &c in coefficients.iter().rev() {
+        half_second = half_second * t + derivative;
         derivative = derivative * t + value;
         value = value * t + c;
     }
-    (value, derivative)
+    (value, derivative, half_second)
 }
 
 /// Up to [`MAX_POLYNOMIAL_DEGREE`] real roots, in ascending order.
@@ -203,7 +204,7 @@ impl PolynomialRoots {
 /// Robust by construction rather than by formula (no Ferrari/Cardano): the roots of the
 /// derivative (found recursively) split `[lo, hi]` into pieces on which the polynomial is
 /// monotonic, so each piece holds at most one root, present exactly when the values at the
-/// piece's ends differ in sign; it is then found by Newton's method safeguarded with
+/// piece's ends differ in sign; it is then found by Halley's method safeguarded with
 /// bisection, to full double precision. Nothing divides by the leading coefficient, so a
 /// vanishing leading term only moves critical points out of the interval. A root of even
 /// multiplicity (a tangent) is reported only when the polynomial evaluates to exactly 0 at a
@@ -319,12 +320,12 @@ fn distinct_quadratic_roots(coefficients: &[f64]) -> Option<(f64, f64)> {
 }
 
 /// The root of a polynomial that is monotonic on `[a, b]` and changes sign there
-/// (`ya` = p(a) != 0): Newton steps kept inside a shrinking bracket, bisection otherwise.
+/// (`ya` = p(a) != 0): Halley steps kept inside a shrinking bracket, bisection otherwise.
 fn refine_root(coefficients: &[f64], mut a: f64, mut b: f64, ya: f64, tolerance: f64) -> f64 {
     let a_negative = ya < 0.0;
     let mut x = 0.5 * (a + b);
     for _ in 0..200 {
-        let (y, dy) = eval_polynomial_with_derivative(coefficients, x);
+        let (y, dy, half_d2) = eval_polynomial_with_derivatives(coefficients, x);
         if y == 0.0 {
             return x;
         }
@@ -333,8 +334,10 @@ fn refine_root(coefficients: &[f64], mut a: f64, mut b: f64, ya: f64, tolerance:
         } else {
             b = x;
         }
-        let newton = x - y / dy;
-        let next = if newton > a && newton < b { newton } else { 0.5 * (a + b) };
+        // Halley's step (cubic convergence: a third fewer steps than Newton's on the torus's
+        // quartics and their derivatives, each as long, the derivatives being parallel chains).
+        let halley = x - y * dy / (dy * dy - y * half_d2);
+        let next = if halley > a && halley < b { halley } else { 0.5 * (a + b) };
         let step = (next - x).abs();
         x = next;
         if step <= tolerance.max(4.0 * f64::EPSILON * x.abs()) || b - a <= tolerance {
