@@ -231,7 +231,10 @@ impl<'a> Classic<'a> {
         state.rays += 1;
         // Camera rays need not be of unit length; the limit is a world distance.
         let t_min = MIN_ISECT_DEPTH / ray.direction.length();
-        let Some(closest) = scene.accel.closest(&scene.primitives, ray, t_min, MAX_DISTANCE, |_| true) else {
+        // Read in place, field by field: a copy of the whole hit would load pairs of fields
+        // the query has just stored one by one, and wait for the stores to retire.
+        let found = scene.accel.closest(&scene.primitives, ray, t_min, MAX_DISTANCE, |_| true);
+        let Some(closest) = &found else {
             return scene.environment.background.0;
         };
         let primitive = &scene.primitives[closest.primitive as usize];
@@ -509,7 +512,9 @@ impl<'a> Classic<'a> {
             if t_max <= SHADOW_TOLERANCE {
                 return filter;
             }
-            let Some(hit) = scene.accel.closest(&scene.primitives, &ray, SHADOW_TOLERANCE, t_max, casts) else {
+            // In place, as in `trace`.
+            let found = scene.accel.closest(&scene.primitives, &ray, SHADOW_TOLERANCE, t_max, casts);
+            let Some(hit) = &found else {
                 return filter;
             };
             let primitive = &scene.primitives[hit.primitive as usize];

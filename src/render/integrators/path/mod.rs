@@ -172,7 +172,10 @@ impl<'a> Path<'a> {
         loop {
             rays += 1;
             let direction = ray.direction.normalize();
-            let Some(closest) = self.closest(&ray, MAX_DISTANCE) else {
+            // Read in place, field by field (a copy of the whole hit would wait for the
+            // query's stores to retire).
+            let found = self.closest(&ray, MAX_DISTANCE);
+            let Some(closest) = &found else {
                 if !self.environment.is_black() {
                     let weight = if previous_delta {
                         1.0
@@ -183,7 +186,7 @@ impl<'a> Path<'a> {
                 }
                 break;
             };
-            let mut vertex = self.vertex(&ray, &closest);
+            let mut vertex = self.vertex(&ray, closest);
             if depth == 1 && self.first_hit_uv && !self.materials[vertex.material as usize].is_textured() {
                 // For the uv AOV only: an untextured material does not read it.
                 let primitive = &scene.primitives[closest.primitive as usize];
