@@ -695,9 +695,9 @@ fn remove_temps_on_signals() {
     }
 }
 
-/// Holds the work outside the render itself (BVH builds, image encoding) to `--threads` too:
-/// rayon's global pool would otherwise take one thread per core. `render` builds its own pool
-/// of the same size for the tiles.
+/// Sizes rayon's global pool to `--threads`: the render's tiles run on it, and so does the
+/// work outside the render (BVH builds, image encoding), which would otherwise take one
+/// thread per core.
 fn limit_global_threads(threads: Option<usize>) {
     if let Some(threads) = threads {
         // Fails only when the global pool already exists, which nothing builds before this.

@@ -55,7 +55,9 @@ const LARGEST_DISPLAY_DEVIATION: f64 = 0.5;
 /// How to run a render.
 #[derive(Clone, Debug, Default)]
 pub struct RenderOptions {
-    /// Worker threads (`None`: one per core).
+    /// Worker threads (`None`: those of the current rayon pool, one per core unless its
+    /// builder said otherwise). A render runs on the current pool when it has this many
+    /// threads, else on a pool of its own.
     pub threads: Option<usize>,
     /// Draw a progress bar on stderr (only when stderr is a terminal).
     pub progress: bool,
@@ -463,10 +465,18 @@ fn render_samples<I: Integrator>(
     let estimate = u64::from(region.width()) * u64::from(region.height()) * per_pixel
         + if pov_method.is_some() { antialias::BorderSamples::bytes((tx0, ty0), (tx1, ty1)) } else { 0 };
     options.budget.check(|| format!("a {} x {} film", region.width(), region.height()), estimate)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|source| RenderError::Threads { threads, source })?;
+    // The caller's rayon pool when it is the size asked for (the CLI sizes the global pool to
+    // `--threads` for BVH builds and encoders), so that no second set of threads waits idle.
+    let own_pool = if threads == 0 || threads == rayon::current_num_threads() {
+        None
+    } else {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|source| RenderError::Threads { threads, source })?;
+        Some(pool)
+    };
+    let workers = own_pool.as_ref().map_or_else(rayon::current_num_threads, |pool| pool.current_num_threads());
     let tiles_x = tx1 - tx0;
     let tile_count = u64::from(tiles_x) * u64::from(ty1 - ty0);
     let borders = pov_method.map(|method| antialias::BorderSamples::new(method, (tx0, ty0), (tx1, ty1)));
@@ -519,7 +529,7 @@ fn render_samples<I: Integrator>(
     let start = Instant::now();
     // Each thread renders its own run of tiles, then helps with the others' (see
     // `tile_queue`).
-    let queue = TileQueue::new(tile_count, pool.current_num_threads());
+    let queue = TileQueue::new(tile_count, workers);
     let render_one = |tile: u64| -> Option<TileResult> {
         if options.cancel.as_ref().is_some_and(|c| c.load(Ordering::Relaxed))
             || options.deadline.is_some_and(|d| Instant::now() >= d)
@@ -577,19 +587,20 @@ fn render_samples<I: Integrator>(
         progress.inc(1);
         Some(result)
     };
-    let mut tiles: Vec<(u64, TileResult)> = pool
-        .broadcast(|worker| {
-            let mut done_here = Vec::new();
-            while let Some(tile) = queue.take(worker.index()) {
-                if let Some(result) = render_one(tile) {
-                    done_here.push((tile, result));
-                }
+    let work = |worker: rayon::BroadcastContext<'_>| {
+        let mut done_here = Vec::new();
+        while let Some(tile) = queue.take(worker.index()) {
+            if let Some(result) = render_one(tile) {
+                done_here.push((tile, result));
             }
-            done_here
-        })
-        .into_iter()
-        .flatten()
-        .collect();
+        }
+        done_here
+    };
+    let per_worker = match &own_pool {
+        Some(pool) => pool.broadcast(work),
+        None => rayon::broadcast(work),
+    };
+    let mut tiles: Vec<(u64, TileResult)> = per_worker.into_iter().flatten().collect();
     // In raster order, as one loop over the tiles would give them.
     tiles.sort_unstable_by_key(|&(tile, _)| tile);
     let tiles: Vec<TileResult> = tiles.into_iter().map(|(_, result)| result).collect();
@@ -635,7 +646,11 @@ fn render_samples<I: Integrator>(
             tiles,
         });
     }
-    let gathered: Vec<Gathered> = pool.install(|| bands.into_par_iter().map(FilmBand::gather).collect());
+    let gather = || bands.into_par_iter().map(FilmBand::gather).collect();
+    let gathered: Vec<Gathered> = match &own_pool {
+        Some(pool) => pool.install(gather),
+        None => gather(),
+    };
     let mut non_finite_samples = 0;
     let mut counts = Vec::new();
     let mut squared_errors = 0.0;
