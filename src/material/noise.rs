@@ -451,6 +451,12 @@ impl Default for Octaves {
 }
 
 impl Octaves {
+    /// `octaves` octaves, each of twice the frequency and half the amplitude of the one
+    /// before (granite's six and wrinkles' ten).
+    pub const fn halving(octaves: u32) -> Self {
+        Self { octaves, omega: 0.5, lambda: 2.0 }
+    }
+
     /// Every octave's (frequency, amplitude), from the first's (1, 1): evaluated in pairs
     /// (see [`noise_pair`]), summed in this order.
     fn all(&self) -> impl Iterator<Item = (f64, f64)> {
@@ -497,8 +503,9 @@ pub fn dturbulence(p: DVec3, o: &Octaves) -> DVec3 {
 }
 
 /// Every octave's noise at `p` (`single`, or `pair` for two octaves at once), to `add` with
-/// the octave's amplitude, in order from the first.
-fn for_each_octave<T>(
+/// the octave's amplitude, in order from the first. Every octave sum goes through here, so
+/// that each evaluates its octaves in pairs.
+pub(super) fn for_each_octave<T>(
     p: DVec3,
     o: &Octaves,
     single: impl Fn(DVec3) -> T,

@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 
 use super::crackle::nearest_facet_point;
 use super::image_map::ImageMap;
-use super::noise::{Octaves, dnoise, dnoise_pair, dturbulence, noise};
+use super::noise::{Octaves, dnoise, dnoise_pair, dturbulence, for_each_octave, noise};
 use super::pattern::{
     MAX_METRIC, MAX_NESTED_PIGMENTS, MAX_PIGMENT_MAP_DEPTH, MAX_PIGMENT_MAP_ENTRIES, PatternKind, PatternScale,
     Pigment, PigmentField, TurbulenceAmount, Wave, check_map_values, check_transform, check_turbulence, check_weights,
@@ -958,16 +958,9 @@ impl NormalField {
                 sum
             }
             NormalKind::Wrinkles => {
+                // |dnoise(q 2^i)| 2^-i (powers of two: the same as dividing by 2^i).
                 let mut sum = DVec3::ZERO;
-                let mut scale = 1.0;
-                // Octaves in pairs (see `dnoise_pair`), summed in order.
-                for _ in 0..5 {
-                    let next = scale * 2.0;
-                    let [a, b] = dnoise_pair(q * scale, q * next);
-                    sum += (a / scale).abs();
-                    sum += (b / next).abs();
-                    scale = next * 2.0;
-                }
+                for_each_octave(q, &Octaves::halving(10), dnoise, dnoise_pair, |w, n| sum += (n * w).abs());
                 amount * sum
             }
         }

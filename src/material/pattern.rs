@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use super::crackle::{CrackleParams, crackle};
 use super::image_map::ImageMap;
-use super::noise::{Octaves, dturbulence, noise, noise_pair, turbulence};
+use super::noise::{Octaves, dturbulence, for_each_octave, noise, noise_pair, turbulence};
 use crate::color::Rgb;
 use crate::limits::{MAX_COEFFICIENT, MAX_COLOR_COMPONENT};
 
@@ -1397,17 +1397,11 @@ fn spiral2(q: DVec3, arms: i32, turbulence: f64) -> f64 {
 
 /// POV-Ray 3.7's granite (noise generator 2): six octaves of |1 - 2 noise|, each at most 0.5.
 fn granite(q: DVec3) -> f64 {
-    let term = |n: f64, frequency: f64| (1.0 - 2.0 * n).abs().min(0.5) / frequency;
+    // Octaves at 4 q 2^i weighted 2^-i (powers of two: the same as dividing by 2^i).
     let mut value = 0.0;
-    let mut frequency = 1.0;
-    // Octaves in pairs (see `noise_pair`), summed in order.
-    for _ in 0..3 {
-        let next = frequency * 2.0;
-        let [a, b] = noise_pair(q * 4.0 * frequency, q * 4.0 * next);
-        value += term(a, frequency);
-        value += term(b, next);
-        frequency = next * 2.0;
-    }
+    for_each_octave(q * 4.0, &Octaves::halving(6), noise, noise_pair, |w, n| {
+        value += (1.0 - 2.0 * n).abs().min(0.5) * w
+    });
     value
 }
 
@@ -1460,18 +1454,8 @@ fn agate(q: DVec3, octaves: &Octaves) -> f64 {
 /// POV-Ray 3.7's wrinkles pigment (noise generator 2): ten octaves of 2 noise - 0.5, each
 /// clamped to [0, 1], halved.
 pub(super) fn wrinkles(q: DVec3) -> f64 {
-    let term = |n: f64| (2.0 * n - 0.5).clamp(0.0, 1.0);
-    let [first, second] = noise_pair(q, q * 2.0);
-    let mut value = term(first) + 0.5 * term(second);
-    let (mut lambda, mut omega) = (4.0, 0.25);
-    // The other eight octaves in pairs (see `noise_pair`), summed in order.
-    for _ in 0..4 {
-        let [a, b] = noise_pair(q * lambda, q * (lambda * 2.0));
-        value += omega * term(a);
-        value += (omega * 0.5) * term(b);
-        lambda *= 4.0;
-        omega *= 0.25;
-    }
+    let mut value = 0.0;
+    for_each_octave(q, &Octaves::halving(10), noise, noise_pair, |w, n| value += w * (2.0 * n - 0.5).clamp(0.0, 1.0));
     value / 2.0
 }
 
@@ -1704,6 +1688,15 @@ mod tests {
         assert_eq!(wood(DVec3::new(3.0, 4.0, 9.0), None), 5.0);
         // wrinkles is at most (1 + 0.5 + ... ) / 2 < 1 and at least 0.
         assert!((0.0..1.0).contains(&wrinkles(p)));
+        // wrinkles: ten octaves of 2 n(p 2^i) - 0.5 clamped to [0, 1], weighted 2^-i, halved.
+        for q in [p, DVec3::new(-7.3, 0.04, 11.9), DVec3::new(123.4, -56.7, 0.001)] {
+            let mut sequential = (2.0 * noise(q) - 0.5).clamp(0.0, 1.0);
+            for i in 1..10 {
+                let f = f64::from(1 << i);
+                sequential += (2.0 * noise(q * f) - 0.5).clamp(0.0, 1.0) / f;
+            }
+            assert_eq!(wrinkles(q).to_bits(), (sequential / 2.0).to_bits(), "at {q}");
+        }
         // agate is in [0, 1] and uses turbulence even without a turbulence amount.
         let a = agate(p, &Octaves::default());
         assert!((0.0..=1.0).contains(&a));
