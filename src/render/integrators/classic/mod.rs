@@ -524,7 +524,7 @@ impl<'a> Classic<'a> {
             }
             // Patterns' filter and transmit vary: they are looked up where the shadow ray
             // crosses (in the object's space, as shading does), every layer's.
-            filter *= view.shadow_filter(primitive.object_ray(&ray).at(hit.hit.t));
+            filter *= view.shadow_filter(primitive.object_ray_of(&ray).at(hit.hit.t));
             let m = &view.base;
             if inside.contains(hit.primitive) {
                 filter *= interior_fade(m, hit.hit.t, true);

@@ -190,7 +190,7 @@ impl<'a> Path<'a> {
             if depth == 1 && self.first_hit_uv && !self.materials[vertex.material as usize].is_textured() {
                 // For the uv AOV only: an untextured material does not read it.
                 let primitive = &scene.primitives[closest.primitive as usize];
-                vertex.uv = primitive.shape.surface(&primitive.object_ray(&ray), &closest.hit).uv;
+                vertex.uv = primitive.shape.surface(&primitive.object_ray_of(&ray), &closest.hit).uv;
             }
             let emitted = self.emitted(&vertex, -direction);
             if emitted.max_element() > 0.0 {
