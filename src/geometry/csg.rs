@@ -10,6 +10,13 @@
 //! intersection or difference one that every (inverted, for a difference's later members)
 //! member contains. `inverse` flips a member's inside test and its normal.
 //!
+//! POV-Ray inverts a group (for `inverse`, and for each member a difference subtracts) by
+//! inverting its members, and a union into the intersection of its inverted members: the same
+//! solid, but one that keeps only the crossings outside every other member, as a merge does.
+//! So a union inverted once or more, or lying at any depth inside a group that is, loses its
+//! interior surfaces (two crossing cylinders drilled out of a box leave no walls where they
+//! cross), and [`CsgShape::new`] makes it so.
+//!
 //! A hit names the member leaf it lies on (for its material and its surface) in the high
 //! bits of [`Hit::part`]: leaf `l` with the member's own part `p` is `l << 16 | p`. Leaves
 //! are numbered depth first, so a nested group's leaves follow on from its position.
@@ -197,6 +204,9 @@ pub struct CsgShape {
     sampling: OnceLock<LightSampling>,
     /// A union's or merge's members in a tree, when they are many.
     tree: Option<MemberTree>,
+    /// A union that keeps its members' crossings inside other members: every union but those
+    /// POV-Ray has inverted (see the module's documentation), which keep crossings as a merge.
+    interior_surfaces: bool,
 }
 
 /// Members from which a union or merge puts its members in a [`MemberTree`].
@@ -227,7 +237,15 @@ impl CsgShape {
         let mut members = members;
         let mut leaves = 0;
         for (i, m) in members.iter_mut().enumerate() {
-            m.inverted = m.inverse != (operation == CsgOperation::Difference && i > 0);
+            let subtracted = operation == CsgOperation::Difference && i > 0;
+            m.inverted = m.inverse != subtracted;
+            // Inverted twice (`inverse` on a subtracted member), a union is still changed.
+            if m.inverse || subtracted {
+                let shape: &dyn std::any::Any = m.shape.as_ref();
+                if let Some(group) = shape.downcast_ref::<CsgShape>().filter(|g| g.has_interior_surfaces()) {
+                    m.shape = Arc::new(group.inverted_by_pov_ray());
+                }
+            }
             let own = m.shape.bounds();
             m.surface_bounds = if own.is_bounded() { own.transformed(&m.group_from_member) } else { Aabb::INFINITE };
             m.outside_margin = 1e-9 * (1.0 + m.surface_bounds.min.abs().max(m.surface_bounds.max.abs()).max_element());
@@ -248,7 +266,32 @@ impl CsgShape {
         };
         let tree = (matches!(operation, CsgOperation::Union | CsgOperation::Merge) && members.len() >= TREE_MEMBERS)
             .then(|| MemberTree::new(&members.iter().map(|m| m.bounds).collect::<Vec<_>>()));
-        Self { operation, members, bounds, leaves, sampling: OnceLock::new(), tree }
+        let interior_surfaces = operation == CsgOperation::Union;
+        Self { operation, members, bounds, leaves, sampling: OnceLock::new(), tree, interior_surfaces }
+    }
+
+    /// True when the group or a group inside it keeps interior surfaces.
+    fn has_interior_surfaces(&self) -> bool {
+        self.interior_surfaces
+            || self.members.iter().any(|m| {
+                let shape: &dyn std::any::Any = m.shape.as_ref();
+                shape.downcast_ref::<CsgShape>().is_some_and(CsgShape::has_interior_surfaces)
+            })
+    }
+
+    /// The group's crossings as POV-Ray's inverted form of it keeps them: every union in it,
+    /// at any depth, without its interior surfaces. Same solid, same leaves.
+    fn inverted_by_pov_ray(&self) -> CsgShape {
+        let mut group = self.clone();
+        group.interior_surfaces = false;
+        group.sampling = OnceLock::new();
+        for m in &mut group.members {
+            let shape: &dyn std::any::Any = m.shape.as_ref();
+            if let Some(nested) = shape.downcast_ref::<CsgShape>().filter(|g| g.has_interior_surfaces()) {
+                m.shape = Arc::new(nested.inverted_by_pov_ray());
+            }
+        }
+        group
     }
 
     /// True when some member other than `except` contains the group-space `point`.
@@ -360,8 +403,8 @@ impl CsgShape {
     /// group shows.
     fn keeps(&self, index: usize, point: DVec3) -> bool {
         match self.operation {
-            CsgOperation::Union => true,
-            CsgOperation::Merge => !self.another_contains(point, Some(index)),
+            CsgOperation::Union if self.interior_surfaces => true,
+            CsgOperation::Union | CsgOperation::Merge => !self.another_contains(point, Some(index)),
             CsgOperation::Intersection | CsgOperation::Difference => {
                 self.members.iter().enumerate().all(|(j, m)| j == index || m.contains(point))
             }
@@ -440,7 +483,7 @@ impl CsgShape {
     /// The nearest kept crossing of member `index` in `(t_min, t_max)`: for a union, which
     /// keeps every crossing, the member's own nearest hit (no list of its crossings).
     fn member_nearest(&self, index: usize, ray: &Ray, inverse: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
-        if self.operation == CsgOperation::Union {
+        if self.interior_surfaces {
             let (t_min, t_max) = self.member_range(index, ray, inverse, t_min, t_max)?;
             let member = &self.members[index];
             let hit = member.shape.intersect(&member.ray(ray), t_min, t_max)?;
@@ -634,6 +677,38 @@ mod tests {
         assert_ts(&crossings_along_x(&pair(CsgOperation::Merge)), &[3.5, 6.5]);
         assert_ts(&crossings_along_x(&pair(CsgOperation::Intersection)), &[4.5, 5.5]);
         assert_ts(&crossings_along_x(&pair(CsgOperation::Difference)), &[3.5, 4.5]);
+    }
+
+    /// POV-Ray inverts a union into the intersection of its inverted members, which keeps no
+    /// interior surfaces: subtracted or `inverse`, at any depth of the inverted member, twice
+    /// inverted too, a union keeps the crossings a merge keeps (the union's own inside and the
+    /// group's leaves unchanged); a union not inverted keeps all four.
+    #[test]
+    fn inverted_unions_lose_their_interior_surfaces() {
+        let big = || member(sphere(DVec3::ZERO, 4.0));
+        let group = |shape: CsgShape, inverse: bool| CsgMember::new(Arc::new(shape), DAffine3::IDENTITY, inverse);
+        // From x = -5 the big sphere is crossed at t = 1 and 9.
+        let subtracted = CsgShape::new(CsgOperation::Difference, vec![big(), group(pair(CsgOperation::Union), false)]);
+        assert_ts(&crossings_along_x(&subtracted), &[1.0, 3.5, 6.5, 9.0]);
+        let hit = subtracted.intersect(&Ray::new(DVec3::X * -0.5, DVec3::X), 1e-9, f64::INFINITY).unwrap();
+        assert!((hit.t - 2.0).abs() < 1e-12, "from inside the hollow, the wall at x = 1.5: {}", hit.t);
+        let inverse = CsgShape::new(CsgOperation::Intersection, vec![big(), group(pair(CsgOperation::Union), true)]);
+        assert_ts(&crossings_along_x(&inverse), &[1.0, 3.5, 6.5, 9.0]);
+        // Nested in the subtracted member, under an intersection, and inverted twice.
+        let nested = CsgShape::new(
+            CsgOperation::Intersection,
+            vec![member(sphere(DVec3::ZERO, 3.0)), group(pair(CsgOperation::Union), false)],
+        );
+        let deep = CsgShape::new(CsgOperation::Difference, vec![big(), group(nested, false)]);
+        assert_ts(&crossings_along_x(&deep), &[1.0, 3.5, 6.5, 9.0]);
+        let twice = CsgShape::new(CsgOperation::Difference, vec![big(), group(pair(CsgOperation::Union), true)]);
+        assert_ts(&crossings_along_x(&twice), &[3.5, 6.5]);
+        assert_eq!(twice.leaves(), 3);
+        // Not inverted: the union inside an intersection keeps its interior surfaces.
+        let kept = CsgShape::new(CsgOperation::Intersection, vec![big(), group(pair(CsgOperation::Union), false)]);
+        assert_ts(&crossings_along_x(&kept), &[3.5, 4.5, 5.5, 6.5]);
+        assert_eq!(kept.members()[1].shape.bounds(), pair(CsgOperation::Union).bounds());
+        assert!(twice.inside(DVec3::X * 0.2) && !twice.inside(DVec3::X * 2.0));
     }
 
     #[test]
