@@ -19,6 +19,11 @@ position: the degenerate inputs of issue 17's audit.
 Prism may refuse such a scene (a `prism-error` line naming the key, which is then checked by
 hand against what POV-Ray does with it); when both render, the images must agree.
 
+With EXTRA=1, about half the objects become superellipsoids, blobs or CSG groups with
+inverted and nested members, and materials take slope maps, normal maps, averages and image
+maps, area lights `circular`, `orient` and `area_illumination`: what the plain scenes leave
+out.
+
 Prints one line per seed: `ok`, `DIFF` (inspect OUTDIR/sSEED.{toml,pov,prism.png,pov.png})
 or an error. Known causes of differences that are POV-Ray's, not Prism's (see the session
 notes): its shadow cache double-filters transparent members of a CSG whose own texture is
@@ -144,7 +149,12 @@ def material(r, allow_glass=True):
         top = material_one(r, False)
         if 'pigment' not in top:
             top['transmit'] = round(r.uniform(0.3, 0.9), 2)
-        return {'layers': [base, top]}
+        layered = {'layers': [base, top]}
+        # The interior (ior) is the object's, written beside the layers.
+        iors = [layer.pop('ior') for layer in (base, top) if 'ior' in layer]
+        if iors:
+            layered['ior'] = iors[0]
+        return layered
     return material_one(r, allow_glass)
 
 def material_one(r, allow_glass=True):
@@ -323,9 +333,131 @@ def edge_scene(seed):
             out.append('')
     return '\n'.join(out)
 
+SLOPED = ['gradient', 'marble', 'bozo', 'leopard', 'onion', 'granite', 'crackle', 'agate', 'spotted']
+IMAGES = ['image_map.png', 'image_map_alpha.png', 'image_map_grey.png', 'image_map_palette.png', 'image_map_rgb16.png']
+
+def extra_normal(r):
+    """A normal with a slope map, a normal map or an average."""
+    kind = r.random()
+    if kind < 0.4:
+        n = {'pattern': r.choice(SLOPED), 'bump_size': round(r.uniform(-1, 1.5), 2), 'scale': round(r.uniform(0.1, 0.6), 3)}
+        if n['pattern'] == 'gradient':
+            n['vector'] = [0.3, 1.0, 0.2]
+        values = sorted(round(r.uniform(0, 1), 2) for _ in range(r.randint(1, 4)))
+        n['slope_map'] = [[v, [round(r.uniform(0, 1), 2), round(r.uniform(-2, 2), 2)]] for v in values]
+        return n
+    entries = [[round(r.uniform(0, 1), 2), normal(r)] for _ in range(r.randint(1, 3))]
+    if kind < 0.7:
+        entries.sort(key=lambda e: e[0])
+        n = {'pattern': r.choice(SLOPED), 'scale': round(r.uniform(0.2, 0.8), 3), 'normal_map': entries}
+        if n['pattern'] == 'gradient':
+            n['vector'] = [1.0, 0.2, 0.0]
+        return n
+    for e in entries:
+        e[0] = round(r.uniform(0.1, 2), 2)
+    return {'pattern': 'average', 'normal_map': entries}
+
+def extra_pigment(r, d):
+    """An image map (its PNG copied beside the scene) or an average of pigments."""
+    if r.random() < 0.5:
+        return {'pattern': 'average', 'pigment_map': [[round(r.uniform(0.1, 2), 2), pigment(r, 1)] for _ in range(r.randint(1, 3))]}
+    import shutil
+    file = r.choice(IMAGES)
+    shutil.copy(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'scenes', 'parity', file), d)
+    image = {'file': file, 'map_type': r.choice(['planar', 'spherical', 'cylindrical'])}
+    if r.random() < 0.6: image['interpolate'] = r.choice(['none', 'bilinear', 'bicubic', 'normalized_distance'])
+    if r.random() < 0.3: image['once'] = True
+    if r.random() < 0.2: image['filter_all'] = round(r.uniform(0, 0.6), 2)
+    if r.random() < 0.2: image['transmit_all'] = round(r.uniform(0, 0.6), 2)
+    p = {'image_map': image}
+    if r.random() < 0.5: p['scale'] = round(r.uniform(0.3, 1.5), 2)
+    if r.random() < 0.3: p['rotate'] = [round(r.uniform(-90, 90), 1) for _ in range(3)]
+    return p
+
+def extra_member(r):
+    kind = r.choice(['sphere', 'box', 'superellipsoid', 'torus', 'cylinder'])
+    if kind == 'sphere':
+        return {'shape': 'sphere', 'radius': round(r.uniform(0.2, 0.6), 2)}
+    if kind == 'box':
+        s = round(r.uniform(0.2, 0.6), 2)
+        return {'shape': 'box', 'min': [-s, -s, -s], 'max': [s, s * 0.7, s]}
+    if kind == 'torus':
+        return {'shape': 'torus', 'major_radius': 0.4, 'minor_radius': round(r.uniform(0.08, 0.2), 2)}
+    if kind == 'cylinder':
+        return {'shape': 'cylinder', 'radius': round(r.uniform(0.1, 0.4), 2), 'base': [0.0, -0.5, 0.0], 'top': [0.0, 0.5, 0.0]}
+    return {'shape': 'superellipsoid', 'e': round(r.uniform(0.2, 2.5), 2), 'n': round(r.uniform(0.2, 2.5), 2),
+            'transform': {'scale': round(r.uniform(0.3, 0.6), 2)}}
+
+def extra_shape(r):
+    """A superellipsoid, a blob, or a CSG group with inverted and nested members."""
+    kind = r.choice(['superellipsoid', 'blob', 'csg', 'csg'])
+    if kind == 'superellipsoid':
+        return {'shape': 'superellipsoid', 'e': round(r.uniform(0.1, 3), 2), 'n': round(r.uniform(0.1, 3), 2)}
+    if kind == 'blob':
+        components = [{'center': [round(r.uniform(-0.4, 0.4), 2) for _ in range(3)], 'radius': round(r.uniform(0.3, 0.8), 2),
+                       'strength': round(r.choice([1, 1, -0.5]) * r.uniform(0.5, 2), 2)} for _ in range(r.randint(1, 4))]
+        components[0]['strength'] = abs(components[0]['strength']) + 0.5
+        return {'shape': 'blob', 'threshold': round(r.uniform(0.1, 0.9), 2), 'components': components}
+    op = r.choice(['union', 'merge', 'intersection', 'difference'])
+    members = []
+    for _ in range(r.randint(2, 3)):
+        if r.random() < 0.25:
+            m = {'shape': r.choice(['union', 'intersection', 'difference', 'merge']), 'members': [extra_member(r), extra_member(r)]}
+        else:
+            m = extra_member(r)
+        t = m.setdefault('transform', {})
+        t['translate'] = [round(r.uniform(-0.3, 0.3), 3) for _ in range(3)]
+        if r.random() < 0.4: t['rotate'] = [round(r.uniform(-90, 90), 1) for _ in range(3)]
+        if r.random() < 0.3: m['inverse'] = True
+        if r.random() < 0.3: m['material'] = {'color': random_colour(r), 'diffuse': 0.7, 'phong': 0.5}
+        members.append(m)
+    return {'shape': op, 'members': members}
+
+def extra_scene(seed, d):
+    """The scene of `seed` with features the plain generator leaves out: superellipsoids,
+    blobs, CSG with inverted and nested members, slope maps, normal maps, averages, image
+    maps, and circular, oriented and area-illuminating area lights."""
+    import tomllib
+    doc = tomllib.loads(scene(seed))
+    r = random.Random(seed * 31 + 7)
+    for o in doc['object'][1:]:
+        if r.random() < 0.5:
+            keep = {k: o[k] for k in ('material', 'transform') if k in o}
+            o.clear()
+            o.update(extra_shape(r))
+            o.update(keep)
+            if o['shape'] in ('union', 'merge', 'intersection', 'difference'):
+                o['material'] = opaque(o['material'])
+    for o in doc['object']:
+        m = o['material']
+        if 'layers' in m:
+            continue
+        if r.random() < 0.35:
+            m['normal'] = extra_normal(r)
+        if r.random() < 0.3 and 'color' in m:
+            del m['color']
+            m['pigment'] = extra_pigment(r, d)
+    for L in doc.get('light', []):
+        if L['kind'] == 'area':
+            L['size1'], L['size2'] = r.randint(1, 5), r.randint(2, 5)
+            for key in ('circular', 'orient', 'area_illumination'):
+                if r.random() < 0.4: L[key] = True
+    out = [f'# differential scene {seed} with extras']
+    for section in ('render', 'camera', 'world'):
+        out.append(f'[{section}]')
+        out += [f'{k} = {toml_value(v)}' for k, v in doc[section].items()]
+        out.append('')
+    for table in ('object', 'light'):
+        for o in doc.get(table, []):
+            out.append(f'[[{table}]]')
+            out += [f'{k} = {toml_value(v)}' for k, v in o.items()]
+            out.append('')
+    return '\n'.join(out)
+
 def run(seed, d):
     name = f'{d}/s{seed}'
-    open(name + '.toml', 'w').write(edge_scene(seed) if os.environ.get('EDGES') else scene(seed))
+    text = edge_scene(seed) if os.environ.get('EDGES') else extra_scene(seed, d) if os.environ.get('EXTRA') else scene(seed)
+    open(name + '.toml', 'w').write(text)
     p = subprocess.run([PRISM, 'render', name + '.toml', '-o', name + '.prism.png'], capture_output=True, text=True)
     if p.returncode != 0:
         return ('prism-error', p.stderr.strip().splitlines()[-1] if p.stderr.strip() else '')
