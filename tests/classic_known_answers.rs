@@ -190,6 +190,22 @@ fn transparent_sphere_filters_its_shadow_at_each_crossing() {
     assert_close(pixel(&scene), [0.25; 3], 1e-6);
 }
 
+#[test]
+fn a_negative_transmit_passes_light_negated() {
+    // POV-Ray traces on wherever the filter's grey level is not 0, negative too (a bicubic
+    // image map overshoots at alpha edges): opacity 1.2 gives ambient 0.6, and the background
+    // seen through the wall adds -0.2 of itself (POV-Ray renders [0.4, 0.5, 0.55]).
+    let scene =
+        wall("color = 0.5, transmit = -0.2, ambient = 1, diffuse = 0") + "[world]\nbackground = [1, 0.5, 0.25]\n";
+    assert_close(pixel(&scene), [0.4, 0.5, 0.55], 1e-6);
+    // A shadow ray crossing a disc of transmit -0.3 carries -0.3 of the light on: ambient
+    // 0.05 plus diffuse 0.3 * -0.3 (POV-Ray renders [-0.04, -0.032, -0.024]).
+    let scene = wall("color = [0.5, 0.4, 0.3], ambient = 0.1, diffuse = 0.6")
+        + &light(0.0, 0.0, 10.0, "")
+        + "[[object]]\nshape = \"disc\"\ncenter = [0, 0, 5]\nnormal = [0, 0, 1]\nradius = 0.5\nmaterial = { color = 1, transmit = -0.3 }\n";
+    assert_close(pixel(&scene), [-0.04, -0.032, -0.024], 1e-6);
+}
+
 /// A clear sheet (transmit 1, index 1) at z = 0 in front of the seed camera, a red wall `gap`
 /// behind it, and a blue background.
 fn sheet_before_wall(gap: f64) -> String {

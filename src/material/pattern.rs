@@ -1058,7 +1058,7 @@ impl PigmentField {
 
     /// True when some colour of the pigment lets light through.
     pub fn can_transmit(&self) -> bool {
-        self.spec.colors().iter().any(|c| c.filter > 0.0 || c.transmit > 0.0)
+        self.spec.colors().iter().any(|c| c.filter != 0.0 || c.transmit != 0.0)
     }
 
     /// The colour at object-space point `p` (Prism's frame).

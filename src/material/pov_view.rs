@@ -37,9 +37,11 @@ impl PovFinish {
         1.0 - self.finish.filter - self.finish.transmit
     }
 
-    /// True when light passes through the surface.
+    /// True when light passes through the surface: filter or transmit not 0. A negative one
+    /// (a bicubic image map overshooting at an alpha edge, say) passes light too, negated,
+    /// as POV-Ray traces on wherever the filter's grey level is not 0.
     pub fn is_transparent(&self) -> bool {
-        self.finish.filter > 0.0 || self.finish.transmit > 0.0
+        self.finish.filter != 0.0 || self.finish.transmit != 0.0
     }
 }
 
@@ -114,8 +116,10 @@ impl PovView {
                     let colors = p.spec.colors();
                     let first = colors.first().map_or(DVec3::ONE, |c| c.rgb);
                     base.finish.color = Rgb(first);
-                    base.finish.filter = colors.iter().map(|c| c.filter).fold(0.0, f64::max);
-                    base.finish.transmit = colors.iter().map(|c| c.transmit).fold(0.0, f64::max);
+                    // The largest in size: a negative filter or transmit passes light too.
+                    let largest = |a: f64, v: f64| if v.abs() > a.abs() { v } else { a };
+                    base.finish.filter = colors.iter().map(|c| c.filter).fold(0.0, largest);
+                    base.finish.transmit = colors.iter().map(|c| c.transmit).fold(0.0, largest);
                 }
                 Self { base, varying, normal: f.normal.clone(), below: Vec::new() }
             }

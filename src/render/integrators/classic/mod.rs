@@ -532,7 +532,8 @@ impl<'a> Classic<'a> {
             } else {
                 inside = inside.entering(hit.primitive);
             }
-            if filter.max_element() <= 0.0 {
+            // POV-Ray follows the shadow ray on while any channel is not 0, negative too.
+            if filter == DVec3::ZERO {
                 return DVec3::ZERO;
             }
             origin = ray.at(hit.hit.t);
