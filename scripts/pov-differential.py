@@ -434,7 +434,7 @@ def extra_scene(seed, d):
             continue
         if r.random() < 0.35:
             m['normal'] = extra_normal(r)
-        if r.random() < 0.3 and 'color' in m:
+        if r.random() < 0.3 and 'color' in m and 'transmit' not in m and 'filter' not in m:
             del m['color']
             m['pigment'] = extra_pigment(r, d)
     for L in doc.get('light', []):
@@ -442,6 +442,8 @@ def extra_scene(seed, d):
             L['size1'], L['size2'] = r.randint(1, 5), r.randint(2, 5)
             for key in ('circular', 'orient', 'area_illumination'):
                 if r.random() < 0.4: L[key] = True
+            if L.get('circular') or L.get('orient'):
+                L['size1'] = max(L['size1'], 2)
     out = [f'# differential scene {seed} with extras']
     for section in ('render', 'camera', 'world'):
         out.append(f'[{section}]')
