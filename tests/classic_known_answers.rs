@@ -206,6 +206,19 @@ fn a_negative_transmit_passes_light_negated() {
     assert_close(pixel(&scene), [-0.04, -0.032, -0.024], 1e-6);
 }
 
+#[test]
+fn a_camera_starts_inside_only_the_groups_whose_pov_ray_box_holds_it() {
+    // A union of a slab and an inverted sphere holds all space but the sphere, the camera
+    // too; POV-Ray's box for it covers the slab and the sphere only, so the camera ray starts
+    // outside, enters the slab at z = -2 and fades over its 0.2 units alone: 1 / (1 + 0.2)
+    // (POV-Ray renders 0.8335 in half floats). Counted inside, it faded over 3 units.
+    let scene = "[world]\nbackground = [1, 1, 1]\n[[object]]\nshape = \"union\"\nmembers = [\n\
+        { shape = \"sphere\", radius = 0.3, transform = { translate = [0, 3, -3] }, inverse = true },\n\
+        { shape = \"box\", min = [-1, -1, -2.2], max = [1, 1, -2] },\n]\n\
+        material = { color = 1, transmit = 1, ambient = 0, diffuse = 0, fade_distance = 1, fade_power = 1 }\n";
+    assert_close(pixel(scene), [1.0 / 1.2; 3], 1e-6);
+}
+
 /// A clear sheet (transmit 1, index 1) at z = 0 in front of the seed camera, a red wall `gap`
 /// behind it, and a blue background.
 fn sheet_before_wall(gap: f64) -> String {

@@ -207,6 +207,12 @@ pub struct CsgShape {
     /// A union that keeps its members' crossings inside other members: every union but those
     /// POV-Ray has inverted (see the module's documentation), which keep crossings as a merge.
     interior_surfaces: bool,
+    /// The box POV-Ray bounds the group by (`CSG::Compute_BBox`): a union's or merge's covers
+    /// its members' own boxes, inverted ones too (so a union with an inverted member, which
+    /// fills all space but a hole, has a finite box); an intersection's is the overlap of its
+    /// members' that are not inverted. Only where POV-Ray asks a box instead of the shape
+    /// does it matter: which objects a camera ray starts inside.
+    container_bounds: Aabb,
 }
 
 /// Members from which a union or merge puts its members in a [`MemberTree`].
@@ -267,7 +273,23 @@ impl CsgShape {
         let tree = (matches!(operation, CsgOperation::Union | CsgOperation::Merge) && members.len() >= TREE_MEMBERS)
             .then(|| MemberTree::new(&members.iter().map(|m| m.bounds).collect::<Vec<_>>()));
         let interior_surfaces = operation == CsgOperation::Union;
-        Self { operation, members, bounds, leaves, sampling: OnceLock::new(), tree, interior_surfaces }
+        let container_bounds = container_bounds(operation, &members);
+        Self {
+            operation,
+            members,
+            bounds,
+            leaves,
+            sampling: OnceLock::new(),
+            tree,
+            interior_surfaces,
+            container_bounds,
+        }
+    }
+
+    /// The box POV-Ray bounds the group by, in the group's space: a point outside it is in
+    /// none of POV-Ray's ray containers, whatever the inside test says.
+    pub fn container_bounds(&self) -> Aabb {
+        self.container_bounds
     }
 
     /// True when the group or a group inside it keeps interior surfaces.
@@ -498,6 +520,21 @@ impl CsgShape {
     }
 }
 
+/// [`CsgShape::container_bounds`] of a group of `members` combined by `operation`.
+fn container_bounds(operation: CsgOperation, members: &[CsgMember]) -> Aabb {
+    let own = |m: &CsgMember| {
+        let shape: &dyn std::any::Any = m.shape.as_ref();
+        let bounds = shape.downcast_ref::<CsgShape>().map_or_else(|| m.shape.bounds(), CsgShape::container_bounds);
+        if bounds.is_bounded() { bounds.transformed(&m.group_from_member) } else { Aabb::INFINITE }
+    };
+    match operation {
+        CsgOperation::Union | CsgOperation::Merge => members.iter().fold(Aabb::EMPTY, |b, m| b.union(own(m))),
+        CsgOperation::Intersection | CsgOperation::Difference => {
+            members.iter().filter(|m| !m.inverted).fold(Aabb::INFINITE, |b, m| overlap(b, own(m)))
+        }
+    }
+}
+
 /// Appends to `out` the leaves below `members` (placed in some group's space by
 /// `group_from_members`) that can sample points on themselves, nested groups' included.
 fn collect_sampling_leaves(members: &[CsgMember], group_from_members: DAffine3, out: &mut Vec<SamplingLeaf>) {
@@ -709,6 +746,30 @@ mod tests {
         assert_ts(&crossings_along_x(&kept), &[3.5, 4.5, 5.5, 6.5]);
         assert_eq!(kept.members()[1].shape.bounds(), pair(CsgOperation::Union).bounds());
         assert!(twice.inside(DVec3::X * 0.2) && !twice.inside(DVec3::X * 2.0));
+    }
+
+    /// POV-Ray's box of a union counts an inverted member by its own box; an intersection's
+    /// leaves inverted members out, and a subtracted `inverse` member (inverted twice) in.
+    #[test]
+    fn container_bounds_follow_pov_rays_boxes() {
+        let inverted_sphere = CsgMember::new(sphere(DVec3::X * 3.0, 1.0), DAffine3::IDENTITY, true);
+        let union = CsgShape::new(CsgOperation::Union, vec![member(sphere(DVec3::ZERO, 1.0)), inverted_sphere.clone()]);
+        assert!(!union.bounds().is_bounded(), "the solid fills all space but a hole");
+        let expected = Aabb { min: DVec3::new(-1.0, -1.0, -1.0), max: DVec3::new(4.0, 1.0, 1.0) };
+        assert_eq!(union.container_bounds(), expected);
+        let intersection =
+            CsgShape::new(CsgOperation::Intersection, vec![member(sphere(DVec3::ZERO, 1.0)), inverted_sphere]);
+        assert_eq!(intersection.container_bounds(), Aabb { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) });
+        let twice = CsgShape::new(
+            CsgOperation::Difference,
+            vec![member(sphere(DVec3::ZERO, 1.0)), CsgMember::new(sphere(DVec3::X, 1.0), DAffine3::IDENTITY, true)],
+        );
+        assert_eq!(twice.container_bounds(), Aabb { min: DVec3::new(0.0, -1.0, -1.0), max: DVec3::splat(1.0) });
+        let nested = CsgShape::new(
+            CsgOperation::Union,
+            vec![CsgMember::new(Arc::new(union), DAffine3::from_translation(DVec3::Y), false)],
+        );
+        assert_eq!(nested.container_bounds(), Aabb { min: expected.min + DVec3::Y, max: expected.max + DVec3::Y });
     }
 
     #[test]

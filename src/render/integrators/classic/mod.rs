@@ -13,6 +13,7 @@ use prism_api::Ray;
 use crate::accel::primitive::Primitive;
 use crate::accel::scene_bvh::{ConvexHull, Gathered};
 use crate::gamma::GammaCurve;
+use crate::geometry::csg::CsgShape;
 use crate::material::pov_view::{PovFinish, PovView, ShadedFinish};
 use crate::render::extract::RenderScene;
 use crate::render::integrators::{FirstHit, Integrator, PixelSample};
@@ -168,12 +169,19 @@ impl<'a> Classic<'a> {
     }
 
     /// The interiors a camera ray from `origin` starts in (POV-Ray's ray containers): every
-    /// object whose solid holds it, in load order (the last counts as the innermost).
+    /// object whose solid holds it, in load order (the last counts as the innermost). As
+    /// POV-Ray asks only objects whose bounding box holds the origin, a CSG group counts only
+    /// within [`CsgShape::container_bounds`] (a union with an inverted member holds the
+    /// points around it, but POV-Ray's box for it is finite).
     fn interiors_at(&self, origin: DVec3) -> Interiors {
         let mut interiors = Interiors::default();
         for &i in &self.camera_candidates {
             let p = &self.scene.primitives[i as usize];
-            if p.shape.inside(p.object_point(origin)) {
+            let point = p.object_point(origin);
+            let shape: &dyn std::any::Any = p.shape.as_ref();
+            let boxed =
+                shape.downcast_ref::<CsgShape>().is_none_or(|group| group.container_bounds().contains(point, 0.0));
+            if boxed && p.shape.inside(point) {
                 interiors = interiors.entering(i);
             }
         }
