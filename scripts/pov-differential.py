@@ -20,9 +20,10 @@ Prism may refuse such a scene (a `prism-error` line naming the key, which is the
 hand against what POV-Ray does with it); when both render, the images must agree.
 
 With EXTRA=1, about half the objects become superellipsoids, blobs or CSG groups with
-inverted and nested members, and materials take slope maps, normal maps, averages and image
-maps, area lights `circular`, `orient` and `area_illumination`: what the plain scenes leave
-out.
+inverted and nested members, and materials take slope maps, normal maps, averages, image maps
+and emission, area lights `circular`, `orient` and `area_illumination`, objects `no_shadow`,
+the scene an ambient light, trace depth, bailout and working gamma: what the plain scenes
+leave out.
 
 Prints one line per seed: `ok`, `DIFF` (inspect OUTDIR/sSEED.{toml,pov,prism.png,pov.png})
 or an error. Known causes of differences that are POV-Ray's, not Prism's (see the session
@@ -416,7 +417,8 @@ def extra_shape(r):
 def extra_scene(seed, d):
     """The scene of `seed` with features the plain generator leaves out: superellipsoids,
     blobs, CSG with inverted and nested members, slope maps, normal maps, averages, image
-    maps, and circular, oriented and area-illuminating area lights."""
+    maps, circular, oriented and area-illuminating area lights, `no_shadow`, emission, the
+    ambient light, trace depth, bailout and working gamma."""
     import tomllib
     doc = tomllib.loads(scene(seed))
     r = random.Random(seed * 31 + 7)
@@ -437,6 +439,13 @@ def extra_scene(seed, d):
         if r.random() < 0.3 and 'color' in m and 'transmit' not in m and 'filter' not in m:
             del m['color']
             m['pigment'] = extra_pigment(r, d)
+    for o in doc['object'][1:]:
+        if r.random() < 0.15: o['no_shadow'] = True
+        if r.random() < 0.1 and 'layers' not in o['material']: o['material']['emission'] = round(r.uniform(0.1, 0.8), 2)
+    if r.random() < 0.3: doc['world']['ambient_light'] = random_colour(r)
+    if r.random() < 0.3: doc['render']['max_depth'] = r.randint(1, 4)
+    if r.random() < 0.2: doc['render']['assumed_gamma'] = r.choice([2.2, 1.8, 'srgb'])
+    if r.random() < 0.15: doc['render']['adc_bailout'] = r.choice([0.0, 0.05, 0.2])
     for L in doc.get('light', []):
         if L['kind'] == 'area':
             L['size1'], L['size2'] = r.randint(1, 5), r.randint(2, 5)

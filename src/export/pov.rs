@@ -319,8 +319,7 @@ fn objects(out: &mut String, scene: &Scene, files: &PovFiles, errors: &mut Vec<D
             }
         };
         let label = name.map_or(String::new(), |n| format!(" \"{}\"", n.0));
-        let group: &dyn std::any::Any = shape.geometry.as_ref();
-        let sdl = match group.downcast_ref::<CsgShape>() {
+        let sdl = match CsgShape::of(shape.geometry.as_ref()) {
             Some(group) => {
                 let leaves = scene.world.get::<&CsgMaterials>(entity).ok();
                 let leaves = leaves.as_deref().map_or(&[][..], |l| &l.leaves[..]);
@@ -395,8 +394,7 @@ impl CsgSdl<'_> {
     fn group(&mut self, group: &CsgShape) -> Option<String> {
         let mut out = format!("{} {{\n", group.operation().name());
         for member in group.members() {
-            let nested: &dyn std::any::Any = member.shape.as_ref();
-            let body = match nested.downcast_ref::<CsgShape>() {
+            let body = match CsgShape::of(member.shape.as_ref()) {
                 Some(nested) => self.group(nested)?,
                 None => {
                     let sdl = member.shape.to_pov_with(self.files)?;

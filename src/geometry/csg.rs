@@ -246,19 +246,17 @@ impl CsgShape {
             let subtracted = operation == CsgOperation::Difference && i > 0;
             m.inverted = m.inverse != subtracted;
             // Inverted twice (`inverse` on a subtracted member), a union is still changed.
-            if m.inverse || subtracted {
-                let shape: &dyn std::any::Any = m.shape.as_ref();
-                if let Some(group) = shape.downcast_ref::<CsgShape>().filter(|g| g.has_interior_surfaces()) {
-                    m.shape = Arc::new(group.inverted_by_pov_ray());
-                }
+            if (m.inverse || subtracted)
+                && let Some(group) = CsgShape::of(m.shape.as_ref()).filter(|g| g.has_interior_surfaces())
+            {
+                m.shape = Arc::new(group.inverted_by_pov_ray());
             }
             let own = m.shape.bounds();
             m.surface_bounds = if own.is_bounded() { own.transformed(&m.group_from_member) } else { Aabb::INFINITE };
             m.outside_margin = 1e-9 * (1.0 + m.surface_bounds.min.abs().max(m.surface_bounds.max.abs()).max_element());
             m.bounds = if m.inverted { Aabb::INFINITE } else { m.surface_bounds };
             m.leaf_base = leaves;
-            let shape: &dyn std::any::Any = m.shape.as_ref();
-            m.leaves = shape.downcast_ref::<CsgShape>().map_or(1, |group| group.leaves);
+            m.leaves = CsgShape::of(m.shape.as_ref()).map_or(1, |group| group.leaves);
             leaves += m.leaves;
         }
         let bounds = match operation {
@@ -292,13 +290,16 @@ impl CsgShape {
         self.container_bounds
     }
 
+    /// `shape` as a group, when it is one.
+    pub fn of(shape: &dyn Shape) -> Option<&CsgShape> {
+        let any: &dyn std::any::Any = shape;
+        any.downcast_ref::<CsgShape>()
+    }
+
     /// True when the group or a group inside it keeps interior surfaces.
     fn has_interior_surfaces(&self) -> bool {
         self.interior_surfaces
-            || self.members.iter().any(|m| {
-                let shape: &dyn std::any::Any = m.shape.as_ref();
-                shape.downcast_ref::<CsgShape>().is_some_and(CsgShape::has_interior_surfaces)
-            })
+            || self.members.iter().any(|m| CsgShape::of(m.shape.as_ref()).is_some_and(CsgShape::has_interior_surfaces))
     }
 
     /// The group's crossings as POV-Ray's inverted form of it keeps them: every union in it,
@@ -308,8 +309,7 @@ impl CsgShape {
         group.interior_surfaces = false;
         group.sampling = OnceLock::new();
         for m in &mut group.members {
-            let shape: &dyn std::any::Any = m.shape.as_ref();
-            if let Some(nested) = shape.downcast_ref::<CsgShape>().filter(|g| g.has_interior_surfaces()) {
+            if let Some(nested) = CsgShape::of(m.shape.as_ref()).filter(|g| g.has_interior_surfaces()) {
                 m.shape = Arc::new(nested.inverted_by_pov_ray());
             }
         }
@@ -523,8 +523,7 @@ impl CsgShape {
 /// [`CsgShape::container_bounds`] of a group of `members` combined by `operation`.
 fn container_bounds(operation: CsgOperation, members: &[CsgMember]) -> Aabb {
     let own = |m: &CsgMember| {
-        let shape: &dyn std::any::Any = m.shape.as_ref();
-        let bounds = shape.downcast_ref::<CsgShape>().map_or_else(|| m.shape.bounds(), CsgShape::container_bounds);
+        let bounds = CsgShape::of(m.shape.as_ref()).map_or_else(|| m.shape.bounds(), CsgShape::container_bounds);
         if bounds.is_bounded() { bounds.transformed(&m.group_from_member) } else { Aabb::INFINITE }
     };
     match operation {
@@ -540,8 +539,7 @@ fn container_bounds(operation: CsgOperation, members: &[CsgMember]) -> Aabb {
 fn collect_sampling_leaves(members: &[CsgMember], group_from_members: DAffine3, out: &mut Vec<SamplingLeaf>) {
     for m in members {
         let group_from_member = group_from_members * m.group_from_member;
-        let shape: &dyn std::any::Any = m.shape.as_ref();
-        match shape.downcast_ref::<CsgShape>() {
+        match CsgShape::of(m.shape.as_ref()) {
             Some(group) => collect_sampling_leaves(&group.members, group_from_member, out),
             None if m.shape.bounds().is_bounded() && m.shape.can_emit() => {
                 out.push(SamplingLeaf::new(m.shape.clone(), group_from_member));

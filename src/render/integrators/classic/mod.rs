@@ -178,9 +178,8 @@ impl<'a> Classic<'a> {
         for &i in &self.camera_candidates {
             let p = &self.scene.primitives[i as usize];
             let point = p.object_point(origin);
-            let shape: &dyn std::any::Any = p.shape.as_ref();
             let boxed =
-                shape.downcast_ref::<CsgShape>().is_none_or(|group| group.container_bounds().contains(point, 0.0));
+                CsgShape::of(p.shape.as_ref()).is_none_or(|group| group.container_bounds().contains(point, 0.0));
             if boxed && p.shape.inside(point) {
                 interiors = interiors.entering(i);
             }

@@ -190,8 +190,7 @@ impl LightSampler {
             let radiance = emitting_materials(primitive, &scene.materials)
                 .map(|m| m.emission.radiance.0.max(DVec3::ZERO) + m.emission.times_color.0.max(DVec3::ZERO))
                 .fold(DVec3::ZERO, DVec3::max);
-            let shape: &dyn std::any::Any = primitive.shape.as_ref();
-            let area = match shape.downcast_ref::<CsgShape>() {
+            let area = match CsgShape::of(primitive.shape.as_ref()) {
                 // About the area sampled, scaled as a uniform scale would.
                 Some(group) => {
                     group.sampled_area() * primitive.world_from_object.matrix3.determinant().abs().powf(2.0 / 3.0)
