@@ -105,10 +105,13 @@ pub struct CsgMember {
     /// Bounds in group space of where the member, as combined, contains points; infinite
     /// when the member is unbounded or inverted.
     bounds: Aabb,
-    /// Bounds in group space of the member's surface (and of its own inside), inverted or
-    /// not; infinite when the member is unbounded.
+    /// Bounds in group space of the member's surface, inverted or not; infinite when the
+    /// member is unbounded.
     surface_bounds: Aabb,
-    /// How far outside `surface_bounds` a point must lie to be outside the member's own
+    /// Bounds in group space of the member's own inside ([`Shape::inside_bounds`]), inverted
+    /// or not; infinite when that is unbounded (a disc's half-space).
+    inside_bounds: Aabb,
+    /// How far outside `inside_bounds` a point must lie to be outside the member's own
     /// shape without asking it: a margin for the rounding of the transformed box.
     outside_margin: f64,
     /// Index of the member's first leaf among the group's leaves.
@@ -131,6 +134,7 @@ impl CsgMember {
             inverted: inverse,
             bounds: Aabb::INFINITE,
             surface_bounds: Aabb::INFINITE,
+            inside_bounds: Aabb::INFINITE,
             outside_margin: 0.0,
             leaf_base: 0,
             leaves: 1,
@@ -150,7 +154,7 @@ impl CsgMember {
     /// True when the member, as the group combines it, contains the group-space `point`.
     fn contains(&self, point: DVec3) -> bool {
         // Well outside its bounds a point is outside the shape: no transform, no test.
-        if self.surface_bounds.is_bounded() && !self.surface_bounds.contains(point, self.outside_margin) {
+        if self.inside_bounds.is_bounded() && !self.inside_bounds.contains(point, self.outside_margin) {
             return self.inverted;
         }
         let point = if self.identity { point } else { self.member_from_group.transform_point3(point) };
@@ -253,8 +257,10 @@ impl CsgShape {
             }
             let own = m.shape.bounds();
             m.surface_bounds = if own.is_bounded() { own.transformed(&m.group_from_member) } else { Aabb::INFINITE };
-            m.outside_margin = 1e-9 * (1.0 + m.surface_bounds.min.abs().max(m.surface_bounds.max.abs()).max_element());
-            m.bounds = if m.inverted { Aabb::INFINITE } else { m.surface_bounds };
+            let inner = m.shape.inside_bounds();
+            m.inside_bounds = if inner.is_bounded() { inner.transformed(&m.group_from_member) } else { Aabb::INFINITE };
+            m.outside_margin = 1e-9 * (1.0 + m.inside_bounds.min.abs().max(m.inside_bounds.max.abs()).max_element());
+            m.bounds = if m.inverted { Aabb::INFINITE } else { m.inside_bounds };
             m.leaf_base = leaves;
             m.leaves = CsgShape::of(m.shape.as_ref()).map_or(1, |group| group.leaves);
             leaves += m.leaves;
@@ -986,8 +992,9 @@ mod tests {
             let mut unbounded = bounded.clone();
             for m in &mut unbounded.members {
                 m.surface_bounds = Aabb::INFINITE;
+                m.inside_bounds = Aabb::INFINITE;
             }
-            assert!(bounded.members[1..].iter().all(|m| m.surface_bounds.is_bounded()));
+            assert!(bounded.members[1..].iter().all(|m| m.surface_bounds.is_bounded() && m.inside_bounds.is_bounded()));
             let region = Aabb { min: DVec3::splat(-3.0), max: DVec3::splat(3.0) };
             assert_same_answers(&bounded, &unbounded, &region, &mut rng);
         }

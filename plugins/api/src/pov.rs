@@ -6,6 +6,13 @@
 
 use glam::DVec3;
 
+/// POV-Ray's `EPSILON` (1e-10): the skin of points on a surface that its inside tests put on
+/// one side, deterministically, where rounding alone would scatter them. A closed cylinder or
+/// cone counts the skin (in its unit space) as outside, an open one as inside; a plane and a
+/// superellipsoid count it as inside. Coincident surfaces in CSG (a tube bored with a
+/// cylinder of the same length) depend on it.
+pub const EPSILON: f64 = 1e-10;
+
 /// A number as POV-Ray SDL, with enough digits to round-trip an `f64`.
 pub fn number(v: f64) -> String {
     format!("{v:?}")

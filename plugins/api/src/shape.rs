@@ -250,12 +250,21 @@ pub trait Shape: Any + Send + Sync + Debug {
 
     /// True when `point` (object space) lies inside the solid. Prism asks it once per render
     /// for the camera position, as POV-Ray does: a camera inside a glass or water object sees
-    /// through that interior first (its rays leave the object rather than enter it). The
-    /// default, false, suits surfaces without an inside (discs, triangles, meshes); closed
-    /// shapes should answer it.
+    /// through that interior first (its rays leave the object rather than enter it), and CSG
+    /// asks it of every member. The default, false, suits surfaces without an inside
+    /// (triangles, meshes); closed shapes should answer it, with POV-Ray's answer on the
+    /// surface itself where the shape is POV-Ray's (see [`crate::pov::EPSILON`]).
     fn inside(&self, point: DVec3) -> bool {
         let _ = point;
         false
+    }
+
+    /// A box holding every point [`Shape::inside`] accepts. The default, [`Shape::bounds`],
+    /// suits shapes whose inside their surface encloses; a shape whose inside reaches past
+    /// its surface (a disc's is the half-space behind it, as in POV-Ray) answers an infinite
+    /// box, so that CSG does not take points beyond the surface's box to be outside it.
+    fn inside_bounds(&self) -> Aabb {
+        self.bounds()
     }
 
     /// Calls `visit` with every crossing of `ray` with the surface at `t_min < t < t_max`,

@@ -130,7 +130,8 @@ impl Shape for BoxShape {
     }
 
     fn inside(&self, point: DVec3) -> bool {
-        point.cmpgt(self.min).all() && point.cmplt(self.max).all()
+        // The faces themselves are inside, as in POV-Ray.
+        point.cmpge(self.min).all() && point.cmple(self.max).all()
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
@@ -203,6 +204,14 @@ impl Shape for BoxShape {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// POV-Ray's `Box::Inside` counts the faces themselves as inside.
+    #[test]
+    fn faces_are_inside() {
+        let b = BoxShape { min: DVec3::splat(-1.0), max: DVec3::splat(1.0) };
+        assert!(b.inside(DVec3::new(1.0, 0.0, 0.0)) && b.inside(DVec3::splat(-1.0)));
+        assert!(!b.inside(DVec3::new(1.0 + 1e-15, 0.0, 0.0)));
+    }
     use prism_api::contract::{check_dpdu, check_shape, check_t_range};
 
     fn cube() -> BoxShape {

@@ -238,11 +238,30 @@ impl Shape for Cone {
     }
 
     fn inside(&self, point: DVec3) -> bool {
-        // The solid frustum, also when `open`, as in POV-Ray.
+        // The solid frustum, also when `open`, as in POV-Ray, which tests in the space where
+        // the cone's tip is the origin and its wide end the unit disc at z = 1: there the
+        // radius at height z is z, so z is the radius here over the wide end's. A skin of
+        // `EPSILON` is outside a closed cone and inside an open one; a cone whose radii (nearly)
+        // agree is tested as POV-Ray's cylinder.
+        let skin = if self.open { prism_api::pov::EPSILON } else { -prism_api::pov::EPSILON };
         let local = point - self.base;
         let s = local.dot(self.axis);
-        let radius = self.base_radius + self.slope * s;
-        s > 0.0 && s < self.height && (local - s * self.axis).length_squared() < radius * radius
+        let radial2 = (local - s * self.axis).length_squared();
+        let (narrow, wide) = (self.base_radius.min(self.apex_radius), self.base_radius.max(self.apex_radius));
+        let w2 = radial2 / (wide * wide);
+        // POV-Ray's two tests for a cylinder: radii within EPSILON, or a taper so slight that
+        // (wide - narrow) * length / (tip-to-wide-end length), which is (wide - narrow)^2 /
+        // wide, falls below it.
+        let taper = wide - narrow;
+        if taper < prism_api::pov::EPSILON || taper * taper / wide < prism_api::pov::EPSILON {
+            let z = s / self.height;
+            return w2 <= 1.0 + skin && z >= -skin && z <= 1.0 + skin;
+        }
+        // POV-Ray's side test is `w2 <= z^2 + skin`, which leaves the axis within 1e-5 of
+        // the tip outside; a skin relative to z^2 keeps the tip's inside and differs from it
+        // by less than 1e-10 elsewhere.
+        let z = (self.base_radius + self.slope * s) / wide;
+        w2 <= z * z * (1.0 + skin) && z >= narrow / wide - skin && z <= 1.0 + skin
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
@@ -317,6 +336,23 @@ impl Shape for Cone {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// POV-Ray's `Cone::Inside`: a skin of 1e-10 (in the unit cone's space, where the wide
+    /// end has radius 1) is outside a closed cone and inside an open one; the axis stays
+    /// inside up to the tip; equal radii test as a cylinder.
+    #[test]
+    fn the_skin_is_outside_closed_and_inside_open_cones() {
+        let (closed, open) =
+            (Cone::new(DVec3::ZERO, 1.0, DVec3::Y, 0.5, false), Cone::new(DVec3::ZERO, 1.0, DVec3::Y, 0.5, true));
+        for p in [DVec3::new(0.2, 0.0, 0.0), DVec3::new(0.2, 1.0, 0.0), DVec3::new(0.75, 0.5, 0.0)] {
+            assert!(!closed.inside(p) && open.inside(p), "{p}");
+        }
+        assert!(closed.inside(DVec3::new(0.2, 1e-9, 0.0)));
+        let pointed = Cone::new(DVec3::ZERO, 1.0, DVec3::Y, 0.0, false);
+        assert!(pointed.inside(DVec3::Y * (1.0 - 1e-7)) && !pointed.inside(DVec3::Y * (1.0 + 1e-7)));
+        let straight = Cone::new(DVec3::ZERO, 0.5, DVec3::Y, 0.5, false);
+        assert!(!straight.inside(DVec3::new(0.1, 0.0, 0.0)) && straight.inside(DVec3::new(0.1, 1e-9, 0.0)));
+    }
     use prism_api::contract::{ContractConfig, TestRng, check_dpdu, check_sampling_toward, check_shape, check_t_range};
 
     /// The default cone: radius 1 at the origin, a point at y = 1.

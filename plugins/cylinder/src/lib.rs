@@ -183,10 +183,14 @@ impl Shape for Cylinder {
     }
 
     fn inside(&self, point: DVec3) -> bool {
-        // The solid, also when `open` (POV-Ray's open cylinders keep their inside).
+        // The solid, also when `open` (POV-Ray's open cylinders keep their inside). As in
+        // POV-Ray, in the unit cylinder's space a skin of `EPSILON` is outside a closed
+        // cylinder and inside an open one.
+        let skin = if self.open { prism_api::pov::EPSILON } else { -prism_api::pov::EPSILON };
         let local = point - self.base;
-        let s = local.dot(self.axis);
-        s > 0.0 && s < self.height && (local - s * self.axis).length_squared() < self.radius * self.radius
+        let z = local.dot(self.axis) / self.height;
+        let w2 = (local - local.dot(self.axis) * self.axis).length_squared() / (self.radius * self.radius);
+        w2 <= 1.0 + skin && z >= -skin && z <= 1.0 + skin
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
@@ -272,6 +276,25 @@ impl Shape for Cylinder {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// POV-Ray's `Cone::Inside` for cylinders: a skin of 1e-10 (in the unit cylinder's
+    /// space) is outside a closed cylinder and inside an open one, on the caps and the side.
+    #[test]
+    fn the_skin_is_outside_closed_and_inside_open_cylinders() {
+        let (closed, open) = (
+            Cylinder::new(DVec3::ZERO, DVec3::Y * 2.0, 0.5, false),
+            Cylinder::new(DVec3::ZERO, DVec3::Y * 2.0, 0.5, true),
+        );
+        for p in [
+            DVec3::new(0.1, 0.0, 0.0),
+            DVec3::new(0.1, 2.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.5),
+            DVec3::new(0.1, 2e-11, 0.0),
+        ] {
+            assert!(!closed.inside(p) && open.inside(p), "{p}");
+        }
+        assert!(closed.inside(DVec3::new(0.1, 1e-9, 0.0)) && !open.inside(DVec3::new(0.1, -1e-9, 0.0)));
+    }
     use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape, check_t_range};
 
     fn unit() -> Cylinder {

@@ -111,6 +111,17 @@ impl Shape for Disc {
         Aabb::from_corners(self.center - extent, self.center + extent)
     }
 
+    /// POV-Ray's `Disc::Inside`: the whole half-space behind the disc's plane (away from the
+    /// normal), hole and all, which is what a disc bounds in CSG (an intersection of a sphere
+    /// and a disc is the part of the sphere behind the disc's plane, capped by the disc).
+    fn inside(&self, point: DVec3) -> bool {
+        (point - self.center).dot(self.normal) < 0.0
+    }
+
+    fn inside_bounds(&self) -> Aabb {
+        Aabb::INFINITE
+    }
+
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         let along = self.normal.dot(ray.direction);
         if along.abs() <= PARALLEL_EPSILON * ray.direction.length() {
@@ -187,6 +198,15 @@ impl Shape for Disc {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// POV-Ray's `Disc::Inside`: the whole half-space behind the disc, hole and all.
+    #[test]
+    fn the_half_space_behind_is_inside() {
+        let d = Disc::new(DVec3::Y, DVec3::Y, 1.0, 0.5);
+        assert!(d.inside(DVec3::new(10.0, 0.5, -7.0)) && d.inside(DVec3::new(0.0, 0.9, 0.0)));
+        assert!(!d.inside(DVec3::new(0.0, 1.1, 0.0)) && !d.inside(DVec3::new(5.0, 1.0, 0.0)));
+        assert!(!d.inside_bounds().is_bounded());
+    }
     use prism_api::contract::{ContractConfig, check_dpdu, check_sampling_toward, check_shape};
 
     fn unit() -> Disc {

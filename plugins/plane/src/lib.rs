@@ -103,8 +103,8 @@ impl Shape for Plane {
     }
 
     fn inside(&self, point: DVec3) -> bool {
-        // The solid half-space, as in POV-Ray: behind the normal.
-        self.normal.dot(math::load_components(&point)) < self.offset
+        // The solid half-space, as in POV-Ray: behind the normal, and its skin in front.
+        self.normal.dot(math::load_components(&point)) - self.offset < prism_api::pov::EPSILON
     }
 
     fn misses_hull(&self, points: &[DVec3]) -> bool {
@@ -152,6 +152,13 @@ impl Shape for Plane {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// POV-Ray's `Plane::Inside`: a skin of 1e-10 in front of the plane is inside.
+    #[test]
+    fn the_skin_in_front_is_inside() {
+        let p = Plane::new(DVec3::Y, 1.0);
+        assert!(p.inside(DVec3::new(0.0, 1.0 + 5e-11, 0.0)) && !p.inside(DVec3::new(0.0, 1.0 + 2e-10, 0.0)));
+    }
     use prism_api::contract::{check_dpdu, check_shape};
 
     fn ground() -> Plane {

@@ -665,7 +665,8 @@ impl Shape for Superellipsoid {
     }
 
     fn inside(&self, point: DVec3) -> bool {
-        self.gauge(point) < 1.0
+        // POV-Ray's test, with its skin counted inside.
+        self.gauge(point) - 1.0 < prism_api::pov::EPSILON
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
@@ -708,6 +709,13 @@ impl Shape for Superellipsoid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// POV-Ray's `Superellipsoid::Inside`: a skin of 1e-10 (of the gauge) outside is inside.
+    #[test]
+    fn the_skin_outside_is_inside() {
+        let s = Superellipsoid::new(0.5, 0.5);
+        assert!(s.inside(DVec3::X * (1.0 + 5e-11)) && !s.inside(DVec3::X * (1.0 + 2e-10)));
+    }
     use prism_api::contract::{TestRng, check_dpdu, check_shape};
 
     /// POV-Ray's implicit function, written as POV-Ray writes it.

@@ -245,7 +245,8 @@ impl Shape for Torus {
 
     fn inside(&self, p: DVec3) -> bool {
         let rho = (p.x * p.x + p.z * p.z).sqrt();
-        (rho - self.major).powi(2) + p.y * p.y < self.minor * self.minor
+        // The surface itself is inside, as in POV-Ray.
+        (rho - self.major).powi(2) + p.y * p.y <= self.minor * self.minor
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
@@ -323,6 +324,13 @@ impl Shape for Torus {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// POV-Ray's `Torus::Inside` counts the surface itself as inside.
+    #[test]
+    fn the_surface_is_inside() {
+        let t = Torus::new(1.0, 0.25);
+        assert!(t.inside(DVec3::new(1.25, 0.0, 0.0)) && !t.inside(DVec3::new(1.25 + 1e-12, 0.0, 0.0)));
+    }
     use prism_api::contract::{ContractConfig, TestRng, check_dpdu, check_sampling_toward, check_shape};
 
     fn standard() -> Torus {
