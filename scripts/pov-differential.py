@@ -20,7 +20,7 @@ Prism may refuse such a scene (a `prism-error` line naming the key, which is the
 hand against what POV-Ray does with it); when both render, the images must agree.
 
 With EXTRA=1, about half the objects become superellipsoids, blobs or CSG groups with
-inverted and nested members, and materials take slope maps, normal maps, averages, image maps
+inverted and nested members (discs among them, whose inside is a half-space), and materials take slope maps, normal maps, averages, image maps
 and emission, area lights `circular`, `orient` and `area_illumination`, objects `no_shadow`,
 the scene an ambient light, trace depth, bailout and working gamma: what the plain scenes
 leave out.
@@ -376,7 +376,9 @@ def extra_pigment(r, d):
     return p
 
 def extra_member(r):
-    kind = r.choice(['sphere', 'box', 'superellipsoid', 'torus', 'cylinder'])
+    kind = r.choice(['sphere', 'box', 'superellipsoid', 'torus', 'cylinder', 'disc'])
+    if kind == 'disc':
+        return {'shape': 'disc', 'radius': 2.0, 'normal': [round(r.uniform(-0.5, 0.5), 2), 1.0, round(r.uniform(-0.5, 0.5), 2)]}
     if kind == 'sphere':
         return {'shape': 'sphere', 'radius': round(r.uniform(0.2, 0.6), 2)}
     if kind == 'box':
