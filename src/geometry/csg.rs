@@ -211,6 +211,9 @@ pub struct CsgShape {
     /// A union that keeps its members' crossings inside other members: every union but those
     /// POV-Ray has inverted (see the module's documentation), which keep crossings as a merge.
     interior_surfaces: bool,
+    /// `interior_surfaces` here or in a group at any depth below (kept, so that asking it is
+    /// not a walk of the whole nesting).
+    any_interior_surfaces: bool,
     /// The box POV-Ray bounds the group by (`CSG::Compute_BBox`): a union's or merge's covers
     /// its members' own boxes, inverted ones too (so a union with an inverted member, which
     /// fills all space but a hole, has a finite box); an intersection's is the overlap of its
@@ -277,6 +280,8 @@ impl CsgShape {
         let tree = (matches!(operation, CsgOperation::Union | CsgOperation::Merge) && members.len() >= TREE_MEMBERS)
             .then(|| MemberTree::new(&members.iter().map(|m| m.bounds).collect::<Vec<_>>()));
         let interior_surfaces = operation == CsgOperation::Union;
+        let any_interior_surfaces = interior_surfaces
+            || members.iter().any(|m| CsgShape::of(m.shape.as_ref()).is_some_and(CsgShape::has_interior_surfaces));
         let container_bounds = container_bounds(operation, &members);
         Self {
             operation,
@@ -286,6 +291,7 @@ impl CsgShape {
             sampling: OnceLock::new(),
             tree,
             interior_surfaces,
+            any_interior_surfaces,
             container_bounds,
         }
     }
@@ -304,8 +310,7 @@ impl CsgShape {
 
     /// True when the group or a group inside it keeps interior surfaces.
     fn has_interior_surfaces(&self) -> bool {
-        self.interior_surfaces
-            || self.members.iter().any(|m| CsgShape::of(m.shape.as_ref()).is_some_and(CsgShape::has_interior_surfaces))
+        self.any_interior_surfaces
     }
 
     /// The group's crossings as POV-Ray's inverted form of it keeps them: every union in it,
@@ -313,6 +318,7 @@ impl CsgShape {
     fn inverted_by_pov_ray(&self) -> CsgShape {
         let mut group = self.clone();
         group.interior_surfaces = false;
+        group.any_interior_surfaces = false;
         group.sampling = OnceLock::new();
         for m in &mut group.members {
             if let Some(nested) = CsgShape::of(m.shape.as_ref()).filter(|g| g.has_interior_surfaces()) {
