@@ -281,6 +281,20 @@ KEEP = {'translate', 'rotate', 'scale', 'position', 'look_at', 'point_at', 'widt
         'base', 'top', 'apex', 'normal', 'offset', 'radius', 'base_radius', 'apex_radius', 'major_radius',
         'minor_radius', 'thickness', 'axis1', 'axis2', 'vfov', 'size1', 'size2', 'depth', 'threshold'}
 
+def document(doc, first_line):
+    """A parsed scene `doc` as TOML text again, under the comment `first_line`."""
+    out = [first_line]
+    for section in ('render', 'camera', 'world'):
+        out.append(f'[{section}]')
+        out += [f'{k} = {toml_value(v)}' for k, v in doc[section].items()]
+        out.append('')
+    for table in ('object', 'light'):
+        for o in doc.get(table, []):
+            out.append(f'[[{table}]]')
+            out += [f'{k} = {toml_value(v)}' for k, v in o.items()]
+            out.append('')
+    return '\n'.join(out)
+
 def edge_value(r, v):
     if isinstance(v, bool):
         return v
@@ -322,17 +336,7 @@ def edge_scene(seed):
         container, key, path = r.choice(candidates)
         container[key] = edge_value(r, container[key])
         what = f'{path} = {container[key]}'
-    out = [f'# differential scene {seed} with edge value: {what}']
-    for section in ('render', 'camera', 'world'):
-        out.append(f'[{section}]')
-        out += [f'{k} = {toml_value(v)}' for k, v in doc[section].items()]
-        out.append('')
-    for table, name in (('object', 'object'), ('light', 'light')):
-        for o in doc.get(table, []):
-            out.append(f'[[{name}]]')
-            out += [f'{k} = {toml_value(v)}' for k, v in o.items()]
-            out.append('')
-    return '\n'.join(out)
+    return document(doc, f'# differential scene {seed} with edge value: {what}')
 
 SLOPED = ['gradient', 'marble', 'bozo', 'leopard', 'onion', 'granite', 'crackle', 'agate', 'spotted']
 IMAGES = ['image_map.png', 'image_map_alpha.png', 'image_map_grey.png', 'image_map_palette.png', 'image_map_rgb16.png']
@@ -455,17 +459,7 @@ def extra_scene(seed, d):
                 if r.random() < 0.4: L[key] = True
             if L.get('circular') or L.get('orient'):
                 L['size1'] = max(L['size1'], 2)
-    out = [f'# differential scene {seed} with extras']
-    for section in ('render', 'camera', 'world'):
-        out.append(f'[{section}]')
-        out += [f'{k} = {toml_value(v)}' for k, v in doc[section].items()]
-        out.append('')
-    for table in ('object', 'light'):
-        for o in doc.get(table, []):
-            out.append(f'[[{table}]]')
-            out += [f'{k} = {toml_value(v)}' for k, v in o.items()]
-            out.append('')
-    return '\n'.join(out)
+    return document(doc, f'# differential scene {seed} with extras')
 
 def run(seed, d):
     name = f'{d}/s{seed}'
