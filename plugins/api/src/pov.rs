@@ -13,6 +13,19 @@ use glam::DVec3;
 /// cylinder of the same length) depend on it.
 pub const EPSILON: f64 = 1e-10;
 
+/// The skin a closed (`open` false) or open cylinder or cone counts inside: `-EPSILON` or
+/// `EPSILON` in its unit space, as POV-Ray's `Cone::Inside` offsets its tests.
+pub fn unit_skin(open: bool) -> f64 {
+    if open { EPSILON } else { -EPSILON }
+}
+
+/// POV-Ray's inside test of the unit cylinder (radius 1, from z = 0 to 1), for a point whose
+/// squared distance from the axis is `w2` and height `z` there.
+pub fn inside_unit_cylinder(w2: f64, z: f64, open: bool) -> bool {
+    let skin = unit_skin(open);
+    w2 <= 1.0 + skin && z >= -skin && z <= 1.0 + skin
+}
+
 /// A number as POV-Ray SDL, with enough digits to round-trip an `f64`.
 pub fn number(v: f64) -> String {
     format!("{v:?}")

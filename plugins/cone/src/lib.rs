@@ -243,7 +243,6 @@ impl Shape for Cone {
         // radius at height z is z, so z is the radius here over the wide end's. A skin of
         // `EPSILON` is outside a closed cone and inside an open one; a cone whose radii (nearly)
         // agree is tested as POV-Ray's cylinder.
-        let skin = if self.open { prism_api::pov::EPSILON } else { -prism_api::pov::EPSILON };
         let local = point - self.base;
         let s = local.dot(self.axis);
         let radial2 = (local - s * self.axis).length_squared();
@@ -254,9 +253,9 @@ impl Shape for Cone {
         // wide, falls below it.
         let taper = wide - narrow;
         if taper < prism_api::pov::EPSILON || taper * taper / wide < prism_api::pov::EPSILON {
-            let z = s / self.height;
-            return w2 <= 1.0 + skin && z >= -skin && z <= 1.0 + skin;
+            return prism_api::pov::inside_unit_cylinder(w2, s / self.height, self.open);
         }
+        let skin = prism_api::pov::unit_skin(self.open);
         // POV-Ray's side test is `w2 <= z^2 + skin`, which leaves the axis within 1e-5 of
         // the tip outside; a skin relative to z^2 keeps the tip's inside and differs from it
         // by less than 1e-10 elsewhere.

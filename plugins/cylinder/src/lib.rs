@@ -186,11 +186,10 @@ impl Shape for Cylinder {
         // The solid, also when `open` (POV-Ray's open cylinders keep their inside). As in
         // POV-Ray, in the unit cylinder's space a skin of `EPSILON` is outside a closed
         // cylinder and inside an open one.
-        let skin = if self.open { prism_api::pov::EPSILON } else { -prism_api::pov::EPSILON };
         let local = point - self.base;
         let z = local.dot(self.axis) / self.height;
         let w2 = (local - local.dot(self.axis) * self.axis).length_squared() / (self.radius * self.radius);
-        w2 <= 1.0 + skin && z >= -skin && z <= 1.0 + skin
+        prism_api::pov::inside_unit_cylinder(w2, z, self.open)
     }
 
     fn surface(&self, ray: &Ray, hit: &Hit) -> Surface {
