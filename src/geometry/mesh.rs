@@ -359,15 +359,14 @@ impl MeshShape {
         if t_max >= f64::from(f32::MAX) { f32::INFINITY } else { next_up(t_max as f32) }
     }
 
-    /// The shading normal: interpolated vertex normals, then the normal map, then bent
-    /// toward the geometric normal where the reflected view direction would go below the
-    /// surface (the shading-normal terminator; see `shading_normal_for_view`).
-    fn shading_normal(&self, ray: &Ray, tri: &[u32; 3], b: (f64, f64), ng: DVec3, uv: DVec2) -> DVec3 {
+    /// The shading normal: interpolated vertex normals, then the normal map. Not bent for
+    /// the view: the `path` integrator applies the terminator fix
+    /// ([`shading_normal_for_view`]); `classic` shades with this normal, as POV-Ray shades a
+    /// smooth triangle with its interpolated one.
+    fn shading_normal(&self, tri: &[u32; 3], b: (f64, f64), ng: DVec3, uv: DVec2) -> DVec3 {
         let d = &self.data;
         let normal_map = self.maps.as_ref().and_then(|m| m.normal_map.as_ref());
         if d.normals.is_empty() && normal_map.is_none() {
-            // Flat shading: the geometric normal, unbent. The terminator fix is for normals that
-            // differ from it; it would only tilt the true normal at grazing views.
             return ng;
         }
         let (b1, b2) = b;
@@ -389,7 +388,7 @@ impl MeshShape {
         {
             ns = perturbed;
         }
-        shading_normal_for_view(ns, ng, ray.direction)
+        ns
     }
 
     fn normal_mapped(&self, map: &NormalMap, tri: &[u32; 3], b: (f64, f64), n: DVec3, uv: DVec2) -> Option<DVec3> {
@@ -483,7 +482,7 @@ impl MeshShape {
             let uv_area = (e1.x * e2.y - e1.y * e2.x).abs();
             (uv_area / cross.length()).sqrt()
         };
-        let shading_normal = self.shading_normal(ray, &tri, (b1, b2), ng, uv);
+        let shading_normal = self.shading_normal(&tri, (b1, b2), ng, uv);
         Surface { point: ray.at(hit.t), normal: ng, shading_normal, uv, uv_density, dpdu: prism_api::math::tangent(ng) }
     }
 

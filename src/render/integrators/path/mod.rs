@@ -104,6 +104,11 @@ impl<'a> Path<'a> {
         if shading_normal.dot(geometric_normal) < 0.0 {
             shading_normal = -shading_normal;
         }
+        // Interpolated and mapped normals (meshes') get the terminator fix; a shading normal
+        // equal to the geometric one is the true normal and stays unbent even at grazing views.
+        if surface.shading_normal != surface.normal {
+            shading_normal = shading_normal_for_view(shading_normal, geometric_normal, ray.direction);
+        }
         let tangent = match primitive.placement {
             crate::accel::primitive::Placement::Affine => primitive.world_from_object.transform_vector3(surface.dpdu),
             _ => surface.dpdu,
