@@ -455,9 +455,32 @@ fn cases() -> Vec<Case> {
             &["scene.toml:3:", "unknown key `member` for `union`", "did you mean `members`"],
         ),
         case(
-            "mesh in a CSG group",
+            "missing mesh file in a CSG group",
             "[[object]]\nshape = \"union\"\nmembers = [{ shape = \"mesh\", file = \"a.obj\" }]\n",
-            &["scene.toml:3:", "object[0].members[0].shape", "a mesh cannot be a CSG member"],
+            &["scene.toml:3:", "object[0].members[0].file", "cannot import mesh", "a.obj"],
+        ),
+        Case {
+            extra: vec![("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n".into())],
+            ..case(
+                "open mesh in a CSG group",
+                "[[object]]\nshape = \"difference\"\nmembers = [{ shape = \"sphere\" },\n  { shape = \"mesh\", file = \"open.obj\" }]\n",
+                &[
+                    "scene.toml:4:",
+                    "object[0].members[1].file",
+                    "not a closed surface (3 edges border a single triangle)",
+                ],
+            )
+        },
+        case(
+            "mesh keys a CSG member cannot take",
+            "[[object]]\nshape = \"union\"\nmembers = [{ shape = \"mesh\", file = \"a.obj\", import_lights = true, smoth_angle = 30 }]\n",
+            &[
+                "scene.toml:3:",
+                "object[0].members[0].import_lights",
+                "cannot be set on a mesh in a CSG group",
+                "object[0].members[0].smoth_angle",
+                "did you mean `smooth_angle`",
+            ],
         ),
         case(
             "nested CSG member with a bad radius",

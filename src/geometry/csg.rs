@@ -929,6 +929,36 @@ mod tests {
         prism_api::contract::check_shape(&nested);
     }
 
+    /// A closed mesh is a member like any solid: a cube mesh minus a sphere, and its
+    /// intersection with one, keep the contract and answer as the same groups of analytic
+    /// shapes would (the mesh's cube is turned off the axes, so the box is turned too).
+    #[test]
+    fn closed_meshes_are_members() {
+        use crate::geometry::mesh::{MeshShape, tests::tilted_cube};
+        let cube: Arc<dyn Shape> = Arc::new(MeshShape::new(Arc::new(tilted_cube())));
+        for operation in [CsgOperation::Difference, CsgOperation::Intersection, CsgOperation::Merge] {
+            let group = CsgShape::new(operation, vec![member(cube.clone()), member(sphere(DVec3::X, 0.8))]);
+            prism_api::contract::check_shape(&group);
+            let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.35, 0.5, 0.2);
+            let inside_box = |p: DVec3| (turn.inverse() * p).abs().max_element() < 1.0;
+            let mut rng = prism_api::contract::TestRng::new(operation as u64);
+            for _ in 0..2000 {
+                let p = DVec3::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0), rng.range(-2.0, 2.0));
+                let in_sphere = (p - DVec3::X).length() < 0.8;
+                let expected = match operation {
+                    CsgOperation::Difference => inside_box(p) && !in_sphere,
+                    CsgOperation::Intersection => inside_box(p) && in_sphere,
+                    _ => inside_box(p) || in_sphere,
+                };
+                // Away from the surfaces (the mesh's corners are rounded to f32).
+                let near_box = ((turn.inverse() * p).abs().max_element() - 1.0).abs() < 1e-5;
+                if !near_box && ((p - DVec3::X).length() - 0.8).abs() > 1e-9 {
+                    assert_eq!(group.inside(p), expected, "{} at {p}", operation.name());
+                }
+            }
+        }
+    }
+
     /// Asserts that two groups give the same nearest hits, crossings and inside tests for
     /// 4000 random rays and points in `region`.
     fn assert_same_answers(a: &CsgShape, b: &CsgShape, region: &Aabb, rng: &mut prism_api::contract::TestRng) {

@@ -174,6 +174,7 @@ impl MeshBuilder {
             area,
             plane_normal,
             area_cdf: OnceLock::new(),
+            open_edges: OnceLock::new(),
         })
     }
 }
@@ -208,9 +209,78 @@ pub struct MeshData {
     plane_normal: Option<DVec3>,
     /// Cumulative triangle areas, built the first time a point is sampled.
     area_cdf: OnceLock<Vec<f64>>,
+    /// How many edges border an odd number of triangles, counted the first time it is asked.
+    open_edges: OnceLock<usize>,
 }
 
+/// The direction along which a closed mesh's inside test counts crossings, in the mesh's
+/// own space, and which `prism export pov` writes as its `inside_vector` (POV-Ray counts
+/// along that): along no axis or diagonal, so that it rarely runs along a modelled edge.
+pub const INSIDE_VECTOR: DVec3 = DVec3::new(0.2768, 0.3771, 0.8839);
+
 impl MeshData {
+    /// How many edges border an odd number of triangles, corners matched by position (a
+    /// file's seams, where vertices are repeated for their normals or uvs, are not edges of
+    /// the surface). 0 for a closed surface, which bounds a solid.
+    pub fn open_edges(&self) -> usize {
+        *self.open_edges.get_or_init(|| {
+            // Adding 0.0 turns -0.0 into 0.0: one position, one key.
+            let key = |p: &Vec3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f32::to_bits);
+            let mut ids = std::collections::HashMap::with_capacity(self.positions.len());
+            let welded: Vec<u32> = self
+                .positions
+                .iter()
+                .map(|p| {
+                    let next = ids.len() as u32;
+                    *ids.entry(key(p)).or_insert(next)
+                })
+                .collect();
+            let mut edges = std::collections::HashMap::with_capacity(self.triangles.len() * 3 / 2);
+            for t in &self.triangles {
+                for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                    let (a, b) = (welded[a as usize], welded[b as usize]);
+                    *edges.entry((a.min(b), a.max(b))).or_insert(0u32) += 1;
+                }
+            }
+            edges.values().filter(|&&count| count % 2 == 1).count()
+        })
+    }
+
+    /// The triangles of `parts`, each placed by its transform, as one mesh (a file's parts as
+    /// one CSG member). Vertex normals are kept when every part has them, and so are texture
+    /// coordinates; tangents are not (no normal maps on CSG members).
+    pub fn merged(parts: &[(Arc<MeshData>, glam::DAffine3)], budget: MemoryBudget) -> Result<Arc<MeshData>, MeshError> {
+        if let [(data, placement)] = parts
+            && *placement == glam::DAffine3::IDENTITY
+        {
+            return Ok(data.clone());
+        }
+        let keep_normals = parts.iter().all(|(d, _)| !d.normals.is_empty());
+        let keep_uvs = parts.iter().all(|(d, _)| !d.uvs.is_empty());
+        let mut merged = MeshBuilder::default();
+        for (data, placement) in parts {
+            let first = merged.positions.len() as u32;
+            let normal_matrix = placement.matrix3.inverse().transpose();
+            merged.positions.extend(data.positions.iter().map(|p| placement.transform_point3(p.as_dvec3()).as_vec3()));
+            if keep_normals {
+                merged
+                    .normals
+                    .extend(data.normals.iter().map(|n| (normal_matrix * n.as_dvec3()).normalize_or_zero().as_vec3()));
+            }
+            if keep_uvs {
+                merged.uvs.extend_from_slice(&data.uvs);
+            }
+            merged.triangles.extend(data.triangles.iter().map(|t| t.map(|i| i + first)));
+        }
+        merged.build_within(budget).map(Arc::new)
+    }
+
+    /// True when the surface is closed ([`MeshData::open_edges`] is 0): then it has an
+    /// inside, and can be a CSG member.
+    pub fn is_closed(&self) -> bool {
+        self.open_edges() == 0
+    }
+
     /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
         self.triangles.len()
@@ -554,6 +624,31 @@ impl Shape for MeshShape {
         best
     }
 
+    /// A closed mesh's inside: the points from which a ray along [`INSIDE_VECTOR`] crosses
+    /// the surface an odd number of times (POV-Ray's test with that `inside_vector`; the
+    /// watertight triangle test counts a crossing through a shared edge once). An open mesh
+    /// has no inside.
+    fn inside(&self, point: DVec3) -> bool {
+        if !self.data.is_closed() {
+            return false;
+        }
+        // The traversal runs in f32 from a start a little behind the point, so that rounding
+        // the point cannot skip a triangle just ahead of it; the f64 plane distance from the
+        // point itself then decides which crossings lie ahead.
+        let bounds = self.data.bounds;
+        let behind = 1e-5 * (1.0 + bounds.min.abs().max(bounds.max.abs()).max_element().max(point.abs().max_element()));
+        let start = point - INSIDE_VECTOR * behind;
+        let Some(wray) = WatertightRay::new(start.as_vec3(), INSIDE_VECTOR.as_vec3()) else { return false };
+        let mut crossings = 0u32;
+        self.data.bvh.any(&wray, f32::INFINITY, |_, h, [a, b, c]| {
+            if plane_t(point, INSIDE_VECTOR, a, b, c).unwrap_or(f64::from(h.t)) > 0.0 {
+                crossings += 1;
+            }
+            false
+        });
+        crossings % 2 == 1
+    }
+
     fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let Some(wray) = Self::prepare(ray) else { return false };
         let bvh = &self.data.bvh;
@@ -637,6 +732,10 @@ impl Shape for MeshShape {
             push_pov_list(&mut s, "uv_vectors", d.uvs.iter().map(|t| format!("<{:?}, {:?}>", t.x, 1.0 - t.y)));
         }
         push_pov_list(&mut s, "face_indices", d.triangles.iter().map(|t| format!("<{}, {}, {}>", t[0], t[1], t[2])));
+        if d.is_closed() {
+            // A solid in POV-Ray too, counted along the same direction as Prism's test.
+            s.push_str(&format!("  inside_vector {}\n", vector(INSIDE_VECTOR)));
+        }
         s.push('}');
         Some(s)
     }
@@ -653,7 +752,7 @@ fn push_pov_list(s: &mut String, name: &str, items: impl ExactSizeIterator<Item 
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// A unit square in z = 0 from two triangles, with normals tilted outward and uvs.
@@ -730,20 +829,76 @@ mod tests {
     fn mesh_meets_the_shape_contract() {
         let shape = MeshShape::new(Arc::new(square()));
         prism_api::contract::check_shape(&shape);
-        // A closed mesh: a tetrahedron.
-        let tet = MeshBuilder {
-            positions: vec![
-                Vec3::new(0.0, 0.0, 0.0),
-                Vec3::new(1.0, 0.0, 0.0),
-                Vec3::new(0.0, 1.0, 0.0),
-                Vec3::new(0.0, 0.0, 1.0),
-            ],
-            triangles: vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
-            ..MeshBuilder::default()
+        // A closed mesh, with an inside: its crossings must flip it.
+        let cube = MeshShape::new(Arc::new(tilted_cube()));
+        assert!(cube.data().is_closed());
+        prism_api::contract::check_shape(&cube);
+    }
+
+    /// A cube of side 2 about the origin, turned off the axes (so that the contract kit's
+    /// rays along the axes cross faces rather than graze edges), each face with its own four
+    /// vertices, as files repeat them at seams.
+    pub(crate) fn tilted_cube() -> MeshData {
+        let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.35, 0.5, 0.2);
+        let mut builder = MeshBuilder::default();
+        for axis in 0..3 {
+            for sign in [-1.0, 1.0] {
+                let mut normal = DVec3::ZERO;
+                normal[axis] = sign;
+                let u = DVec3::new(normal.z.abs(), normal.x.abs(), normal.y.abs());
+                // Counter-clockwise seen from outside: u x v = normal.
+                let v = normal.cross(u);
+                let first = builder.positions.len() as u32;
+                for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                    builder.positions.push((turn * (normal + u * a + v * b)).as_vec3());
+                }
+                builder.triangles.push([first, first + 1, first + 2]);
+                builder.triangles.push([first, first + 2, first + 3]);
+            }
         }
-        .build()
+        builder.build().unwrap()
+    }
+
+    #[test]
+    fn closed_meshes_have_an_inside_and_open_ones_none() {
+        let cube = MeshShape::new(Arc::new(tilted_cube()));
+        assert_eq!(cube.data().open_edges(), 0);
+        let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.35, 0.5, 0.2);
+        let mut rng = prism_api::contract::TestRng::new(11);
+        for _ in 0..2000 {
+            let local = DVec3::new(rng.range(-1.5, 1.5), rng.range(-1.5, 1.5), rng.range(-1.5, 1.5));
+            let expected = local.abs().max_element() < 1.0;
+            if (local.abs().max_element() - 1.0).abs() > 1e-6 {
+                assert_eq!(cube.inside(turn * local), expected, "at {local} in the cube's frame");
+            }
+        }
+        // Points within 1e-9 of a face: the f32 traversal must not lose the face just ahead.
+        for _ in 0..200 {
+            let ray = Ray::new(DVec3::ZERO, rng.unit_vector());
+            let t = cube.intersect(&ray, 0.0, f64::INFINITY).expect("a ray from the centre leaves the cube").t;
+            assert!(cube.inside(ray.at(t - 1e-9)) && !cube.inside(ray.at(t + 1e-9)), "across {}", ray.at(t));
+        }
+        // The square is open: four edges border one triangle each, and nothing is inside it.
+        let square = MeshShape::new(Arc::new(square()));
+        assert_eq!(square.data().open_edges(), 4);
+        assert!(!square.inside(DVec3::new(0.5, 0.5, 0.0)));
+    }
+
+    #[test]
+    fn merged_parts_keep_every_triangle_where_placed() {
+        let square = Arc::new(square());
+        let lifted = glam::DAffine3::from_translation(DVec3::new(0.0, 0.0, 2.0));
+        let merged = MeshData::merged(
+            &[(square.clone(), glam::DAffine3::IDENTITY), (square.clone(), lifted)],
+            MemoryBudget::UNLIMITED,
+        )
         .unwrap();
-        prism_api::contract::check_shape(&MeshShape::new(Arc::new(tet)));
+        assert_eq!(merged.triangle_count(), 4);
+        assert_eq!(merged.bounds.max.z, 2.0);
+        assert_eq!(merged.normals.len(), 8);
+        // One part in place is shared, not copied.
+        let alone = MeshData::merged(&[(square.clone(), glam::DAffine3::IDENTITY)], MemoryBudget::UNLIMITED).unwrap();
+        assert!(Arc::ptr_eq(&alone, &square));
     }
 
     #[test]

@@ -119,6 +119,18 @@ pub struct Model {
 }
 
 impl Model {
+    /// Each node's transform to the file's space (its ancestors' local transforms applied
+    /// after its own), indexed like [`Model::nodes`].
+    pub fn world_from_nodes(&self) -> Vec<DAffine3> {
+        let mut placed: Vec<DAffine3> = Vec::with_capacity(self.nodes.len());
+        for node in &self.nodes {
+            // Parents come before their children.
+            let parent = node.parent.and_then(|p| placed.get(p)).copied().unwrap_or(DAffine3::IDENTITY);
+            placed.push(parent * node.local);
+        }
+        placed
+    }
+
     /// Triangles over all parts as instanced by the node tree.
     pub fn triangle_count(&self) -> usize {
         self.parts.iter().map(|p| p.shape.data().triangle_count()).sum()

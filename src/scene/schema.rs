@@ -51,10 +51,7 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
         "required": ["shape", "file"],
         "properties": {
             "file": { "type": "string", "description": "The .obj, .gltf, .glb, .ply or .ply.gz file, relative to the scene file." },
-            "smooth_angle": {
-                "type": "number", "exclusiveMinimum": 0, "maximum": 180,
-                "description": "For files without normals: smooth across edges sharper than this angle (degrees)."
-            },
+            "smooth_angle": smooth_angle(),
             "material_map": {
                 "type": "object",
                 "description": "Replace the file's materials by name with scene materials.",
@@ -100,6 +97,14 @@ pub fn scene_schema(registry: &ShapeRegistry) -> Value {
             "light": { "type": "array", "items": light }
         },
         "$defs": definitions
+    })
+}
+
+/// A mesh's `smooth_angle`, in objects and in CSG members.
+fn smooth_angle() -> Value {
+    json!({
+        "type": "number", "exclusiveMinimum": 0, "maximum": 180,
+        "description": "For files without normals: smooth across edges sharper than this angle (degrees)."
     })
 }
 
@@ -164,6 +169,19 @@ fn csg_member(shape_params: &[Value], material: &Value, transform: &Value) -> Va
             variant
         })
         .collect();
+    let mut mesh = json!({
+        "title": crate::import::spawn::MESH_SHAPE,
+        "description": "A closed triangle mesh from an OBJ, glTF 2.0 or PLY file, all its parts as one solid with the member's material (see docs/scene-format.md, CSG).",
+        "type": "object",
+        "additionalProperties": false,
+        "required": ["file"],
+        "properties": {
+            "file": { "type": "string", "description": "The .obj, .gltf, .glb, .ply or .ply.gz file, relative to the scene file; a closed surface of at most 65536 triangles." },
+            "smooth_angle": smooth_angle()
+        }
+    });
+    member_keys(&mut mesh, json!({ "const": crate::import::spawn::MESH_SHAPE }));
+    variants.push(mesh);
     let mut group = csg_group();
     member_keys(&mut group, csg_shape());
     variants.push(group);

@@ -2,6 +2,7 @@
 //! nodes and parts, and the lights and camera it brings when the scene asks.
 
 use super::*;
+use crate::geometry::mesh::{MeshData, MeshShape};
 
 /// Spawns the lights of every `import_lights` object, placed by their node's world transform
 /// (parents are linked by now; a parent cycle is reported later by `resolve_transforms`).
@@ -73,6 +74,13 @@ pub(super) struct CameraImport {
     location: Location,
 }
 
+/// The keys of a mesh in a CSG group besides the member keys.
+const CSG_MESH_KEYS: [&str; 2] = ["file", "smooth_angle"];
+
+/// The most triangles a mesh in a CSG group holds: a group numbers its leaves' parts in
+/// the low [`PART_BITS`](crate::accel::primitive::PART_BITS) bits of a hit.
+const MAX_MEMBER_TRIANGLES: usize = 1 << crate::accel::primitive::PART_BITS;
+
 /// `[camera]` keys that may accompany an imported camera (the lens).
 pub(super) const LENS_KEYS: [&str; 5] =
     ["aperture", "focal_distance", "blur_variance", "blur_confidence", "blur_min_samples"];
@@ -120,20 +128,7 @@ impl Loader<'_> {
                 ok = false;
             }
         }
-        let smooth_angle = match table.get("smooth_angle") {
-            None => None,
-            Some(v) => match v.as_float().or_else(|| v.as_integer().map(|i| i as f64)) {
-                Some(a) if a.is_finite() && a > 0.0 && a <= 180.0 => Some(a),
-                _ => {
-                    let d = Diagnostic::new(
-                        self.files[file].locate_value(&format!("{key}.smooth_angle")),
-                        "`smooth_angle` must be an angle in degrees, greater than 0 and at most 180",
-                    );
-                    self.diagnostics.push(d);
-                    return None;
-                }
-            },
-        };
+        let smooth_angle = self.smooth_angle(file, key, &table)?;
         let import_lights = self.boolean_flag(table.get("import_lights"), file, key, "import_lights").ok()?;
         let camera_choice = match table.get("import_camera").map(CameraChoice::parse) {
             None => None,
@@ -145,32 +140,7 @@ impl Loader<'_> {
                 return None;
             }
         };
-        let relative = match table.remove("file") {
-            Some(toml::Value::String(s)) => s,
-            Some(_) => {
-                let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.file")), "`file` must be a path");
-                self.diagnostics.push(d);
-                return None;
-            }
-            None => {
-                let d = Diagnostic::new(
-                    location.clone(),
-                    "a mesh needs `file`: the path of an .obj, .gltf, .glb, .ply or .ply.gz file",
-                )
-                .with_help("the path is relative to this scene file");
-                self.diagnostics.push(d);
-                return None;
-            }
-        };
-        let path = match self.access.join(&self.directory(file), &relative) {
-            Ok(path) => path,
-            Err(e) => {
-                let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.file")), e.to_string());
-                self.diagnostics.push(d);
-                return None;
-            }
-        };
-        let relative = crate::files::shown(&relative);
+        let (path, relative) = self.mesh_path(file, key, location, table.remove("file"))?;
         let is_gltf = path
             .extension()
             .and_then(|e| e.to_str())
@@ -187,31 +157,7 @@ impl Loader<'_> {
                 return None;
             }
         }
-        let model = match self.meshes.fetch(&path, &ImportOptions { smooth_angle }) {
-            Ok(fetched) => {
-                if fetched.first_use {
-                    let file_location = self.files[file].locate_value(&format!("{key}.file"));
-                    for warning in &fetched.model.warnings {
-                        self.warnings
-                            .push(Diagnostic::warning(file_location.clone(), format!("{relative}: {warning}")));
-                    }
-                }
-                fetched.model
-            }
-            Err(e) => {
-                let d = Diagnostic::new(
-                    self.files[file].locate_value(&format!("{key}.file")),
-                    format!("cannot import mesh: {e}"),
-                );
-                let d = if is_missing_fetched_asset(&path, &e) {
-                    d.with_help("this large asset is not committed: run `scripts/fetch-assets.sh` in the repository")
-                } else {
-                    d
-                };
-                self.diagnostics.push(d);
-                return None;
-            }
-        };
+        let model = self.import_model(file, key, &path, &relative, smooth_angle)?;
         let mut material_map = std::collections::BTreeMap::new();
         if let Some(value) = table.remove("material_map") {
             let map_key = format!("{key}.material_map");
@@ -331,6 +277,160 @@ impl Loader<'_> {
             });
         }
         Some(spawned.root)
+    }
+
+    /// A mesh's `smooth_angle` (`Some(None)` when it has none); `None` after reporting a
+    /// value that is not an angle.
+    fn smooth_angle(&mut self, file: usize, key: &str, table: &toml::Table) -> Option<Option<f64>> {
+        let Some(v) = table.get("smooth_angle") else { return Some(None) };
+        match v.as_float().or_else(|| v.as_integer().map(|i| i as f64)) {
+            Some(a) if a.is_finite() && a > 0.0 && a <= 180.0 => Some(Some(a)),
+            _ => {
+                let d = Diagnostic::new(
+                    self.files[file].locate_value(&format!("{key}.smooth_angle")),
+                    "`smooth_angle` must be an angle in degrees, greater than 0 and at most 180",
+                );
+                self.diagnostics.push(d);
+                None
+            }
+        }
+    }
+
+    /// The file a mesh's `file` value names (relative to the scene file), and the value as
+    /// messages show it; `None` after reporting a missing, mistyped or forbidden path.
+    fn mesh_path(
+        &mut self,
+        file: usize,
+        key: &str,
+        location: &Location,
+        value: Option<toml::Value>,
+    ) -> Option<(std::path::PathBuf, String)> {
+        let relative = match value {
+            Some(toml::Value::String(s)) => s,
+            Some(_) => {
+                let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.file")), "`file` must be a path");
+                self.diagnostics.push(d);
+                return None;
+            }
+            None => {
+                let d = Diagnostic::new(
+                    location.clone(),
+                    "a mesh needs `file`: the path of an .obj, .gltf, .glb, .ply or .ply.gz file",
+                )
+                .with_help("the path is relative to this scene file");
+                self.diagnostics.push(d);
+                return None;
+            }
+        };
+        match self.access.join(&self.directory(file), &relative) {
+            Ok(path) => Some((path, crate::files::shown(&relative))),
+            Err(e) => {
+                let d = Diagnostic::new(self.files[file].locate_value(&format!("{key}.file")), e.to_string());
+                self.diagnostics.push(d);
+                None
+            }
+        }
+    }
+
+    /// The mesh file at `path` imported (once per file and options, through the model
+    /// store); its import warnings are reported at the first object that names it.
+    fn import_model(
+        &mut self,
+        file: usize,
+        key: &str,
+        path: &std::path::Path,
+        relative: &str,
+        smooth_angle: Option<f64>,
+    ) -> Option<std::sync::Arc<Model>> {
+        let file_location = self.files[file].locate_value(&format!("{key}.file"));
+        match self.meshes.fetch(path, &ImportOptions { smooth_angle }) {
+            Ok(fetched) => {
+                if fetched.first_use {
+                    for warning in &fetched.model.warnings {
+                        self.warnings
+                            .push(Diagnostic::warning(file_location.clone(), format!("{relative}: {warning}")));
+                    }
+                }
+                Some(fetched.model)
+            }
+            Err(e) => {
+                let d = Diagnostic::new(file_location, format!("cannot import mesh: {e}"));
+                let d = if is_missing_fetched_asset(path, &e) {
+                    d.with_help("this large asset is not committed: run `scripts/fetch-assets.sh` in the repository")
+                } else {
+                    d
+                };
+                self.diagnostics.push(d);
+                None
+            }
+        }
+    }
+
+    /// `shape = "mesh"` as a CSG member, written at `key` (its `table` without the member
+    /// keys): every triangle of the file, each part placed by its node, as one closed
+    /// surface, and the file read. `None` after reporting why it cannot be one (an open
+    /// surface has no inside; a member holds at most 65,536 triangles).
+    pub(super) fn csg_mesh_member(
+        &mut self,
+        file: usize,
+        key: &str,
+        table: &toml::Table,
+    ) -> Option<(std::sync::Arc<dyn prism_api::Shape>, std::path::PathBuf)> {
+        let mut ok = true;
+        for k in table.keys().filter(|k| !CSG_MESH_KEYS.contains(&k.as_str())) {
+            let location = self.files[file].locate(&format!("{key}.{k}"));
+            let d = if MESH_KEYS.contains(&k.as_str()) || OBJECT_KEYS.contains(&k.as_str()) {
+                Diagnostic::new(location, format!("`{k}` cannot be set on a mesh in a CSG group")).with_help(
+                    "a mesh member takes `file` and `smooth_angle`, and the member keys (material, transform, inverse)",
+                )
+            } else {
+                Diagnostic::new(location, format!("unknown key `{k}` for shape `mesh`"))
+                    .suggest(k, CSG_MESH_KEYS.into_iter().chain(super::objects::MEMBER_KEYS))
+            };
+            self.diagnostics.push(d);
+            ok = false;
+        }
+        let smooth_angle = self.smooth_angle(file, key, table)?;
+        let location = self.files[file].locate(key);
+        let (path, relative) = self.mesh_path(file, key, &location, table.get("file").cloned())?;
+        let model = self.import_model(file, key, &path, &relative, smooth_angle)?;
+        if !ok {
+            return None;
+        }
+        let file_location = self.files[file].locate_value(&format!("{key}.file"));
+        let triangles = model.triangle_count();
+        if triangles > MAX_MEMBER_TRIANGLES {
+            let d = Diagnostic::new(
+                file_location,
+                format!(
+                    "`{relative}` has {triangles} triangles; a mesh in a CSG group holds at most {MAX_MEMBER_TRIANGLES}"
+                ),
+            )
+            .with_help("use it as an object of its own, or a decimated copy in the group");
+            self.diagnostics.push(d);
+            return None;
+        }
+        let placed = model.world_from_nodes();
+        let parts: Vec<_> = model.parts.iter().map(|p| (p.shape.data().clone(), placed[p.node])).collect();
+        let data = match MeshData::merged(&parts, self.budget) {
+            Ok(data) => data,
+            Err(e) => {
+                self.diagnostics.push(Diagnostic::new(file_location, format!("`{relative}`: {e}")));
+                return None;
+            }
+        };
+        let open = data.open_edges();
+        if open > 0 {
+            let d = Diagnostic::new(
+                file_location,
+                format!("`{relative}` is not a closed surface ({open} edges border a single triangle), so it has no inside for CSG"),
+            )
+            .with_help("close its holes, or make it an object of its own (`parent` moves it with another object)");
+            self.diagnostics.push(d);
+            return None;
+        }
+        let canonical = std::fs::canonicalize(&path).unwrap_or(path);
+        Some((std::sync::Arc::new(MeshShape::new(data)), canonical))
     }
 
     /// `import_lights = true`: the file must have lights, and each must be usable; problems

@@ -319,17 +319,7 @@ impl<'a> Loader<'a> {
                 return None;
             }
         };
-        let Some(shape_kind) = self.shape_kind(file, key, &kind) else {
-            if kind == MESH_SHAPE {
-                let d = Diagnostic::new(
-                    self.files[file].locate_value(&format!("{key}.shape")),
-                    "a mesh cannot be a CSG member",
-                )
-                .with_help("CSG needs an inside test, which meshes do not have; use analytic or plugin shapes");
-                self.diagnostics.push(d);
-            }
-            return None;
-        };
+        let shape_kind = if kind == MESH_SHAPE { None } else { Some(self.shape_kind(file, key, &kind)?) };
         for field in ["name", "parent", "no_shadow"] {
             if table.contains_key(field) {
                 let d = Diagnostic::new(
@@ -358,12 +348,18 @@ impl<'a> Loader<'a> {
         }
         let own = material.as_ref().unwrap_or(inherited);
         let (shape, leaves) = match shape_kind {
-            ObjectKind::Csg(operation) => {
+            None => {
+                let (shape, read) = self.csg_mesh_member(file, key, &table)?;
+                // Saved as resolved, like a plugin's files.
+                as_written.insert("file".into(), read.display().to_string().into());
+                (shape, vec![own.clone()])
+            }
+            Some(ObjectKind::Csg(operation)) => {
                 let group = self.csg_group(file, key, operation, &table, own, named)?;
                 as_written.insert("members".into(), group.members);
                 (group.shape, group.leaves)
             }
-            ObjectKind::Plugin(shape_type) => {
+            Some(ObjectKind::Plugin(shape_type)) => {
                 let (shape, read) = self.build_shape(file, key, &kind, shape_type, &table, &MEMBER_KEYS)?;
                 // Saved as resolved, like a member's texture paths.
                 for (field, path) in read {
