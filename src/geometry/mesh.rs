@@ -845,41 +845,33 @@ pub(crate) mod tests {
         prism_api::contract::check_shape(&cube);
     }
 
-    /// A cube of side 2 about the origin, turned off the axes (so that the contract kit's
-    /// rays along the axes cross faces rather than graze edges), each face with its own four
-    /// vertices, as files repeat them at seams.
+    /// A unit cube about the origin (side 1), each face with its own four vertices, as files
+    /// repeat them at seams.
     pub(crate) fn axis_cube() -> MeshData {
-        let mut builder = MeshBuilder::default();
-        for axis in 0..3 {
-            for sign in [-1.0, 1.0] {
-                let mut normal = DVec3::ZERO;
-                normal[axis] = sign;
-                let u = DVec3::new(normal.z.abs(), normal.x.abs(), normal.y.abs());
-                let v = normal.cross(u);
-                let first = builder.positions.len() as u32;
-                for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                    builder.positions.push((0.5 * (normal + u * a + v * b)).as_vec3());
-                }
-                builder.triangles.push([first, first + 1, first + 2]);
-                builder.triangles.push([first, first + 2, first + 3]);
-            }
-        }
-        builder.build().unwrap()
+        cube(|p| 0.5 * p)
     }
 
+    /// A cube of side 2 about the origin, turned off the axes (so that the contract kit's
+    /// rays along the axes cross faces rather than graze edges), faces as [`axis_cube`]'s.
     pub(crate) fn tilted_cube() -> MeshData {
         let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.35, 0.5, 0.2);
+        cube(|p| turn * p)
+    }
+
+    /// The cube [-1, 1]^3 with its corners moved by `place`, four vertices per face, wound
+    /// counter-clockwise seen from outside.
+    fn cube(place: impl Fn(DVec3) -> DVec3) -> MeshData {
         let mut builder = MeshBuilder::default();
         for axis in 0..3 {
             for sign in [-1.0, 1.0] {
                 let mut normal = DVec3::ZERO;
                 normal[axis] = sign;
                 let u = DVec3::new(normal.z.abs(), normal.x.abs(), normal.y.abs());
-                // Counter-clockwise seen from outside: u x v = normal.
+                // u x v = normal.
                 let v = normal.cross(u);
                 let first = builder.positions.len() as u32;
                 for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                    builder.positions.push((turn * (normal + u * a + v * b)).as_vec3());
+                    builder.positions.push(place(normal + u * a + v * b).as_vec3());
                 }
                 builder.triangles.push([first, first + 1, first + 2]);
                 builder.triangles.push([first, first + 2, first + 3]);
