@@ -118,6 +118,9 @@ pub struct CsgMember {
     leaf_base: u32,
     /// Number of leaves (1 for a plain shape).
     leaves: u32,
+    /// The shape bounds a solid ([`Shape::has_inside`]); one that does not is inside
+    /// nothing, inverted or not.
+    solid: bool,
 }
 
 impl CsgMember {
@@ -138,6 +141,7 @@ impl CsgMember {
             outside_margin: 0.0,
             leaf_base: 0,
             leaves: 1,
+            solid: true,
         }
     }
 
@@ -153,6 +157,9 @@ impl CsgMember {
 
     /// True when the member, as the group combines it, contains the group-space `point`.
     fn contains(&self, point: DVec3) -> bool {
+        if !self.solid {
+            return false;
+        }
         // Well outside its bounds a point is outside the shape: no transform, no test.
         if self.inside_bounds.is_bounded() && !self.inside_bounds.contains(point, self.outside_margin) {
             return self.inverted;
@@ -258,6 +265,7 @@ impl CsgShape {
             {
                 m.shape = Arc::new(group.inverted_by_pov_ray());
             }
+            m.solid = m.shape.has_inside();
             let own = m.shape.bounds();
             m.surface_bounds = if own.is_bounded() { own.transformed(&m.group_from_member) } else { Aabb::INFINITE };
             let inner = m.shape.inside_bounds();
@@ -927,6 +935,30 @@ mod tests {
             ],
         );
         prism_api::contract::check_shape(&nested);
+    }
+
+    /// A shape without an inside (a rectangle, an open mesh) is inside nothing even where the
+    /// group inverts it, as POV-Ray's `Inside` of a polygon answers before the inversion: a
+    /// sphere minus a rectangle through its centre keeps none of the sphere, only the part of
+    /// the rectangle within it.
+    #[test]
+    fn members_without_an_inside_are_inside_nothing_even_inverted() {
+        let sheet: Arc<dyn Shape> = Arc::new(prism_rectangle::Rectangle::new(4.0, 4.0));
+        let group = CsgShape::new(CsgOperation::Difference, vec![member(sphere(DVec3::ZERO, 1.0)), member(sheet)]);
+        for p in [DVec3::ZERO, DVec3::new(0.3, 0.2, 0.5), DVec3::new(0.0, 0.0, -0.9), DVec3::splat(3.0)] {
+            assert!(!group.inside(p), "{p}");
+        }
+        // Down the z axis: the sphere's surface at z = 1 is not kept, the sheet's at 0 is.
+        let ray = Ray::new(DVec3::new(0.0, 0.0, 3.0), -DVec3::Z);
+        let mut ts = Vec::new();
+        group.crossings(&ray, 1e-9, f64::INFINITY, &mut |hit| {
+            ts.push(hit.t);
+            ControlFlow::Continue(())
+        });
+        assert_ts(&ts, &[3.0]);
+        // Beside the sphere the sheet lies outside it: nothing.
+        let beside = Ray::new(DVec3::new(1.5, 0.0, 3.0), -DVec3::Z);
+        assert!(group.intersect(&beside, 0.0, f64::INFINITY).is_none());
     }
 
     /// A mesh member finds the crossings at the very end of its bounds, where the group

@@ -634,6 +634,11 @@ impl Shape for MeshShape {
         best
     }
 
+    /// Only a closed mesh bounds a solid; an open one is inside nothing, in CSG too.
+    fn has_inside(&self) -> bool {
+        self.data.is_closed()
+    }
+
     /// A closed mesh's inside: the points from which a ray along [`INSIDE_VECTOR`] crosses
     /// the surface an odd number of times (POV-Ray's test with that `inside_vector`; the
     /// watertight triangle test counts a crossing through a shared edge once). An open mesh

@@ -259,6 +259,15 @@ pub trait Shape: Any + Send + Sync + Debug {
         false
     }
 
+    /// False for a shape that bounds no solid (a flat rectangle or triangle, an open mesh):
+    /// its [`Shape::inside`] is false everywhere, and CSG takes it to be inside nothing even
+    /// where it inverts it (`inverse`, or a member a difference subtracts), as POV-Ray does,
+    /// whose `Inside` of a triangle, a polygon or a mesh without `inside_vector` answers
+    /// false before looking at the inversion. The default, true, suits closed shapes.
+    fn has_inside(&self) -> bool {
+        true
+    }
+
     /// A box holding every point [`Shape::inside`] accepts. The default, [`Shape::bounds`],
     /// suits shapes whose inside their surface encloses; a shape whose inside reaches past
     /// its surface (a disc's is the half-space behind it, as in POV-Ray) answers an infinite

@@ -62,6 +62,11 @@ impl Rectangle {
 }
 
 impl Shape for Rectangle {
+    /// Flat: a surface inside nothing, in CSG too (POV-Ray's `Inside` of a flat shape).
+    fn has_inside(&self) -> bool {
+        false
+    }
+
     fn bounds(&self) -> Aabb {
         // Flat in z, like the disc's box in its normal's axis; the BVH pads boxes outward.
         Aabb::from_corners(

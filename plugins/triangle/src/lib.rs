@@ -75,6 +75,11 @@ impl Triangle {
 }
 
 impl Shape for Triangle {
+    /// Flat: a surface inside nothing, in CSG too (POV-Ray's `Inside` of a flat shape).
+    fn has_inside(&self) -> bool {
+        false
+    }
+
     fn bounds(&self) -> Aabb {
         Aabb::from_points(self.vertices)
     }

@@ -367,9 +367,9 @@ impl Loader<'_> {
     }
 
     /// `shape = "mesh"` as a CSG member, written at `key` (its `table` without the member
-    /// keys): every triangle of the file, each part placed by its node, as one closed
-    /// surface, and the file read. `None` after reporting why it cannot be one (an open
-    /// surface has no inside; a member holds at most 65,536 triangles).
+    /// keys): every triangle of the file, each part placed by its node, as one surface (a
+    /// solid when closed; an open one is a warning), and the file read. `None` after
+    /// reporting why it cannot be one (a member holds at most 65,536 triangles).
     pub(super) fn csg_mesh_member(
         &mut self,
         file: usize,
@@ -421,13 +421,13 @@ impl Loader<'_> {
         };
         let open = data.open_edges();
         if open > 0 {
-            let d = Diagnostic::new(
+            // POV-Ray's mesh without `inside_vector`: a surface that is inside nothing.
+            self.warnings.push(Diagnostic::warning(
                 file_location,
-                format!("`{relative}` is not a closed surface ({open} edges border a single triangle), so it has no inside for CSG"),
-            )
-            .with_help("close its holes, or make it an object of its own (`parent` moves it with another object)");
-            self.diagnostics.push(d);
-            return None;
+                format!(
+                    "`{relative}` is not a closed surface ({open} edges border a single triangle), so it has no inside: in this group it is inside nothing, as a POV-Ray mesh without `inside_vector`"
+                ),
+            ));
         }
         let canonical = std::fs::canonicalize(&path).unwrap_or(path);
         Some((std::sync::Arc::new(MeshShape::new(data)), canonical))
