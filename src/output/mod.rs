@@ -124,10 +124,19 @@ fn forget_temp(temp: &Path) {
 
 /// Removes every temporary file still being written (after a panic, before the CLI exits).
 pub fn remove_all_temps() {
+    remove_registered_temps(|_| true);
+}
+
+/// Removes and forgets the temporary files being written that `which` picks.
+fn remove_registered_temps(which: impl Fn(&Path) -> bool) {
     let mut temps = TEMPS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-    for temp in temps.drain(..) {
-        let _ = std::fs::remove_file(temp);
-    }
+    temps.retain(|temp| {
+        let remove = which(temp);
+        if remove {
+            let _ = std::fs::remove_file(temp);
+        }
+        !remove
+    });
 }
 
 /// Removes every temporary file still being written and exits with `code`, holding the
@@ -808,7 +817,10 @@ mod tests {
         let staged = stage(&a, b"a").unwrap();
         let temp = staged.temp.clone();
         assert!(temp.exists());
-        remove_all_temps();
+        // The registry's cleanup, limited to this test's folder: the tests run in parallel in
+        // one process, and removing every registered file would pull the temporary files of
+        // the others from under them.
+        remove_registered_temps(|p| p.starts_with(dir.path()));
         assert!(!temp.exists());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
