@@ -57,6 +57,8 @@ enum ObjectKind<'a> {
     Csg(CsgOperation),
     /// A registered shape type.
     Plugin(&'a ShapeType),
+    /// `shape = "mesh"`: an imported file.
+    Mesh,
 }
 
 impl<'a> Loader<'a> {
@@ -319,7 +321,7 @@ impl<'a> Loader<'a> {
                 return None;
             }
         };
-        let shape_kind = if kind == MESH_SHAPE { None } else { Some(self.shape_kind(file, key, &kind)?) };
+        let shape_kind = self.shape_kind(file, key, &kind)?;
         for field in ["name", "parent", "no_shadow"] {
             if table.contains_key(field) {
                 let d = Diagnostic::new(
@@ -348,18 +350,18 @@ impl<'a> Loader<'a> {
         }
         let own = material.as_ref().unwrap_or(inherited);
         let (shape, leaves) = match shape_kind {
-            None => {
+            ObjectKind::Mesh => {
                 let (shape, read) = self.csg_mesh_member(file, key, &table)?;
                 // Saved as resolved, like a plugin's files.
                 as_written.insert("file".into(), read.display().to_string().into());
                 (shape, vec![own.clone()])
             }
-            Some(ObjectKind::Csg(operation)) => {
+            ObjectKind::Csg(operation) => {
                 let group = self.csg_group(file, key, operation, &table, own, named)?;
                 as_written.insert("members".into(), group.members);
                 (group.shape, group.leaves)
             }
-            Some(ObjectKind::Plugin(shape_type)) => {
+            ObjectKind::Plugin(shape_type) => {
                 let (shape, read) = self.build_shape(file, key, &kind, shape_type, &table, &MEMBER_KEYS)?;
                 // Saved as resolved, like a member's texture paths.
                 for (field, path) in read {
@@ -371,8 +373,8 @@ impl<'a> Loader<'a> {
         Some((CsgMember::new(shape, transform.parent_from_local(), inverse), leaves, as_written.into()))
     }
 
-    /// What `shape = "kind"` names: a CSG operation or a registered shape (`None` for a
-    /// mesh, and for an unknown name, which is reported at `key.shape`).
+    /// What `shape = "kind"` names: a CSG operation, a registered shape or a mesh (`None`
+    /// for an unknown name, which is reported at `key.shape`).
     fn shape_kind(&mut self, file: usize, key: &str, kind: &str) -> Option<ObjectKind<'a>> {
         if let Some(operation) = CsgOperation::from_name(kind) {
             return Some(ObjectKind::Csg(operation));
@@ -381,24 +383,23 @@ impl<'a> Loader<'a> {
         if let Some(shape_type) = registry.get(kind) {
             return Some(ObjectKind::Plugin(shape_type));
         }
-        if kind != MESH_SHAPE {
-            let csg = CsgOperation::ALL.map(CsgOperation::name);
-            let d = Diagnostic::new(
-                self.files[file].locate_value(&format!("{key}.shape")),
-                format!("unknown shape `{kind}`"),
-            )
-            .suggest(kind, self.registry.names().chain([MESH_SHAPE]).chain(csg));
-            let d = if d.help.is_none() {
-                d.with_help(format!(
-                    "known shapes: {}, mesh, {}",
-                    self.registry.names().collect::<Vec<_>>().join(", "),
-                    csg.join(", ")
-                ))
-            } else {
-                d
-            };
-            self.diagnostics.push(d);
+        if kind == MESH_SHAPE {
+            return Some(ObjectKind::Mesh);
         }
+        let csg = CsgOperation::ALL.map(CsgOperation::name);
+        let d =
+            Diagnostic::new(self.files[file].locate_value(&format!("{key}.shape")), format!("unknown shape `{kind}`"))
+                .suggest(kind, self.registry.names().chain([MESH_SHAPE]).chain(csg));
+        let d = if d.help.is_none() {
+            d.with_help(format!(
+                "known shapes: {}, mesh, {}",
+                self.registry.names().collect::<Vec<_>>().join(", "),
+                csg.join(", ")
+            ))
+        } else {
+            d
+        };
+        self.diagnostics.push(d);
         None
     }
 
@@ -424,10 +425,7 @@ impl<'a> Loader<'a> {
             self.diagnostics.push(d);
             return;
         };
-        let shape_type = self.shape_kind(file, &key, &kind);
-        if shape_type.is_none() && kind != MESH_SHAPE {
-            return;
-        }
+        let Some(shape_kind) = self.shape_kind(file, &key, &kind) else { return };
 
         let Ok(name) = self.optional_string(&mut table, file, &key, "name", "`name` must be a string") else {
             return;
@@ -453,8 +451,8 @@ impl<'a> Loader<'a> {
                 return;
             }
         };
-        let entity = match shape_type {
-            None => match self.mesh_object(
+        let entity = match shape_kind {
+            ObjectKind::Mesh => match self.mesh_object(
                 world,
                 MeshObject {
                     file,
@@ -469,7 +467,7 @@ impl<'a> Loader<'a> {
                 Some(entity) => entity,
                 None => return,
             },
-            Some(ObjectKind::Csg(operation)) => {
+            ObjectKind::Csg(operation) => {
                 let Some(material) = material else { return };
                 let mut named = Vec::new();
                 let Some(group) = self.csg_group(file, &key, operation, &table, &material, &mut named) else { return };
@@ -479,7 +477,7 @@ impl<'a> Loader<'a> {
                 let materials = CsgMaterials { leaves: group.leaves, named };
                 world.spawn((shape, transform, material, flags, Origin(location.clone()), materials))
             }
-            Some(ObjectKind::Plugin(shape_type)) => {
+            ObjectKind::Plugin(shape_type) => {
                 let Some((geometry, read)) = self.build_shape(file, &key, &kind, shape_type, &table, &OBJECT_KEYS)
                 else {
                     return;
