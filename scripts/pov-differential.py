@@ -29,8 +29,7 @@ leave out.
 Prints one line per seed: `ok`, `DIFF` (inspect OUTDIR/sSEED.{toml,pov,prism.png,pov.png})
 or an error. Known causes of differences that are POV-Ray's, not Prism's (see the session
 notes): its shadow cache double-filters transparent members of a CSG whose own texture is
-opaque; `pow` of a slightly negative reflected colour under a reflection `exponent` gives
-black; knife edges (a flat cap on a pattern's lattice plane, coincident surfaces, a light in
+opaque; knife edges (a flat cap on a pattern's lattice plane, coincident surfaces, a light in
 a face's plane). Needs `povray`, numpy and Pillow; POV-Ray's fonts (povray-includes) for text.
 """
 import os

@@ -129,6 +129,21 @@ fn an_infinite_channel_saturates_and_a_nan_channel_is_black() {
     assert!(got[0] >= 1e30 && got[1] == 0.0 && got[2] >= 1e30, "{got:?}");
 }
 
+#[test]
+fn a_reflection_exponent_of_a_negative_colour_blackens_the_channel() {
+    // POV-Ray 3.7.0.10 raises the reflected colour to 1 / exponent with `pow`: the sky's
+    // negative green gives NaN, which spreads through the surface's own green (0.4) and the
+    // pixel's mean, and is written as 0; red and blue are 0.2 + 0.5 x 0.25^(1/2) and
+    // 0.6 + 0.5 x 1 (measured: (0.45, NaN, 1.1) in its EXR), with and without antialiasing.
+    let scene = "[camera]\nposition = [0, 0.5, 0.8660254037844386]\nlook_at = [0, 0, 0]\n\
+                 [world]\nbackground = [0.25, -0.25, 1]\n\
+                 [[object]]\nshape = \"plane\"\nnormal = [0, 1, 0]\nmaterial = { color = [0.2, 0.4, 0.6], \
+                 ambient = 1, diffuse = 0, reflection = { max = 0.5, exponent = 2 } }\n";
+    for render in ["", "antialias = { method = \"pov1\", threshold = 0.3, depth = 3 }"] {
+        assert_close(pixel_with_render(render, scene), [0.45, 0.0, 1.1], 1e-6);
+    }
+}
+
 /// A floor seen at 60 degrees from its normal, reflecting a white sky.
 fn floor_at_sixty_degrees(material: &str) -> String {
     format!(

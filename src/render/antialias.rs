@@ -255,12 +255,14 @@ impl AaGrade {
 
     /// A colour as antialiasing compares it: in linear light max(v, 0)^(1 / 2.5) per
     /// channel; from another working space through POV-Ray's transcoding curve, in single
-    /// precision as POV-Ray's.
+    /// precision as POV-Ray's. A NaN channel stays NaN (POV-Ray's `max(x, 0)` returns its
+    /// first argument when the comparison fails), so a NaN sample differs from nothing.
     fn of(self, c: DVec3) -> DVec3 {
-        match self.from_working {
+        let graded = match self.from_working {
             None => DVec3::new(two_fifths_power(c.x), two_fifths_power(c.y), two_fifths_power(c.z)),
             Some(curve) => DVec3::from_array(c.to_array().map(|v| f64::from(curve.encode(v as f32)))),
-        }
+        };
+        DVec3::select(c.is_nan_mask(), c, graded)
     }
 
     /// POV-Ray's colour distance after antialiasing gamma: sum over the channels of the
@@ -278,8 +280,8 @@ impl AaGrade {
 /// polynomial refined by one Newton step on y^5 = m^2, and 2^(2e/5) as a power of four times
 /// one of five constants.
 fn two_fifths_power(x: f64) -> f64 {
-    // NaN and negatives grade as 0, as `max(0)` then `powf` did; subnormals and infinity
-    // take the slow path.
+    // Negatives grade as 0, as `max(0)` then `powf` did (NaN too; [`AaGrade::of`] keeps a
+    // NaN channel); subnormals and infinity take the slow path.
     if x.is_nan() || x <= 0.0 {
         return 0.0;
     }
@@ -422,12 +424,13 @@ pub fn render_block<I: Integrator>(
         PovMethod::Adaptive { threshold, depth } => adaptive(&mut sampler, block, threshold, depth),
     };
     Block {
-        // Averaged in the working space; the film holds linear light.
+        // Averaged in the working space; the film holds linear light. A NaN channel (a
+        // `classic` sample's, spread through the mean) is written as 0, as POV-Ray writes it.
         pixels: colours
             .into_iter()
             .map(|c| {
                 let c = gamma::decode_rgb(working, c);
-                [c.x as f32, c.y as f32, c.z as f32]
+                [c.x, c.y, c.z].map(|v| if v.is_nan() { 0.0 } else { v as f32 })
             })
             .collect(),
         rays: sampler.rays,

@@ -20,7 +20,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
-use glam::{DVec2, DVec3};
+use glam::{BVec3, DVec2, DVec3};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 
@@ -1008,6 +1008,7 @@ pub fn render_pixel_samples<I: Integrator>(
     let mut taken = range.len() as u32;
     let spread_wanted = taken > 1;
     let working = integrator.working_gamma();
+    let keeps_nan_channels = integrator.keeps_nan_channels();
     for s in range {
         let stream = SampleStream::new(pixel, u64::from(s), settings.seed);
         if let Some(progressive) = &mut progressive {
@@ -1038,7 +1039,8 @@ pub fn render_pixel_samples<I: Integrator>(
         let sample = integrator.sample(&ray, stream);
         rays += sample.rays;
         first_hit = first_hit.or(sample.first_hit);
-        let radiance = if sample.radiance.is_finite() {
+        let nan_kept = if keeps_nan_channels { sample.radiance.is_nan_mask() } else { BVec3::FALSE };
+        let radiance = if (sample.radiance.is_finite_mask() | nan_kept).all() {
             sample.radiance
         } else {
             non_finite_samples += 1;
@@ -1071,6 +1073,8 @@ pub fn render_pixel_samples<I: Integrator>(
     }
     // Weights summing to 0 (a filter's negative lobes cancelling) give black.
     let radiance = gamma::decode_rgb(working, if weights != 0.0 { sum / weights } else { DVec3::ZERO });
+    // A kept NaN channel is written as 0, as POV-Ray writes it.
+    let radiance = DVec3::select(radiance.is_nan_mask(), DVec3::ZERO, radiance);
     let variance = spread.variance_of_mean().0;
     let stats = PixelStats {
         samples: taken,

@@ -54,4 +54,11 @@ pub trait Integrator: Sync {
     fn working_gamma(&self) -> GammaCurve {
         GammaCurve::Neutral
     }
+
+    /// Whether a NaN channel of a sample is part of the integrator's answer (`classic`, as
+    /// POV-Ray: it spreads through the pixel's mean and that channel of the pixel is written
+    /// as 0) rather than a defect (the default: the whole sample is dropped and counted).
+    fn keeps_nan_channels(&self) -> bool {
+        false
+    }
 }

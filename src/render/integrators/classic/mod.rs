@@ -100,18 +100,25 @@ impl Integrator for Classic<'_> {
     fn working_gamma(&self) -> GammaCurve {
         self.scene.settings.assumed_gamma.curve()
     }
+
+    fn keeps_nan_channels(&self) -> bool {
+        true
+    }
 }
 
-/// A traced colour as POV-Ray writes it, channel by channel: NaN (`pow` of a negative
-/// colour, `0 x inf`) becomes 0 and an infinite channel (a negative `phong_size` far from
-/// the highlight, a tiny reflection `exponent`) saturates, so that it clips to white in a
-/// PNG, where the renderer's guard would zero the whole sample.
+/// A traced colour as POV-Ray carries it to the pixel, channel by channel: an infinite
+/// channel (a negative `phong_size` far from the highlight, a tiny reflection `exponent`)
+/// saturates, so that it clips to white in a PNG, where the renderer's guard would zero the
+/// whole sample; a NaN channel (`pow` of a negative reflected colour under a reflection
+/// `exponent`, `0 x inf`) stays NaN: POV-Ray's antialiasing never finds it different from
+/// its neighbours, it spreads through the pixel's mean, and the channel is written as 0
+/// ([`Integrator::keeps_nan_channels`]).
 fn pov_output(colour: DVec3) -> DVec3 {
     // As vector operations: an array's `map` was left as a call, and per-channel scalars
     // are stored one by one, which the caller's vector load of the result waits for (2 % of
     // a simple scene).
     let limit = DVec3::splat(f64::from(f32::MAX));
-    DVec3::select(colour.is_nan_mask(), DVec3::ZERO, colour.max(-limit).min(limit))
+    DVec3::select(colour.is_nan_mask(), colour, colour.max(-limit).min(limit))
 }
 
 /// The classic integrator over one render scene.
@@ -398,8 +405,10 @@ impl<'a> Classic<'a> {
             }
             let mirror = Ray::new(point, reflect(d, r.normal, raw));
             let mut reflected = self.trace(&mirror, level + 1, r.weight, interiors, state);
+            // POV-Ray's `pow`: a negative channel (a colour with filter + transmit above 1
+            // mirrored) becomes NaN and blackens the pixel's channel, as it does there.
             if r.exponent != 1.0 {
-                reflected = reflected.max(DVec3::ZERO).powf(1.0 / r.exponent);
+                reflected = reflected.powf(1.0 / r.exponent);
             }
             colour += r.rf * reflected;
         }
