@@ -144,6 +144,27 @@ fn a_reflection_exponent_of_a_negative_colour_blackens_the_channel() {
     }
 }
 
+#[test]
+fn a_shadow_ray_turned_negative_is_not_inside_what_it_crossed() {
+    // A sphere between the wall and the light, fading exponentially (exp(-2) over its
+    // diameter). POV-Ray notes a shadow ray's crossing (ComputeShadowMedia) only while some
+    // channel of the light left is at least 1e-10: a transmit of -0.5 turns the light
+    // negative at the near side, so the far side is not taken as leaving the sphere and
+    // fades nothing, 0.25 in all; a transmit of 0.5 fades, 0.25 exp(-2). Both measured
+    // with POV-Ray 3.7.0.10.
+    let sphere = |transmit: f64| {
+        format!(
+            "[[object]]\nshape = \"sphere\"\nradius = 1\ntransform = {{ translate = [0, 0, 5] }}\n\
+             material = {{ color = 1, transmit = {transmit}, fade_distance = 1, fade_power = 1001, \
+             fade_color = [0, 0, 0] }}\n"
+        )
+    };
+    for (transmit, want) in [(-0.5, 0.25), (0.5, 0.25 * (-2f64).exp())] {
+        let scene = wall("color = 1, ambient = 0, diffuse = 1") + &sphere(transmit) + &light(0.0, 0.0, 10.0, "");
+        assert_close(pixel(&scene), [want; 3], 1e-6);
+    }
+}
+
 /// A floor seen at 60 degrees from its normal, reflecting a white sky.
 fn floor_at_sixty_degrees(material: &str) -> String {
     format!(

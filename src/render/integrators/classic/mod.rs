@@ -32,6 +32,8 @@ const MAX_DISTANCE: f64 = 1e7;
 /// POV-Ray's `EPSILON`: index ratios and fade distances closer than this to 1 and 0 count
 /// as equal.
 const IOR_EPSILON: f64 = 1e-10;
+/// POV-Ray's `EPSILON` again: light whose every channel is below it counts as none.
+const POV_EPSILON: f64 = 1e-10;
 /// Deepest nesting of interiors tracked (deeper ones are treated as leaving the outermost).
 const MAX_INTERIORS: usize = 16;
 
@@ -466,8 +468,22 @@ impl<'a> Classic<'a> {
                     Some(visibility) => visibility,
                     None => {
                         let visibility = match &light.area {
-                            Some(grid) => self.area_visibility(point, l, light, grid, interiors, state),
-                            None => self.transmittance(point, l, distance, interiors, None, state),
+                            Some(grid) => self.area_visibility(
+                                point,
+                                l,
+                                light,
+                                grid,
+                                ShadowStart { interiors, light_colour: e },
+                                state,
+                            ),
+                            None => self.transmittance(
+                                point,
+                                l,
+                                distance,
+                                ShadowStart { interiors, light_colour: e },
+                                None,
+                                state,
+                            ),
                         };
                         if let Some(slot) = shadows.get_mut(index) {
                             *slot = Some(visibility);
@@ -502,7 +518,7 @@ impl<'a> Classic<'a> {
         point: DVec3,
         l: DVec3,
         distance: f64,
-        interiors: &Interiors,
+        start: ShadowStart,
         blockers: Option<&[u32]>,
         state: &mut PathState,
     ) -> DVec3 {
@@ -519,7 +535,7 @@ impl<'a> Classic<'a> {
             return if blocked { DVec3::ZERO } else { DVec3::ONE };
         }
         let mut filter = DVec3::ONE;
-        let mut inside = *interiors;
+        let mut inside = *start.interiors;
         let mut origin = point;
         let mut remaining = distance;
         loop {
@@ -542,11 +558,16 @@ impl<'a> Classic<'a> {
             // crosses (in the object's space, as shading does), every layer's.
             filter *= view.shadow_filter(primitive.object_ray_of(&ray).at(hit.hit.t));
             let m = &view.base;
-            if inside.contains(hit.primitive) {
+            let leaving = inside.contains(hit.primitive);
+            if leaving {
                 filter *= interior_fade(m, hit.hit.t, true);
-                inside = inside.leaving(hit.primitive);
-            } else {
-                inside = inside.entering(hit.primitive);
+            }
+            // POV-Ray (ComputeShadowMedia) notes the crossing only while some channel of the
+            // light left is at least its EPSILON: past a surface that turns the light
+            // negative or nearly black, the shadow ray is not taken to be inside the object
+            // (so its far side fades nothing).
+            if (start.light_colour * filter).cmpge(DVec3::splat(POV_EPSILON)).any() {
+                inside = if leaving { inside.leaving(hit.primitive) } else { inside.entering(hit.primitive) };
             }
             // POV-Ray follows the shadow ray on while any channel is not 0, negative too.
             if filter == DVec3::ZERO {
@@ -564,7 +585,7 @@ impl<'a> Classic<'a> {
         l: DVec3,
         light: &PovLight,
         grid: &AreaGrid,
-        interiors: &Interiors,
+        start: ShadowStart,
         state: &mut PathState,
     ) -> DVec3 {
         let (axis1, axis2) = if grid.orient { oriented_axes(l, grid.axis1.length()) } else { (grid.axis1, grid.axis2) };
@@ -580,7 +601,7 @@ impl<'a> Classic<'a> {
             if cache.len() < n1 * n2 {
                 cache.resize(n1 * n2, (0, DVec3::ZERO));
             }
-            self.area_grid_average(point, light, grid, (axis1, axis2), interiors, jitter_base, (*stamp, cache), state)
+            self.area_grid_average(point, light, grid, (axis1, axis2), start, jitter_base, (*stamp, cache), state)
         })
     }
 
@@ -597,7 +618,7 @@ impl<'a> Classic<'a> {
         light: &PovLight,
         grid: &AreaGrid,
         axes: (DVec3, DVec3),
-        interiors: &Interiors,
+        start: ShadowStart,
         jitter_base: u64,
         (stamp, cache): (u32, &mut [(u32, DVec3)]),
         state: &mut PathState,
@@ -619,7 +640,7 @@ impl<'a> Classic<'a> {
             let mut sum = DVec3::ZERO;
             for (index, &weight) in weights.iter().enumerate() {
                 let target = lattice.point(light.position, index % n1, index / n1, state);
-                sum += weight * self.area_sample_visibility(point, target, interiors, blockers, state);
+                sum += weight * self.area_sample_visibility(point, target, start, blockers, state);
             }
             return sum;
         }
@@ -629,7 +650,7 @@ impl<'a> Classic<'a> {
                 return c;
             }
             let target = lattice.point(light.position, u, v, state);
-            let c = self.area_sample_visibility(point, target, interiors, blockers, state);
+            let c = self.area_sample_visibility(point, target, start, blockers, state);
             cache[v * n1 + u] = (stamp, c);
             c
         };
@@ -642,14 +663,23 @@ impl<'a> Classic<'a> {
         &self,
         point: DVec3,
         target: DVec3,
-        interiors: &Interiors,
+        start: ShadowStart,
         blockers: Option<&[u32]>,
         state: &mut PathState,
     ) -> DVec3 {
         let to = target - point;
         let distance = to.length();
-        self.transmittance(point, to * distance.recip(), distance, interiors, blockers, state)
+        self.transmittance(point, to * distance.recip(), distance, start, blockers, state)
     }
+}
+
+/// Where a shadow ray starts: inside the interiors of the ray that found the shaded point
+/// (POV-Ray copies that ray), carrying the light's colour as it leaves the light (colour
+/// times fade and spot falloff), which decides whether a crossing counts as entering.
+#[derive(Clone, Copy)]
+struct ShadowStart<'a> {
+    interiors: &'a Interiors,
+    light_colour: DVec3,
 }
 
 /// What one layer's reflection needs once refraction has been traced.
