@@ -165,6 +165,22 @@ fn a_shadow_ray_turned_negative_is_not_inside_what_it_crossed() {
     }
 }
 
+#[test]
+fn an_area_light_subdivides_where_the_light_arriving_differs() {
+    // A 3 x 3 area light (adaptive 0) of colour 0.4 whose corner sample (-1, -1) is seen
+    // through a glass box (0.96^2 = 0.9216). POV-Ray subdivides a region when its corners'
+    // *light* differs by more than 0.1 summed over the channels: 3 x 0.4 x 0.0784 = 0.094
+    // does not, so the shadow is the corners' mean, (0.9216 + 3) / 4, and the wall shows
+    // 0.4 x 0.9804 = 0.39216 (POV-Ray 3.7.0.10: 0.392). Comparing the bare visibility
+    // (0.235) would subdivide and give 0.39804.
+    let scene = wall("color = 1, ambient = 0, diffuse = 1")
+        + "[[object]]\nshape = \"box\"\nmin = [-1.0, -1.0, 8.9]\nmax = [-0.8, -0.8, 9.1]\n\
+           material = { color = 1, transmit = 0.96 }\n\
+           [[light]]\nkind = \"area\"\nposition = [0, 0, 10]\ncolor = 0.4\naxis1 = [2, 0, 0]\n\
+           axis2 = [0, 2, 0]\nsize1 = 3\nsize2 = 3\nadaptive = 0\n";
+    assert_close(pixel(&scene), [0.4 * (0.9216 + 3.0) / 4.0; 3], 1e-6);
+}
+
 /// A floor seen at 60 degrees from its normal, reflecting a white sky.
 fn floor_at_sixty_degrees(material: &str) -> String {
     format!(

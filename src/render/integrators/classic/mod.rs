@@ -654,7 +654,8 @@ impl<'a> Classic<'a> {
             cache[v * n1 + u] = (stamp, c);
             c
         };
-        block(&mut sample, 0, 0, n1 - 1, grid.size2 as usize - 1, 0, grid.adaptive, state)
+        let refinement = GridRefinement { adaptive: grid.adaptive, light_colour: start.light_colour };
+        block(&mut sample, 0, 0, n1 - 1, grid.size2 as usize - 1, 0, refinement, state)
     }
 
     /// The light reaching `point` from one area-light sample at `target`.
@@ -876,6 +877,17 @@ fn oriented_axes(l: DVec3, length: f64) -> (DVec3, DVec3) {
     (axis1 * length, axis2 * length)
 }
 
+/// When POV-Ray subdivides a region of an area light's grid.
+#[derive(Clone, Copy, Debug)]
+struct GridRefinement {
+    /// Levels subdivided whatever the samples (`adaptive`).
+    adaptive: u32,
+    /// The light's colour the samples filter (its colour times fade and spot falloff, or its
+    /// bare colour under `area_illumination`): POV-Ray compares the light that arrives, so
+    /// corners subdivide when that differs by more than 0.1 summed over the channels.
+    light_colour: DVec3,
+}
+
 /// One region of POV-Ray's recursive area-light average.
 #[allow(clippy::too_many_arguments, reason = "a region is its two corners (four numbers) plus the recursion's state")]
 fn block(
@@ -885,22 +897,24 @@ fn block(
     u2: usize,
     v2: usize,
     level: u32,
-    adaptive: u32,
+    refinement: GridRefinement,
     state: &mut PathState,
 ) -> DVec3 {
     let c00 = sample(u1, v1, state);
     let c10 = sample(u2, v1, state);
     let c01 = sample(u1, v2, state);
     let c11 = sample(u2, v2, state);
-    let differ = |a: DVec3, b: DVec3| (a - b).abs().element_sum() > 0.1;
+    let differ = |a: DVec3, b: DVec3| ((a - b) * refinement.light_colour).abs().element_sum() > 0.1;
     let large = u2 - u1 > 1 || v2 - v1 > 1;
-    if large && (level < adaptive || differ(c00, c10) || differ(c00, c01) || differ(c10, c11) || differ(c01, c11)) {
+    if large
+        && (level < refinement.adaptive || differ(c00, c10) || differ(c00, c01) || differ(c10, c11) || differ(c01, c11))
+    {
         let (mid_u_lo, mid_v_lo) = ((u1 + u2) / 2, (v1 + v2) / 2);
         let (mid_u_hi, mid_v_hi) = ((u1 + u2).div_ceil(2), (v1 + v2).div_ceil(2));
-        let a = block(sample, u1, v1, mid_u_lo, mid_v_lo, level + 1, adaptive, state);
-        let b = block(sample, mid_u_hi, v1, u2, mid_v_lo, level + 1, adaptive, state);
-        let c = block(sample, u1, mid_v_hi, mid_u_lo, v2, level + 1, adaptive, state);
-        let d = block(sample, mid_u_hi, mid_v_hi, u2, v2, level + 1, adaptive, state);
+        let a = block(sample, u1, v1, mid_u_lo, mid_v_lo, level + 1, refinement, state);
+        let b = block(sample, mid_u_hi, v1, u2, mid_v_lo, level + 1, refinement, state);
+        let c = block(sample, u1, mid_v_hi, mid_u_lo, v2, level + 1, refinement, state);
+        let d = block(sample, mid_u_hi, mid_v_hi, u2, v2, level + 1, refinement, state);
         (a + b + c + d) * 0.25
     } else {
         (c00 + c10 + c01 + c11) * 0.25
@@ -1009,7 +1023,8 @@ mod tests {
     /// POV-Ray's recursive average over samples `value(u, v)` of an `n1` x `n2` grid.
     fn recursive_average(n1: usize, n2: usize, adaptive: u32, value: impl Fn(usize, usize) -> DVec3) -> DVec3 {
         let mut state = PathState { stream: SampleStream::new(0, 0, 0), dimension: 0, rays: 0, first_hit: None };
-        block(&mut |u, v, _: &mut PathState| value(u, v), 0, 0, n1 - 1, n2 - 1, 0, adaptive, &mut state)
+        let refinement = GridRefinement { adaptive, light_colour: DVec3::ONE };
+        block(&mut |u, v, _: &mut PathState| value(u, v), 0, 0, n1 - 1, n2 - 1, 0, refinement, &mut state)
     }
 
     #[test]
