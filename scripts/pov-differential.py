@@ -19,6 +19,11 @@ position: the degenerate inputs of issue 17's audit.
 Prism may refuse such a scene (a `prism-error` line naming the key, which is then checked by
 hand against what POV-Ray does with it); when both render, the images must agree.
 
+With EXTRA=2, also rolled cameras with their own aspect, orthographic view heights,
+rectangles, sheared matrix transforms, light intensities, discrete normal patterns with a
+normal list, bricks with size and mortar, `no_bump_scale`, `accuracy`, bump maps and repeated
+image maps (see `more_extras`).
+
 With EXTRA=1, about half the objects become superellipsoids, blobs, meshes (the repository's
 OBJ, glTF and PLY assets) or CSG groups with inverted and nested members (discs and closed
 meshes among them; a disc's inside is a half-space), and materials take slope maps, normal maps, averages, image maps
@@ -489,7 +494,69 @@ def extra_scene(seed, d):
                 if r.random() < 0.4: L[key] = True
             if L.get('circular') or L.get('orient'):
                 L['size1'] = max(L['size1'], 2)
+    if os.environ.get('EXTRA') == '2':
+        more_extras(r, doc, d)
     return document(doc, f'# differential scene {seed} with extras')
+
+def shear_matrix(r, t):
+    """A row-major affine matrix: a shear and a scale, then the translation of `t`."""
+    s = [round(r.uniform(0.5, 1.2), 3) for _ in range(3)]
+    a, b = round(r.uniform(-0.4, 0.4), 3), round(r.uniform(-0.4, 0.4), 3)
+    x, y, z = t.get('translate', [0.0, 0.0, 0.0])
+    return [[s[0], a, 0.0, x], [0.0, s[1], b, y], [b, 0.0, s[2], z], [0.0, 0.0, 0.0, 1.0]]
+
+def more_extras(r, doc, d):
+    """EXTRA=2: what EXTRA=1 leaves out too: a rolled camera with its own aspect, an
+    orthographic view height, rectangles, sheared matrix transforms, light intensities,
+    discrete normal patterns with a normal list, brick sizes and mortar, `no_bump_scale`,
+    `accuracy`, bump maps and repeated image maps."""
+    import shutil
+    camera = doc['camera']
+    if r.random() < 0.3: camera['up'] = [round(r.uniform(-0.4, 0.4), 2), 1.0, round(r.uniform(-0.3, 0.3), 2)]
+    if r.random() < 0.2: camera['aspect'] = round(r.uniform(1.2, 2.4), 2)
+    if camera.get('projection') == 'orthographic' and r.random() < 0.7:
+        camera.pop('vfov', None)
+        camera['view_height'] = round(r.uniform(2.0, 4.0), 2)
+    for o in doc['object'][1:]:
+        if r.random() < 0.12 and o['shape'] not in ('union', 'merge', 'intersection', 'difference', 'mesh'):
+            keep = {k: o[k] for k in ('material', 'transform') if k in o}
+            o.clear()
+            o.update({'shape': 'rectangle', 'size': [round(r.uniform(0.4, 1.2), 2), round(r.uniform(0.4, 1.2), 2)]})
+            o.update(keep)
+        t = o.get('transform')
+        if t and 'matrix' not in t and o['shape'] != 'mesh' and r.random() < 0.2:
+            o['transform'] = {'matrix': shear_matrix(r, t)}
+    for L in doc.get('light', []):
+        if r.random() < 0.3: L['intensity'] = round(r.uniform(0.3, 2.5), 2)
+    for o in doc['object']:
+        m = o['material']
+        if 'layers' in m:
+            continue
+        roll = r.random()
+        if roll < 0.15:
+            kind = r.choice(list(DISCRETE))
+            n = {'pattern': kind, 'scale': round(r.uniform(0.2, 0.6), 2),
+                 'normals': [normal(r) for _ in range(DISCRETE[kind])]}
+            if kind == 'brick':
+                n['brick_size'] = [round(r.uniform(0.5, 1.5), 2), round(r.uniform(0.2, 0.6), 2), round(r.uniform(0.5, 1.2), 2)]
+                n['mortar'] = round(r.uniform(0.02, 0.15), 2)
+            m['normal'] = n
+        elif roll < 0.27:
+            file = r.choice(IMAGES)
+            shutil.copy(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'scenes', 'parity', file), d)
+            bump = {'file': file, 'map_type': r.choice(['planar', 'spherical', 'cylindrical'])}
+            if r.random() < 0.5: bump['interpolate'] = r.choice(['none', 'bilinear', 'bicubic', 'normalized_distance'])
+            if r.random() < 0.3: bump['repeat'] = [r.randint(1, 3), r.randint(1, 3)]
+            if file == 'image_map_palette.png' and r.random() < 0.5: bump['use_index'] = True
+            m['normal'] = {'bump_map': bump, 'bump_size': round(r.uniform(-2, 3), 2), 'scale': round(r.uniform(0.3, 1.5), 2)}
+        elif 'normal' in m and 'pattern' in m['normal'] and r.random() < 0.4:
+            n = m['normal']
+            if 'normal_map' not in n and 'slope_map' not in n and n['pattern'] != 'average':
+                if r.random() < 0.5: n['accuracy'] = round(r.uniform(0.005, 0.1), 3)
+            if r.random() < 0.5: n['no_bump_scale'] = True
+        p = m.get('pigment')
+        if isinstance(p, dict) and 'image_map' in p and r.random() < 0.5:
+            p['image_map']['repeat'] = [r.randint(1, 3), r.randint(1, 3)]
 
 def run(seed, d):
     name = f'{d}/s{seed}'

@@ -44,23 +44,36 @@ thread_local! {
     static AREA_SAMPLES: std::cell::RefCell<(u32, Vec<(u32, DVec3)>)> = const { std::cell::RefCell::new((0, Vec::new())) };
 }
 
-/// The interiors a ray is inside, innermost last (primitive indices).
+/// One interior a ray can be inside: an object's, told apart within a CSG group by the
+/// material of the member crossed. POV-Ray gives a member with its own texture an interior of
+/// its own (`prism export pov` writes one with it) and the others the group's, so entering
+/// a glass member of a group is entering a new medium, not leaving the group. (Two members
+/// given the same named material share one here, where POV-Ray's export would part them.)
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct InteriorId {
+    /// The primitive (object or whole CSG group).
+    primitive: u32,
+    /// The material whose interior it is (the member's, or the group's).
+    material: u32,
+}
+
+/// The interiors a ray is inside, innermost last.
 #[derive(Clone, Copy, Debug, Default)]
 struct Interiors {
-    items: [u32; MAX_INTERIORS],
+    items: [InteriorId; MAX_INTERIORS],
     len: usize,
 }
 
 impl Interiors {
-    fn contains(&self, p: u32) -> bool {
+    fn contains(&self, p: InteriorId) -> bool {
         self.items[..self.len].contains(&p)
     }
 
-    fn innermost(&self) -> Option<u32> {
+    fn innermost(&self) -> Option<InteriorId> {
         self.len.checked_sub(1).map(|i| self.items[i])
     }
 
-    fn entering(mut self, p: u32) -> Self {
+    fn entering(mut self, p: InteriorId) -> Self {
         if self.len == MAX_INTERIORS {
             self.items.copy_within(1.., 0);
             self.len -= 1;
@@ -70,7 +83,7 @@ impl Interiors {
         self
     }
 
-    fn leaving(mut self, p: u32) -> Self {
+    fn leaving(mut self, p: InteriorId) -> Self {
         if let Some(i) = self.items[..self.len].iter().position(|&q| q == p) {
             self.items.copy_within(i + 1..self.len, i);
             self.len -= 1;
@@ -190,7 +203,7 @@ impl<'a> Classic<'a> {
             let boxed =
                 CsgShape::of(p.shape.as_ref()).is_none_or(|group| group.container_bounds().contains(point, 0.0));
             if boxed && p.shape.inside(point) {
-                interiors = interiors.entering(i);
+                interiors = interiors.entering(InteriorId { primitive: i, material: p.material });
             }
         }
         interiors
@@ -222,15 +235,15 @@ impl<'a> Classic<'a> {
         interiors.innermost().map_or(1.0, |p| self.material_of(p).interior.ior)
     }
 
-    fn material_of(&self, primitive: u32) -> &PovFinish {
-        &self.views[self.scene.primitives[primitive as usize].material as usize].base
+    fn material_of(&self, interior: InteriorId) -> &PovFinish {
+        &self.views[interior.material as usize].base
     }
 
     /// The relative index (n_to / n_from) POV-Ray's Fresnel reflection uses for a ray inside
     /// `interiors` hitting primitive `p` (`ComputeRelativeIOR`). Unlike refraction, leaving a
     /// nested object compares it with the innermost interior the ray is in, which is the
     /// object itself: Fresnel then sees no index change (a POV-Ray quirk kept for parity).
-    fn fresnel_eta(&self, interiors: &Interiors, p: u32, ior: f64) -> f64 {
+    fn fresnel_eta(&self, interiors: &Interiors, p: InteriorId, ior: f64) -> f64 {
         match interiors.innermost() {
             None => ior,
             Some(_) if interiors.contains(p) && interiors.len == 1 => 1.0 / ior,
@@ -272,7 +285,8 @@ impl<'a> Classic<'a> {
         let raw = if facing { -shading } else { shading };
         let object_normal = if facing { -surface.shading_normal } else { surface.shading_normal };
         let distance = closest.hit.t * d.length();
-        let entering = !interiors.contains(closest.primitive);
+        let here = InteriorId { primitive: closest.primitive, material: material_id };
+        let entering = !interiors.contains(here);
 
         // POV-Ray's `ComputeLightedTexture`: the layers from the top down, each lit with its
         // own finish and normal and seen through the filter of the layers above it
@@ -327,7 +341,7 @@ impl<'a> Classic<'a> {
                 let (min, max) = (reflection.min.0, reflection.max.0);
                 let reflect_weight;
                 (rf, reflect_weight) = if reflection.fresnel {
-                    let eta = self.fresnel_eta(&interiors, closest.primitive, material.interior.ior);
+                    let eta = self.fresnel_eta(&interiors, here, material.interior.ior);
                     let rf = min + (max - min) * fresnel(eta, c);
                     (rf, rf.max_element())
                 } else {
@@ -365,8 +379,7 @@ impl<'a> Classic<'a> {
         if trans > scene.settings.adc_bailout {
             let c = -d.dot(n);
             let n_from = self.medium_ior(&interiors);
-            let inner =
-                if entering { interiors.entering(closest.primitive) } else { interiors.leaving(closest.primitive) };
+            let inner = if entering { interiors.entering(here) } else { interiors.leaving(here) };
             let interior = &view.base;
             let n_to = if entering { interior.interior.ior } else { self.medium_ior(&inner) };
             let child_weight = weight * filter.abs().max_element();
@@ -550,15 +563,17 @@ impl<'a> Classic<'a> {
                 return filter;
             };
             let primitive = &scene.primitives[hit.primitive as usize];
-            let view = &self.views[primitive.material_at(&hit.hit) as usize];
+            let material = primitive.material_at(&hit.hit);
+            let view = &self.views[material as usize];
             if !view.is_transparent() {
                 return DVec3::ZERO;
             }
+            let here = InteriorId { primitive: hit.primitive, material };
             // Patterns' filter and transmit vary: they are looked up where the shadow ray
             // crosses (in the object's space, as shading does), every layer's.
             filter *= view.shadow_filter(primitive.object_ray_of(&ray).at(hit.hit.t));
             let m = &view.base;
-            let leaving = inside.contains(hit.primitive);
+            let leaving = inside.contains(here);
             if leaving {
                 filter *= interior_fade(m, hit.hit.t, true);
             }
@@ -567,7 +582,7 @@ impl<'a> Classic<'a> {
             // negative or nearly black, the shadow ray is not taken to be inside the object
             // (so its far side fades nothing).
             if (start.light_colour * filter).cmpge(DVec3::splat(POV_EPSILON)).any() {
-                inside = if leaving { inside.leaving(hit.primitive) } else { inside.entering(hit.primitive) };
+                inside = if leaving { inside.leaving(here) } else { inside.entering(here) };
             }
             // POV-Ray follows the shadow ray on while any channel is not 0, negative too.
             if filter == DVec3::ZERO {
@@ -1161,19 +1176,25 @@ mod tests {
             let scene = crate::prepare(&mut scene).unwrap();
             let integrator = Classic::new(&scene);
             let inside = integrator.interiors_at(DVec3::ZERO);
-            assert_eq!(&inside.items[..inside.len], &[0, 3], "aperture {aperture}");
+            let primitives = |s: &Interiors| s.items[..s.len].iter().map(|i| i.primitive).collect::<Vec<_>>();
+            assert_eq!(primitives(&inside), [0, 3], "aperture {aperture}");
             assert_eq!(integrator.pinhole_interiors.is_some(), !aperture);
             let outside = integrator.interiors_at(DVec3::new(0.0, 0.0, -7.0));
-            assert_eq!(&outside.items[..outside.len], &[2], "beyond the far plane");
+            assert_eq!(primitives(&outside), [2], "beyond the far plane");
         }
     }
 
     #[test]
     fn interiors_stack() {
-        let s = Interiors::default().entering(3).entering(5);
-        assert_eq!(s.innermost(), Some(5));
-        let s = s.leaving(3);
-        assert!(!s.contains(3) && s.contains(5));
+        let id = |primitive, material| InteriorId { primitive, material };
+        let s = Interiors::default().entering(id(3, 0)).entering(id(5, 1));
+        assert_eq!(s.innermost(), Some(id(5, 1)));
+        let s = s.leaving(id(3, 0));
+        assert!(!s.contains(id(3, 0)) && s.contains(id(5, 1)));
+        // A group's members with their own materials are interiors of their own.
+        let s = s.entering(id(5, 2));
+        assert_eq!(s.len, 2);
+        assert!(!s.leaving(id(5, 2)).contains(id(5, 2)) && s.leaving(id(5, 2)).contains(id(5, 1)));
     }
 
     #[test]
