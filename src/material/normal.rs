@@ -913,7 +913,7 @@ impl NormalField {
         hermite_cubic(t, map[prev].1, map[cur].1)
     }
 
-    /// POV-Ray's `facets`: the normal (unit, pattern frame) replaced by the nearest cell point
+    /// POV-Ray's `facets`: the normal (pattern frame, normalised first) replaced by the nearest cell point
     /// to it scaled by 1 / size, or with `coords` by the one nearest the point, whose noise
     /// gradient (less its part along the normal) tilts the normal.
     fn facet(&self, q: DVec3, n: DVec3) -> DVec3 {
@@ -922,6 +922,9 @@ impl NormalField {
         let scale = if size < 1e-6 { 1e6 } else { 1.0 / size };
         let coords = spec.coords.unwrap_or(0.0);
         let metric = spec.metric.unwrap_or(2.0);
+        // POV-Ray's `facets` normalises the normal first, so under `no_bump_scale` its length
+        // picks no other facet.
+        let n = n.normalize();
         if coords == 0.0 {
             return nearest_facet_point(n * scale, metric);
         }
@@ -1155,6 +1158,18 @@ mod tests {
         let nq = n * MIRROR;
         let expected = ((nq + 0.5 * (pert - nq * pert.dot(nq))) * MIRROR).normalize();
         assert!((f.perturb(p, n) - expected).length() < 1e-12);
+    }
+
+    #[test]
+    fn facets_normalise_the_normal_under_no_bump_scale() {
+        // Under no_bump_scale the normal arrives with the length the object's transform gave
+        // it (1 / 1.358 for an object scaled by 1.358); POV-Ray's `facets` normalises it
+        // before it picks the cell point, so the facet is the unit normal's.
+        let f = field("pattern = \"facets\"\nsize = 0.2\nno_bump_scale = true");
+        let n = DVec3::new(0.3, 0.9, -0.2).normalize();
+        let c = nearest_facet_point(n * MIRROR * 5.0, 2.0);
+        let got = f.perturb(DVec3::ZERO, n / 1.358).normalize();
+        assert!((got - (c * MIRROR).normalize()).length() < 1e-12, "{got} against {c}");
     }
 
     #[test]
