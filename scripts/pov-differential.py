@@ -409,7 +409,9 @@ def extra_member(r):
     if kind == 'mesh':
         return mesh(r, closed=True)
     if kind == 'disc':
-        return {'shape': 'disc', 'radius': 2.0, 'normal': [round(r.uniform(-0.5, 0.5), 2), 1.0, round(r.uniform(-0.5, 0.5), 2)]}
+        # Large: POV-Ray bounds an intersection by its members' boxes, and a disc's box is
+        # thin across it, which culls what the half-space holds beyond it (not copied).
+        return {'shape': 'disc', 'radius': 8.0, 'normal': [round(r.uniform(-0.5, 0.5), 2), 1.0, round(r.uniform(-0.5, 0.5), 2)]}
     if kind == 'sphere':
         return {'shape': 'sphere', 'radius': round(r.uniform(0.2, 0.6), 2)}
     if kind == 'box':
@@ -438,7 +440,10 @@ def extra_shape(r):
     members = []
     for _ in range(r.randint(2, 3)):
         if r.random() < 0.25:
-            m = {'shape': r.choice(['union', 'intersection', 'difference', 'merge']), 'members': [extra_member(r), extra_member(r)]}
+            pair = [extra_member(r), extra_member(r)]
+            # Apart, so that two equal members do not make coincident surfaces (a knife edge).
+            pair[1].setdefault('transform', {})['translate'] = [round(r.uniform(0.03, 0.15), 3) for _ in range(3)]
+            m = {'shape': r.choice(['union', 'intersection', 'difference', 'merge']), 'members': pair}
         else:
             m = extra_member(r)
         t = m.setdefault('transform', {})
@@ -523,6 +528,12 @@ def more_extras(r, doc, d):
             o.clear()
             o.update({'shape': 'rectangle', 'size': [round(r.uniform(0.4, 1.2), 2), round(r.uniform(0.4, 1.2), 2)]})
             o.update(keep)
+            # Patterns off their lattice planes: the rectangle lies in z = 0, where a cell
+            # boundary is decided by rounding (a knife edge).
+            for key in ('pigment', 'normal'):
+                field = o.get('material', {}).get(key)
+                if isinstance(field, dict) and 'pattern' in field and 'translate' not in field:
+                    field['translate'] = [0.0, 0.0, 0.137]
         t = o.get('transform')
         if t and 'matrix' not in t and o['shape'] != 'mesh' and r.random() < 0.2:
             o['transform'] = {'matrix': shear_matrix(r, t)}
@@ -551,8 +562,9 @@ def more_extras(r, doc, d):
             m['normal'] = {'bump_map': bump, 'bump_size': round(r.uniform(-2, 3), 2), 'scale': round(r.uniform(0.3, 1.5), 2)}
         elif 'normal' in m and 'pattern' in m['normal'] and r.random() < 0.4:
             n = m['normal']
-            if 'normal_map' not in n and 'slope_map' not in n and n['pattern'] != 'average':
-                if r.random() < 0.5: n['accuracy'] = round(r.uniform(0.005, 0.1), 3)
+            # `accuracy` belongs to pigment patterns read as normals (Prism refuses it elsewhere).
+            if n['pattern'] in CONT and n['pattern'] not in ('wrinkles', 'quilted') and 'normal_map' not in n and r.random() < 0.5:
+                n['accuracy'] = round(r.uniform(0.005, 0.1), 3)
             if r.random() < 0.5: n['no_bump_scale'] = True
         p = m.get('pigment')
         if isinstance(p, dict) and 'image_map' in p and r.random() < 0.5:
