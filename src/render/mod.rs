@@ -1039,9 +1039,11 @@ pub fn render_pixel_samples<I: Integrator>(
         let sample = integrator.sample(&ray, stream);
         rays += sample.rays;
         first_hit = first_hit.or(sample.first_hit);
+        // A kept NaN channel is 0 in this sample alone, as POV-Ray writes a single sample, so
+        // that the sums stay finite (a part file holds them, and parts add up).
         let nan_kept = if keeps_nan_channels { sample.radiance.is_nan_mask() } else { BVec3::FALSE };
         let radiance = if (sample.radiance.is_finite_mask() | nan_kept).all() {
-            sample.radiance
+            DVec3::select(nan_kept, DVec3::ZERO, sample.radiance)
         } else {
             non_finite_samples += 1;
             DVec3::ZERO
@@ -1073,8 +1075,6 @@ pub fn render_pixel_samples<I: Integrator>(
     }
     // Weights summing to 0 (a filter's negative lobes cancelling) give black.
     let radiance = gamma::decode_rgb(working, if weights != 0.0 { sum / weights } else { DVec3::ZERO });
-    // A kept NaN channel is written as 0, as POV-Ray writes it.
-    let radiance = DVec3::select(radiance.is_nan_mask(), DVec3::ZERO, radiance);
     let variance = spread.variance_of_mean().0;
     let stats = PixelStats {
         samples: taken,

@@ -56,8 +56,9 @@ pub trait Integrator: Sync {
     }
 
     /// Whether a NaN channel of a sample is part of the integrator's answer (`classic`, as
-    /// POV-Ray: it spreads through the pixel's mean and that channel of the pixel is written
-    /// as 0) rather than a defect (the default: the whole sample is dropped and counted).
+    /// POV-Ray: under POV-Ray's antialiasing it spreads through the pixel's mean and that
+    /// channel of the pixel is written as 0; otherwise that channel of the sample is 0)
+    /// rather than a defect (the default: the whole sample is dropped and counted).
     fn keeps_nan_channels(&self) -> bool {
         false
     }
