@@ -528,11 +528,13 @@ def more_extras(r, doc, d):
             o.clear()
             o.update({'shape': 'rectangle', 'size': [round(r.uniform(0.4, 1.2), 2), round(r.uniform(0.4, 1.2), 2)]})
             o.update(keep)
-            # Patterns off their lattice planes: the rectangle lies in z = 0, where a cell
-            # boundary is decided by rounding (a knife edge).
+            # Patterns off their lattice planes and maps off their seams: the rectangle lies
+            # in z = 0, where a cell boundary or a cylindrical map's texel column is decided
+            # by rounding (a knife edge).
             for key in ('pigment', 'normal'):
                 field = o.get('material', {}).get(key)
-                if isinstance(field, dict) and 'pattern' in field and 'translate' not in field:
+                mapped = isinstance(field, dict) and any(k in field for k in ('pattern', 'image_map', 'bump_map'))
+                if mapped and 'translate' not in field:
                     field['translate'] = [0.0, 0.0, 0.137]
         t = o.get('transform')
         if t and 'matrix' not in t and o['shape'] != 'mesh' and r.random() < 0.2:
