@@ -219,7 +219,14 @@ fn check(
     if !reference.exists() {
         return Err(format!("{name}: reference {} is missing; render it with: {regenerate}", reference.display()));
     }
-    let reference_film = read_exr(reference).map_err(|e| e.to_string())?;
+    let mut reference_film = read_exr(reference).map_err(|e| e.to_string())?;
+    // POV-Ray writes a NaN channel (`pow` of a negative colour) into its EXR as NaN, into
+    // its PNG as 0; Prism writes 0.
+    for pixel in &mut reference_film.pixels {
+        for c in pixel.iter_mut().filter(|c| c.is_nan()) {
+            *c = 0.0;
+        }
+    }
     if (reference_film.width, reference_film.height) != (ours.width, ours.height) {
         return Err(format!(
             "{name}: reference is {}x{}, Prism renders {}x{}; regenerate it with: {regenerate}",
