@@ -474,10 +474,11 @@ def extra_scene(seed, d):
                 t['scale'] = [round(size * x, 4) for x in scale] if isinstance(scale, list) else round(size * scale, 4)
                 keep['transform'] = t
                 # The glTF cube's faces lie at +-0.5 in its own space, on the lattice of a
-                # pattern scaled by 0.1 (a knife edge): move the pigment off it.
-                pigment = keep.get('material', {}).get('pigment')
-                if isinstance(pigment, dict) and 'pattern' in pigment and 'translate' not in pigment:
-                    pigment['translate'] = [0.0123, 0.0171, 0.0137]
+                # pattern scaled by 0.1 (a knife edge): move the patterns off it.
+                for key in ('pigment', 'normal'):
+                    field = keep.get('material', {}).get(key)
+                    if isinstance(field, dict) and 'pattern' in field and 'translate' not in field:
+                        field['translate'] = [0.0123, 0.0171, 0.0137]
             o.update(keep)
             if o['shape'] in ('union', 'merge', 'intersection', 'difference'):
                 o['material'] = opaque(o['material'])
