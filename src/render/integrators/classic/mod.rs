@@ -30,9 +30,7 @@ const MIN_ISECT_DEPTH: f64 = 1e-4;
 /// POV-Ray ignores intersections farther than this.
 const MAX_DISTANCE: f64 = 1e7;
 /// POV-Ray's `EPSILON`: index ratios and fade distances closer than this to 1 and 0 count
-/// as equal.
-const IOR_EPSILON: f64 = 1e-10;
-/// POV-Ray's `EPSILON` again: light whose every channel is below it counts as none.
+/// as equal, and light whose every channel is below it as none.
 const POV_EPSILON: f64 = 1e-10;
 /// Deepest nesting of interiors tracked (deeper ones are treated as leaving the outermost).
 const MAX_INTERIORS: usize = 16;
@@ -429,7 +427,7 @@ impl<'a> Classic<'a> {
             let n_to = if entering { interior.interior.ior } else { self.medium_ior(&inner) };
             let child_weight = weight * filter.abs().max_element();
             let eta = n_from / n_to;
-            let transmitted = if (eta - 1.0).abs() < IOR_EPSILON {
+            let transmitted = if (eta - 1.0).abs() < POV_EPSILON {
                 // No refraction: the ray continues at the same level, but POV-Ray still
                 // tests the level limit first, as if it were one deeper.
                 if level >= scene.settings.max_depth {
@@ -460,7 +458,7 @@ impl<'a> Classic<'a> {
         // Each layer's reflection, unfiltered by the layers above (POV-Ray adds them); after
         // total internal reflection, those about the top normal were already traced.
         for r in reflections.iter() {
-            if total_internal && (r.normal - top_normal).abs().max_element() <= IOR_EPSILON {
+            if total_internal && (r.normal - top_normal).abs().max_element() <= POV_EPSILON {
                 continue;
             }
             let mirror = Ray::new(point, reflect(d, r.normal, raw));
@@ -525,23 +523,10 @@ impl<'a> Classic<'a> {
                 e *= match shadows.get(index).copied().flatten() {
                     Some(visibility) => visibility,
                     None => {
+                        let start = ShadowStart { interiors, light_colour: e };
                         let visibility = match &light.area {
-                            Some(grid) => self.area_visibility(
-                                point,
-                                l,
-                                light,
-                                grid,
-                                ShadowStart { interiors, light_colour: e },
-                                state,
-                            ),
-                            None => self.transmittance(
-                                point,
-                                l,
-                                distance,
-                                ShadowStart { interiors, light_colour: e },
-                                None,
-                                state,
-                            ),
+                            Some(grid) => self.area_visibility(point, l, light, grid, start, state),
+                            None => self.transmittance(point, l, distance, start, None, state),
                         };
                         if let Some(slot) = shadows.get_mut(index) {
                             *slot = Some(visibility);
@@ -566,11 +551,11 @@ impl<'a> Classic<'a> {
 
     /// Light that reaches `point` from `distance` along `l`: 1 when unblocked, 0 behind an
     /// opaque object, and filtered by every transparent surface crossed (straight through),
-    /// faded over each stretch inside an object with interior fade. The shadow ray starts in
-    /// the `interiors` of the ray that found `point` and, like POV-Ray's, restarts at each
-    /// surface it crosses, ignoring hits within `SHADOW_TOLERANCE` of either end. In a
-    /// scene without transparency, `blockers` (when given) holds every primitive that can
-    /// lie on this shadow ray.
+    /// faded over each stretch inside an object with interior fade. The shadow ray starts as
+    /// `start` says (in the interiors of the ray that found `point`) and, like POV-Ray's,
+    /// restarts at each surface it crosses, ignoring hits within `SHADOW_TOLERANCE` of either
+    /// end. In a scene without transparency, `blockers` (when given) holds every primitive
+    /// that can lie on this shadow ray.
     // The opaque case inlined into the shading loop, the filtered one a call (inlining it
     // whole made the opaque case a call too: 4 % of a simple scene).
     #[inline(always)]
@@ -1023,7 +1008,7 @@ fn fresnel(eta: f64, c: f64) -> f64 {
 /// a camera-side ray fades whenever `fade_distance` is not 0 (with `fade_power` 0 that is a
 /// constant halfway blend), a shadow ray only when `fade_power` is positive as well.
 fn interior_fade(m: &PovFinish, s: f64, shadow: bool) -> DVec3 {
-    if m.interior.fade_distance.abs() <= IOR_EPSILON || (shadow && m.interior.fade_power <= 0.0) {
+    if m.interior.fade_distance.abs() <= POV_EPSILON || (shadow && m.interior.fade_power <= 0.0) {
         return DVec3::ONE;
     }
     let fade_color = m.interior.fade_color.0;
