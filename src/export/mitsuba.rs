@@ -3,12 +3,20 @@
 //!
 //! Every default is written out: the `path` integrator's `max_depth` and `rr_depth`, a
 //! `perspective` (or `thinlens`) sensor with `fov_axis="y"`, an `independent` sampler with
-//! the scene's samples and seed, an `hdrfilm` with a `box` filter, and `ext_ior = 1` on every
+//! the scene's samples and seed, an `hdrfilm` with the scene's filter (sampling its border
+//! when the filter is wider than a pixel, as Prism does), and `ext_ior = 1` on every
 //! dielectric interface. Materials are written from the path integrator's own reading of
 //! them ([`crate::render::integrators::path::scatter`]), lobe by lobe: one lobe is its
 //! Mitsuba BSDF (wrapped in `twosided` where Prism scatters alike on both sides), several
 //! are a `blendbsdf` tree with the same weights. Meshes become binary PLY files beside the
 //! XML. Lights keep their physical units (W/sr, W/m^2, W/(m^2 sr)).
+//!
+//! Two of Mitsuba 3.9's own ways are written around, found by the random scenes of
+//! scripts/mitsuba-differential.py: its `blendbsdf` mis-weights a delta lobe beside a smooth
+//! one, so absorbing glass is not padded with a black diffuse lobe; and its `path`
+//! integrator drops a sample that only passed through `Null` lobes (a thin dielectric's
+//! transmission) before leaving a scene without an environment, so such scenes get a black
+//! one ([`dark_environment`]).
 //!
 //! glTF metallic-roughness materials become the `gltf_metallic_roughness` BSDF that
 //! scripts/mitsuba_gltf_bsdf.py registers with Mitsuba (glTF 2.0 Appendix B written from the
@@ -44,6 +52,18 @@ use crate::world::components::{
     Antialias, Light, MaterialComponent, Origin, PhotometricLight, PixelFilter, Projection, ShapeComponent,
     WorldTransform,
 };
+
+/// A black environment, written where Mitsuba 3.9's `path` integrator would otherwise drop
+/// light: it keeps a sample only once the path has scattered off something other than a
+/// `Null` lobe (a thin dielectric's transmission, a `null` BSDF) or met an environment
+/// emitter, so without one the emission of a thin pane seen straight through it (and what
+/// such a pane shows before the path leaves the scene) is lost. Never sampled when
+/// `other_emitters` (a sampling weight of 0; Mitsuba refuses one when it is the only
+/// emitter).
+fn dark_environment(other_emitters: bool) -> String {
+    let weight = if other_emitters { "\n    <float name=\"sampling_weight\" value=\"0\"/>" } else { "" };
+    format!("  <emitter type=\"constant\">\n    <rgb name=\"radiance\" value=\"0, 0, 0\"/>{weight}\n  </emitter>\n")
+}
 
 /// A Mitsuba scene: the XML and the mesh files it refers to.
 #[derive(Debug, Default)]
@@ -99,6 +119,10 @@ pub fn export(scene: &Scene, source: &str, mesh_prefix: &str, xml_dir: &Path) ->
     }
     lights(xml, scene, &mut errors);
     objects(&mut out, scene, mesh_prefix, xml_dir, &mut errors);
+    let lit_around = scene.environment.environment.is_some() || background.max_element() > 0.0;
+    if !lit_around && (out.xml.contains("type=\"thindielectric\"") || out.xml.contains("type=\"null\"")) {
+        out.xml.push_str(&dark_environment(out.xml.contains("<emitter")));
+    }
     out.xml.push_str("</scene>\n");
     if errors.is_empty() {
         return Ok(out);
@@ -222,8 +246,18 @@ fn sensor(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
     );
 }
 
-/// The `rfilter` element of `filter`, every parameter written.
+/// The `rfilter` element of `filter`, every parameter written; a filter wider than the pixel
+/// also has the film sample its border (`sample_border`), as Prism draws a pixel's samples
+/// around its centre whether or not they fall inside the frame: without it Mitsuba splats
+/// an edge pixel from the frame's side only, a different mean wherever the image is not
+/// flat at its edges.
 fn rfilter(filter: PixelFilter) -> String {
+    let element = filter_element(filter);
+    if filter.is_box() { element } else { format!("      <boolean name=\"sample_border\" value=\"true\"/>\n{element}") }
+}
+
+/// The `rfilter` element of `filter`, every parameter written.
+fn filter_element(filter: PixelFilter) -> String {
     match filter {
         PixelFilter::Box {} => "      <rfilter type=\"box\"/>".into(),
         PixelFilter::Gaussian { stddev } => format!(
@@ -697,19 +731,34 @@ fn bsdf_xml(
     }
     // A sum of weighted lobes as nested blends: lobe i's grey weight s_i (the largest
     // channel) goes into the blend, the rest of its colour into the lobe's own tint.
-    let mut parts = Vec::new();
-    for (weight, lobe) in &lobes {
-        let scale = weight.max_element();
-        parts.push((scale, lobe_xml(lobe, *weight / scale)?));
-    }
-    let total: f64 = parts.iter().map(|(s, _)| s).sum();
+    let scales: Vec<f64> = lobes.iter().map(|(weight, _)| weight.max_element()).collect();
+    let total: f64 = scales.iter().sum();
     if total > 1.0 + 1e-9 {
         return Err((
             "reflection",
             format!("the lobes' weights sum to {total} > 1, which Mitsuba's blendbsdf cannot hold"),
         ));
     }
-    if total < 1.0 - 1e-12 {
+    // Weights summing below 1 (glass that absorbs part of the light) are the blend of the
+    // lobes in proportion, each tinted by the sum, where every lobe takes a tint: a black
+    // diffuse padding the blend would be the same on paper, but is a smooth lobe beside
+    // delta ones, which Mitsuba 3.9's blendbsdf mis-weights (as above).
+    let absorbs = total < 1.0 - 1e-12;
+    let tintable = |lobe: &Lobe| match lobe {
+        Lobe::Mirror => true,
+        Lobe::PassThrough => false,
+        Lobe::Bsdf { bsdf, .. } => !matches!(bsdf, Bsdf::Plastic { .. }),
+    };
+    let renormalise = absorbs && total > 0.0 && lobes.iter().all(|(_, lobe)| tintable(lobe));
+    let mut parts = Vec::new();
+    for ((weight, lobe), scale) in lobes.iter().zip(&scales) {
+        if renormalise {
+            parts.push((scale / total, lobe_xml(lobe, *weight / scale * total)?));
+        } else {
+            parts.push((*scale, lobe_xml(lobe, *weight / scale)?));
+        }
+    }
+    if absorbs && !renormalise {
         parts.push((1.0 - total, "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0, 0, 0\"/></bsdf>".into()));
     }
     Ok(format!("    {}\n", blend(&parts)))
@@ -1153,5 +1202,56 @@ mod tests {
         assert!(out.xml.contains("<bsdf type=\"gltf_metallic_roughness\">"), "{}", out.xml);
         assert!(out.xml.contains("<float name=\"metallic\" value=\"0.75\"/>"), "{}", out.xml);
         assert!(!out.xml.contains("twosided"), "the plugin is two-sided itself: {}", out.xml);
+    }
+
+    #[test]
+    fn absorbing_delta_lobes_are_blended_in_proportion_without_a_black_lobe() {
+        // A finish of mirror 0.2 and glass 0.5 (transmit) reflects 0.2 * (1 - 0.5) = 0.1 and
+        // transmits 0.5: the blend holds them as 1/6 and 5/6, each tinted by their sum 0.6.
+        let out = export_text(
+            "[[object]]\nshape = \"sphere\"\nmaterial = { diffuse = 0.0, transmit = 0.5, ior = 1.3, reflection = 0.2 }\n",
+        )
+        .unwrap();
+        assert!(!out.xml.contains("type=\"diffuse\""), "{}", out.xml);
+        let blend = out.xml.find("<float name=\"weight\" value=\"").unwrap() + 28;
+        let weight: f64 = out.xml[blend..].split('"').next().unwrap().parse().unwrap();
+        assert!((weight - 5.0 / 6.0).abs() < 1e-9, "{weight}: {}", out.xml);
+        assert!(out.xml.contains("name=\"specular_reflectance\" value=\"0.6, 0.6, 0.6\""), "{}", out.xml);
+        assert!(out.xml.contains("name=\"specular_transmittance\" value=\"0.6, 0.6, 0.6\""), "{}", out.xml);
+    }
+
+    #[test]
+    fn thin_panes_in_the_dark_get_a_dark_environment() {
+        let pane = "[[object]]\nshape = \"rectangle\"\nmaterial = { color = 0.8, bsdf = { type = \"thin_dielectric\" }, emission = [1, 1, 1] }\n";
+        let lamp = "[[light]]\nposition = [0, 2, 0]\n";
+        let dark = |text: &str| {
+            let xml = export_text(Box::leak(text.to_string().into_boxed_str())).unwrap().xml;
+            let at = xml
+                .find("<emitter type=\"constant\">")
+                .map(|i| xml[i..].split("</emitter>").next().unwrap().to_string());
+            (at, xml)
+        };
+        let (environment, xml) = dark(&format!("{pane}{lamp}"));
+        let environment = environment.unwrap_or_else(|| panic!("no environment in\n{xml}"));
+        assert!(environment.contains("value=\"0, 0, 0\""), "{environment}");
+        assert!(environment.contains("name=\"sampling_weight\" value=\"0\""), "{environment}");
+        // The only emitter but the pane's own area light: sampled (Mitsuba refuses a total
+        // weight of 0), which costs nothing.
+        let (alone, _) = dark(&format!("[world]\nbackground = 0\n{}", pane.replace(", emission = [1, 1, 1]", "")));
+        assert!(alone.is_some_and(|e| !e.contains("sampling_weight")));
+        // A lit background is an environment already; opaque scenes need none.
+        let (lit, _) = dark(&format!("[world]\nbackground = 0.5\n{pane}"));
+        assert!(lit.is_some_and(|e| e.contains("value=\"0.5, 0.5, 0.5\"")));
+        let (opaque, _) = dark(&format!("[[object]]\nshape = \"sphere\"\n{lamp}"));
+        assert!(opaque.is_none());
+    }
+
+    #[test]
+    fn wide_filters_sample_the_film_border() {
+        let out =
+            export_text("[render]\nintegrator = \"path\"\nfilter = { type = \"gaussian\", stddev = 0.5 }\n").unwrap();
+        assert!(out.xml.contains("<boolean name=\"sample_border\" value=\"true\"/>"), "{}", out.xml);
+        let out = export_text("[render]\nintegrator = \"path\"\n").unwrap();
+        assert!(!out.xml.contains("sample_border"), "{}", out.xml);
     }
 }
