@@ -23,8 +23,10 @@
 //! specification; Mitsuba's `principled` is a different model), with `bitmap` textures.
 //!
 //! What Mitsuba cannot express is an error naming the object, material or light: textures
-//! other than a diffuse colour image or a glTF material's, meshes with normal maps or alpha
-//! masks, glTF alpha blending, shapes without a
+//! other than a diffuse colour image or a glTF material's, textures on a shape whose Mitsuba
+//! form has other (u, v) than Prism's (spheres, planes, discs, cylinder caps: see
+//! `MitsubaShape::same_uv`), meshes with normal maps or alpha masks, glTF alpha blending,
+//! shapes without a
 //! Mitsuba form (torus, blob, superellipsoid, cone, a disc with a hole), spheres and
 //! cylinders under non-uniform scales, spot cones with a soft edge (Mitsuba's falls off
 //! linearly in angle, Prism's in a smoothstep of the cosine), POV-Ray's antialiasing methods
@@ -291,15 +293,16 @@ fn lights(xml: &mut String, scene: &Scene, errors: &mut Vec<Diagnostic>) {
         match &light.source {
             LightSource::Point(l) => point(xml, l.position, l.intensity),
             LightSource::Spot(l) => {
-                if (l.cone.cos_inner - l.cone.cos_outer).abs() > 1e-12 {
+                if l.cone.cos_inner - l.cone.cos_outer > 1e-12 {
                     errors.push(Diagnostic::new(
                         at("radius"),
                         "Mitsuba's spot light falls off linearly in angle and Prism's smoothly: only a \
-                         hard-edged cone (radius = falloff) can be exported",
+                         hard-edged cone (radius at or beyond the falloff) can be exported",
                     ));
                     continue;
                 }
-                let angle = l.cone.cos_outer.clamp(-1.0, 1.0).acos().to_degrees();
+                // The hard edge lies at the radius (see `spot_factor`).
+                let angle = l.cone.cos_inner.clamp(-1.0, 1.0).acos().to_degrees();
                 let up = prism_api::math::tangent(l.cone.axis);
                 let _ = writeln!(
                     xml,
@@ -433,6 +436,21 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &P
             ));
             continue;
         }
+        let world_from_object = transform.map_or(DAffine3::IDENTITY, |t| t.0);
+        if material.material.is_textured()
+            && let Some(part) = parts.iter().find(|part| !same_uv(part, &world_from_object))
+        {
+            errors.push(Diagnostic::new(
+                at("material.texture"),
+                format!(
+                    "Mitsuba's {} has other texture coordinates than Prism's `{}`, so its image would land \
+                     elsewhere: textures are exported on rectangles, boxes, triangles, meshes and open cylinders",
+                    mitsuba_type(&part.kind),
+                    shape.kind
+                ),
+            ));
+            continue;
+        }
         let (bsdf, emission) = match bsdf_xml(&material.material, xml_dir, out, mesh_prefix)
             .and_then(|bsdf| Ok((bsdf, emitter_xml(&material.material)?)))
         {
@@ -442,7 +460,6 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &P
                 continue;
             }
         };
-        let world_from_object = transform.map_or(DAffine3::IDENTITY, |t| t.0);
         let infinite = !shape.geometry.bounds().is_bounded();
         for part in parts {
             let mut world_from_shape = world_from_object * part.object_from_shape;
@@ -553,14 +570,7 @@ fn shape_xml(
         } else {
             shape.world_from_shape
         };
-    let kind = match &part.kind {
-        MitsubaKind::Sphere => "sphere",
-        MitsubaKind::Rectangle => "rectangle",
-        MitsubaKind::Disk => "disk",
-        MitsubaKind::Cube => "cube",
-        MitsubaKind::Cylinder { .. } => "cylinder",
-        MitsubaKind::Triangles(_) => "ply",
-    };
+    let kind = mitsuba_type(&part.kind);
     let mut mesh_file = None;
     if let MitsubaKind::Triangles(triangles) = &part.kind {
         let bytes = ply(triangles);
@@ -623,6 +633,26 @@ fn shape_xml(
         xml.push_str(emission);
     }
     xml.push_str("  </shape>\n");
+}
+
+/// The Mitsuba plugin that writes a part of kind `kind`.
+fn mitsuba_type(kind: &MitsubaKind) -> &'static str {
+    match kind {
+        MitsubaKind::Sphere => "sphere",
+        MitsubaKind::Rectangle => "rectangle",
+        MitsubaKind::Disk => "disk",
+        MitsubaKind::Cube => "cube",
+        MitsubaKind::Cylinder { .. } => "cylinder",
+        MitsubaKind::Triangles(_) => "ply",
+    }
+}
+
+/// True when Mitsuba's (u, v) on `part`, placed by `world_from_object`, is the shape's own:
+/// the part says so, and it is not a cylinder written unmirrored (see [`shape_xml`]), whose
+/// angle then runs the other way.
+fn same_uv(part: &MitsubaShape, world_from_object: &DAffine3) -> bool {
+    let mirrored = (*world_from_object * part.object_from_shape).matrix3.determinant() < 0.0;
+    part.same_uv && !(mirrored && matches!(part.kind, MitsubaKind::Cylinder { .. }))
 }
 
 /// True when Mitsuba turns the shape's normal inward (or to its back) under a mirroring
@@ -1253,5 +1283,41 @@ mod tests {
         assert!(out.xml.contains("<boolean name=\"sample_border\" value=\"true\"/>"), "{}", out.xml);
         let out = export_text("[render]\nintegrator = \"path\"\n").unwrap();
         assert!(!out.xml.contains("sample_border"), "{}", out.xml);
+    }
+
+    #[test]
+    fn textures_are_refused_where_mitsubas_uv_is_not_the_shapes() {
+        let image = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/textures/tiles16.png");
+        let textured = |shape: &str| {
+            let text = format!(
+                "[[object]]\n{shape}\nmaterial = {{ color = 1.0, texture = \"{image}\", bsdf = {{ type = \"diffuse\" }} }}\n"
+            );
+            export_text(Box::leak(text.into_boxed_str()))
+        };
+        for (shape, mitsuba) in [
+            ("shape = \"sphere\"", "sphere"),
+            ("shape = \"plane\"", "rectangle"),
+            ("shape = \"disc\"", "disk"),
+            ("shape = \"cylinder\"", "disk"),
+            ("shape = \"cylinder\"\nopen = true\ntransform = { scale = [-1, 1, 1] }", "cylinder"),
+        ] {
+            let error = textured(shape).unwrap_err().to_string();
+            assert!(error.contains(&format!("Mitsuba's {mitsuba} has other texture coordinates")), "{shape}: {error}");
+            assert!(error.contains("material.texture"), "{error}");
+        }
+        for shape in ["shape = \"rectangle\"", "shape = \"box\"", "shape = \"cylinder\"\nopen = true"] {
+            let out = textured(shape).unwrap_or_else(|e| panic!("{shape}: {e}"));
+            assert!(out.xml.contains("<texture type=\"bitmap\""), "{shape}: {}", out.xml);
+        }
+    }
+
+    #[test]
+    fn a_spot_whose_radius_passes_its_falloff_has_its_hard_edge_at_the_radius() {
+        let out = export_text(
+            "[render]\nintegrator = \"path\"\n[[light]]\nkind = \"spot\"\nposition = [0, 1, 0]\npoint_at = [0, 0, 0]\nradius = 50\nfalloff = 20\n",
+        )
+        .unwrap();
+        assert!(out.xml.contains("<float name=\"cutoff_angle\" value=\"50.0\"/>"), "{}", out.xml);
+        assert!(out.xml.contains("<float name=\"beam_width\" value=\"50.0\"/>"), "{}", out.xml);
     }
 }

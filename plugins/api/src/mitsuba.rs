@@ -47,12 +47,21 @@ pub struct MitsubaShape {
     pub kind: MitsubaKind,
     /// Object space from the canonical shape's space.
     pub object_from_shape: DAffine3,
+    /// Mitsuba's (u, v) on this part is the shape's own [`crate::Surface::uv`], so that an
+    /// image texture lands where it does in Prism; the exporter refuses textures otherwise.
+    pub same_uv: bool,
 }
 
 impl MitsubaShape {
-    /// A canonical shape placed by `object_from_shape`.
+    /// A canonical shape placed by `object_from_shape`, whose Mitsuba (u, v) is the shape's.
     pub fn new(kind: MitsubaKind, object_from_shape: DAffine3) -> Self {
-        Self { kind, object_from_shape }
+        Self { kind, object_from_shape, same_uv: true }
+    }
+
+    /// The same part, marked as parameterised otherwise in Mitsuba than by the shape (a
+    /// sphere's poles on another axis, a disk's (r, angle) for the shape's (angle, r)).
+    pub fn with_other_uv(self) -> Self {
+        Self { same_uv: false, ..self }
     }
 }
 

@@ -265,8 +265,14 @@ impl Shape for Cylinder {
             let top = DAffine3::from_mat3_translation(frame * self.radius, self.top);
             let flipped = prism_api::DMat3::from_cols(frame.x_axis, -frame.y_axis, -frame.z_axis);
             let base = DAffine3::from_mat3_translation(flipped * self.radius, self.base);
-            shapes.push(prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Disk, top));
-            shapes.push(prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Disk, base));
+            // The tube's (u, v) is Mitsuba's (the same frame about the axis); a cap's is not
+            // (Mitsuba's disk has (r, angle)).
+            shapes.push(
+                prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Disk, top).with_other_uv(),
+            );
+            shapes.push(
+                prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Disk, base).with_other_uv(),
+            );
         }
         Some(shapes)
     }

@@ -191,7 +191,8 @@ impl Shape for Disc {
         }
         let frame = prism_api::mitsuba::frame_with_z(self.normal);
         let place = prism_api::DAffine3::from_mat3_translation(frame * self.radius, self.center);
-        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Disk, place)])
+        // Mitsuba's disk has (u, v) = (r, angle), the disc (angle, r).
+        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Disk, place).with_other_uv()])
     }
 }
 

@@ -145,7 +145,10 @@ impl Shape for Plane {
             prism_api::DMat3::from_cols(frame.x_axis * half, frame.y_axis * half, frame.z_axis),
             self.normal * self.offset,
         );
-        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Rectangle, place)])
+        // Mitsuba's (u, v) spans the square once; the plane's is the position in it.
+        Some(vec![
+            prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Rectangle, place).with_other_uv(),
+        ])
     }
 }
 

@@ -188,7 +188,10 @@ impl Shape for Sphere {
     fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
         let place = prism_api::DAffine3::from_translation(self.center)
             * prism_api::DAffine3::from_scale(DVec3::splat(self.radius));
-        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Sphere, place)])
+        // Mitsuba's poles are on z, Prism's (POV-Ray's spherical map) on y.
+        Some(vec![
+            prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Sphere, place).with_other_uv(),
+        ])
     }
 }
 

@@ -143,11 +143,16 @@ pub enum LightSample {
 const UNIFORM_SPHERE_PDF: f64 = 1.0 / (4.0 * std::f64::consts::PI);
 
 /// The spot cone's intensity factor in direction `cos` from its axis (see [`SpotCone`]).
+/// A radius at or beyond the falloff is a hard edge at the radius, as POV-Ray (and
+/// `classic`) light it: full intensity within it, none beyond.
 pub fn spot_factor(cone: &SpotCone, cos: f64) -> f64 {
+    if cone.cos_inner <= cone.cos_outer {
+        return if cos > cone.cos_inner { 1.0 } else { 0.0 };
+    }
     if cos <= cone.cos_outer {
         return 0.0;
     }
-    if cos >= cone.cos_inner || cone.cos_inner <= cone.cos_outer {
+    if cos >= cone.cos_inner {
         return 1.0;
     }
     let p = (cos - cone.cos_outer) / (cone.cos_inner - cone.cos_outer);
@@ -334,5 +339,25 @@ impl LightSampler {
     /// picks `direction` toward the environment.
     pub fn environment_pdf(&self, environment: &Environment, direction: DVec3) -> f64 {
         environment.pdf(direction) * self.environment_probability
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_radius_beyond_the_falloff_is_a_hard_edge_at_the_radius() {
+        let axis = DVec3::Y;
+        let cos = |degrees: f64| degrees.to_radians().cos();
+        let wide = SpotCone { axis, cos_inner: cos(60.0), cos_outer: cos(20.0) };
+        assert_eq!(spot_factor(&wide, cos(10.0)), 1.0);
+        assert_eq!(spot_factor(&wide, cos(40.0)), 1.0, "beyond the falloff, within the radius");
+        assert_eq!(spot_factor(&wide, cos(61.0)), 0.0);
+        let hard = SpotCone { axis, cos_inner: cos(30.0), cos_outer: cos(30.0) };
+        assert_eq!((spot_factor(&hard, cos(29.0)), spot_factor(&hard, cos(31.0))), (1.0, 0.0));
+        let soft = SpotCone { axis, cos_inner: cos(20.0), cos_outer: cos(40.0) };
+        let middle = spot_factor(&soft, cos(30.0));
+        assert!(middle > 0.0 && middle < 1.0 && spot_factor(&soft, cos(41.0)) == 0.0);
     }
 }
