@@ -249,8 +249,9 @@ fn textured_materials_mitsuba_cannot_express_are_errors_naming_the_key() {
         ),
     ];
     for (material, error) in cases {
-        let scene =
-            format!("[render]\nintegrator = \"path\"\n[[object]]\nshape = \"sphere\"\nmaterial = {{ {material} }}\n");
+        let scene = format!(
+            "[render]\nintegrator = \"path\"\n[[object]]\nshape = \"rectangle\"\nmaterial = {{ {material} }}\n"
+        );
         if let Some(text) = export_case(dir.path(), &scene, material, error) {
             assert!(text.contains("<texture type=\"bitmap\" name=\"reflectance\">"), "{text}");
             assert!(text.contains("value=\"t.png\""), "{text}");
@@ -350,7 +351,7 @@ fn gltf_materials_become_the_plugin_and_what_it_cannot_hold_is_an_error_naming_t
     let mesh_case = (format!("[[object]]\nshape = \"mesh\"\nfile = \"{clearcoat}\"\n"), Some("normal map"));
     let scenes = cases
         .into_iter()
-        .map(|(material, error)| (format!("[[object]]\nshape = \"sphere\"\n{material}\n"), error))
+        .map(|(material, error)| (format!("[[object]]\nshape = \"rectangle\"\n{material}\n"), error))
         .chain([mesh_case]);
     for (object, error) in scenes {
         let scene = format!("[render]\nintegrator = \"path\"\n{object}");

@@ -24,7 +24,7 @@
 //!
 //! What Mitsuba cannot express is an error naming the object, material or light: textures
 //! other than a diffuse colour image or a glTF material's, textures on a shape whose Mitsuba
-//! form has other (u, v) than Prism's (spheres, planes, discs, cylinder caps: see
+//! form has other (u, v) than Prism's (spheres, planes, boxes, discs, cylinder caps: see
 //! `MitsubaShape::same_uv`), meshes with normal maps or alpha masks, glTF alpha blending,
 //! shapes without a
 //! Mitsuba form (torus, blob, superellipsoid, cone, a disc with a hole), spheres and
@@ -444,7 +444,7 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &P
                 at("material.texture"),
                 format!(
                     "Mitsuba's {} has other texture coordinates than Prism's `{}`, so its image would land \
-                     elsewhere: textures are exported on rectangles, boxes, triangles, meshes and open cylinders",
+                     elsewhere: textures are exported on rectangles, triangles, meshes and open cylinders",
                     mitsuba_type(&part.kind),
                     shape.kind
                 ),
@@ -1298,6 +1298,7 @@ mod tests {
             ("shape = \"sphere\"", "sphere"),
             ("shape = \"plane\"", "rectangle"),
             ("shape = \"disc\"", "disk"),
+            ("shape = \"box\"", "cube"),
             ("shape = \"cylinder\"", "disk"),
             ("shape = \"cylinder\"\nopen = true\ntransform = { scale = [-1, 1, 1] }", "cylinder"),
         ] {
@@ -1305,7 +1306,7 @@ mod tests {
             assert!(error.contains(&format!("Mitsuba's {mitsuba} has other texture coordinates")), "{shape}: {error}");
             assert!(error.contains("material.texture"), "{error}");
         }
-        for shape in ["shape = \"rectangle\"", "shape = \"box\"", "shape = \"cylinder\"\nopen = true"] {
+        for shape in ["shape = \"rectangle\"", "shape = \"cylinder\"\nopen = true"] {
             let out = textured(shape).unwrap_or_else(|e| panic!("{shape}: {e}"));
             assert!(out.xml.contains("<texture type=\"bitmap\""), "{shape}: {}", out.xml);
         }

@@ -197,7 +197,8 @@ impl Shape for BoxShape {
     fn to_mitsuba(&self) -> Option<Vec<prism_api::mitsuba::MitsubaShape>> {
         let place = prism_api::DAffine3::from_translation(0.5 * (self.min + self.max))
             * prism_api::DAffine3::from_scale(0.5 * (self.max - self.min));
-        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Cube, place)])
+        // Mitsuba's cube lays its faces' (u, v) out otherwise than the box does.
+        Some(vec![prism_api::mitsuba::MitsubaShape::new(prism_api::mitsuba::MitsubaKind::Cube, place).with_other_uv()])
     }
 }
 
