@@ -2,11 +2,12 @@
 """Differential test of the `path` integrator and `prism export mitsuba` against Mitsuba 3.
 
 Writes random scenes of what the Mitsuba exporter can express (planes, spheres, boxes,
-cylinders, discs, rectangles, triangles and OBJ/PLY meshes under rotations, translations and
-scales; every `bsdf` type with its parameters, glTF metallic-roughness `pbr` materials, the
-single-lobe readings of POV-Ray finishes, emission; point, spot, parallel and area lights, a
-constant background or an HDR environment map; perspective, thin-lens and orthographic
-cameras, rolled views, box, Gaussian and Mitchell filters, path depths and Russian roulette),
+cylinders, discs, rectangles, triangles, OBJ and glTF meshes under rotations,
+translations and scales; every `bsdf` type with its parameters, image textures, glTF
+metallic-roughness `pbr` materials, the single-lobe readings of POV-Ray finishes, emission;
+point, spot, parallel and area lights, a constant background or an HDR environment map;
+perspective, thin-lens and orthographic cameras, rolled views, box, Gaussian and Mitchell
+filters, path depths and Russian roulette),
 exports each with `prism export mitsuba`, renders it K times with each renderer (different
 seeds) and judges with scripts/mitsuba_compare.py, the live Mitsuba check's statistics (a
 per-pixel Welch test with a Sidak bound, the fraction of pixels that pass, the whole image's
@@ -42,6 +43,8 @@ MESHES = [
     'assets/obj/stanford-bunny-lowres/stanford_bunny_lowres.obj',
     'assets/obj/suzanne/suzanne.obj',
 ]
+TEXTURE = 'assets/textures/tiles16.png'
+GLTF = 'assets/BoxTextured/BoxTextured.gltf'
 ENVIRONMENTS = ['assets/env/studio_256x128.hdr', 'assets/env/sunset_256x128.exr']
 METALS = ['Au', 'Ag', 'Cu', 'Al', 'Cr', 'Fe', 'Ti']
 
@@ -68,15 +71,20 @@ def roughness(r):
     return 0.0 if r.random() < 0.4 else round(r.uniform(0.03, 0.8), 3)
 
 
-def material(r, closed):
-    """A material the exporter writes lobe for lobe; glass only on closed shapes."""
+def material(r, closed, textured=False):
+    """A material the exporter writes lobe for lobe; glass only on closed shapes, images only
+    where Mitsuba's shape has Prism's texture coordinates (`textured`)."""
     kinds = ['diffuse', 'diffuse', 'conductor', 'plastic', 'pbr', 'finish_diffuse', 'finish_mirror', 'thin']
+    if textured:
+        kinds.append('textured')
     if closed:
         kinds += ['dielectric', 'dielectric', 'finish_glass']
     kind = r.choice(kinds)
     m = {}
     if kind == 'diffuse':
         m = {'color': colour(r), 'bsdf': {'type': 'diffuse'}}
+    elif kind == 'textured':
+        m = {'color': 1.0, 'texture': os.path.join(ROOT, TEXTURE), 'bsdf': {'type': 'diffuse'}}
     elif kind == 'conductor':
         bsdf = {'type': 'conductor', 'alpha': roughness(r)}
         if r.random() < 0.6:
@@ -157,13 +165,16 @@ def shape_object(r):
         o['vertices'] = [[round(r.uniform(-0.8, 0.8), 3), round(r.uniform(-0.2, 1.0), 3), round(r.uniform(-0.8, 0.8), 3)]
                          for _ in range(3)]
     else:
-        o['file'] = os.path.join(ROOT, r.choice(MESHES))
+        o['file'] = os.path.join(ROOT, r.choice(MESHES + [GLTF]))
     uniform = kind in ('sphere', 'cylinder')
     t = transform(r, uniform)
     if kind == 'mesh':
         t['scale'] = round(r.uniform(0.5, 0.9), 3)
     o['transform'] = t
-    o['material'] = material(r, closed)
+    # (The glTF box's own material is not exportable: its texture wraps differently along u
+    # and v, which Mitsuba's bitmap cannot.)
+    textured = kind in ('rectangle', 'triangle', 'mesh') or (kind == 'cylinder' and not closed)
+    o['material'] = material(r, closed, textured)
     return o
 
 
@@ -219,6 +230,13 @@ def scene(seed):
         if kind == 'spot':
             light['point_at'] = [round(r.uniform(-1, 1), 2), 0.0, round(r.uniform(-1, 1), 2)]
             light['radius'] = light['falloff'] = round(r.uniform(10, 60), 1)
+            if r.random() < 0.3:
+                # A hard edge at `radius` beyond the falloff, up to a spot wider than 90 degrees.
+                light['radius'] = round(r.uniform(light['falloff'], 120), 1)
+        if r.random() < 0.15 and kind != 'parallel':
+            # POV-Ray's alone: the path integrator and the export leave them out.
+            light['fade_distance'] = round(r.uniform(0.5, 3), 2)
+            light['fade_power'] = r.choice([1, 2])
         if kind == 'area':
             light['axis1'] = [round(r.uniform(0.5, 2), 2), 0.0, 0.0]
             light['axis2'] = [0.0, round(r.uniform(-0.5, 0.5), 2), round(r.uniform(0.5, 2), 2)]
