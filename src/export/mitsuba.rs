@@ -563,13 +563,12 @@ fn shape_xml(
     // emissive tube lit the floor 8 % too dark; `flip_normals` makes it worse), and the tube
     // is its own mirror image across the plane x = 0 of its frame: that mirror is taken out.
     let unmirrored;
-    let world_from_shape =
-        if matches!(part.kind, MitsubaKind::Cylinder { .. }) && shape.world_from_shape.matrix3.determinant() < 0.0 {
-            unmirrored = *shape.world_from_shape * DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0));
-            &unmirrored
-        } else {
-            shape.world_from_shape
-        };
+    let world_from_shape = if is_mirrored_cylinder(&part.kind, shape.world_from_shape) {
+        unmirrored = *shape.world_from_shape * DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0));
+        &unmirrored
+    } else {
+        shape.world_from_shape
+    };
     let kind = mitsuba_type(&part.kind);
     let mut mesh_file = None;
     if let MitsubaKind::Triangles(triangles) = &part.kind {
@@ -651,8 +650,12 @@ fn mitsuba_type(kind: &MitsubaKind) -> &'static str {
 /// the part says so, and it is not a cylinder written unmirrored (see [`shape_xml`]), whose
 /// angle then runs the other way.
 fn same_uv(part: &MitsubaShape, world_from_object: &DAffine3) -> bool {
-    let mirrored = (*world_from_object * part.object_from_shape).matrix3.determinant() < 0.0;
-    part.same_uv && !(mirrored && matches!(part.kind, MitsubaKind::Cylinder { .. }))
+    part.same_uv && !is_mirrored_cylinder(&part.kind, &(*world_from_object * part.object_from_shape))
+}
+
+/// A cylinder placed by a mirroring `world_from_shape`, which [`shape_xml`] writes unmirrored.
+fn is_mirrored_cylinder(kind: &MitsubaKind, world_from_shape: &DAffine3) -> bool {
+    matches!(kind, MitsubaKind::Cylinder { .. }) && world_from_shape.matrix3.determinant() < 0.0
 }
 
 /// True when Mitsuba turns the shape's normal inward (or to its back) under a mirroring
@@ -780,13 +783,12 @@ fn bsdf_xml(
         Lobe::Bsdf { bsdf, .. } => !matches!(bsdf, Bsdf::Plastic { .. }),
     };
     let renormalise = absorbs && total > 0.0 && lobes.iter().all(|(_, lobe)| tintable(lobe));
+    // Renormalised, each lobe's share of the blend is divided by the sum and its tint
+    // multiplied by it.
+    let (divisor, tint) = if renormalise { (total, total) } else { (1.0, 1.0) };
     let mut parts = Vec::new();
     for ((weight, lobe), scale) in lobes.iter().zip(&scales) {
-        if renormalise {
-            parts.push((scale / total, lobe_xml(lobe, *weight / scale * total)?));
-        } else {
-            parts.push((*scale, lobe_xml(lobe, *weight / scale)?));
-        }
+        parts.push((scale / divisor, lobe_xml(lobe, *weight / scale * tint)?));
     }
     if absorbs && !renormalise {
         parts.push((1.0 - total, "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0, 0, 0\"/></bsdf>".into()));
