@@ -120,30 +120,58 @@ fn cube_of(q: DVec3) -> [i64; 3] {
 /// The 81 cell points searched around cube `cube`, in [`CUBE_OFFSETS`]' order.
 type CubeCells = [DVec3; 81];
 
-thread_local! {
-    /// The cells of the cube the last lookup on this thread fell in (POV-Ray keeps a
-    /// per-thread cache of cubes too): neighbouring shading points mostly share a cube, and
-    /// the points are a pure function of the cube, so the cache changes no result.
-    static LAST_CUBE: RefCell<Option<([i64; 3], Box<CubeCells>)>> = const { RefCell::new(None) };
+/// How many cubes each thread keeps the cells of: a material may read two cell fields at
+/// once (a `facets` normal beside a `crackle` one, patterns of different scales), whose
+/// lookups would evict each other from a single entry on every call.
+const CACHED_CUBES: usize = 4;
+
+/// The cells of the cubes of recent lookups on one thread, replaced in turn.
+#[derive(Default)]
+struct CubeCache {
+    entries: Vec<([i64; 3], Box<CubeCells>)>,
+    next: usize,
 }
 
-/// Calls `f` with the 81 cell points around `cube`, computing them only when the last
-/// lookup on this thread was in another cube.
-fn with_cells<T>(cube: [i64; 3], f: impl FnOnce(&CubeCells) -> T) -> T {
-    LAST_CUBE.with(|last| {
-        let mut last = last.borrow_mut();
-        match &mut *last {
-            Some((at, cells)) if *at == cube => {}
-            slot => {
-                let mut cells = Box::new([DVec3::ZERO; 81]);
-                for (cell, [dx, dy, dz]) in cells.iter_mut().zip(CUBE_OFFSETS.iter()) {
-                    *cell = cell_point(cube[0] + dx, cube[1] + dy, cube[2] + dz);
-                }
-                *slot = Some((cube, cells));
-            }
+impl CubeCache {
+    /// The index of `cube`'s cells, computing them into the oldest entry when absent.
+    fn find_or_fill(&mut self, cube: [i64; 3]) -> usize {
+        if let Some(i) = self.entries.iter().position(|(at, _)| *at == cube) {
+            return i;
         }
-        let (_, cells) = last.as_ref().expect("filled above");
-        f(cells)
+        let fill = |cells: &mut CubeCells| {
+            for (cell, [dx, dy, dz]) in cells.iter_mut().zip(CUBE_OFFSETS.iter()) {
+                *cell = cell_point(cube[0] + dx, cube[1] + dy, cube[2] + dz);
+            }
+        };
+        if self.entries.len() < CACHED_CUBES {
+            let mut cells = Box::new([DVec3::ZERO; 81]);
+            fill(&mut cells);
+            self.entries.push((cube, cells));
+            return self.entries.len() - 1;
+        }
+        let i = self.next;
+        self.next = (i + 1) % CACHED_CUBES;
+        let (at, cells) = &mut self.entries[i];
+        *at = cube;
+        fill(cells);
+        i
+    }
+}
+
+thread_local! {
+    /// The cells of the cubes recent lookups on this thread fell in (POV-Ray keeps a
+    /// per-thread cache of cubes too): neighbouring shading points mostly share a cube, and
+    /// the points are a pure function of the cube, so the cache changes no result.
+    static RECENT_CUBES: RefCell<CubeCache> = RefCell::new(CubeCache::default());
+}
+
+/// Calls `f` with the 81 cell points around `cube`, computing them only when no recent
+/// lookup on this thread was in that cube.
+fn with_cells<T>(cube: [i64; 3], f: impl FnOnce(&CubeCells) -> T) -> T {
+    RECENT_CUBES.with(|cache| {
+        let mut cache = cache.borrow_mut();
+        let i = cache.find_or_fill(cube);
+        f(&cache.entries[i].1)
     })
 }
 
