@@ -229,6 +229,42 @@ fn negative_emission_emits_nothing_under_path() {
     assert!(negative.pixels.iter().any(|p| p[0] > 0.0), "the light's red reaches the image");
 }
 
+/// A diffuse floor of albedo 0.5 under a uniform environment of radiance 1, seen straight
+/// down by an orthographic camera, and lit from straight above by `lights` parallel lights
+/// that sum to an irradiance of 1 W/m^2.
+fn floor_under_sky_and_parallel_lights(lights: usize) -> Film {
+    let mut text = String::from(
+        "[render]\nwidth = 16\nheight = 16\nsamples = 4\nintegrator = \"path\"\nmax_depth = 2\n\
+         [camera]\nprojection = \"orthographic\"\nposition = [0, 2, 0]\nlook_at = [0, 0, 0]\n\
+         up = [0, 0, -1]\nview_height = 2\n\
+         [world]\nbackground = 1.0\n\
+         [[object]]\nshape = \"plane\"\nnormal = [0, 1, 0]\nmaterial = { color = 0.5, bsdf = { type = \"diffuse\" } }\n",
+    );
+    for _ in 0..lights {
+        text +=
+            &format!("[[light]]\nkind = \"parallel\"\nposition = [0, 10, 0]\nintensity = {}\n", 1.0 / lights as f64);
+    }
+    render_text(Box::leak(text.into_boxed_str()), 2)
+}
+
+#[test]
+fn point_spot_and_parallel_lights_are_sampled_at_every_bounce() {
+    // L = albedo (E / pi + L_sky): 0.5 / pi + 0.5.
+    let expected = 0.5 / std::f64::consts::PI + 0.5;
+    let film = floor_under_sky_and_parallel_lights(1);
+    assert_mean(&film, [expected; 3], "one parallel light and the sky");
+    // The light's share is the same in every sample, so only the sky's estimate is noisy.
+    // Chosen by power against the sky instead (7 % of the samples), the light left the
+    // pixels' standard deviation at 37 % of their mean at 4 samples; sampled always, 6 %.
+    let (mean, error) = mean_and_error(&film, 0);
+    let spread = error * (film.pixels.len() as f64).sqrt() / mean;
+    assert!(spread < 0.15, "pixels spread by {spread} of their mean: the light is not sampled at every bounce");
+    // Beyond the limit the lights are chosen among, still without bias.
+    let many =
+        floor_under_sky_and_parallel_lights(prism::render::integrators::path::light_sampler::EVERY_SOURCE_LIMIT + 1);
+    assert_mean(&many, [expected; 3], "many parallel lights and the sky");
+}
+
 #[test]
 fn the_image_is_the_same_for_any_thread_count() {
     const SCENE: &str = "[render]\nwidth = 40\nheight = 30\nsamples = 4\nmax_depth = 6\nintegrator = \"path\"\n\

@@ -1,7 +1,11 @@
-//! Light selection for next-event estimation: one discrete distribution over every light of
-//! the scene (point, spot, directional and area-grid sources, each emissive primitive, the
-//! environment) in proportion to an estimate of its power, and the sampling of a direction
-//! toward the chosen light.
+//! Light selection for next-event estimation. Point, spot, directional and area-grid sources
+//! are few and cost one shadow ray each, so every one of them is sampled at every bounce
+//! (up to [`EVERY_SOURCE_LIMIT`] of them); the emissive primitives and the environment, whose
+//! samples are directions drawn over their extent, share one discrete distribution in
+//! proportion to an estimate of their power, from which one is chosen. Choosing among all
+//! lights by power instead starves a spot beside a bright environment: a 40-degree spot got
+//! 3 % of the samples under a studio map, and the patch it lit came out speckled where
+//! Mitsuba's is smooth. Beyond the limit the sources join the distribution.
 
 use glam::{DVec2, DVec3};
 
@@ -75,6 +79,11 @@ impl Environment {
     }
 }
 
+/// Scenes with at most this many point, spot, directional and area-grid sources sample each
+/// of them at every bounce; with more, one light is chosen among all (each shadow ray costs
+/// as much as the whole choice).
+pub const EVERY_SOURCE_LIMIT: usize = 32;
+
 /// One light in the selection distribution.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LightRef {
@@ -86,9 +95,14 @@ pub enum LightRef {
     Environment,
 }
 
-/// A discrete distribution over the scene's lights, proportional to their power.
+/// The sources sampled at every bounce, and a discrete distribution over the other lights,
+/// proportional to their power.
 #[derive(Clone, Debug)]
 pub struct LightSampler {
+    /// Indices of the sources sampled at every bounce (all of them, or none beyond
+    /// [`EVERY_SOURCE_LIMIT`]).
+    every_source: Vec<u32>,
+    /// The lights of the distribution.
     lights: Vec<LightRef>,
     /// Cumulative probabilities, `cdf[i]` = P(index <= i); the last is 1.
     cdf: Vec<f64>,
@@ -176,7 +190,10 @@ impl LightSampler {
         let disc = pi * scene_radius * scene_radius;
         let mut lights = Vec::new();
         let mut power = Vec::new();
-        for (i, light) in scene.lights.sources.iter().enumerate() {
+        let sources = &scene.lights.sources;
+        let every_source: Vec<u32> =
+            if sources.len() <= EVERY_SOURCE_LIMIT { (0..sources.len() as u32).collect() } else { Vec::new() };
+        for (i, light) in sources.iter().enumerate().filter(|_| every_source.is_empty()) {
             let p = match &light.source {
                 LightSource::Point(l) => 4.0 * pi * luminance(l.intensity),
                 LightSource::Spot(l) => {
@@ -236,12 +253,12 @@ impl LightSampler {
                 LightRef::Source(_) => {}
             }
         }
-        Self { lights, cdf, probability, emitter_probability, environment_probability }
+        Self { every_source, lights, cdf, probability, emitter_probability, environment_probability }
     }
 
-    /// True when the scene has no light at all.
-    pub fn is_empty(&self) -> bool {
-        self.lights.is_empty()
+    /// The sources sampled at every bounce, each with [`LightSampler::sample_source`].
+    pub fn every_source(&self) -> &[u32] {
+        &self.every_source
     }
 
     /// The light chosen by `u` and its probability.
@@ -274,45 +291,7 @@ impl LightSampler {
             return None;
         }
         match light {
-            LightRef::Source(i) => {
-                let (position, intensity) = match &scene.lights.sources[i as usize].source {
-                    LightSource::Point(l) => (l.position, l.intensity),
-                    LightSource::Spot(l) => {
-                        let d = (point - l.position).normalize_or_zero();
-                        (l.position, l.intensity * spot_factor(&l.cone, d.dot(l.cone.axis)))
-                    }
-                    LightSource::Directional(l) => {
-                        return Some(LightSample::Delta {
-                            direction: -l.direction,
-                            distance: f64::INFINITY,
-                            irradiance: l.irradiance / probability,
-                        });
-                    }
-                    LightSource::AreaGrid(l) => {
-                        // POV-Ray's grid as its points: one chosen uniformly (with its share
-                        // of the grid's intensity times the count, over its probability).
-                        let (n1, n2) = (l.grid.size1.max(1), l.grid.size2.max(1));
-                        let i = ((u.x * f64::from(n1)) as u32).min(n1 - 1);
-                        let j = ((u.y * f64::from(n2)) as u32).min(n2 - 1);
-                        let at =
-                            |index: u32, n: u32| if n > 1 { f64::from(index) / f64::from(n - 1) - 0.5 } else { 0.0 };
-                        let position = l.centre + l.grid.axis1 * at(i, n1) + l.grid.axis2 * at(j, n2);
-                        let d = (point - position).normalize_or_zero();
-                        let cone = l.cone.as_ref().map_or(1.0, |c| spot_factor(c, d.dot(c.axis)));
-                        (position, l.intensity * cone)
-                    }
-                };
-                let to_light = position - point;
-                let distance = to_light.length();
-                if distance.is_nan() || distance <= 0.0 || intensity.max_element() <= 0.0 {
-                    return None;
-                }
-                Some(LightSample::Delta {
-                    direction: to_light / distance,
-                    distance,
-                    irradiance: intensity / (distance * distance * probability),
-                })
-            }
+            LightRef::Source(i) => Self::sample_source(scene, i, point, u, probability),
             LightRef::Emitter(index) => {
                 let primitive = &scene.primitives[index as usize];
                 let reference = primitive.object_point(point);
@@ -333,6 +312,54 @@ impl LightSampler {
                 (pdf > 0.0).then_some(LightSample::Environment { direction, radiance, pdf: pdf * probability })
             }
         }
+    }
+
+    /// A sample of source `index` (of `scene.lights.sources`) from `point`, its arrival
+    /// divided by `probability`, the chance it was chosen (1 when every source is sampled).
+    /// `u` picks the point of an area grid.
+    pub fn sample_source(
+        scene: &RenderScene,
+        index: u32,
+        point: DVec3,
+        u: DVec2,
+        probability: f64,
+    ) -> Option<LightSample> {
+        let (position, intensity) = match &scene.lights.sources[index as usize].source {
+            LightSource::Point(l) => (l.position, l.intensity),
+            LightSource::Spot(l) => {
+                let d = (point - l.position).normalize_or_zero();
+                (l.position, l.intensity * spot_factor(&l.cone, d.dot(l.cone.axis)))
+            }
+            LightSource::Directional(l) => {
+                return Some(LightSample::Delta {
+                    direction: -l.direction,
+                    distance: f64::INFINITY,
+                    irradiance: l.irradiance / probability,
+                });
+            }
+            LightSource::AreaGrid(l) => {
+                // POV-Ray's grid as its points: one chosen uniformly (with its share
+                // of the grid's intensity times the count, over its probability).
+                let (n1, n2) = (l.grid.size1.max(1), l.grid.size2.max(1));
+                let i = ((u.x * f64::from(n1)) as u32).min(n1 - 1);
+                let j = ((u.y * f64::from(n2)) as u32).min(n2 - 1);
+                let at = |index: u32, n: u32| if n > 1 { f64::from(index) / f64::from(n - 1) - 0.5 } else { 0.0 };
+                let position = l.centre + l.grid.axis1 * at(i, n1) + l.grid.axis2 * at(j, n2);
+                let d = (point - position).normalize_or_zero();
+                let cone = l.cone.as_ref().map_or(1.0, |c| spot_factor(c, d.dot(c.axis)));
+                (position, l.intensity * cone)
+            }
+        };
+        let to_light = position - point;
+        let distance = to_light.length();
+        if distance.is_nan() || distance <= 0.0 || intensity.max_element() <= 0.0 {
+            return None;
+        }
+        Some(LightSample::Delta {
+            direction: to_light / distance,
+            distance,
+            irradiance: intensity / (distance * distance * probability),
+        })
     }
 
     /// The solid-angle density, including selection, with which [`LightSampler::sample`]

@@ -53,6 +53,18 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
     if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }
 
+/// The stratified pair `u` shifted by the `k`-th point of the R2 sequence, modulo 1 (a
+/// Cranley-Patterson rotation): each source sampled at a bounce gets points as well spread
+/// over the pixel's samples as `u`'s, not the same ones.
+fn rotated(u: DVec2, k: usize) -> DVec2 {
+    // 1 / g and 1 / g^2 for the plastic number g, the root of x^3 = x + 1.
+    const STEP: DVec2 = DVec2::new(0.754_877_666_246_692_8, 0.569_840_290_998_053_2);
+    if k == 0 {
+        return u;
+    }
+    (u + STEP * k as f64).fract()
+}
+
 /// A hit with what the path needs from it, in world space.
 struct Vertex {
     point: DVec3,
@@ -234,8 +246,16 @@ impl<'a> Path<'a> {
             // same reference point.
             let reference = Self::offset_origin(&vertex, -direction);
 
-            // Next-event estimation.
+            // Next-event estimation: every source, then one of the other lights.
             if scatter.has_smooth_lobe() {
+                let u_source = stream.stratified2(base + 1);
+                for (k, &source) in self.lights.every_source().iter().enumerate() {
+                    let u = rotated(u_source, k);
+                    if let Some(sample) = LightSampler::sample_source(scene, source, reference, u, 1.0) {
+                        rays += 1;
+                        radiance += throughput * self.direct(&vertex, &frame, wo, scatter, sample);
+                    }
+                }
                 let sample = self.lights.sample(
                     scene,
                     &self.environment,
