@@ -229,6 +229,22 @@ fn negative_emission_emits_nothing_under_path() {
     assert!(negative.pixels.iter().any(|p| p[0] > 0.0), "the light's red reaches the image");
 }
 
+#[test]
+fn an_emitting_glass_sphere_does_not_light_itself() {
+    // Radiance 1 over black: a convex emitter cannot light itself, and its inside (which shows
+    // the emitting front of no surface) adds nothing, so the sphere is exactly 1 wherever it is
+    // seen. Light sampled from just above the surface once found the sphere's own outside below
+    // it through the rough transmission lobe: 1.0226.
+    let film = render_text(
+        "[render]\nwidth = 8\nheight = 8\nsamples = 64\nmax_depth = 12\nintegrator = \"path\"\n\
+         [camera]\nposition = [0, 0, 4]\nvfov = 4\n\
+         [[object]]\nshape = \"sphere\"\nradius = 1.0\n\
+         material = { bsdf = { type = \"dielectric\", ior = 1.5, alpha = 0.3 }, emission = 1.0 }\n",
+        2,
+    );
+    assert_mean(&film, [1.0; 3], "emitting rough glass");
+}
+
 /// A diffuse floor of albedo 0.5 under a uniform environment of radiance 1, seen straight
 /// down by an orthographic camera, and lit from straight above by `lights` parallel lights
 /// that sum to an irradiance of 1 W/m^2.

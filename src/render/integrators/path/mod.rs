@@ -342,12 +342,17 @@ impl<'a> Path<'a> {
                 }
                 let material =
                     &self.materials[self.scene.primitives[primitive as usize].material_at(&hit.hit) as usize];
+                // A light sampled from the vertex's own primitive is asked at the hit itself:
+                // sampled from just off the surface on the viewer's side, an emitting glass
+                // sphere finds its own outside below the vertex, and a transmitted ray from
+                // the other side meets its far wall from within instead (which shows its
+                // back). Elsewhere the sampled point is the nearest crossing the ray hit, and
+                // its normal tells the side.
+                let own = primitive == vertex.primitive;
                 let emitted = match material.uniform_emission() {
-                    // The sampled point is the nearest crossing the ray hit: its normal tells
-                    // the side.
-                    Some(radiance) if material.emits_both_sides() || normal.dot(direction) < 0.0 => radiance,
-                    Some(_) => return DVec3::ZERO,
-                    None => self.emitted(&self.vertex(&ray, &hit), -direction),
+                    Some(radiance) if !own && (material.emits_both_sides() || normal.dot(direction) < 0.0) => radiance,
+                    Some(_) if !own => return DVec3::ZERO,
+                    _ => self.emitted(&self.vertex(&ray, &hit), -direction),
                 };
                 let weight = power_heuristic(pdf, scatter.pdf(wo, wi));
                 f * emitted * (weight / pdf)
