@@ -136,9 +136,6 @@ pub enum LightSample {
         primitive: u32,
         /// Unit direction from the shaded point.
         direction: DVec3,
-        /// Unit outward normal of the emitter at the sampled point (world space), which
-        /// tells the side a uniform emitter shows without a look at the hit.
-        normal: DVec3,
         /// Solid-angle density including the selection probability.
         pdf: f64,
     },
@@ -303,7 +300,6 @@ impl LightSampler {
                 (distance > 0.0 && pdf > 0.0 && pdf.is_finite()).then_some(LightSample::Emitter {
                     primitive: index,
                     direction: to_light / distance,
-                    normal: primitive.world_normal(sample.normal),
                     pdf,
                 })
             }

@@ -321,7 +321,7 @@ impl<'a> Path<'a> {
                 }
                 f * irradiance
             }
-            LightSample::Emitter { primitive, direction, normal, pdf } => {
+            LightSample::Emitter { primitive, direction, pdf } => {
                 let wi = frame.to_local(direction);
                 let f = scatter.eval(wo, wi);
                 if f.max_element() <= 0.0 {
@@ -342,17 +342,21 @@ impl<'a> Path<'a> {
                 }
                 let material =
                     &self.materials[self.scene.primitives[primitive as usize].material_at(&hit.hit) as usize];
-                // A light sampled from the vertex's own primitive is asked at the hit itself:
-                // sampled from just off the surface on the viewer's side, an emitting glass
-                // sphere finds its own outside below the vertex, and a transmitted ray from
-                // the other side meets its far wall from within instead (which shows its
-                // back). Elsewhere the sampled point is the nearest crossing the ray hit, and
-                // its normal tells the side.
-                let own = primitive == vertex.primitive;
+                // The side is read where the ray crossed the emitter, not at the sampled point:
+                // a non-convex emitter (or the vertex's own surface, which an emitting glass
+                // sphere sampled from just above it finds below the vertex through the
+                // transmission lobe) can be crossed first elsewhere, on its back.
                 let emitted = match material.uniform_emission() {
-                    Some(radiance) if !own && (material.emits_both_sides() || normal.dot(direction) < 0.0) => radiance,
-                    Some(_) if !own => return DVec3::ZERO,
-                    _ => self.emitted(&self.vertex(&ray, &hit), -direction),
+                    Some(radiance) if material.emits_both_sides() => radiance,
+                    Some(radiance) => {
+                        let p = &self.scene.primitives[primitive as usize];
+                        let crossed = p.shape.hit_point(&p.object_ray_of(&ray), &hit.hit);
+                        if p.world_normal(crossed.normal).dot(direction) >= 0.0 {
+                            return DVec3::ZERO;
+                        }
+                        radiance
+                    }
+                    None => self.emitted(&self.vertex(&ray, &hit), -direction),
                 };
                 let weight = power_heuristic(pdf, scatter.pdf(wo, wi));
                 f * emitted * (weight / pdf)
