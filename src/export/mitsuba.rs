@@ -785,10 +785,10 @@ fn bsdf_xml(
     let renormalise = absorbs && total > 0.0 && lobes.iter().all(|(_, lobe)| tintable(lobe));
     // Renormalised, each lobe's share of the blend is divided by the sum and its tint
     // multiplied by it.
-    let (divisor, tint) = if renormalise { (total, total) } else { (1.0, 1.0) };
+    let sum = if renormalise { total } else { 1.0 };
     let mut parts = Vec::new();
     for ((weight, lobe), scale) in lobes.iter().zip(&scales) {
-        parts.push((scale / divisor, lobe_xml(lobe, *weight / scale * tint)?));
+        parts.push((scale / sum, lobe_xml(lobe, *weight / scale * sum)?));
     }
     if absorbs && !renormalise {
         parts.push((1.0 - total, "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0, 0, 0\"/></bsdf>".into()));

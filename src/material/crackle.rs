@@ -126,7 +126,6 @@ type CubeCells = [DVec3; 81];
 const CACHED_CUBES: usize = 4;
 
 /// The cells of the cubes of recent lookups on one thread, replaced in turn.
-#[derive(Default)]
 struct CubeCache {
     entries: Vec<([i64; 3], Box<CubeCells>)>,
     next: usize,
@@ -162,7 +161,7 @@ thread_local! {
     /// The cells of the cubes recent lookups on this thread fell in (POV-Ray keeps a
     /// per-thread cache of cubes too): neighbouring shading points mostly share a cube, and
     /// the points are a pure function of the cube, so the cache changes no result.
-    static RECENT_CUBES: RefCell<CubeCache> = RefCell::new(CubeCache::default());
+    static RECENT_CUBES: RefCell<CubeCache> = const { RefCell::new(CubeCache { entries: Vec::new(), next: 0 }) };
 }
 
 /// Calls `f` with the 81 cell points around `cube`, computing them only when no recent

@@ -99,9 +99,9 @@ pub enum LightRef {
 /// proportional to their power.
 #[derive(Clone, Debug)]
 pub struct LightSampler {
-    /// Indices of the sources sampled at every bounce (all of them, or none beyond
-    /// [`EVERY_SOURCE_LIMIT`]).
-    every_source: Vec<u32>,
+    /// How many sources are sampled at every bounce: all of them, or none beyond
+    /// [`EVERY_SOURCE_LIMIT`] (they are then in the distribution).
+    every_source: u32,
     /// The lights of the distribution.
     lights: Vec<LightRef>,
     /// Cumulative probabilities, `cdf[i]` = P(index <= i); the last is 1.
@@ -188,9 +188,8 @@ impl LightSampler {
         let mut lights = Vec::new();
         let mut power = Vec::new();
         let sources = &scene.lights.sources;
-        let every_source: Vec<u32> =
-            if sources.len() <= EVERY_SOURCE_LIMIT { (0..sources.len() as u32).collect() } else { Vec::new() };
-        for (i, light) in sources.iter().enumerate().filter(|_| every_source.is_empty()) {
+        let every_source = if sources.len() <= EVERY_SOURCE_LIMIT { sources.len() as u32 } else { 0 };
+        for (i, light) in sources.iter().enumerate().skip(every_source as usize) {
             let p = match &light.source {
                 LightSource::Point(l) => 4.0 * pi * luminance(l.intensity),
                 LightSource::Spot(l) => {
@@ -253,9 +252,10 @@ impl LightSampler {
         Self { every_source, lights, cdf, probability, emitter_probability, environment_probability }
     }
 
-    /// The sources sampled at every bounce, each with [`LightSampler::sample_source`].
-    pub fn every_source(&self) -> &[u32] {
-        &self.every_source
+    /// The indices of the sources sampled at every bounce, each with
+    /// [`LightSampler::sample_source`].
+    pub fn every_source(&self) -> std::ops::Range<u32> {
+        0..self.every_source
     }
 
     /// The light chosen by `u` and its probability.

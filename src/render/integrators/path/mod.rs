@@ -56,13 +56,11 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 /// The stratified pair `u` shifted by the `k`-th point of the R2 sequence, modulo 1 (a
 /// Cranley-Patterson rotation): each source sampled at a bounce gets points as well spread
 /// over the pixel's samples as `u`'s, not the same ones.
-fn rotated(u: DVec2, k: usize) -> DVec2 {
+fn rotated(u: DVec2, k: u32) -> DVec2 {
     // 1 / g and 1 / g^2 for the plastic number g, the root of x^3 = x + 1.
     const STEP: DVec2 = DVec2::new(0.754_877_666_246_692_8, 0.569_840_290_998_053_2);
-    if k == 0 {
-        return u;
-    }
-    (u + STEP * k as f64).fract()
+    // k = 0 leaves u as it is (u lies in [0, 1)).
+    (u + STEP * f64::from(k)).fract()
 }
 
 /// A hit with what the path needs from it, in world space.
@@ -249,8 +247,8 @@ impl<'a> Path<'a> {
             // Next-event estimation: every source, then one of the other lights.
             if scatter.has_smooth_lobe() {
                 let u_source = stream.stratified2(base + 1);
-                for (k, &source) in self.lights.every_source().iter().enumerate() {
-                    let u = rotated(u_source, k);
+                for source in self.lights.every_source() {
+                    let u = rotated(u_source, source);
                     if let Some(sample) = LightSampler::sample_source(scene, source, reference, u, 1.0) {
                         rays += 1;
                         radiance += throughput * self.direct(&vertex, &frame, wo, scatter, sample);
