@@ -14,7 +14,7 @@ use crate::accel::primitive::{Primitive, leaf_of};
 use crate::accel::scene_bvh::{ConvexHull, Gathered};
 use crate::gamma::GammaCurve;
 use crate::geometry::csg::CsgShape;
-use crate::material::pov_view::{PovFinish, PovView, ShadedFinish};
+use crate::material::pov_view::{Pigment, PovFinish, PovView, ShadedFinish};
 use crate::render::extract::RenderScene;
 use crate::render::integrators::{FirstHit, Integrator, PixelSample};
 use crate::render::lights::AreaGrid;
@@ -265,7 +265,7 @@ impl<'a> Classic<'a> {
         cosine: f64,
     ) -> ShadedFinish<'m> {
         let Some(surface) = textured.filter(|_| view.varies_over_surface()) else {
-            return ShadedFinish { finish: std::borrow::Cow::Borrowed(&view.base), emitted: DVec3::ZERO };
+            return ShadedFinish::uniform(&view.base);
         };
         let area_scale = primitive.area_scale(surface.normal);
         // A pixel's ray cone widens with distance; an orthographic pixel is a fixed width.
@@ -359,11 +359,12 @@ impl<'a> Classic<'a> {
             };
             let shaded = self.shade(layer, primitive, textured.as_ref(), distance, n.dot(d) / d.length());
             let material: &PovFinish = &shaded.finish;
+            let pigment = &shaded.pigment;
             if index == 0 {
                 top_normal = n;
                 if level == 1 && state.first_hit.is_none() {
                     state.first_hit = Some(FirstHit {
-                        albedo: material.finish.color.0,
+                        albedo: pigment.color,
                         normal: n,
                         position: point,
                         depth: distance,
@@ -392,8 +393,7 @@ impl<'a> Classic<'a> {
                     (rf, min.max_element().max(max.max_element()))
                 };
                 if reflection.metallic != 0.0 {
-                    rf *= DVec3::ONE
-                        + reflection.metallic * (1.0 - metallic_fresnel(c)) * (material.finish.color.0 - DVec3::ONE);
+                    rf *= DVec3::ONE + reflection.metallic * (1.0 - metallic_fresnel(c)) * (pigment.color - DVec3::ONE);
                 }
                 reflections.push(LayerReflection {
                     normal: n,
@@ -402,14 +402,14 @@ impl<'a> Classic<'a> {
                     exponent: reflection.exponent,
                 });
             }
-            let lit = self.local_shading(point, n, d, material, &interiors, &mut shadows, state);
+            let lit = self.local_shading(point, n, d, &shaded, &interiors, &mut shadows, state);
             colour += filter * (lit + shaded.emitted);
-            if !material.is_transparent() {
+            if !pigment.is_transparent() {
                 // Nothing below shows through, and nothing refracts.
                 trans = 0.0;
                 break;
             }
-            filter *= material.finish.color.0 * material.finish.filter + DVec3::splat(material.finish.transmit);
+            filter *= pigment.color * pigment.filter + DVec3::splat(pigment.transmit);
             if material.finish.conserve_energy {
                 filter *= (DVec3::ONE - rf).min(DVec3::ONE);
             }
@@ -483,14 +483,15 @@ impl<'a> Classic<'a> {
         point: DVec3,
         n: DVec3,
         d: DVec3,
-        m: &PovFinish,
+        shaded: &ShadedFinish,
         interiors: &Interiors,
         shadows: &mut [Option<DVec3>],
         state: &mut PathState,
     ) -> DVec3 {
         let scene = self.scene;
-        let pigment = m.finish.color.0;
-        let opacity = m.opacity();
+        let m: &PovFinish = &shaded.finish;
+        let pigment = shaded.pigment.color;
+        let opacity = shaded.pigment.opacity();
         let mut colour = pigment * opacity * (m.finish.ambient.0 * scene.environment.ambient_light.0 + m.emission.0);
         // POV-Ray lights only the positive terms (ComputeDiffuseColour, ComputeOneDiffuseLight):
         // a negative diffuse, phong or specular adds nothing rather than darkening.
@@ -540,7 +541,7 @@ impl<'a> Classic<'a> {
                     continue;
                 }
             }
-            let surface = LitSurface { point, normal: n, view: d, mirror, finish: m };
+            let surface = LitSurface { point, normal: n, view: d, mirror, finish: m, pigment: &shaded.pigment };
             colour += match area_illumination {
                 Some(grid) => surface.area_illuminated(light, grid, l, e, state),
                 None => surface.lit(l, n_dot_l, e, !light.shadowless),
@@ -784,6 +785,8 @@ struct LitSurface<'m> {
     /// `view` mirrored about `normal` (Phong's reflection vector).
     mirror: DVec3,
     finish: &'m PovFinish,
+    /// The pigment at the point (the finish's own colour, filter and transmit are not read).
+    pigment: &'m Pigment,
 }
 
 impl LitSurface<'_> {
@@ -792,11 +795,11 @@ impl LitSurface<'_> {
     /// with `n_dot_l` > 0.
     fn lit(&self, l: DVec3, n_dot_l: f64, e: DVec3, highlights: bool) -> DVec3 {
         let m = self.finish;
-        let pigment = m.finish.color.0;
+        let pigment = self.pigment.color;
         let mut colour = DVec3::ZERO;
         if m.finish.diffuse > 0.0 {
             let cosine = if m.finish.brilliance == 1.0 { n_dot_l } else { pow(n_dot_l, m.finish.brilliance) };
-            colour += m.finish.diffuse * m.opacity() * cosine * pigment * e;
+            colour += m.finish.diffuse * self.pigment.opacity() * cosine * pigment * e;
         }
         if !highlights {
             return colour;
