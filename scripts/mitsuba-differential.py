@@ -178,6 +178,33 @@ def shape_object(r):
     return o
 
 
+def lamps(seed):
+    """Two to six small emitters (spheres, discs, boxes) scattered near the scene and its
+    floor, from a random stream of their own: `--lamps` adds them to a seed's scene to
+    exercise the choice among several emitters and the environment at each point."""
+    r = random.Random(seed * 7919 + 17)
+    lines = []
+    for _ in range(r.randint(2, 6)):
+        kind = r.choice(['sphere', 'sphere', 'disc', 'box'])
+        at = [round(r.uniform(-3, 3), 2), round(r.uniform(0.1, 2.5), 2), round(r.uniform(-3, 2), 2)]
+        size = round(r.uniform(0.03, 0.25), 3)
+        o = {'shape': kind}
+        if kind == 'sphere':
+            o['radius'] = size
+        elif kind == 'disc':
+            o['radius'] = size
+            o['normal'] = [round(r.uniform(-1, 1), 2), -1.0, round(r.uniform(-1, 1), 2)]
+        else:
+            o['min'] = [-size] * 3
+            o['max'] = [size] * 3
+        o['transform'] = {'translate': at}
+        o['material'] = {'color': 0.0, 'bsdf': {'type': 'diffuse'},
+                         'emission': [round(v * r.uniform(1, 40), 3) for v in colour(r, 0.3, 1.0)]}
+        lines.append('[[object]]')
+        lines += ['%s = %s' % (k, value(v)) for k, v in o.items()]
+    return '\n'.join(lines) + '\n'
+
+
 def scene(seed):
     r = random.Random(seed)
     lines = ['# mitsuba differential scene %d' % seed]
@@ -302,6 +329,7 @@ def main():
     ap.add_argument('end', type=int)
     ap.add_argument('--k', type=int, default=16)
     ap.add_argument('--spp', type=int, default=32)
+    ap.add_argument('--lamps', action='store_true', help='add small emitters to each scene (see `lamps`)')
     args = ap.parse_args()
     for seed in range(args.first, args.end):
         folder = os.path.join(args.out, 's%d' % seed)
@@ -309,7 +337,7 @@ def main():
         toml = os.path.join(folder, 'scene.toml')
         xml = os.path.join(folder, 'scene.xml')
         with open(toml, 'w') as f:
-            f.write(scene(seed))
+            f.write(scene(seed) + (lamps(seed) if args.lamps else ''))
         exported = run([PRISM, 'export', 'mitsuba', toml, '-o', xml])
         if exported.returncode != 0:
             print(seed, 'export-error', exported.stderr.strip().replace('\n', ' | ')[:300], flush=True)

@@ -281,6 +281,61 @@ fn point_spot_and_parallel_lights_are_sampled_at_every_bounce() {
     assert_mean(&many, [expected; 3], "many parallel lights and the sky");
 }
 
+/// Eight small lamps in a row over a floor: each floor point is lit mostly by the lamp
+/// above it. Chosen in proportion to what each can give the point, the lamps light every
+/// pixel as the formula says with little noise; chosen by power alone (an eighth of the
+/// samples to each lamp everywhere), the pixels spread by 80 % of it at 4 samples (now 3 %).
+#[test]
+fn lamps_are_chosen_by_what_they_give_the_point() {
+    let (albedo, radiance, radius, height) = (0.5, 100.0, 0.1, 0.6);
+    let lamps: Vec<f64> = (0..8).map(|i| -10.5 + 3.0 * f64::from(i)).collect();
+    let mut text = String::from(
+        "[render]\nwidth = 96\nheight = 12\nsamples = 4\nintegrator = \"path\"\nmax_depth = 2\n\
+         [camera]\nprojection = \"orthographic\"\nposition = [0, 0.3, 0]\nlook_at = [0, 0, 0]\n\
+         up = [0, 0, -1]\nview_height = 3\n\
+         [[object]]\nshape = \"plane\"\nnormal = [0, 1, 0]\nmaterial = { color = 0.5, bsdf = { type = \"diffuse\" } }\n",
+    );
+    for x in &lamps {
+        text += &format!(
+            "[[object]]\nshape = \"sphere\"\nradius = {radius}\ntransform = {{ translate = [{x}, {height}, 0] }}\n\
+             material = {{ color = 0.0, bsdf = {{ type = \"diffuse\" }}, emission = {radiance} }}\n"
+        );
+    }
+    let film = render_text(Box::leak(text.into_boxed_str()), 2);
+    // A sphere of radius r and radiance L whose centre is at distance D, seen at angle theta
+    // from the normal, gives E = pi L (r / D)^2 cos theta; the floor reflects albedo E / pi.
+    // The view is 24 x 3 around the origin, symmetric in x and z as the lamps are, so its
+    // orientation does not matter; each pixel is averaged over 8 x 8 points of its square.
+    let at = |x: f64, z: f64| -> f64 {
+        lamps
+            .iter()
+            .map(|lamp| {
+                let d = ((x - lamp).powi(2) + z * z + height * height).sqrt();
+                albedo * radiance * (radius / d).powi(2) * height / d
+            })
+            .sum()
+    };
+    let (width, rows) = (96usize, 12usize);
+    let pixel = 24.0 / width as f64;
+    let mut ratios = Vec::new();
+    for j in 0..rows {
+        for i in 0..width {
+            let mut expected = 0.0;
+            for (a, b) in (0..64).map(|k| (k % 8, k / 8)) {
+                let x = -12.0 + pixel * (i as f64 + (f64::from(a) + 0.5) / 8.0);
+                let z = -1.5 + pixel * (j as f64 + (f64::from(b) + 0.5) / 8.0);
+                expected += at(x, z) / 64.0;
+            }
+            ratios.push(f64::from(film.pixels[j * width + i][1]) / expected);
+        }
+    }
+    let n = ratios.len() as f64;
+    let mean = ratios.iter().sum::<f64>() / n;
+    let spread = (ratios.iter().map(|r| (r - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+    assert!((mean - 1.0).abs() <= 4.0 * spread / n.sqrt() + 1e-3, "pixels average {mean} of the formula");
+    assert!(spread < 0.08, "pixels spread by {spread} of the formula: the lamps are not chosen by where they light");
+}
+
 #[test]
 fn the_image_is_the_same_for_any_thread_count() {
     const SCENE: &str = "[render]\nwidth = 40\nheight = 30\nsamples = 4\nmax_depth = 6\nintegrator = \"path\"\n\

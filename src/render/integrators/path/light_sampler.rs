@@ -1,11 +1,24 @@
 //! Light selection for next-event estimation. Point, spot, directional and area-grid sources
 //! are few and cost one shadow ray each, so every one of them is sampled at every bounce
 //! (up to [`EVERY_SOURCE_LIMIT`] of them); the emissive primitives and the environment, whose
-//! samples are directions drawn over their extent, share one discrete distribution in
-//! proportion to an estimate of their power, from which one is chosen. Choosing among all
-//! lights by power instead starves a spot beside a bright environment: a 40-degree spot got
-//! 3 % of the samples under a studio map, and the patch it lit came out speckled where
-//! Mitsuba's is smooth. Beyond the limit the sources join the distribution.
+//! samples are directions drawn over their extent, share one discrete distribution from
+//! which one is chosen. Choosing among all lights by power instead starves a spot beside a
+//! bright environment: a 40-degree spot got 3 % of the samples under a studio map, and the
+//! patch it lit came out speckled where Mitsuba's is smooth. Beyond the limit the sources
+//! join the distribution.
+//!
+//! The distribution depends on the shaded point when it holds at most [`SPATIAL_LIMIT`]
+//! lights: each is weighed by an estimate of the irradiance it can give the point (its
+//! intensity over the squared distance to its bounds' centre, never nearer than their
+//! radius, times the largest cosine to the surface's normal over its bounds, either side,
+//! at least [`MIN_COSINE`]; the environment's and a parallel light's the same everywhere),
+//! so a lamp gets the samples near it and few far away or edge-on, where a choice by power
+//! alone gives each of eight equal lamps along a corridor an eighth of the samples
+//! everywhere. Occlusion is not estimated. With more lights the weights are their powers,
+//! one distribution for the whole scene (weighing each at every vertex would cost more than
+//! it saves). Either way the weights are positive for every light that gives light, and the
+//! probability that MIS asks for a light hit from a point is computed as the choice made
+//! there computed it.
 
 use glam::{DVec2, DVec3};
 
@@ -84,6 +97,60 @@ impl Environment {
 /// as much as the whole choice).
 pub const EVERY_SOURCE_LIMIT: usize = 32;
 
+/// Distributions of at most this many lights weigh them at each point; larger ones by power.
+pub const SPATIAL_LIMIT: usize = 64;
+
+/// The least cosine factor a light's weight gets: a light edge-on to a surface still gives
+/// it light through bent shading normals and rough lobes, and no weight may be 0 for a
+/// light that gives light.
+pub const MIN_COSINE: f64 = 0.05;
+
+/// Where a light is chosen for: a point and its surface's unit normal (either side counts).
+#[derive(Clone, Copy, Debug)]
+pub struct Receiver {
+    /// The shaded point (world space).
+    pub point: DVec3,
+    /// The shading normal there.
+    pub normal: DVec3,
+}
+
+/// How far a light of the distribution reaches, for weighing it at a point: an estimate of
+/// the luminance of the irradiance it can give there (W/m^2 weighted as luminance).
+#[derive(Clone, Copy, Debug)]
+enum Reach {
+    /// A light within `radius_squared`'s root of `centre`, of luminous-weighted intensity
+    /// `intensity` (W/sr) at most: `intensity / d^2`, d no less than the radius.
+    Near { centre: DVec3, radius_squared: f64, intensity: f64 },
+    /// The same everywhere (the environment, parallel light, unbounded emitters).
+    Everywhere { irradiance: f64 },
+}
+
+impl Reach {
+    fn weight(self, receiver: &Receiver) -> f64 {
+        match self {
+            Reach::Near { centre, radius_squared, intensity } => {
+                let to_centre = centre - receiver.point;
+                let distance_squared = to_centre.length_squared();
+                if distance_squared <= radius_squared {
+                    return intensity / radius_squared;
+                }
+                // The cosine of the angle to the normal (either side), less the half angle the
+                // bounds subtend: the largest over them.
+                let cos = receiver.normal.dot(to_centre).abs() / distance_squared.sqrt();
+                let cos_half_angle = (1.0 - radius_squared / distance_squared).sqrt();
+                let bound = if cos >= cos_half_angle {
+                    1.0
+                } else {
+                    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+                    cos * cos_half_angle + sin * (radius_squared / distance_squared).sqrt()
+                };
+                intensity / distance_squared * bound.max(MIN_COSINE)
+            }
+            Reach::Everywhere { irradiance } => irradiance,
+        }
+    }
+}
+
 /// One light in the selection distribution.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LightRef {
@@ -96,7 +163,7 @@ pub enum LightRef {
 }
 
 /// The sources sampled at every bounce, and a discrete distribution over the other lights,
-/// proportional to their power.
+/// weighed at each point (at most [`SPATIAL_LIMIT`] of them) or by power.
 #[derive(Clone, Debug)]
 pub struct LightSampler {
     /// How many sources are sampled at every bounce: all of them, or none beyond
@@ -104,14 +171,16 @@ pub struct LightSampler {
     every_source: u32,
     /// The lights of the distribution.
     lights: Vec<LightRef>,
-    /// Cumulative probabilities, `cdf[i]` = P(index <= i); the last is 1.
+    /// How far each light reaches, when the distribution is weighed at each point.
+    reach: Option<Vec<Reach>>,
+    /// By power: cumulative probabilities, `cdf[i]` = P(index <= i); the last is 1.
     cdf: Vec<f64>,
-    /// Probability of each light.
+    /// By power: the probability of each light.
     probability: Vec<f64>,
-    /// For each primitive, its probability of being chosen (0 when it does not emit).
-    emitter_probability: Vec<f64>,
-    /// The environment's probability.
-    environment_probability: f64,
+    /// For each primitive, its index in `lights` (`u32::MAX` when it does not emit).
+    emitter_index: Vec<u32>,
+    /// The environment's index in `lights`.
+    environment_index: Option<usize>,
 }
 
 /// What a light sample says about the light: where it is and what arrives.
@@ -187,19 +256,35 @@ impl LightSampler {
         let disc = pi * scene_radius * scene_radius;
         let mut lights = Vec::new();
         let mut power = Vec::new();
+        let mut reach = Vec::new();
         let sources = &scene.lights.sources;
         let every_source = if sources.len() <= EVERY_SOURCE_LIMIT { sources.len() as u32 } else { 0 };
+        let near =
+            |centre: DVec3, radius_squared: f64, intensity: f64| Reach::Near { centre, radius_squared, intensity };
         for (i, light) in sources.iter().enumerate().skip(every_source as usize) {
-            let p = match &light.source {
-                LightSource::Point(l) => 4.0 * pi * luminance(l.intensity),
-                LightSource::Spot(l) => {
-                    2.0 * pi * (1.0 - 0.5 * (l.cone.cos_inner + l.cone.cos_outer)) * luminance(l.intensity)
+            let (p, r) = match &light.source {
+                LightSource::Point(l) => {
+                    let intensity = luminance(l.intensity);
+                    (4.0 * pi * intensity, near(l.position, 0.0, intensity))
                 }
-                LightSource::Directional(l) => disc * luminance(l.irradiance),
-                LightSource::AreaGrid(l) => 4.0 * pi * luminance(l.intensity),
+                LightSource::Spot(l) => {
+                    let intensity = luminance(l.intensity);
+                    let solid_angle = 2.0 * pi * (1.0 - 0.5 * (l.cone.cos_inner + l.cone.cos_outer));
+                    (solid_angle * intensity, near(l.position, 0.0, intensity))
+                }
+                LightSource::Directional(l) => {
+                    let irradiance = luminance(l.irradiance);
+                    (disc * irradiance, Reach::Everywhere { irradiance })
+                }
+                LightSource::AreaGrid(l) => {
+                    let intensity = luminance(l.intensity);
+                    let half_extent = 0.25 * (l.grid.axis1.length_squared() + l.grid.axis2.length_squared());
+                    (4.0 * pi * intensity, near(l.centre, half_extent, intensity))
+                }
             };
             lights.push(LightRef::Source(i as u32));
             power.push(p.max(0.0));
+            reach.push(r);
         }
         for emitter in &scene.lights.area_emitters {
             let primitive = &scene.primitives[emitter.primitive as usize];
@@ -218,19 +303,30 @@ impl LightSampler {
                         * primitive.shape.sample_area(DVec2::splat(0.5)).map_or(1.0, |s| primitive.area_scale(s.normal))
                 }
             };
+            // An emitter of area A and radiance L has the intensity L A / 4 on average over
+            // all directions (a convex body's mean projected area is a quarter of its area),
+            // its power over 4 pi, as a point light's; one without finite bounds gives at most
+            // a hemisphere of L, pi L.
+            let bounds = &primitive.world_bounds;
+            let half_diagonal = 0.5 * (bounds.max - bounds.min);
+            let r = if bounds.is_bounded() && half_diagonal.is_finite() {
+                near(bounds.center(), half_diagonal.length_squared(), 0.25 * area * luminance(radiance))
+            } else {
+                Reach::Everywhere { irradiance: pi * luminance(radiance) }
+            };
             lights.push(LightRef::Emitter(emitter.primitive));
             power.push((pi * area * luminance(radiance)).max(0.0));
+            reach.push(r);
         }
+        let mut environment_index = None;
         if !environment.is_black() {
+            environment_index = Some(lights.len());
             lights.push(LightRef::Environment);
             power.push(disc * environment.luminance_integral());
+            // Irradiance of a uniform environment on a surface: pi times its mean radiance.
+            reach.push(Reach::Everywhere { irradiance: environment.luminance_integral() / 4.0 });
         }
-        let total: f64 = power.iter().sum();
-        let probability: Vec<f64> = if total > 0.0 && total.is_finite() {
-            power.iter().map(|p| p / total).collect()
-        } else {
-            vec![1.0 / lights.len().max(1) as f64; lights.len()]
-        };
+        let probability = normalised(power);
         let mut cdf = Vec::with_capacity(lights.len());
         let mut sum = 0.0;
         for p in &probability {
@@ -240,16 +336,14 @@ impl LightSampler {
         if let Some(last) = cdf.last_mut() {
             *last = 1.0;
         }
-        let mut emitter_probability = vec![0.0; scene.primitives.len()];
-        let mut environment_probability = 0.0;
-        for (light, p) in lights.iter().zip(&probability) {
-            match light {
-                LightRef::Emitter(i) => emitter_probability[*i as usize] = *p,
-                LightRef::Environment => environment_probability = *p,
-                LightRef::Source(_) => {}
+        let mut emitter_index = vec![u32::MAX; scene.primitives.len()];
+        for (index, light) in lights.iter().enumerate() {
+            if let LightRef::Emitter(i) = light {
+                emitter_index[*i as usize] = index as u32;
             }
         }
-        Self { every_source, lights, cdf, probability, emitter_probability, environment_probability }
+        let reach = (lights.len() <= SPATIAL_LIMIT).then_some(reach);
+        Self { every_source, lights, reach, cdf, probability, emitter_index, environment_index }
     }
 
     /// The indices of the sources sampled at every bounce, each with
@@ -258,32 +352,64 @@ impl LightSampler {
         0..self.every_source
     }
 
-    /// The light chosen by `u` and its probability.
-    pub fn choose(&self, u: f64) -> Option<(LightRef, f64)> {
-        let index = self.cdf.partition_point(|&c| c <= u).min(self.lights.len().checked_sub(1)?);
-        Some((self.lights[index], self.probability[index]))
+    /// The light chosen by `u` for `receiver`, and its probability.
+    pub fn choose(&self, receiver: &Receiver, u: f64) -> Option<(LightRef, f64)> {
+        let last = self.lights.len().checked_sub(1)?;
+        let Some(reach) = &self.reach else {
+            let index = self.cdf.partition_point(|&c| c <= u).min(last);
+            return Some((self.lights[index], self.probability[index]));
+        };
+        let mut weights = [0.0; SPATIAL_LIMIT];
+        let total = point_weights(reach, receiver, &mut weights);
+        let Some(total) = total else {
+            let index = ((u * self.lights.len() as f64) as usize).min(last);
+            return Some((self.lights[index], 1.0 / self.lights.len() as f64));
+        };
+        // The first light whose cumulative share passes u (the last takes what rounding
+        // leaves), as the table's search finds it.
+        let target = u * total;
+        let mut cumulative = 0.0;
+        for (index, &w) in weights[..=last].iter().enumerate() {
+            cumulative += w;
+            if target < cumulative && w > 0.0 {
+                return Some((self.lights[index], w / total));
+            }
+        }
+        let index = weights[..=last].iter().rposition(|&w| w > 0.0)?;
+        Some((self.lights[index], weights[index] / total))
     }
 
-    /// The probability of choosing the emissive primitive `primitive`.
-    pub fn emitter_probability(&self, primitive: u32) -> f64 {
-        self.emitter_probability.get(primitive as usize).copied().unwrap_or(0.0)
+    /// The probability that the choice for `receiver` picks light `index` of the distribution.
+    fn probability_at(&self, index: usize, receiver: &Receiver) -> f64 {
+        let Some(reach) = &self.reach else {
+            return self.probability[index];
+        };
+        let mut weights = [0.0; SPATIAL_LIMIT];
+        match point_weights(reach, receiver, &mut weights) {
+            Some(total) => weights[index] / total,
+            None => 1.0 / self.lights.len() as f64,
+        }
     }
 
-    /// The probability of choosing the environment.
-    pub fn environment_probability(&self) -> f64 {
-        self.environment_probability
+    /// The probability that the choice for `receiver` picks the emissive primitive `primitive`.
+    pub fn emitter_probability(&self, primitive: u32, receiver: &Receiver) -> f64 {
+        match self.emitter_index.get(primitive as usize) {
+            Some(&index) if index != u32::MAX => self.probability_at(index as usize, receiver),
+            _ => 0.0,
+        }
     }
 
-    /// Samples a light and a direction toward it from `point`.
+    /// Samples a light and a direction toward it for `receiver`.
     pub fn sample(
         &self,
         scene: &RenderScene,
         environment: &Environment,
-        point: DVec3,
+        receiver: &Receiver,
         u_select: f64,
         u: DVec2,
     ) -> Option<LightSample> {
-        let (light, probability) = self.choose(u_select)?;
+        let point = receiver.point;
+        let (light, probability) = self.choose(receiver, u_select)?;
         if probability <= 0.0 {
             return None;
         }
@@ -359,15 +485,105 @@ impl LightSampler {
     }
 
     /// The solid-angle density, including selection, with which [`LightSampler::sample`]
-    /// picks `direction` toward the environment.
-    pub fn environment_pdf(&self, environment: &Environment, direction: DVec3) -> f64 {
-        environment.pdf(direction) * self.environment_probability
+    /// for `receiver` picks `direction` toward the environment.
+    pub fn environment_pdf(&self, environment: &Environment, receiver: &Receiver, direction: DVec3) -> f64 {
+        match self.environment_index {
+            Some(index) => environment.pdf(direction) * self.probability_at(index, receiver),
+            None => 0.0,
+        }
     }
+}
+
+/// `weights` normalised to probabilities; equal ones when they sum to nothing or overflow.
+fn normalised(weights: Vec<f64>) -> Vec<f64> {
+    let total: f64 = weights.iter().sum();
+    if total > 0.0 && total.is_finite() {
+        weights.iter().map(|w| w / total).collect()
+    } else {
+        vec![1.0 / weights.len().max(1) as f64; weights.len()]
+    }
+}
+
+/// Each light's weight for `receiver` into `weights` (not negative; NaN counts as 0), and
+/// their sum, `None` when it is not positive and finite (the choice is then uniform).
+fn point_weights(reach: &[Reach], receiver: &Receiver, weights: &mut [f64; SPATIAL_LIMIT]) -> Option<f64> {
+    let mut total = 0.0;
+    for (w, r) in weights.iter_mut().zip(reach) {
+        *w = r.weight(receiver).max(0.0);
+        total += *w;
+    }
+    (total > 0.0 && total.is_finite()).then_some(total)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use prism_api::contract::{TestRng, chi_square_p_value};
+
+    /// Five emitters of different shapes, sizes and radiances, and a sky.
+    fn sampler() -> (RenderScene, LightSampler) {
+        const SCENE: &str = "[world]\nbackground = 0.3\n\
+            [[object]]\nshape = \"sphere\"\nradius = 0.1\ntransform = { translate = [0, 0.5, 0] }\nmaterial = { emission = 100.0 }\n\
+            [[object]]\nshape = \"sphere\"\nradius = 0.3\ntransform = { translate = [4, 2, 0] }\nmaterial = { emission = 5.0 }\n\
+            [[object]]\nshape = \"rectangle\"\ntransform = { translate = [-3, 3, 1] }\nmaterial = { emission = 2.0 }\n\
+            [[object]]\nshape = \"disc\"\nradius = 0.2\ntransform = { translate = [0, 0.05, 6] }\nmaterial = { emission = 50.0 }\n\
+            [[object]]\nshape = \"box\"\ntransform = { scale = 0.2, translate = [1, 1, -5] }\nmaterial = { emission = [1, 8, 0.5] }\n";
+        let files: &'static [(&'static str, &'static str)] = Box::leak(Box::new([("scene.toml", SCENE)]));
+        let embedded: &'static crate::scene::load::Embedded = Box::leak(Box::new(crate::scene::load::Embedded(files)));
+        let path = std::path::Path::new("scene.toml");
+        let mut scene = crate::scene::load::load_from(embedded, path, &crate::plugins::registry()).unwrap();
+        let scene = crate::prepare(&mut scene).unwrap();
+        let environment = Environment::of(&scene);
+        let sampler = LightSampler::new(&scene, 10.0, &environment);
+        (scene, sampler)
+    }
+
+    /// The choice at a point follows the probabilities it reports, which are those MIS asks
+    /// for: Pearson's chi-square over 40 000 choices at each of several points.
+    #[test]
+    fn chi2_light_choice_at_a_point() {
+        let (_, sampler) = sampler();
+        assert_eq!(sampler.lights.len(), 6, "five emitters and the sky");
+        let mut rng = TestRng::new(7);
+        for _ in 0..8 {
+            let receiver = Receiver {
+                point: DVec3::new(rng.range(-5.0, 5.0), rng.range(0.0, 3.0), rng.range(-6.0, 6.0)),
+                normal: rng.unit_vector(),
+            };
+            let probabilities: Vec<f64> = (0..6).map(|i| sampler.probability_at(i, &receiver)).collect();
+            assert!((probabilities.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+            let draws = 40_000;
+            let mut counts = [0u32; 6];
+            for _ in 0..draws {
+                let (light, probability) = sampler.choose(&receiver, rng.uniform()).unwrap();
+                let index = sampler.lights.iter().position(|&l| l == light).unwrap();
+                assert_eq!(probability, probabilities[index], "the probability reported is MIS's");
+                counts[index] += 1;
+            }
+            let statistic: f64 = counts
+                .iter()
+                .zip(&probabilities)
+                .map(|(&c, &p)| (f64::from(c) - p * f64::from(draws)).powi(2) / (p * f64::from(draws)))
+                .sum();
+            let p_value = chi_square_p_value(statistic, 5);
+            assert!(p_value > 1e-4, "choice at {receiver:?}: counts {counts:?}, probabilities {probabilities:?}");
+        }
+    }
+
+    /// A lamp gets most of the choice at a point just below it and little far away; a lamp
+    /// edge-on to the surface keeps at least `MIN_COSINE` of its weight.
+    #[test]
+    fn a_lamp_is_chosen_where_it_lights() {
+        let (scene, sampler) = sampler();
+        let lamp = scene.lights.area_emitters[0].primitive;
+        let below = Receiver { point: DVec3::new(0.0, 0.0, 0.0), normal: DVec3::Y };
+        let far = Receiver { point: DVec3::new(-4.0, 0.0, 5.0), normal: DVec3::Y };
+        assert!(sampler.emitter_probability(lamp, &below) > 0.9);
+        assert!(sampler.emitter_probability(lamp, &far) < 0.05);
+        let level = Receiver { point: DVec3::new(3.0, 0.5, 0.0), normal: DVec3::Y };
+        let edge_on = Reach::Near { centre: DVec3::new(0.0, 0.5, 0.0), radius_squared: 0.0, intensity: 9.0 };
+        assert_eq!(edge_on.weight(&level), 9.0 / 9.0 * MIN_COSINE);
+    }
 
     #[test]
     fn a_radius_beyond_the_falloff_is_a_hard_edge_at_the_radius() {

@@ -21,7 +21,7 @@ use crate::material::normal::NormalField;
 use crate::render::bsdf::Frame;
 use crate::render::extract::RenderScene;
 use crate::render::sampling::SampleStream;
-use light_sampler::{Environment, LightSample, LightSampler};
+use light_sampler::{Environment, LightSample, LightSampler, Receiver};
 use scatter::{PathMaterial, SurfacePoint};
 
 /// Rays start this far (relative to the scene's scale at the hit) beyond their origin.
@@ -148,8 +148,9 @@ impl<'a> Path<'a> {
 
     /// Solid-angle density with which light sampling from `from` picks `direction` toward the
     /// emissive primitive `primitive`, selection included.
-    fn emitter_pdf(&self, primitive: u32, from: DVec3, direction: DVec3) -> f64 {
-        let probability = self.lights.emitter_probability(primitive);
+    fn emitter_pdf(&self, primitive: u32, from: &Receiver, direction: DVec3) -> f64 {
+        let probability = self.lights.emitter_probability(primitive, from);
+        let from = from.point;
         if probability <= 0.0 {
             return 0.0;
         }
@@ -182,7 +183,7 @@ impl<'a> Path<'a> {
         // The previous scattering: its solid-angle pdf (0 after a delta lobe) and its point.
         let mut previous_pdf = 0.0;
         let mut previous_delta = true;
-        let mut previous_point = ray.origin;
+        let mut previous = Receiver { point: ray.origin, normal: DVec3::ZERO };
         let mut depth = 1u32;
         loop {
             rays += 1;
@@ -195,7 +196,10 @@ impl<'a> Path<'a> {
                     let weight = if previous_delta {
                         1.0
                     } else {
-                        power_heuristic(previous_pdf, self.lights.environment_pdf(&self.environment, direction))
+                        power_heuristic(
+                            previous_pdf,
+                            self.lights.environment_pdf(&self.environment, &previous, direction),
+                        )
                     };
                     radiance += throughput * self.environment.radiance(direction) * weight;
                 }
@@ -212,7 +216,7 @@ impl<'a> Path<'a> {
                 let weight = if previous_delta {
                     1.0
                 } else {
-                    power_heuristic(previous_pdf, self.emitter_pdf(vertex.primitive, previous_point, direction))
+                    power_heuristic(previous_pdf, self.emitter_pdf(vertex.primitive, &previous, direction))
                 };
                 radiance += throughput * emitted * weight;
             }
@@ -243,6 +247,7 @@ impl<'a> Path<'a> {
             // counts the point as a crossing; the BSDF-sampled hit's MIS weight uses the
             // same reference point.
             let reference = Self::offset_origin(&vertex, -direction);
+            let receiver = Receiver { point: reference, normal: vertex.shading_normal };
 
             // Next-event estimation: every source, then one of the other lights.
             if scatter.has_smooth_lobe() {
@@ -257,7 +262,7 @@ impl<'a> Path<'a> {
                 let sample = self.lights.sample(
                     scene,
                     &self.environment,
-                    reference,
+                    &receiver,
                     stream.stratified(base),
                     stream.stratified2(base + 1),
                 );
@@ -276,7 +281,7 @@ impl<'a> Path<'a> {
             throughput *= s.weight;
             previous_pdf = s.pdf;
             previous_delta = s.delta;
-            previous_point = reference;
+            previous = receiver;
             ray = Ray::new(Self::offset_origin(&vertex, next), next);
             depth += 1;
             if depth > rr_depth {
