@@ -10,7 +10,7 @@
 //! The distribution depends on the shaded point when it holds at most [`SPATIAL_LIMIT`]
 //! lights: each is weighed by an estimate of the irradiance it can give the point (its
 //! intensity over the squared distance to its bounds' centre, never nearer than their
-//! radius, times the largest cosine to the surface's normal over its bounds, either side,
+//! radius, times a bound on the cosine to the surface's normal over its bounds, either side,
 //! at least [`MIN_COSINE`]; the environment's and a parallel light's the same everywhere),
 //! so a lamp gets the samples near it and few far away or edge-on, where a choice by power
 //! alone gives each of eight equal lamps along a corridor an eighth of the samples
@@ -118,9 +118,9 @@ pub struct Receiver {
 /// the luminance of the irradiance it can give there (W/m^2 weighted as luminance).
 #[derive(Clone, Copy, Debug)]
 enum Reach {
-    /// A light within `radius_squared`'s root of `centre`, of luminous-weighted intensity
-    /// `intensity` (W/sr) at most: `intensity / d^2`, d no less than the radius.
-    Near { centre: DVec3, radius_squared: f64, intensity: f64 },
+    /// A light within `radius` of `centre`, of luminous-weighted intensity `intensity` (W/sr)
+    /// at most: `intensity / d^2`, d no less than the radius.
+    Near { centre: DVec3, radius: f64, intensity: f64 },
     /// The same everywhere (the environment, parallel light, unbounded emitters).
     Everywhere { irradiance: f64 },
 }
@@ -128,23 +128,18 @@ enum Reach {
 impl Reach {
     fn weight(self, receiver: &Receiver) -> f64 {
         match self {
-            Reach::Near { centre, radius_squared, intensity } => {
+            Reach::Near { centre, radius, intensity } => {
                 let to_centre = centre - receiver.point;
                 let distance_squared = to_centre.length_squared();
-                if distance_squared <= radius_squared {
-                    return intensity / radius_squared;
+                if distance_squared <= radius * radius {
+                    return intensity / (radius * radius);
                 }
-                // The cosine of the angle to the normal (either side), less the half angle the
-                // bounds subtend: the largest over them.
-                let cos = receiver.normal.dot(to_centre).abs() / distance_squared.sqrt();
-                let cos_half_angle = (1.0 - radius_squared / distance_squared).sqrt();
-                let bound = if cos >= cos_half_angle {
-                    1.0
-                } else {
-                    let sin = (1.0 - cos * cos).max(0.0).sqrt();
-                    cos * cos_half_angle + sin * (radius_squared / distance_squared).sqrt()
-                };
-                intensity / distance_squared * bound.max(MIN_COSINE)
+                // The cosine to the normal (either side) at the centre plus the sine of the
+                // half angle the bounds subtend, which is at least the largest cosine over
+                // them (cos(a - b) <= cos a + sin b), for one square root.
+                let inverse_distance = distance_squared.sqrt().recip();
+                let bound = (receiver.normal.dot(to_centre).abs() + radius) * inverse_distance;
+                intensity * inverse_distance * inverse_distance * bound.clamp(MIN_COSINE, 1.0)
             }
             Reach::Everywhere { irradiance } => irradiance,
         }
@@ -259,8 +254,7 @@ impl LightSampler {
         let mut reach = Vec::new();
         let sources = &scene.lights.sources;
         let every_source = if sources.len() <= EVERY_SOURCE_LIMIT { sources.len() as u32 } else { 0 };
-        let near =
-            |centre: DVec3, radius_squared: f64, intensity: f64| Reach::Near { centre, radius_squared, intensity };
+        let near = |centre: DVec3, radius: f64, intensity: f64| Reach::Near { centre, radius, intensity };
         for (i, light) in sources.iter().enumerate().skip(every_source as usize) {
             let (p, r) = match &light.source {
                 LightSource::Point(l) => {
@@ -278,8 +272,8 @@ impl LightSampler {
                 }
                 LightSource::AreaGrid(l) => {
                     let intensity = luminance(l.intensity);
-                    let half_extent = 0.25 * (l.grid.axis1.length_squared() + l.grid.axis2.length_squared());
-                    (4.0 * pi * intensity, near(l.centre, half_extent, intensity))
+                    let half_diagonal = 0.5 * (l.grid.axis1.length_squared() + l.grid.axis2.length_squared()).sqrt();
+                    (4.0 * pi * intensity, near(l.centre, half_diagonal, intensity))
                 }
             };
             lights.push(LightRef::Source(i as u32));
@@ -310,7 +304,7 @@ impl LightSampler {
             let bounds = &primitive.world_bounds;
             let half_diagonal = 0.5 * (bounds.max - bounds.min);
             let r = if bounds.is_bounded() && half_diagonal.is_finite() {
-                near(bounds.center(), half_diagonal.length_squared(), 0.25 * area * luminance(radiance))
+                near(bounds.center(), half_diagonal.length(), 0.25 * area * luminance(radiance))
             } else {
                 Reach::Everywhere { irradiance: pi * luminance(radiance) }
             };
@@ -581,7 +575,7 @@ mod tests {
         assert!(sampler.emitter_probability(lamp, &below) > 0.9);
         assert!(sampler.emitter_probability(lamp, &far) < 0.05);
         let level = Receiver { point: DVec3::new(3.0, 0.5, 0.0), normal: DVec3::Y };
-        let edge_on = Reach::Near { centre: DVec3::new(0.0, 0.5, 0.0), radius_squared: 0.0, intensity: 9.0 };
+        let edge_on = Reach::Near { centre: DVec3::new(0.0, 0.5, 0.0), radius: 0.0, intensity: 9.0 };
         assert_eq!(edge_on.weight(&level), 9.0 / 9.0 * MIN_COSINE);
     }
 
