@@ -166,16 +166,26 @@ pub struct LightSampler {
     every_source: u32,
     /// The lights of the distribution.
     lights: Vec<LightRef>,
-    /// How far each light reaches, when the distribution is weighed at each point.
-    reach: Option<Vec<Reach>>,
-    /// By power: cumulative probabilities, `cdf[i]` = P(index <= i); the last is 1.
-    cdf: Vec<f64>,
-    /// By power: the probability of each light.
-    probability: Vec<f64>,
+    /// How the lights of the distribution are weighed.
+    weights: Weights,
     /// For each primitive, its index in `lights` (`u32::MAX` when it does not emit).
     emitter_index: Vec<u32>,
     /// The environment's index in `lights`.
     environment_index: Option<usize>,
+}
+
+/// How a distribution weighs its lights.
+#[derive(Clone, Debug)]
+enum Weights {
+    /// At each point, by how far each light reaches (at most [`SPATIAL_LIMIT`] lights).
+    AtPoint(Vec<Reach>),
+    /// By power, the same everywhere.
+    ByPower {
+        /// Cumulative probabilities, `cdf[i]` = P(index <= i); the last is 1.
+        cdf: Vec<f64>,
+        /// The probability of each light.
+        probability: Vec<f64>,
+    },
 }
 
 /// What a light sample says about the light: where it is and what arrives.
@@ -320,24 +330,14 @@ impl LightSampler {
             // Irradiance of a uniform environment on a surface: pi times its mean radiance.
             reach.push(Reach::Everywhere { irradiance: environment.luminance_integral() / 4.0 });
         }
-        let probability = normalised(power);
-        let mut cdf = Vec::with_capacity(lights.len());
-        let mut sum = 0.0;
-        for p in &probability {
-            sum += p;
-            cdf.push(sum);
-        }
-        if let Some(last) = cdf.last_mut() {
-            *last = 1.0;
-        }
+        let weights = if lights.len() <= SPATIAL_LIMIT { Weights::AtPoint(reach) } else { Weights::by_power(power) };
         let mut emitter_index = vec![u32::MAX; scene.primitives.len()];
         for (index, light) in lights.iter().enumerate() {
             if let LightRef::Emitter(i) = light {
                 emitter_index[*i as usize] = index as u32;
             }
         }
-        let reach = (lights.len() <= SPATIAL_LIMIT).then_some(reach);
-        Self { every_source, lights, reach, cdf, probability, emitter_index, environment_index }
+        Self { every_source, lights, weights, emitter_index, environment_index }
     }
 
     /// The indices of the sources sampled at every bounce, each with
@@ -349,9 +349,12 @@ impl LightSampler {
     /// The light chosen by `u` for `receiver`, and its probability.
     pub fn choose(&self, receiver: &Receiver, u: f64) -> Option<(LightRef, f64)> {
         let last = self.lights.len().checked_sub(1)?;
-        let Some(reach) = &self.reach else {
-            let index = self.cdf.partition_point(|&c| c <= u).min(last);
-            return Some((self.lights[index], self.probability[index]));
+        let reach = match &self.weights {
+            Weights::AtPoint(reach) => reach,
+            Weights::ByPower { cdf, probability } => {
+                let index = cdf.partition_point(|&c| c <= u).min(last);
+                return Some((self.lights[index], probability[index]));
+            }
         };
         let mut weights = [0.0; SPATIAL_LIMIT];
         let total = point_weights(reach, receiver, &mut weights);
@@ -375,8 +378,9 @@ impl LightSampler {
 
     /// The probability that the choice for `receiver` picks light `index` of the distribution.
     fn probability_at(&self, index: usize, receiver: &Receiver) -> f64 {
-        let Some(reach) = &self.reach else {
-            return self.probability[index];
+        let reach = match &self.weights {
+            Weights::AtPoint(reach) => reach,
+            Weights::ByPower { probability, .. } => return probability[index],
         };
         let mut weights = [0.0; SPATIAL_LIMIT];
         match point_weights(reach, receiver, &mut weights) {
@@ -488,13 +492,27 @@ impl LightSampler {
     }
 }
 
-/// `weights` normalised to probabilities; equal ones when they sum to nothing or overflow.
-fn normalised(weights: Vec<f64>) -> Vec<f64> {
-    let total: f64 = weights.iter().sum();
-    if total > 0.0 && total.is_finite() {
-        weights.iter().map(|w| w / total).collect()
-    } else {
-        vec![1.0 / weights.len().max(1) as f64; weights.len()]
+impl Weights {
+    /// The distribution in proportion to `power` (uniform when the powers sum to nothing or
+    /// overflow).
+    fn by_power(power: Vec<f64>) -> Self {
+        let total: f64 = power.iter().sum();
+        let probability = if total > 0.0 && total.is_finite() {
+            power.iter().map(|p| p / total).collect()
+        } else {
+            vec![1.0 / power.len().max(1) as f64; power.len()]
+        };
+        let mut cdf: Vec<f64> = probability
+            .iter()
+            .scan(0.0, |sum, p| {
+                *sum += p;
+                Some(*sum)
+            })
+            .collect();
+        if let Some(last) = cdf.last_mut() {
+            *last = 1.0;
+        }
+        Weights::ByPower { cdf, probability }
     }
 }
 

@@ -146,16 +146,15 @@ impl<'a> Path<'a> {
         material.emitted(&SurfacePoint { uv: vertex.uv, object_point: vertex.object_point })
     }
 
-    /// Solid-angle density with which light sampling from `from` picks `direction` toward the
-    /// emissive primitive `primitive`, selection included.
-    fn emitter_pdf(&self, primitive: u32, from: &Receiver, direction: DVec3) -> f64 {
-        let probability = self.lights.emitter_probability(primitive, from);
-        let from = from.point;
+    /// Solid-angle density with which light sampling for `receiver` picks `direction` toward
+    /// the emissive primitive `primitive`, selection included.
+    fn emitter_pdf(&self, primitive: u32, receiver: &Receiver, direction: DVec3) -> f64 {
+        let probability = self.lights.emitter_probability(primitive, receiver);
         if probability <= 0.0 {
             return 0.0;
         }
         let p = &self.scene.primitives[primitive as usize];
-        let reference = p.object_point(from);
+        let reference = p.object_point(receiver.point);
         let object_direction = match p.placement {
             crate::accel::primitive::Placement::Affine => p.object_from_world.transform_vector3(direction),
             _ => direction,
@@ -343,8 +342,8 @@ impl<'a> Path<'a> {
                 if hit.primitive != primitive {
                     return DVec3::ZERO;
                 }
-                let material =
-                    &self.materials[self.scene.primitives[primitive as usize].material_at(&hit.hit) as usize];
+                let emitter = &self.scene.primitives[primitive as usize];
+                let material = &self.materials[emitter.material_at(&hit.hit) as usize];
                 // The side is read where the ray crossed the emitter, not at the sampled point:
                 // a non-convex emitter (or the vertex's own surface, which an emitting glass
                 // sphere sampled from just above it finds below the vertex through the
@@ -352,9 +351,8 @@ impl<'a> Path<'a> {
                 let emitted = match material.uniform_emission() {
                     Some(radiance) if material.emits_both_sides() => radiance,
                     Some(radiance) => {
-                        let p = &self.scene.primitives[primitive as usize];
-                        let crossed = p.shape.hit_point(&p.object_ray_of(&ray), &hit.hit);
-                        if p.world_normal(crossed.normal).dot(direction) >= 0.0 {
+                        let crossed = emitter.shape.hit_point(&emitter.object_ray_of(&ray), &hit.hit);
+                        if emitter.world_normal(crossed.normal).dot(direction) >= 0.0 {
                             return DVec3::ZERO;
                         }
                         radiance
