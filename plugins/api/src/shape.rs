@@ -294,8 +294,10 @@ pub trait Shape: Any + Send + Sync + Debug {
     /// True when the shape certainly does not meet the convex hull of `points` (object
     /// space). Prism asks unbounded shapes this to skip them for a whole bundle of rays (the
     /// shadow rays from a point to an area light); bounded shapes are culled by their
-    /// bounds instead. The default, false, is always correct; a `true` must be certain,
-    /// with a margin for rounding.
+    /// bounds instead. It also asks it of the box around a camera's lens, and then takes
+    /// [`Shape::inside`] to answer everywhere in the hull as it does at one point of it (the
+    /// inside test flips only where a ray crosses the surface). The default, false, is
+    /// always correct; a `true` must be certain, with a margin for rounding.
     fn misses_hull(&self, points: &[DVec3]) -> bool {
         let _ = points;
         false

@@ -98,7 +98,7 @@ struct PathState {
 
 impl Integrator for Classic<'_> {
     fn sample(&self, ray: &Ray, stream: SampleStream) -> PixelSample {
-        let interiors = self.pinhole_interiors.unwrap_or_else(|| self.interiors_at(ray.origin));
+        let interiors = self.camera_interiors(ray.origin);
         let mut state = PathState { stream, dimension: 4, rays: 0, first_hit: None };
         let radiance = pov_output(self.trace(ray, 1, 1.0, interiors, &mut state));
         PixelSample { radiance, first_hit: state.first_hit, rays: state.rays }
@@ -184,11 +184,12 @@ pub struct Classic<'a> {
     views: Vec<PovView>,
     /// Angle between neighbouring camera rays (radians): ray footprints for texture filtering.
     pixel_spread: f64,
-    /// Primitives that may hold a camera ray's origin: unbounded ones and those whose bounds
-    /// meet the lens.
-    camera_candidates: Vec<u32>,
-    /// The interiors every camera ray starts in, when all start at one point (no aperture).
-    pinhole_interiors: Option<Interiors>,
+    /// Primitives that may hold a camera ray's origin (unbounded ones and those whose bounds
+    /// meet the lens), each with its answer where that is the same over the whole lens.
+    camera_candidates: Vec<(u32, Option<bool>)>,
+    /// The interiors every camera ray starts in, when that is the same for all: a pinhole,
+    /// or a lens no candidate's surface crosses.
+    fixed_interiors: Option<Interiors>,
     /// The scene's lights as POV-Ray shades them.
     lights: Vec<PovLight>,
     /// The scene's interiors, CSG members' own among them.
@@ -208,6 +209,7 @@ impl<'a> Classic<'a> {
                 let b = &scene.primitives[i as usize].world_bounds;
                 b.min.cmple(lens.max).all() && b.max.cmpge(lens.min).all()
             })
+            .map(|i| (i, Self::inside_over_lens(scene, i, &lens)))
             .collect();
         let views = scene.materials.iter().map(PovView::new).collect();
         let lights = scene.lights.sources.iter().map(PovLight::new).collect();
@@ -216,15 +218,47 @@ impl<'a> Classic<'a> {
             views,
             pixel_spread,
             camera_candidates,
-            pinhole_interiors: None,
+            fixed_interiors: None,
             lights,
             interiors: InteriorTable::new(scene),
             first_hit_uv: false,
         };
-        if scene.camera.has_single_origin() {
-            integrator.pinhole_interiors = Some(integrator.interiors_at(scene.camera.position));
+        let lens_decides = integrator.camera_candidates.iter().all(|(_, known)| known.is_some());
+        if scene.camera.has_single_origin() || lens_decides {
+            integrator.fixed_interiors = Some(integrator.interiors_at(scene.camera.position));
         }
         integrator
+    }
+
+    /// Whether primitive `index` holds every point of the world box `lens`, when that is the
+    /// same for all of them: its surface certainly misses the box ([`Shape::misses_hull`] of
+    /// its corners), so its inside test, which flips at each crossing, answers everywhere
+    /// in the box as at the camera position.
+    ///
+    /// [`Shape::misses_hull`]: prism_api::Shape::misses_hull
+    fn inside_over_lens(scene: &RenderScene, index: u32, lens: &prism_api::Aabb) -> Option<bool> {
+        let p = &scene.primitives[index as usize];
+        let corners: [DVec3; 8] = std::array::from_fn(|c| {
+            let pick = |bit: usize, axis: usize| if c & bit == 0 { lens.min[axis] } else { lens.max[axis] };
+            p.object_point(DVec3::new(pick(1, 0), pick(2, 1), pick(4, 2)))
+        });
+        let decided = CsgShape::of(p.shape.as_ref()).is_none() && p.shape.misses_hull(&corners);
+        decided.then(|| p.shape.inside(p.object_point(scene.camera.position)))
+    }
+
+    /// The interiors a camera ray from `origin`, a point on the lens, starts in: the fixed
+    /// ones, else [`Classic::interiors_at`] asking only the candidates the lens leaves open.
+    fn camera_interiors(&self, origin: DVec3) -> Interiors {
+        if let Some(fixed) = self.fixed_interiors {
+            return fixed;
+        }
+        let mut interiors = Interiors::default();
+        for &(i, known) in &self.camera_candidates {
+            if known.unwrap_or_else(|| self.holds(i, origin)) {
+                interiors = interiors.entering(i);
+            }
+        }
+        interiors
     }
 
     /// The same integrator, giving every first hit its uv when `uv` is true (the `uv` AOV),
@@ -240,16 +274,20 @@ impl<'a> Classic<'a> {
     /// points around it, but POV-Ray's box for it is finite).
     fn interiors_at(&self, origin: DVec3) -> Interiors {
         let mut interiors = Interiors::default();
-        for &i in &self.camera_candidates {
-            let p = &self.scene.primitives[i as usize];
-            let point = p.object_point(origin);
-            let boxed =
-                CsgShape::of(p.shape.as_ref()).is_none_or(|group| group.container_bounds().contains(point, 0.0));
-            if boxed && p.shape.inside(point) {
+        for &(i, _) in &self.camera_candidates {
+            if self.holds(i, origin) {
                 interiors = interiors.entering(i);
             }
         }
         interiors
+    }
+
+    /// True when primitive `i` is one of the ray containers of a point at `origin`.
+    fn holds(&self, i: u32, origin: DVec3) -> bool {
+        let p = &self.scene.primitives[i as usize];
+        let point = p.object_point(origin);
+        let boxed = CsgShape::of(p.shape.as_ref()).is_none_or(|group| group.container_bounds().contains(point, 0.0));
+        boxed && p.shape.inside(point)
     }
 
     /// The finish at a hit with textures looked up: the footprint of a pixel's ray cone
@@ -1221,9 +1259,45 @@ mod tests {
             let integrator = Classic::new(&scene);
             let inside = integrator.interiors_at(DVec3::ZERO);
             assert_eq!(&inside.items[..inside.len], &[0, 3], "aperture {aperture}");
-            assert_eq!(integrator.pinhole_interiors.is_some(), !aperture);
+            assert_eq!(integrator.fixed_interiors.is_some(), !aperture);
             let outside = integrator.interiors_at(DVec3::new(0.0, 0.0, -7.0));
             assert_eq!(&outside.items[..outside.len], &[2], "beyond the far plane");
+        }
+    }
+
+    #[test]
+    fn a_lens_no_surface_crosses_starts_every_ray_in_the_same_interiors() {
+        use crate::scene::load::{Embedded, load_from};
+        // A lens of radius 0.1 at the origin, behind a floor plane (inside it) and in front
+        // of a wall (outside it); the third plane's surface, x = 0.05, crosses the lens.
+        macro_rules! scene {
+            ($third:literal) => {
+                concat!(
+                    "[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.0, 0.0, -1.0]\naperture = 0.2\n",
+                    "[[object]]\nshape = \"plane\"\nnormal = [0.0, 1.0, 0.0]\noffset = 1.0\n",
+                    "[[object]]\nshape = \"plane\"\nnormal = [0.0, 0.0, 1.0]\noffset = -3.0\n",
+                    "[[object]]\nshape = \"plane\"\nnormal = [1.0, 0.0, 0.0]\n",
+                    $third,
+                    "\n",
+                )
+            };
+        }
+        const APART: Embedded = Embedded(&[("s.toml", scene!("offset = 0.5"))]);
+        const ACROSS: Embedded = Embedded(&[("s.toml", scene!("offset = 0.05"))]);
+        for (files, crossed) in [(APART, false), (ACROSS, true)] {
+            let mut scene = load_from(&files, std::path::Path::new("s.toml"), &crate::plugins::registry()).unwrap();
+            let scene = crate::prepare(&mut scene).unwrap();
+            let integrator = Classic::new(&scene);
+            assert_eq!(integrator.fixed_interiors.is_none(), crossed);
+            for (x, y) in [(-0.1, 0.0), (0.0, 0.1), (0.09, -0.02), (0.04, 0.05)] {
+                let origin = DVec3::new(x, y, 0.0);
+                let asked = integrator.interiors_at(origin);
+                let got = integrator.camera_interiors(origin);
+                assert_eq!(&got.items[..got.len], &asked.items[..asked.len], "lens point {origin}, crossed {crossed}");
+                let third_holds = !crossed || x < 0.05;
+                let expected: &[u32] = if third_holds { &[0, 2] } else { &[0] };
+                assert_eq!(&got.items[..got.len], expected, "lens point {origin}, crossed {crossed}");
+            }
         }
     }
 
