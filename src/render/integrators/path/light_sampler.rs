@@ -7,21 +7,25 @@
 //! patch it lit came out speckled where Mitsuba's is smooth. Beyond the limit the sources
 //! join the distribution.
 //!
-//! The distribution depends on the shaded point when it holds at most [`SPATIAL_LIMIT`]
-//! lights: each is weighed by an estimate of the irradiance it can give the point (its
-//! intensity over the squared distance to its bounds' centre, never nearer than their
-//! radius, times a bound on the cosine to the surface's normal over its bounds, either side,
-//! at least [`MIN_COSINE`]; the environment's and a parallel light's the same everywhere),
-//! so a lamp gets the samples near it and few far away or edge-on, where a choice by power
-//! alone gives each of eight equal lamps along a corridor an eighth of the samples
-//! everywhere. Occlusion is not estimated. With more lights the weights are their powers,
-//! one distribution for the whole scene (weighing each at every vertex would cost more than
-//! it saves). Either way the weights are positive for every light that gives light, and the
+//! The distribution depends on the shaded point: each light is weighed by an estimate of
+//! the irradiance it can give the point ([`Reach::weight`]: its intensity over the squared
+//! distance to its bounds' centre, never nearer than their radius, times a bound on the
+//! cosine to the surface's normal over its bounds, either side, at least
+//! [`light_reach::MIN_COSINE`]; the environment's and a parallel light's the same
+//! everywhere), so a lamp gets the samples near it and few far away or edge-on, where a
+//! choice by power alone gives each of eight equal lamps along a corridor an eighth of the
+//! samples everywhere. Occlusion is not estimated. Up to [`SPATIAL_LIMIT`] lights are
+//! weighed one by one; more are chosen through a [`LightTree`] (the lights that reach
+//! everywhere weighed beside its root), at the cost of a walk from its root to one leaf.
+//! Either way the weights are positive for every light that gives light, and the
 //! probability that MIS asks for a light hit from a point is computed as the choice made
 //! there computed it.
+//!
+//! [`light_reach::MIN_COSINE`]: super::light_reach::MIN_COSINE
 
 use glam::{DVec2, DVec3};
 
+use super::light_reach::{LightTree, Reach, Receiver};
 use super::scatter::luminance;
 use crate::geometry::csg::CsgShape;
 use crate::render::extract::RenderScene;
@@ -97,54 +101,9 @@ impl Environment {
 /// as much as the whole choice).
 pub const EVERY_SOURCE_LIMIT: usize = 32;
 
-/// Distributions of at most this many lights weigh them at each point; larger ones by power.
+/// Distributions of at most this many lights weigh them one by one at each point; larger
+/// ones through a [`LightTree`].
 pub const SPATIAL_LIMIT: usize = 64;
-
-/// The least cosine factor a light's weight gets: a light edge-on to a surface still gives
-/// it light through bent shading normals and rough lobes, and no weight may be 0 for a
-/// light that gives light.
-pub const MIN_COSINE: f64 = 0.05;
-
-/// Where a light is chosen for: a point and its surface's unit normal (either side counts).
-#[derive(Clone, Copy, Debug)]
-pub struct Receiver {
-    /// The shaded point (world space).
-    pub point: DVec3,
-    /// The shading normal there.
-    pub normal: DVec3,
-}
-
-/// How far a light of the distribution reaches, for weighing it at a point: an estimate of
-/// the luminance of the irradiance it can give there (W/m^2 weighted as luminance).
-#[derive(Clone, Copy, Debug)]
-enum Reach {
-    /// A light within `radius` of `centre`, of luminous-weighted intensity `intensity` (W/sr)
-    /// at most: `intensity / d^2`, d no less than the radius.
-    Near { centre: DVec3, radius: f64, intensity: f64 },
-    /// The same everywhere (the environment, parallel light, unbounded emitters).
-    Everywhere { irradiance: f64 },
-}
-
-impl Reach {
-    fn weight(self, receiver: &Receiver) -> f64 {
-        match self {
-            Reach::Near { centre, radius, intensity } => {
-                let to_centre = centre - receiver.point;
-                let distance_squared = to_centre.length_squared();
-                if distance_squared <= radius * radius {
-                    return intensity / (radius * radius);
-                }
-                // The cosine to the normal (either side) at the centre plus the sine of the
-                // half angle the bounds subtend, which is at least the largest cosine over
-                // them (cos(a - b) <= cos a + sin b), for one square root.
-                let inverse_distance = distance_squared.sqrt().recip();
-                let bound = (receiver.normal.dot(to_centre).abs() + radius) * inverse_distance;
-                intensity * inverse_distance * inverse_distance * bound.clamp(MIN_COSINE, 1.0)
-            }
-            Reach::Everywhere { irradiance } => irradiance,
-        }
-    }
-}
 
 /// One light in the selection distribution.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -158,7 +117,7 @@ pub enum LightRef {
 }
 
 /// The sources sampled at every bounce, and a discrete distribution over the other lights,
-/// weighed at each point (at most [`SPATIAL_LIMIT`] of them) or by power.
+/// weighed at each point (one by one, or through a tree beyond [`SPATIAL_LIMIT`] of them).
 #[derive(Clone, Debug)]
 pub struct LightSampler {
     /// How many sources are sampled at every bounce: all of them, or none beyond
@@ -177,15 +136,34 @@ pub struct LightSampler {
 /// How a distribution weighs its lights.
 #[derive(Clone, Debug)]
 enum Weights {
-    /// At each point, by how far each light reaches (at most [`SPATIAL_LIMIT`] lights).
+    /// One by one at each point, by how far each light reaches (at most [`SPATIAL_LIMIT`]
+    /// lights).
     AtPoint(Vec<Reach>),
-    /// By power, the same everywhere.
-    ByPower {
-        /// Cumulative probabilities, `cdf[i]` = P(index <= i); the last is 1.
-        cdf: Vec<f64>,
-        /// The probability of each light.
-        probability: Vec<f64>,
-    },
+    /// Through a tree of the lights of bounded reach, beside the others.
+    Tree(TreeWeights),
+}
+
+/// The weights of a large distribution: the lights that reach everywhere each weighed at the
+/// point, beside a tree of the others weighed as one by its root's reach.
+#[derive(Clone, Debug)]
+struct TreeWeights {
+    /// The lights that reach everywhere: their indices in the distribution and reaches.
+    everywhere: Vec<(u32, Reach)>,
+    /// The tree over the other lights, `None` when there are none.
+    tree: Option<LightTree>,
+    /// The index in the distribution of each of the tree's lights.
+    in_tree: Vec<u32>,
+    /// Where each light of the distribution is weighed.
+    place: Vec<Place>,
+}
+
+/// Where a light of a [`TreeWeights`] is weighed.
+#[derive(Clone, Copy, Debug)]
+enum Place {
+    /// Among the lights that reach everywhere, at this index.
+    Everywhere(u32),
+    /// In the tree, as its light with this index.
+    Tree(u32),
 }
 
 /// What a light sample says about the light: where it is and what arrives.
@@ -253,41 +231,25 @@ pub fn uniform_sphere(u: DVec2) -> DVec3 {
 }
 
 impl LightSampler {
-    /// The distribution for `scene`, with `scene_radius` the radius of a sphere bounding the
-    /// scene's finite geometry (it turns directional irradiance and environment radiance into
-    /// powers comparable with the others').
-    pub fn new(scene: &RenderScene, scene_radius: f64, environment: &Environment) -> Self {
+    /// The distribution for `scene` under `environment`.
+    pub fn new(scene: &RenderScene, environment: &Environment) -> Self {
         let pi = std::f64::consts::PI;
-        let disc = pi * scene_radius * scene_radius;
         let mut lights = Vec::new();
-        let mut power = Vec::new();
         let mut reach = Vec::new();
         let sources = &scene.lights.sources;
         let every_source = if sources.len() <= EVERY_SOURCE_LIMIT { sources.len() as u32 } else { 0 };
         let near = |centre: DVec3, radius: f64, intensity: f64| Reach::Near { centre, radius, intensity };
         for (i, light) in sources.iter().enumerate().skip(every_source as usize) {
-            let (p, r) = match &light.source {
-                LightSource::Point(l) => {
-                    let intensity = luminance(l.intensity);
-                    (4.0 * pi * intensity, near(l.position, 0.0, intensity))
-                }
-                LightSource::Spot(l) => {
-                    let intensity = luminance(l.intensity);
-                    let solid_angle = 2.0 * pi * (1.0 - 0.5 * (l.cone.cos_inner + l.cone.cos_outer));
-                    (solid_angle * intensity, near(l.position, 0.0, intensity))
-                }
-                LightSource::Directional(l) => {
-                    let irradiance = luminance(l.irradiance);
-                    (disc * irradiance, Reach::Everywhere { irradiance })
-                }
+            let r = match &light.source {
+                LightSource::Point(l) => near(l.position, 0.0, luminance(l.intensity)),
+                LightSource::Spot(l) => near(l.position, 0.0, luminance(l.intensity)),
+                LightSource::Directional(l) => Reach::Everywhere { irradiance: luminance(l.irradiance) },
                 LightSource::AreaGrid(l) => {
-                    let intensity = luminance(l.intensity);
                     let half_diagonal = 0.5 * (l.grid.axis1.length_squared() + l.grid.axis2.length_squared()).sqrt();
-                    (4.0 * pi * intensity, near(l.centre, half_diagonal, intensity))
+                    near(l.centre, half_diagonal, luminance(l.intensity))
                 }
             };
             lights.push(LightRef::Source(i as u32));
-            power.push(p.max(0.0));
             reach.push(r);
         }
         for emitter in &scene.lights.area_emitters {
@@ -308,9 +270,8 @@ impl LightSampler {
                 }
             };
             // An emitter of area A and radiance L has the intensity L A / 4 on average over
-            // all directions (a convex body's mean projected area is a quarter of its area),
-            // its power over 4 pi, as a point light's; one without finite bounds gives at most
-            // a hemisphere of L, pi L.
+            // all directions (a convex body's mean projected area is a quarter of its area);
+            // one without finite bounds gives at most a hemisphere of L, pi L.
             let bounds = &primitive.world_bounds;
             let half_diagonal = 0.5 * (bounds.max - bounds.min);
             let r = if bounds.is_bounded() && half_diagonal.is_finite() {
@@ -319,18 +280,16 @@ impl LightSampler {
                 Reach::Everywhere { irradiance: pi * luminance(radiance) }
             };
             lights.push(LightRef::Emitter(emitter.primitive));
-            power.push((pi * area * luminance(radiance)).max(0.0));
             reach.push(r);
         }
         let mut environment_index = None;
         if !environment.is_black() {
             environment_index = Some(lights.len());
             lights.push(LightRef::Environment);
-            power.push(disc * environment.luminance_integral());
             // Irradiance of a uniform environment on a surface: pi times its mean radiance.
             reach.push(Reach::Everywhere { irradiance: environment.luminance_integral() / 4.0 });
         }
-        let weights = if lights.len() <= SPATIAL_LIMIT { Weights::AtPoint(reach) } else { Weights::by_power(power) };
+        let weights = if lights.len() <= SPATIAL_LIMIT { Weights::AtPoint(reach) } else { Weights::tree(&reach) };
         let mut emitter_index = vec![u32::MAX; scene.primitives.len()];
         for (index, light) in lights.iter().enumerate() {
             if let LightRef::Emitter(i) = light {
@@ -351,9 +310,9 @@ impl LightSampler {
         let last = self.lights.len().checked_sub(1)?;
         let reach = match &self.weights {
             Weights::AtPoint(reach) => reach,
-            Weights::ByPower { cdf, probability } => {
-                let index = cdf.partition_point(|&c| c <= u).min(last);
-                return Some((self.lights[index], probability[index]));
+            Weights::Tree(tree) => {
+                let (index, probability) = tree.choose(receiver, u)?;
+                return Some((self.lights[index as usize], probability));
             }
         };
         let mut weights = [0.0; SPATIAL_LIMIT];
@@ -362,17 +321,7 @@ impl LightSampler {
             let index = ((u * self.lights.len() as f64) as usize).min(last);
             return Some((self.lights[index], 1.0 / self.lights.len() as f64));
         };
-        // The first light whose cumulative share passes u (the last takes what rounding
-        // leaves), as the table's search finds it.
-        let target = u * total;
-        let mut cumulative = 0.0;
-        for (index, &w) in weights[..=last].iter().enumerate() {
-            cumulative += w;
-            if target < cumulative && w > 0.0 {
-                return Some((self.lights[index], w / total));
-            }
-        }
-        let index = weights[..=last].iter().rposition(|&w| w > 0.0)?;
+        let (index, _) = pick(&weights[..=last], total, u)?;
         Some((self.lights[index], weights[index] / total))
     }
 
@@ -380,7 +329,7 @@ impl LightSampler {
     fn probability_at(&self, index: usize, receiver: &Receiver) -> f64 {
         let reach = match &self.weights {
             Weights::AtPoint(reach) => reach,
-            Weights::ByPower { probability, .. } => return probability[index],
+            Weights::Tree(tree) => return tree.probability(index, receiver),
         };
         let mut weights = [0.0; SPATIAL_LIMIT];
         match point_weights(reach, receiver, &mut weights) {
@@ -493,27 +442,90 @@ impl LightSampler {
 }
 
 impl Weights {
-    /// The distribution in proportion to `power` (uniform when the powers sum to nothing or
-    /// overflow).
-    fn by_power(power: Vec<f64>) -> Self {
-        let total: f64 = power.iter().sum();
-        let probability = if total > 0.0 && total.is_finite() {
-            power.iter().map(|p| p / total).collect()
-        } else {
-            vec![1.0 / power.len().max(1) as f64; power.len()]
-        };
-        let mut cdf: Vec<f64> = probability
-            .iter()
-            .scan(0.0, |sum, p| {
-                *sum += p;
-                Some(*sum)
-            })
-            .collect();
-        if let Some(last) = cdf.last_mut() {
-            *last = 1.0;
+    /// A tree over the lights of bounded `reach` (indexed like the distribution), the others
+    /// weighed beside its root.
+    fn tree(reach: &[Reach]) -> Self {
+        let (mut everywhere, mut near, mut in_tree, mut place) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for (index, &r) in reach.iter().enumerate() {
+            match r {
+                Reach::Everywhere { .. } => {
+                    place.push(Place::Everywhere(everywhere.len() as u32));
+                    everywhere.push((index as u32, r));
+                }
+                Reach::Near { .. } => {
+                    place.push(Place::Tree(near.len() as u32));
+                    near.push(r);
+                    in_tree.push(index as u32);
+                }
+            }
         }
-        Weights::ByPower { cdf, probability }
+        Weights::Tree(TreeWeights { everywhere, tree: LightTree::new(&near), in_tree, place })
     }
+}
+
+impl TreeWeights {
+    /// The weights of the lights that reach everywhere, then the tree's root's, at
+    /// `receiver`, into `weights` (cleared first), and their sum; all 1 when that is not
+    /// positive and finite (the choice among them is then uniform).
+    fn top_weights(&self, receiver: &Receiver, weights: &mut Vec<f64>) -> f64 {
+        weights.clear();
+        weights.extend(self.everywhere.iter().map(|(_, r)| r.weight(receiver)));
+        weights.extend(self.tree.as_ref().map(|tree| tree.weight(receiver)));
+        let total: f64 = weights.iter().sum();
+        if total > 0.0 && total.is_finite() {
+            return total;
+        }
+        weights.iter_mut().for_each(|w| *w = 1.0);
+        weights.len() as f64
+    }
+
+    /// The index in the distribution of the light chosen by `u` at `receiver`, and its
+    /// probability.
+    fn choose(&self, receiver: &Receiver, u: f64) -> Option<(u32, f64)> {
+        let mut weights = Vec::with_capacity(self.everywhere.len() + 1);
+        let total = self.top_weights(receiver, &mut weights);
+        let (top, rest) = pick(&weights, total, u)?;
+        let share = weights[top] / total;
+        match self.everywhere.get(top) {
+            Some(&(index, _)) => Some((index, share)),
+            None => {
+                let tree = self.tree.as_ref()?;
+                let (light, probability) = tree.choose(receiver, rest);
+                Some((self.in_tree[light as usize], share * probability))
+            }
+        }
+    }
+
+    /// The probability that [`TreeWeights::choose`] at `receiver` picks light `index` of
+    /// the distribution, computed as the choice computes it.
+    fn probability(&self, index: usize, receiver: &Receiver) -> f64 {
+        let mut weights = Vec::with_capacity(self.everywhere.len() + 1);
+        let total = self.top_weights(receiver, &mut weights);
+        match self.place[index] {
+            Place::Everywhere(k) => weights[k as usize] / total,
+            Place::Tree(light) => {
+                let Some(tree) = &self.tree else { return 0.0 };
+                weights[self.everywhere.len()] / total * tree.probability(light, receiver)
+            }
+        }
+    }
+}
+
+/// The first of `weights` (summing to `total`, positive) whose cumulative share passes `u`
+/// (the last positive one takes what rounding leaves), and `u`'s place within its share,
+/// rescaled to [0, 1).
+fn pick(weights: &[f64], total: f64, u: f64) -> Option<(usize, f64)> {
+    let target = u * total;
+    let mut cumulative = 0.0;
+    for (index, &w) in weights.iter().enumerate() {
+        let before = cumulative;
+        cumulative += w;
+        if target < cumulative && w > 0.0 {
+            return Some((index, ((target - before) / w).clamp(0.0, 1.0 - f64::EPSILON / 2.0)));
+        }
+    }
+    let index = weights.iter().rposition(|&w| w > 0.0)?;
+    Some((index, 1.0 - f64::EPSILON / 2.0))
 }
 
 /// Each light's weight for `receiver` into `weights` (not negative; NaN counts as 0), and
@@ -540,13 +552,18 @@ mod tests {
             [[object]]\nshape = \"rectangle\"\ntransform = { translate = [-3, 3, 1] }\nmaterial = { emission = 2.0 }\n\
             [[object]]\nshape = \"disc\"\nradius = 0.2\ntransform = { translate = [0, 0.05, 6] }\nmaterial = { emission = 50.0 }\n\
             [[object]]\nshape = \"box\"\ntransform = { scale = 0.2, translate = [1, 1, -5] }\nmaterial = { emission = [1, 8, 0.5] }\n";
-        let files: &'static [(&'static str, &'static str)] = Box::leak(Box::new([("scene.toml", SCENE)]));
+        sampler_of(SCENE)
+    }
+
+    fn sampler_of(text: &str) -> (RenderScene, LightSampler) {
+        let text: &'static str = Box::leak(text.to_string().into_boxed_str());
+        let files: &'static [(&'static str, &'static str)] = Box::leak(Box::new([("scene.toml", text)]));
         let embedded: &'static crate::scene::load::Embedded = Box::leak(Box::new(crate::scene::load::Embedded(files)));
         let path = std::path::Path::new("scene.toml");
         let mut scene = crate::scene::load::load_from(embedded, path, &crate::plugins::registry()).unwrap();
         let scene = crate::prepare(&mut scene).unwrap();
         let environment = Environment::of(&scene);
-        let sampler = LightSampler::new(&scene, 10.0, &environment);
+        let sampler = LightSampler::new(&scene, &environment);
         (scene, sampler)
     }
 
@@ -582,6 +599,78 @@ mod tests {
         }
     }
 
+    /// Beyond [`SPATIAL_LIMIT`] lights, the choice walks a tree beside the lights that reach
+    /// everywhere (a sky, a parallel light among more than [`EVERY_SOURCE_LIMIT`] sources,
+    /// an unbounded emitter): it follows the probabilities it reports, which sum to 1 and
+    /// are those MIS asks for (Pearson's chi-square over 200 000 choices at each of several
+    /// points, lights expected fewer than 20 times pooled).
+    #[test]
+    fn chi2_light_choice_through_the_tree() {
+        let mut rng = TestRng::new(17);
+        let mut text = String::from(
+            "[world]\nbackground = 0.2\n\
+             [[object]]\nshape = \"plane\"\nnormal = [0, -1, 0]\noffset = -20\nmaterial = { emission = 0.5 }\n",
+        );
+        for _ in 0..90 {
+            text += &format!(
+                "[[object]]\nshape = \"sphere\"\nradius = {}\ntransform = {{ translate = [{}, {}, {}] }}\nmaterial = {{ emission = {} }}\n",
+                rng.range(0.05, 0.5),
+                rng.range(-10.0, 10.0),
+                rng.range(0.0, 5.0),
+                rng.range(-10.0, 10.0),
+                rng.range(1.0, 50.0)
+            );
+        }
+        for _ in 0..40 {
+            text += &format!(
+                "[[light]]\nposition = [{}, {}, {}]\nintensity = {}\n",
+                rng.range(-10.0, 10.0),
+                rng.range(0.0, 5.0),
+                rng.range(-10.0, 10.0),
+                rng.range(1.0, 20.0)
+            );
+        }
+        text += "[[light]]\nkind = \"parallel\"\nposition = [0, 10, 3]\nintensity = 2.0\n";
+        let (_, sampler) = sampler_of(&text);
+        let count = sampler.lights.len();
+        assert_eq!(count, 90 + 1 + 41 + 1, "the emitters, the sources beyond the limit and the sky");
+        assert!(matches!(&sampler.weights, Weights::Tree(t) if t.everywhere.len() == 3), "sky, parallel, plane");
+        for _ in 0..4 {
+            let receiver = Receiver {
+                point: DVec3::new(rng.range(-10.0, 10.0), rng.range(0.0, 5.0), rng.range(-10.0, 10.0)),
+                normal: rng.unit_vector(),
+            };
+            let probabilities: Vec<f64> = (0..count).map(|i| sampler.probability_at(i, &receiver)).collect();
+            assert!((probabilities.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+            let draws = 200_000;
+            let mut counts = vec![0u32; count];
+            for _ in 0..draws {
+                let (light, probability) = sampler.choose(&receiver, rng.uniform()).unwrap();
+                let index = sampler.lights.iter().position(|&l| l == light).unwrap();
+                assert_eq!(probability, probabilities[index], "the probability reported is MIS's");
+                counts[index] += 1;
+            }
+            let (mut statistic, mut bins, mut pooled_count, mut pooled_expected) = (0.0, 0, 0.0, 0.0);
+            for (&c, &p) in counts.iter().zip(&probabilities) {
+                let expected = p * f64::from(draws);
+                if expected < 20.0 {
+                    pooled_count += f64::from(c);
+                    pooled_expected += expected;
+                } else {
+                    statistic += (f64::from(c) - expected).powi(2) / expected;
+                    bins += 1;
+                }
+            }
+            if pooled_expected > 0.0 {
+                statistic += (pooled_count - pooled_expected).powi(2) / pooled_expected;
+                bins += 1;
+            }
+            assert!(bins > 20, "too few bins ({bins})");
+            let p_value = chi_square_p_value(statistic, bins - 1);
+            assert!(p_value > 1e-4, "choice at {receiver:?}: chi-square {statistic} over {bins} bins");
+        }
+    }
+
     /// A lamp gets most of the choice at a point just below it and little far away; a lamp
     /// edge-on to the surface keeps at least `MIN_COSINE` of its weight.
     #[test]
@@ -594,7 +683,7 @@ mod tests {
         assert!(sampler.emitter_probability(lamp, &far) < 0.05);
         let level = Receiver { point: DVec3::new(3.0, 0.5, 0.0), normal: DVec3::Y };
         let edge_on = Reach::Near { centre: DVec3::new(0.0, 0.5, 0.0), radius: 0.0, intensity: 9.0 };
-        assert_eq!(edge_on.weight(&level), 9.0 / 9.0 * MIN_COSINE);
+        assert_eq!(edge_on.weight(&level), 9.0 / 9.0 * super::super::light_reach::MIN_COSINE);
     }
 
     #[test]

@@ -8,6 +8,7 @@
 //! function of (pixel, sample, dimension, seed); the numbers are stratified over each pixel's
 //! samples (padded Owen-scrambled Sobol, [`SampleStream::stratified2`]).
 
+pub mod light_reach;
 pub mod light_sampler;
 pub mod scatter;
 
@@ -21,7 +22,8 @@ use crate::material::normal::NormalField;
 use crate::render::bsdf::Frame;
 use crate::render::extract::RenderScene;
 use crate::render::sampling::SampleStream;
-use light_sampler::{Environment, LightSample, LightSampler, Receiver};
+use light_reach::Receiver;
+use light_sampler::{Environment, LightSample, LightSampler};
 use scatter::{PathMaterial, SurfacePoint};
 
 /// Rays start this far (relative to the scene's scale at the hit) beyond their origin.
@@ -84,8 +86,7 @@ impl<'a> Path<'a> {
     pub fn new(scene: &'a RenderScene) -> Self {
         let materials = scene.materials.iter().map(PathMaterial::new).collect();
         let environment = Environment::of(scene);
-        let radius = scene_radius(scene);
-        let lights = LightSampler::new(scene, radius, &environment);
+        let lights = LightSampler::new(scene, &environment);
         Self { scene, materials, lights, environment, first_hit_uv: false }
     }
 
@@ -413,22 +414,6 @@ impl<'a> Path<'a> {
             material: vertex.material,
         }
     }
-}
-
-/// The radius of a sphere around the origin-centred bounds of the scene's finite primitives
-/// (at least 1).
-fn scene_radius(scene: &RenderScene) -> f64 {
-    let mut min = DVec3::splat(f64::INFINITY);
-    let mut max = DVec3::splat(f64::NEG_INFINITY);
-    for p in &scene.primitives {
-        if p.world_bounds.is_bounded() {
-            min = min.min(p.world_bounds.min);
-            max = max.max(p.world_bounds.max);
-        }
-    }
-    min = min.min(scene.camera.position);
-    max = max.max(scene.camera.position);
-    (0.5 * (max - min).length()).max(1.0)
 }
 
 impl Integrator for Path<'_> {
