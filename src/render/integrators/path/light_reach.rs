@@ -281,12 +281,17 @@ impl Cluster {
         let centre_squared = to_centre.length_squared().max(least);
         let outside = (self.low - receiver.point).max(receiver.point - self.high).max(DVec3::ZERO);
         let box_squared = outside.length_squared().max(least);
-        let inverse_distance = centre_squared.sqrt().recip();
-        // As in `Reach::weight`, with the cosine bounded over the whole cluster.
-        let bound = (receiver.normal.dot(to_centre).abs() + self.spread) * inverse_distance;
-        // The geometric mean of the two inverse squared distances.
-        let inverse_squared = (box_squared * centre_squared).sqrt().recip();
-        let weight = self.intensity * inverse_squared * bound.clamp(MIN_COSINE, 1.0);
+        // Intensity over the product of the two distances b and c, times the cosine bound of
+        // `Reach::weight` over the whole cluster, (|n.v| + spread) / c clamped to
+        // [MIN_COSINE, 1]: its clamps are decided on squares, for one square root.
+        let reach = receiver.normal.dot(to_centre).abs() + self.spread;
+        let weight = if reach * reach >= centre_squared {
+            self.intensity / (box_squared * centre_squared).sqrt()
+        } else if reach * reach <= MIN_COSINE * MIN_COSINE * centre_squared {
+            MIN_COSINE * self.intensity / (box_squared * centre_squared).sqrt()
+        } else {
+            self.intensity * reach / (centre_squared * box_squared.sqrt())
+        };
         weight.max(0.0)
     }
 }

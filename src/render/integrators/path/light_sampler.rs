@@ -464,28 +464,41 @@ impl Weights {
 }
 
 impl TreeWeights {
-    /// The weights of the lights that reach everywhere, then the tree's root's, at
-    /// `receiver`, into `weights` (cleared first), and their sum; all 1 when that is not
-    /// positive and finite (the choice among them is then uniform).
-    fn top_weights(&self, receiver: &Receiver, weights: &mut Vec<f64>) -> f64 {
-        weights.clear();
-        weights.extend(self.everywhere.iter().map(|(_, r)| r.weight(receiver)));
-        weights.extend(self.tree.as_ref().map(|tree| tree.weight(receiver)));
+    /// Calls `f` with the weights of the lights that reach everywhere, then the tree's
+    /// root's, at `receiver`, and their sum; all 1 when that is not positive and finite (the
+    /// choice among them is then uniform). On the stack for a few such lights.
+    fn with_top_weights<R>(&self, receiver: &Receiver, f: impl FnOnce(&[f64], f64) -> R) -> R {
+        const ON_STACK: usize = 8;
+        let count = self.everywhere.len() + usize::from(self.tree.is_some());
+        let mut stack = [0.0; ON_STACK];
+        let mut heap = Vec::new();
+        let weights: &mut [f64] = if count <= ON_STACK {
+            &mut stack[..count]
+        } else {
+            heap.resize(count, 0.0);
+            &mut heap
+        };
+        for (w, (_, r)) in weights.iter_mut().zip(&self.everywhere) {
+            *w = r.weight(receiver);
+        }
+        if let Some(tree) = &self.tree {
+            weights[count - 1] = tree.weight(receiver);
+        }
         let total: f64 = weights.iter().sum();
         if total > 0.0 && total.is_finite() {
-            return total;
+            return f(weights, total);
         }
         weights.iter_mut().for_each(|w| *w = 1.0);
-        weights.len() as f64
+        f(weights, count as f64)
     }
 
     /// The index in the distribution of the light chosen by `u` at `receiver`, and its
     /// probability.
     fn choose(&self, receiver: &Receiver, u: f64) -> Option<(u32, f64)> {
-        let mut weights = Vec::with_capacity(self.everywhere.len() + 1);
-        let total = self.top_weights(receiver, &mut weights);
-        let (top, rest) = pick(&weights, total, u)?;
-        let share = weights[top] / total;
+        let (top, rest, share) = self.with_top_weights(receiver, |weights, total| {
+            let (top, rest) = pick(weights, total, u)?;
+            Some((top, rest, weights[top] / total))
+        })?;
         match self.everywhere.get(top) {
             Some(&(index, _)) => Some((index, share)),
             None => {
@@ -499,14 +512,15 @@ impl TreeWeights {
     /// The probability that [`TreeWeights::choose`] at `receiver` picks light `index` of
     /// the distribution, computed as the choice computes it.
     fn probability(&self, index: usize, receiver: &Receiver) -> f64 {
-        let mut weights = Vec::with_capacity(self.everywhere.len() + 1);
-        let total = self.top_weights(receiver, &mut weights);
-        match self.place[index] {
+        let place = self.place[index];
+        let share = self.with_top_weights(receiver, |weights, total| match place {
             Place::Everywhere(k) => weights[k as usize] / total,
-            Place::Tree(light) => {
-                let Some(tree) = &self.tree else { return 0.0 };
-                weights[self.everywhere.len()] / total * tree.probability(light, receiver)
-            }
+            Place::Tree(_) => weights[weights.len() - 1] / total,
+        });
+        match (place, &self.tree) {
+            (Place::Everywhere(_), _) => share,
+            (Place::Tree(light), Some(tree)) => share * tree.probability(light, receiver),
+            (Place::Tree(_), None) => 0.0,
         }
     }
 }
