@@ -32,6 +32,7 @@ gltf_clearcoat path 480 480 16
 gltf_showcase path 480 270 32
 dragons classic 480 270 -
 dragons path 480 270 8
+string_lights path 480 270 64
 "
 
 # Every top-level scene must have an entry: a new scene without one fails here.
