@@ -76,6 +76,29 @@ pub(crate) fn assert_fits(what: &str, observed: &[f64], expected: &[f64], alpha:
     result
 }
 
+/// A discrete choice tested against the probabilities it claims: `draws` calls of `choose`,
+/// each returning the index chosen and the probability it reports, which must equal
+/// `probabilities[index]` to the bit (what MIS computes apart); then [`assert_fits`] of the
+/// counts at `alpha`, with more than `min_dof` degrees of freedom left after pooling.
+pub(crate) fn assert_choice_fits(
+    what: &str,
+    probabilities: &[f64],
+    draws: u32,
+    min_dof: usize,
+    mut choose: impl FnMut() -> (usize, f64),
+) -> ChiSquare {
+    let mut observed = vec![0.0; probabilities.len()];
+    for _ in 0..draws {
+        let (index, probability) = choose();
+        assert_eq!(probability, probabilities[index], "{what}: the probability reported is the one asked for");
+        observed[index] += 1.0;
+    }
+    let expected: Vec<f64> = probabilities.iter().map(|p| p * f64::from(draws)).collect();
+    let result = assert_fits(what, &observed, &expected, 1e-4);
+    assert!(result.dof > min_dof, "{what}: too few cells to mean anything ({})", result.dof);
+    result
+}
+
 /// The `cos θ × φ` cell of unit direction `d`: `cos θ = d.y` in `cos_bins` equal steps from
 /// -1 to 1, `φ = atan2(d.z, d.x)` in `phi_bins` equal steps over `[0, 2π)`. Every cell
 /// has the same solid angle, `4π / (cos_bins · phi_bins)`.

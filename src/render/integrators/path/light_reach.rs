@@ -299,7 +299,7 @@ impl Cluster {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prism_api::contract::{TestRng, chi_square_p_value};
+    use prism_api::contract::TestRng;
 
     /// 300 lamps of random intensities scattered over a 40 x 10 x 40 box.
     fn lamps(rng: &mut TestRng) -> Vec<Reach> {
@@ -313,7 +313,7 @@ mod tests {
     }
 
     /// The tree's choice at a point follows the probabilities it reports (which sum to 1):
-    /// Pearson's chi-square over 100 000 choices, lights expected fewer than 20 times pooled.
+    /// Pearson's chi-square over 100 000 choices.
     #[test]
     fn chi2_tree_choice_at_a_point() {
         let mut rng = TestRng::new(11);
@@ -326,31 +326,16 @@ mod tests {
             };
             let probabilities: Vec<f64> = (0..300).map(|i| tree.probability(i, &receiver)).collect();
             assert!((probabilities.iter().sum::<f64>() - 1.0).abs() < 1e-12);
-            let draws = 100_000;
-            let mut counts = vec![0u32; 300];
-            for _ in 0..draws {
-                let (light, probability) = tree.choose(&receiver, rng.uniform());
-                assert_eq!(probability, probabilities[light as usize], "the probability reported is MIS's");
-                counts[light as usize] += 1;
-            }
-            let (mut statistic, mut bins, mut pooled_count, mut pooled_expected) = (0.0, 0, 0.0, 0.0);
-            for (&count, &p) in counts.iter().zip(&probabilities) {
-                let expected = p * f64::from(draws);
-                if expected < 20.0 {
-                    pooled_count += f64::from(count);
-                    pooled_expected += expected;
-                } else {
-                    statistic += (f64::from(count) - expected).powi(2) / expected;
-                    bins += 1;
-                }
-            }
-            if pooled_expected > 0.0 {
-                statistic += (pooled_count - pooled_expected).powi(2) / pooled_expected;
-                bins += 1;
-            }
-            assert!(bins > 20, "the test has too few bins to mean anything ({bins})");
-            let p_value = chi_square_p_value(statistic, bins - 1);
-            assert!(p_value > 1e-4, "choice at {receiver:?}: chi-square {statistic} over {bins} bins");
+            crate::test_support::chi2::assert_choice_fits(
+                &format!("the choice at {receiver:?}"),
+                &probabilities,
+                100_000,
+                20,
+                || {
+                    let (light, probability) = tree.choose(&receiver, rng.uniform());
+                    (light as usize, probability)
+                },
+            );
         }
     }
 

@@ -617,7 +617,7 @@ mod tests {
     /// everywhere (a sky, a parallel light among more than [`EVERY_SOURCE_LIMIT`] sources,
     /// an unbounded emitter): it follows the probabilities it reports, which sum to 1 and
     /// are those MIS asks for (Pearson's chi-square over 200 000 choices at each of several
-    /// points, lights expected fewer than 20 times pooled).
+    /// points).
     #[test]
     fn chi2_light_choice_through_the_tree() {
         let mut rng = TestRng::new(17);
@@ -656,32 +656,16 @@ mod tests {
             };
             let probabilities: Vec<f64> = (0..count).map(|i| sampler.probability_at(i, &receiver)).collect();
             assert!((probabilities.iter().sum::<f64>() - 1.0).abs() < 1e-12);
-            let draws = 200_000;
-            let mut counts = vec![0u32; count];
-            for _ in 0..draws {
-                let (light, probability) = sampler.choose(&receiver, rng.uniform()).unwrap();
-                let index = sampler.lights.iter().position(|&l| l == light).unwrap();
-                assert_eq!(probability, probabilities[index], "the probability reported is MIS's");
-                counts[index] += 1;
-            }
-            let (mut statistic, mut bins, mut pooled_count, mut pooled_expected) = (0.0, 0, 0.0, 0.0);
-            for (&c, &p) in counts.iter().zip(&probabilities) {
-                let expected = p * f64::from(draws);
-                if expected < 20.0 {
-                    pooled_count += f64::from(c);
-                    pooled_expected += expected;
-                } else {
-                    statistic += (f64::from(c) - expected).powi(2) / expected;
-                    bins += 1;
-                }
-            }
-            if pooled_expected > 0.0 {
-                statistic += (pooled_count - pooled_expected).powi(2) / pooled_expected;
-                bins += 1;
-            }
-            assert!(bins > 20, "too few bins ({bins})");
-            let p_value = chi_square_p_value(statistic, bins - 1);
-            assert!(p_value > 1e-4, "choice at {receiver:?}: chi-square {statistic} over {bins} bins");
+            crate::test_support::chi2::assert_choice_fits(
+                &format!("the choice at {receiver:?}"),
+                &probabilities,
+                200_000,
+                20,
+                || {
+                    let (light, probability) = sampler.choose(&receiver, rng.uniform()).unwrap();
+                    (sampler.lights.iter().position(|&l| l == light).unwrap(), probability)
+                },
+            );
         }
     }
 
