@@ -184,9 +184,9 @@ pub struct Classic<'a> {
     views: Vec<PovView>,
     /// Angle between neighbouring camera rays (radians): ray footprints for texture filtering.
     pixel_spread: f64,
-    /// Primitives that may hold a camera ray's origin (unbounded ones and those whose bounds
-    /// meet the lens), each with its answer where that is the same over the whole lens.
-    camera_candidates: Vec<(u32, Option<bool>)>,
+    /// Primitives that may hold a camera ray's origin: unbounded ones and those whose bounds
+    /// meet the lens.
+    camera_candidates: Vec<u32>,
     /// The interiors every camera ray starts in, when that is the same for all: a pinhole,
     /// or a lens no candidate's surface crosses.
     fixed_interiors: Option<Interiors>,
@@ -209,8 +209,8 @@ impl<'a> Classic<'a> {
                 let b = &scene.primitives[i as usize].world_bounds;
                 b.min.cmple(lens.max).all() && b.max.cmpge(lens.min).all()
             })
-            .map(|i| (i, Self::inside_over_lens(scene, i, &lens)))
-            .collect();
+            .collect::<Vec<u32>>();
+        let lens_decides = camera_candidates.iter().all(|&i| Self::surface_misses_lens(scene, i, &lens));
         let views = scene.materials.iter().map(PovView::new).collect();
         let lights = scene.lights.sources.iter().map(PovLight::new).collect();
         let mut integrator = Self {
@@ -223,42 +223,31 @@ impl<'a> Classic<'a> {
             interiors: InteriorTable::new(scene),
             first_hit_uv: false,
         };
-        let lens_decides = integrator.camera_candidates.iter().all(|(_, known)| known.is_some());
         if scene.camera.has_single_origin() || lens_decides {
             integrator.fixed_interiors = Some(integrator.interiors_at(scene.camera.position));
         }
         integrator
     }
 
-    /// Whether primitive `index` holds every point of the world box `lens`, when that is the
-    /// same for all of them: its surface certainly misses the box ([`Shape::misses_hull`] of
-    /// its corners), so its inside test, which flips at each crossing, answers everywhere
-    /// in the box as at the camera position.
+    /// True when the surface of primitive `index` certainly misses the world box `lens`
+    /// ([`Shape::misses_hull`] of its corners), so that its inside test, which flips at each
+    /// crossing, answers everywhere in the box as at the camera position (CSG groups, whose
+    /// ray containers also depend on their boxes, are never taken to).
     ///
     /// [`Shape::misses_hull`]: prism_api::Shape::misses_hull
-    fn inside_over_lens(scene: &RenderScene, index: u32, lens: &prism_api::Aabb) -> Option<bool> {
+    fn surface_misses_lens(scene: &RenderScene, index: u32, lens: &prism_api::Aabb) -> bool {
         let p = &scene.primitives[index as usize];
         let corners: [DVec3; 8] = std::array::from_fn(|c| {
             let pick = |bit: usize, axis: usize| if c & bit == 0 { lens.min[axis] } else { lens.max[axis] };
             p.object_point(DVec3::new(pick(1, 0), pick(2, 1), pick(4, 2)))
         });
-        let decided = CsgShape::of(p.shape.as_ref()).is_none() && p.shape.misses_hull(&corners);
-        decided.then(|| p.shape.inside(p.object_point(scene.camera.position)))
+        CsgShape::of(p.shape.as_ref()).is_none() && p.shape.misses_hull(&corners)
     }
 
     /// The interiors a camera ray from `origin`, a point on the lens, starts in: the fixed
-    /// ones, else [`Classic::interiors_at`] asking only the candidates the lens leaves open.
+    /// ones, else [`Classic::interiors_at`] the origin.
     fn camera_interiors(&self, origin: DVec3) -> Interiors {
-        if let Some(fixed) = self.fixed_interiors {
-            return fixed;
-        }
-        let mut interiors = Interiors::default();
-        for &(i, known) in &self.camera_candidates {
-            if known.unwrap_or_else(|| self.holds(i, origin)) {
-                interiors = interiors.entering(i);
-            }
-        }
-        interiors
+        self.fixed_interiors.unwrap_or_else(|| self.interiors_at(origin))
     }
 
     /// The same integrator, giving every first hit its uv when `uv` is true (the `uv` AOV),
@@ -274,20 +263,16 @@ impl<'a> Classic<'a> {
     /// points around it, but POV-Ray's box for it is finite).
     fn interiors_at(&self, origin: DVec3) -> Interiors {
         let mut interiors = Interiors::default();
-        for &(i, _) in &self.camera_candidates {
-            if self.holds(i, origin) {
+        for &i in &self.camera_candidates {
+            let p = &self.scene.primitives[i as usize];
+            let point = p.object_point(origin);
+            let boxed =
+                CsgShape::of(p.shape.as_ref()).is_none_or(|group| group.container_bounds().contains(point, 0.0));
+            if boxed && p.shape.inside(point) {
                 interiors = interiors.entering(i);
             }
         }
         interiors
-    }
-
-    /// True when primitive `i` is one of the ray containers of a point at `origin`.
-    fn holds(&self, i: u32, origin: DVec3) -> bool {
-        let p = &self.scene.primitives[i as usize];
-        let point = p.object_point(origin);
-        let boxed = CsgShape::of(p.shape.as_ref()).is_none_or(|group| group.container_bounds().contains(point, 0.0));
-        boxed && p.shape.inside(point)
     }
 
     /// The finish at a hit with textures looked up: the footprint of a pixel's ray cone
