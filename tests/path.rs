@@ -346,7 +346,7 @@ fn lamps_are_chosen_by_what_they_give_the_point() {
 
 /// The same with 120 lamps, 8 x 15 on a grid 3 apart (the view sees a row of them): more
 /// than the choice weighs one by one, so it walks a tree of them, and the pixels spread by
-/// 42 % of the formula at 4 samples. Chosen by power alone (a 120th of the samples to each
+/// 33 % of the formula at 4 samples. Chosen by power alone (a 120th of the samples to each
 /// lamp everywhere), they spread by 280 %.
 #[test]
 fn many_lamps_are_chosen_through_a_tree_by_what_they_give_the_point() {

@@ -81,7 +81,7 @@ pub struct LightTree {
 
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    reach: Cluster,
+    cluster: Cluster,
     /// The node above (the root's is itself).
     parent: u32,
     /// The first child of an inner node (the second follows it), or the light of a leaf.
@@ -104,29 +104,26 @@ impl LightTree {
         if near.is_empty() {
             return None;
         }
-        let mut items: Vec<(u32, Reach)> = near.iter().enumerate().map(|(i, &r)| (i as u32, r)).collect();
+        let mut items: Vec<(u32, Cluster)> =
+            near.iter().enumerate().map(|(i, &r)| (i as u32, Cluster::of(r))).collect();
         let mut tree = Self { nodes: Vec::with_capacity(2 * near.len()), leaves: vec![0; near.len()] };
-        tree.nodes.push(Node { reach: Cluster::of(near[0]), parent: 0, content: Content::Light(0) });
+        tree.nodes.push(Node { cluster: items[0].1, parent: 0, content: Content::Light(0) });
         tree.build(0, &mut items);
         Some(tree)
     }
 
     /// Fills node `at` (already pushed) with `items`: a leaf for one, else two children split
     /// at the median along the widest axis of the centres.
-    fn build(&mut self, at: usize, items: &mut [(u32, Reach)]) {
-        if let [(light, reach)] = items {
-            self.nodes[at].reach = Cluster::of(*reach);
+    fn build(&mut self, at: usize, items: &mut [(u32, Cluster)]) {
+        if let [(light, cluster)] = items {
+            self.nodes[at].cluster = *cluster;
             self.nodes[at].content = Content::Light(*light);
             self.leaves[*light as usize] = at as u32;
             return;
         }
-        let centre = |r: &Reach| match *r {
-            Reach::Near { centre, .. } => centre,
-            Reach::Everywhere { .. } => DVec3::ZERO,
-        };
         let (low, high) = items
             .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), (_, r)| (lo.min(centre(r)), hi.max(centre(r))));
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), (_, c)| (lo.min(c.centre), hi.max(c.centre)));
         let extent = high - low;
         let axis = if extent.x >= extent.y && extent.x >= extent.z {
             0
@@ -136,21 +133,23 @@ impl LightTree {
             2
         };
         let middle = items.len() / 2;
-        items.select_nth_unstable_by(middle, |a, b| centre(&a.1)[axis].total_cmp(&centre(&b.1)[axis]));
+        // Ties (lamps in a row) broken by index: each half is then one set whatever the
+        // selection algorithm, so the tree does not change with the standard library's.
+        items.select_nth_unstable_by(middle, |a, b| a.1.centre[axis].total_cmp(&b.1.centre[axis]).then(a.0.cmp(&b.0)));
         let first = self.nodes.len();
         self.nodes[at].content = Content::Children(first as u32);
         for _ in 0..2 {
-            self.nodes.push(Node { reach: self.nodes[at].reach, parent: at as u32, content: Content::Light(0) });
+            self.nodes.push(Node { cluster: self.nodes[at].cluster, parent: at as u32, content: Content::Light(0) });
         }
         let (a, b) = items.split_at_mut(middle);
         self.build(first, a);
         self.build(first + 1, b);
-        self.nodes[at].reach = self.nodes[first].reach.with(&self.nodes[first + 1].reach);
+        self.nodes[at].cluster = self.nodes[first].cluster.with(&self.nodes[first + 1].cluster);
     }
 
     /// The weight of all the tree's lights at `receiver`.
     pub fn weight(&self, receiver: &Receiver) -> f64 {
-        self.nodes[0].reach.weight(receiver)
+        self.nodes[0].cluster.weight(receiver)
     }
 
     /// The light (index among those the tree was built from) chosen at `receiver` by `u` in
@@ -200,15 +199,15 @@ impl LightTree {
     /// The share of the first of the children starting at `first`: its weight over both's,
     /// a half each when they weigh nothing (or not a finite amount) together.
     fn first_share(&self, first: usize, receiver: &Receiver) -> f64 {
-        let a = self.nodes[first].reach.weight(receiver);
-        let b = self.nodes[first + 1].reach.weight(receiver);
+        let a = self.nodes[first].cluster.weight(receiver);
+        let b = self.nodes[first + 1].cluster.weight(receiver);
         let total = a + b;
         if total > 0.0 && total.is_finite() { a / total } else { 0.5 }
     }
 }
 
 /// The largest f64 below 1: where a rescaled random number must stay.
-const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
+pub const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
 
 /// Lights weighed together. One light weighs what its [`Reach::weight`] says. A cluster's
 /// irradiance at a point lies between what its intensity gives from the nearest point of its
@@ -385,11 +384,11 @@ mod tests {
             let Reach::Near { centre, radius, .. } = *r else { unreachable!() };
             let mut at = tree.leaves[light] as usize;
             assert_eq!(
-                tree.nodes[at].reach.weight(&Receiver { point: DVec3::ZERO, normal: DVec3::Y }),
+                tree.nodes[at].cluster.weight(&Receiver { point: DVec3::ZERO, normal: DVec3::Y }),
                 r.weight(&Receiver { point: DVec3::ZERO, normal: DVec3::Y })
             );
             loop {
-                let cluster = tree.nodes[at].reach;
+                let cluster = tree.nodes[at].cluster;
                 assert!(
                     (centre - cluster.centre).length() + radius <= cluster.spread * (1.0 + 1e-12) + 1e-12,
                     "light {light} at node {at}"
@@ -402,6 +401,6 @@ mod tests {
             }
         }
         let sum: f64 = reach.iter().map(|r| if let Reach::Near { intensity, .. } = r { *intensity } else { 0.0 }).sum();
-        assert!((tree.nodes[0].reach.intensity - sum).abs() < 1e-9 * sum);
+        assert!((tree.nodes[0].cluster.intensity - sum).abs() < 1e-9 * sum);
     }
 }

@@ -25,7 +25,7 @@
 
 use glam::{DVec2, DVec3};
 
-use super::light_reach::{LightTree, Reach, Receiver};
+use super::light_reach::{LightTree, ONE_BELOW, Reach, Receiver};
 use super::scatter::luminance;
 use crate::geometry::csg::CsgShape;
 use crate::render::extract::RenderScene;
@@ -535,11 +535,11 @@ fn pick(weights: &[f64], total: f64, u: f64) -> Option<(usize, f64)> {
         let before = cumulative;
         cumulative += w;
         if target < cumulative && w > 0.0 {
-            return Some((index, ((target - before) / w).clamp(0.0, 1.0 - f64::EPSILON / 2.0)));
+            return Some((index, ((target - before) / w).clamp(0.0, ONE_BELOW)));
         }
     }
     let index = weights.iter().rposition(|&w| w > 0.0)?;
-    Some((index, 1.0 - f64::EPSILON / 2.0))
+    Some((index, ONE_BELOW))
 }
 
 /// Each light's weight for `receiver` into `weights` (not negative; NaN counts as 0), and
