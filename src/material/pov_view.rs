@@ -5,7 +5,6 @@
 //! textured or metallic-roughness materials do work per hit ([`PovView::at_surface`]). A
 //! layered texture is one view per layer, top first ([`PovView::layers`]).
 
-use std::borrow::Cow;
 use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
@@ -71,7 +70,7 @@ pub struct ShadedFinish<'a> {
     /// `pigment`'s (borrowed unless metallic-roughness parameters vary over the surface:
     /// a pattern's colour changes no other field, and copying the whole finish per hit for
     /// it cost 4 % of a patterned scene).
-    pub finish: Cow<'a, PovFinish>,
+    pub finish: FinishAt<'a>,
     /// The pigment at the point, which replaces the finish's colour, filter and transmit.
     pub pigment: Pigment,
     /// Radiance emitted toward the viewer, W/(m^2 sr), added as is.
@@ -83,7 +82,43 @@ impl<'a> ShadedFinish<'a> {
     pub fn uniform(finish: &'a PovFinish) -> Self {
         let pigment =
             Pigment { color: finish.finish.color.0, filter: finish.finish.filter, transmit: finish.finish.transmit };
-        Self { finish: Cow::Borrowed(finish), pigment, emitted: DVec3::ZERO }
+        Self { finish: FinishAt::Borrowed(finish), pigment, emitted: DVec3::ZERO }
+    }
+}
+
+/// The finish at one surface point: the view's own, or one made for the point. The made one
+/// is boxed because the finish is large (over 400 bytes) and a [`ShadedFinish`] is returned
+/// by value on every hit: held inline, as a `Cow` holds it, every hit copied that much (5 %
+/// of a patterned scene's time).
+#[derive(Debug)]
+pub enum FinishAt<'a> {
+    /// The view's finish, unchanged at this point.
+    Borrowed(&'a PovFinish),
+    /// A finish made for this point.
+    Owned(Box<PovFinish>),
+}
+
+impl FinishAt<'_> {
+    /// The finish to change, copied out of the view first if it is the view's.
+    pub fn to_mut(&mut self) -> &mut PovFinish {
+        if let FinishAt::Borrowed(finish) = *self {
+            *self = FinishAt::Owned(Box::new(finish.clone()));
+        }
+        match self {
+            FinishAt::Owned(finish) => finish,
+            FinishAt::Borrowed(_) => unreachable!("made owned above"),
+        }
+    }
+}
+
+impl std::ops::Deref for FinishAt<'_> {
+    type Target = PovFinish;
+
+    fn deref(&self) -> &PovFinish {
+        match self {
+            FinishAt::Borrowed(finish) => finish,
+            FinishAt::Owned(finish) => finish,
+        }
     }
 }
 
