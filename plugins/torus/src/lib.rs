@@ -3,7 +3,8 @@
 //!
 //! The ray is moved to the entry of the bounding box and its direction normalised before
 //! the quartic is formed, so the coefficients stay of the torus's own scale however far away
-//! the ray starts. The quartic is solved by isolating its roots between the roots of its
+//! the ray starts. A ray that stays in the hole or outside the widest circle while it crosses
+//! the box is turned away before any quartic (POV-Ray's thick-cylinder test). The quartic is solved by isolating its roots between the roots of its
 //! derivatives ([`prism_api::math::polynomial_roots`]), never by Ferrari's formula, and each
 //! root is then polished with Newton's method on the torus's distance function.
 
@@ -113,6 +114,14 @@ impl Torus {
         let planar_dd = dir.x * dir.x + dir.z * dir.z;
         let planar_od = o.x * dir.x + o.z * dir.z;
         let planar_oo = o.x * o.x + o.z * o.z;
+        // Roots on the box's faces (the outer equator, the top and bottom circles) must not be
+        // lost to rounding at the ends of the interval: search slightly beyond both ends;
+        // anything found there is still a point of the surface, and t is checked by the caller.
+        let margin = 1e-9 * (self.major + self.minor);
+        let range = (-margin, span + margin);
+        if self.misses_thick_cylinder(range, planar_dd, planar_od, planar_oo) {
+            return None;
+        }
         let coefficients = [
             k * k - 4.0 * r2 * planar_oo,
             4.0 * m * k - 8.0 * r2 * planar_od,
@@ -120,11 +129,25 @@ impl Torus {
             4.0 * m,
             1.0,
         ];
-        // Roots on the box's faces (the outer equator, the top and bottom circles) must not be
-        // lost to rounding at the ends of the interval: search slightly beyond both ends;
-        // anything found there is still a point of the surface, and t is checked by the caller.
-        let margin = 1e-9 * (self.major + self.minor);
-        Some(Quartic { t_enter, origin: o, dir, length, coefficients, range: (-margin, span + margin) })
+        Some(Quartic { t_enter, origin: o, dir, length, coefficients, range })
+    }
+
+    /// True when, over the distances `range` along a unit direction (within the bounding
+    /// box, so between the planes y = ±minor), the ray stays inside the hole (nearer the y
+    /// axis than `major - minor`) or outside the torus's widest circle (farther than
+    /// `major + minor`): no point there lies on the torus, and the quartic need not be
+    /// solved (POV-Ray's thick-cylinder test). The squared distance from the axis is
+    /// `oo + 2 od u + dd u^2`; a slack far above its rounding keeps grazing rays to the
+    /// quartic.
+    fn misses_thick_cylinder(&self, (lo, hi): (f64, f64), dd: f64, od: f64, oo: f64) -> bool {
+        let squared = |u: f64| oo + u * (2.0 * od + u * dd);
+        let (inner, outer) = ((self.major - self.minor).powi(2), (self.major + self.minor).powi(2));
+        let slack = 1e-9 * outer;
+        // A convex parabola in u: largest at an end, least at its vertex (or the nearer end).
+        let farthest = squared(lo).max(squared(hi));
+        let vertex = if dd > 0.0 { (-od / dd).clamp(lo, hi) } else { lo };
+        let nearest = squared(vertex).min(squared(lo)).min(squared(hi));
+        farthest < inner - slack || nearest > outer + slack
     }
 
     /// Every crossing of `ray` at `t > 0` from one solution of the quartic (rather than one
@@ -415,6 +438,46 @@ mod tests {
         assert!((first_hit(&t, DVec3::ZERO, DVec3::X).unwrap() - 0.75).abs() < 1e-12);
         assert!((first_hit(&t, DVec3::ZERO, DVec3::new(0.0, 0.0, -3.0)).unwrap() - 0.25).abs() < 1e-12);
         assert!(first_hit(&t, DVec3::ZERO, DVec3::Y).is_none(), "up the axis from the centre");
+    }
+
+    /// The thick-cylinder test skips only rays that meet no point of the torus: rays aimed
+    /// at the hole's rim and the widest circle (grazing both walls of the test) are skipped
+    /// only where points sampled densely along them all lie outside the tube, and the rays
+    /// that hit are never skipped. It must skip some rays, or it saves nothing.
+    #[test]
+    fn the_thick_cylinder_test_skips_only_rays_that_miss() {
+        let mut rng = TestRng::new(17);
+        for torus in [standard(), Torus::new(3.0, 1.0), Torus::new(1.0, 0.02)] {
+            let (big, small) = (torus.major, torus.minor);
+            let mut skipped = 0;
+            for i in 0..1000 {
+                // Aim at a point near the inner or the outer circle of the equator (grazing
+                // the test's cylinders), or anywhere in the box (through its corners and the
+                // hole too).
+                let angle = rng.range(0.0, TAU);
+                let target = if i % 2 == 0 {
+                    let b = torus.bounds();
+                    DVec3::new(rng.range(b.min.x, b.max.x), rng.range(b.min.y, b.max.y), rng.range(b.min.z, b.max.z))
+                } else {
+                    let radius = if i % 4 == 1 { big - small } else { big + small } * (1.0 + rng.range(-1e-3, 1e-3));
+                    DVec3::new(radius * angle.cos(), rng.range(-small, small), radius * angle.sin())
+                };
+                let origin = target - 5.0 * (big + small) * rng.unit_vector();
+                let ray = Ray::new(origin, target - origin);
+                let skip = torus.bounds().ray_interval(&ray, 0.0, f64::INFINITY).is_some()
+                    && torus.quartic(&ray, 0.0, f64::INFINITY).is_none();
+                if !skip {
+                    continue;
+                }
+                skipped += 1;
+                assert!(torus.intersect(&ray, 0.0, f64::INFINITY).is_none());
+                for k in 0..=4000 {
+                    let p = ray.at(2.0 * k as f64 / 4000.0);
+                    assert!(!torus.inside(p), "{torus:?}: skipped a ray through {p}");
+                }
+            }
+            assert!(skipped > 40, "{torus:?}: only {skipped} of 1000 rays skipped");
+        }
     }
 
     #[test]
