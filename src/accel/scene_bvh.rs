@@ -1,8 +1,12 @@
 //! Ray queries over all primitives: an 8-wide BVH ([`crate::accel::wide`]) over the world
 //! bounds of bounded primitives, one primitive per leaf, plus a short list of unbounded ones
-//! (infinite planes) tested beside it, as POV-Ray does. Shapes are intersected in f64 in
-//! their own object space; the BVH works in f32 with conservatively enlarged boxes, and the
-//! closest hit is decided in f64.
+//! (infinite planes) tested beside it, as POV-Ray does. A primitive whose shape has
+//! [`SeparableParts`] (a CSG union) puts each part in the tree instead, as POV-Ray splits
+//! unions into its bounding hierarchy. Shapes are intersected in f64 in their own object
+//! space; the BVH works in f32 with conservatively enlarged boxes, and the closest hit is
+//! decided in f64.
+
+use std::sync::Arc;
 
 use glam::{DVec3, Vec3, Vec3A};
 use obvhs::BvhBuildParams;
@@ -23,9 +27,55 @@ pub struct Accel {
     unbounded: Vec<u32>,
     /// The world-space triangles of small meshes, in one tree of their own.
     flat: Option<FlatTriangles>,
-    /// When triangles are flattened: the tree over every bounded primitive, for
-    /// [`Accel::gather`] (which names primitives, not triangles).
+    /// When triangles are flattened or parts separated: the tree over every bounded
+    /// primitive, for [`Accel::gather`] (which names primitives, not triangles or parts).
     gather_tree: Option<WideTree>,
+    /// The parts in `tree`: a leaf reference `r` at or past `primitive_count` names part
+    /// `r - primitive_count`.
+    parts: Vec<TreePart>,
+    /// The shapes the parts belong to (one entry per separated primitive).
+    separated: Vec<Arc<dyn SeparableParts>>,
+    /// Number of primitives the structure was built over.
+    primitive_count: u32,
+}
+
+/// A shape whose nearest hit along a ray is the nearest of its parts' own hits, each found
+/// alone, the lowest part winning a tie (a CSG union that keeps its interior surfaces): each
+/// part can be a leaf of the scene's tree, so that a ray meets the parts near it in the
+/// scene's own traversal.
+pub trait SeparableParts: Send + Sync {
+    /// Number of parts.
+    fn part_count(&self) -> usize;
+    /// Bounds of part `index`'s surface in the shape's object space.
+    fn part_bounds(&self, index: usize) -> prism_api::Aabb;
+    /// The nearest hit of part `index` alone along the object-space `ray` with
+    /// `t_min < t < t_max`, as the whole shape reports it.
+    fn part_intersect(&self, index: usize, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit>;
+}
+
+/// One part of a separated primitive, as a leaf of the scene's tree.
+#[derive(Clone, Copy, Debug)]
+struct TreePart {
+    primitive: u32,
+    part: u32,
+    /// Index into [`Accel::separated`].
+    shape: u32,
+}
+
+/// The nearest hit found so far by [`Accel::closest`].
+struct Nearest {
+    t: f64,
+    hit: Option<(u32, Hit)>,
+    /// The part the hit lies on when it is a separated primitive's, else `u32::MAX`.
+    part: u32,
+}
+
+impl Nearest {
+    fn take(&mut self, primitive: u32, hit: Hit, part: u32) {
+        self.t = hit.t;
+        self.hit = Some((primitive, hit));
+        self.part = part;
+    }
 }
 
 /// The triangles of several mesh primitives in world space, in one triangle BVH: a ray
@@ -68,16 +118,22 @@ fn f32_bound(t: f64) -> f32 {
 
 /// The tree over the world bounds of `primitives[i]` for each `i` in `bounded`.
 fn primitive_tree(primitives: &[Primitive], bounded: &[u32]) -> Option<WideTree> {
-    (!bounded.is_empty()).then(|| {
-        let boxes: Vec<_> = bounded.iter().map(|&i| to_obvhs_aabb(&primitives[i as usize].world_bounds)).collect();
-        // One primitive per leaf: the wide tree's leaves are single primitives.
+    let items: Vec<_> = bounded.iter().map(|&i| (i, primitives[i as usize].world_bounds)).collect();
+    reference_tree(&items)
+}
+
+/// The tree over `items`' world boxes, each a leaf holding its reference.
+fn reference_tree(items: &[(u32, prism_api::Aabb)]) -> Option<WideTree> {
+    (!items.is_empty()).then(|| {
+        let boxes: Vec<_> = items.iter().map(|(_, b)| to_obvhs_aabb(b)).collect();
+        // One item per leaf: the wide tree's leaves are single primitives or parts.
         let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::medium_build() };
         let bvh2 = build_binary(boxes, params);
-        // One primitive per leaf; how costly each is does not change the collapse.
+        // One item per leaf; how costly each is does not change the collapse.
         let cost = CollapseCost { node: 1.0, leaf: |n| (n == 1).then_some(1.0) };
         WideTree::collapse(&bvh2, cost, |prims: &[u32]| {
-            debug_assert_eq!(prims.len(), 1, "leaves hold one primitive");
-            bounded[prims[0] as usize]
+            debug_assert_eq!(prims.len(), 1, "leaves hold one item");
+            items[prims[0] as usize].0
         })
     })
 }
@@ -85,7 +141,7 @@ fn primitive_tree(primitives: &[Primitive], bounded: &[u32]) -> Option<WideTree>
 impl Accel {
     /// Builds the BVH over `primitives`' world bounds (two levels for every mesh).
     pub fn build(primitives: &[Primitive]) -> Self {
-        Self::build_flattening(primitives, &[])
+        Self::build_flattening(primitives, &[], &[])
     }
 
     /// Builds the BVH; `flatten[i]`, when given, holds primitive `i`'s object-space
@@ -94,10 +150,19 @@ impl Accel {
     /// scene-level structure as world-space triangles instead of as one primitive with a
     /// tree of its own; hits on them are the shape's own (same primitive, `part` and
     /// barycentrics; `t` and barycentrics exactly the same when the primitive is not moved,
-    /// else up to the rounding of its vertices to world space).
-    pub fn build_flattening(primitives: &[Primitive], flatten: &[Option<&[[Vec3; 3]]>]) -> Self {
+    /// else up to the rounding of its vertices to world space). `separable[i]`, when given,
+    /// is primitive `i`'s shape as [`SeparableParts`]: a bounded one puts its parts into the
+    /// tree one by one (hits exactly the shape's own).
+    pub fn build_flattening(
+        primitives: &[Primitive],
+        flatten: &[Option<&[[Vec3; 3]]>],
+        separable: &[Option<Arc<dyn SeparableParts>>],
+    ) -> Self {
+        let primitive_count = u32::try_from(primitives.len()).expect("primitives are numbered in u32");
         let mut all_bounded = Vec::new();
         let mut bounded = Vec::new();
+        let mut parts = Vec::new();
+        let mut separated: Vec<Arc<dyn SeparableParts>> = Vec::new();
         let mut unbounded = Vec::new();
         let mut triangles = Vec::new();
         let mut owners = Vec::new();
@@ -118,12 +183,81 @@ impl Accel {
                         owners.push((i as u32, slot as u32));
                     }
                 }
-                None => bounded.push(i as u32),
+                None => match separable.get(i).cloned().flatten() {
+                    Some(shape) => {
+                        let shape_index = separated.len() as u32;
+                        for part in 0..shape.part_count() {
+                            let bounds = shape.part_bounds(part).transformed(&p.world_from_object);
+                            // A part without a surface is never hit.
+                            if bounds.is_empty() {
+                                continue;
+                            }
+                            let reference = primitive_count as usize + parts.len();
+                            // Leaf references live below the wide tree's leaf flag.
+                            let reference = u32::try_from(reference).ok().filter(|&r| r & LEAF == 0 && r != EMPTY);
+                            let reference = reference.expect("fewer than 2^31 primitives and parts");
+                            bounded.push((reference, bounds));
+                            parts.push(TreePart { primitive: i as u32, part: part as u32, shape: shape_index });
+                        }
+                        separated.push(shape);
+                    }
+                    None => bounded.push((i as u32, p.world_bounds)),
+                },
             }
         }
         let flat = (!triangles.is_empty()).then(|| FlatTriangles { bvh: TriangleBvh::build(triangles), owners });
-        let gather_tree = flat.is_some().then(|| primitive_tree(primitives, &all_bounded)).flatten();
-        Self { tree: primitive_tree(primitives, &bounded), unbounded, flat, gather_tree }
+        let gather_tree =
+            (flat.is_some() || !parts.is_empty()).then(|| primitive_tree(primitives, &all_bounded)).flatten();
+        Self { tree: reference_tree(&bounded), unbounded, flat, gather_tree, parts, separated, primitive_count }
+    }
+
+    /// Number of separated parts in the tree (each a leaf in place of its primitive).
+    pub fn separated_parts(&self) -> usize {
+        self.parts.len()
+    }
+
+    /// The nearest hit of tree part `part` better than `nearest`: a lower part of the same
+    /// primitive wins a tie, as in the shape's own intersect.
+    fn part_closest(
+        &self,
+        primitives: &[Primitive],
+        part: u32,
+        ray: &Ray,
+        t_min: f64,
+        nearest: &mut Nearest,
+        accept: &impl Fn(u32) -> bool,
+    ) -> bool {
+        let TreePart { primitive, part, shape } = self.parts[part as usize];
+        if !accept(primitive) {
+            return false;
+        }
+        let same = nearest.hit.is_some_and(|(best, _)| best == primitive) && nearest.part > part;
+        let limit = if same { nearest.t.next_up() } else { nearest.t };
+        let object_ray = primitives[primitive as usize].object_ray_of(ray);
+        match self.separated[shape as usize].part_intersect(part as usize, &object_ray, t_min, limit) {
+            Some(hit) => {
+                nearest.take(primitive, hit, part);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// True when tree part `part` lies on `ray` within `(t_min, t_max)`.
+    fn part_occludes(
+        &self,
+        primitives: &[Primitive],
+        part: u32,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        accept: &impl Fn(u32) -> bool,
+    ) -> bool {
+        let TreePart { primitive, part, shape } = self.parts[part as usize];
+        accept(primitive) && {
+            let object_ray = primitives[primitive as usize].object_ray_of(ray);
+            self.separated[shape as usize].part_intersect(part as usize, &object_ray, t_min, t_max).is_some()
+        }
     }
 
     /// Number of triangles held in the scene-level structure itself.
@@ -140,36 +274,33 @@ impl Accel {
         t_max: f64,
         accept: impl Fn(u32) -> bool,
     ) -> Option<ClosestHit> {
-        let mut best: Option<(u32, Hit)> = None;
-        let mut best_t = t_max;
-        let test = |index: u32, best_t: &mut f64, best: &mut Option<(u32, Hit)>| -> bool {
+        let mut nearest = Nearest { t: t_max, hit: None, part: u32::MAX };
+        let test = |index: u32, nearest: &mut Nearest| -> bool {
             if !accept(index) {
                 return false;
             }
-            match primitives[index as usize].intersect(ray, t_min, *best_t) {
+            match primitives[index as usize].intersect(ray, t_min, nearest.t) {
                 Some(hit) => {
-                    *best_t = hit.t;
-                    *best = Some((index, hit));
+                    nearest.take(index, hit, u32::MAX);
                     true
                 }
                 None => false,
             }
         };
         for &index in &self.unbounded {
-            test(index, &mut best_t, &mut best);
+            test(index, &mut nearest);
         }
         if let Some(flat) = &self.flat
             && let Some(wray) = WatertightRay::new(ray.origin.as_vec3(), ray.direction.as_vec3())
         {
             // What `MeshShape::intersect` does, over the triangles of every flattened mesh.
-            flat.bvh.closest(&wray, f32_bound(best_t), |index, h, [a, b, c]| {
+            flat.bvh.closest(&wray, f32_bound(nearest.t), |index, h, [a, b, c]| {
                 let (primitive, slot) = flat.owners[index];
                 let t = plane_t(ray.origin, ray.direction, a, b, c).unwrap_or(f64::from(h.t));
-                if t <= t_min || t >= best_t || !accept(primitive) {
+                if t <= t_min || t >= nearest.t || !accept(primitive) {
                     return None;
                 }
-                best_t = t;
-                best = Some((primitive, mesh_hit(t, slot, h)));
+                nearest.take(primitive, mesh_hit(t, slot, h), u32::MAX);
                 // Round up so the f32 traversal never prunes a box holding an equal hit.
                 Some(f32_bound(t))
             });
@@ -177,16 +308,20 @@ impl Accel {
         if let Some(tree) = &self.tree {
             let r = box_ray(ray);
             with_traversal_stack(tree.stack_size, |stack| {
-                traverse_fastest::<true>(&tree.nodes, &r, f32_bound(best_t), stack, |primitive, bound| {
-                    if test(primitive, &mut best_t, &mut best) {
+                traverse_fastest::<true>(&tree.nodes, &r, f32_bound(nearest.t), stack, |reference, bound| {
+                    let found = match reference.checked_sub(self.primitive_count) {
+                        None => test(reference, &mut nearest),
+                        Some(part) => self.part_closest(primitives, part, ray, t_min, &mut nearest, &accept),
+                    };
+                    if found {
                         // Round up so the f32 traversal never prunes a box holding an equal hit.
-                        *bound = f32_bound(best_t);
+                        *bound = f32_bound(nearest.t);
                     }
                     false
                 })
             });
         }
-        best.map(|(primitive, hit)| ClosestHit { primitive, hit })
+        nearest.hit.map(|(primitive, hit)| ClosestHit { primitive, hit })
     }
 
     /// True when any primitive for which `accept` is true lies on the ray in (t_min, t_max).
@@ -233,7 +368,12 @@ impl Accel {
         if let Some(tree) = &self.tree {
             let r = box_ray(ray);
             if with_traversal_stack(tree.stack_size, |stack| {
-                traverse_fastest::<false>(&tree.nodes, &r, f32_bound(t_max), stack, |primitive, _| test(primitive))
+                traverse_fastest::<false>(&tree.nodes, &r, f32_bound(t_max), stack, |reference, _| {
+                    match reference.checked_sub(self.primitive_count) {
+                        None => test(reference),
+                        Some(part) => self.part_occludes(primitives, part, ray, t_min, t_max, &accept),
+                    }
+                })
             }) {
                 return true;
             }
@@ -531,7 +671,7 @@ mod tests {
             primitive(Arc::new(Sphere { center: DVec3::new(3.0, 0.0, 0.0), radius: 1.0 })),
         ];
         let flatten: Vec<Option<&[[Vec3; 3]]>> = vec![Some(&triangle), Some(&triangle), None];
-        let accel = Accel::build_flattening(&primitives, &flatten);
+        let accel = Accel::build_flattening(&primitives, &flatten, &[]);
         assert_eq!(accel.flattened_triangles(), 1, "only the primitive within f32's range is flattened");
         let ray = Ray::new(DVec3::new(3.0, 0.0, 5.0), -DVec3::Z);
         let hit = accel.closest(&primitives, &ray, 1e-6, f64::INFINITY, |_| true).unwrap();

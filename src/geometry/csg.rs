@@ -79,6 +79,7 @@ impl CsgOperation {
 }
 
 use crate::accel::primitive::{PART_BITS, leaf_of};
+use crate::accel::scene_bvh::SeparableParts;
 
 /// The most leaves (plain shapes, nested groups' included) a group can number in the bits
 /// of [`Hit::part`] above [`PART_BITS`].
@@ -441,6 +442,31 @@ impl CsgShape {
         self.leaves
     }
 
+    /// The number of members the scene's tree may hold one by one in place of the group,
+    /// when it may: a union that keeps its interior surfaces, whose members' surfaces are all
+    /// bounded. Its nearest hit is the nearest of its members' own
+    /// ([`CsgShape::member_intersect`]), the lowest member on a tie, so each member can be a
+    /// leaf of the scene's tree (as POV-Ray puts a union's members into its bounding
+    /// hierarchy) and a ray meets the few near it without a walk of the group's own tree.
+    pub fn separable_members(&self) -> Option<usize> {
+        let separable = self.operation == CsgOperation::Union
+            && self.interior_surfaces
+            && self.members.iter().all(|m| m.surface_bounds.is_bounded());
+        separable.then_some(self.members.len())
+    }
+
+    /// Bounds in the group's space of member `index`'s surface.
+    pub fn member_surface_bounds(&self, index: usize) -> Aabb {
+        self.members[index].surface_bounds
+    }
+
+    /// The nearest hit of member `index` alone with `t_min < t < t_max`, numbered among the
+    /// group's leaves; for a group with [`CsgShape::separable_members`], what the group's
+    /// own nearest hit is made of.
+    pub fn member_intersect(&self, index: usize, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        self.member_nearest(index, ray, DVec3::ONE / ray.direction, t_min, t_max)
+    }
+
     /// True when a crossing of member `index` at group-space `point` lies on the boundary the
     /// group shows.
     fn keeps(&self, index: usize, point: DVec3) -> bool {
@@ -566,6 +592,22 @@ fn collect_sampling_leaves(members: &[CsgMember], group_from_members: DAffine3, 
             }
             None => {}
         }
+    }
+}
+
+/// A union's members as parts of the scene's tree (asked only of groups with
+/// [`CsgShape::separable_members`]).
+impl SeparableParts for CsgShape {
+    fn part_count(&self) -> usize {
+        self.members.len()
+    }
+
+    fn part_bounds(&self, index: usize) -> Aabb {
+        self.member_surface_bounds(index)
+    }
+
+    fn part_intersect(&self, index: usize, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        self.member_intersect(index, ray, t_min, t_max)
     }
 }
 

@@ -1,7 +1,8 @@
 //! A bounding volume hierarchy over the members of a CSG group, so that a ray or a point
-//! meets the few members near it instead of every one: POV-Ray puts a union's members into
-//! its scene-wide hierarchy (`Split_Unions`); a group here keeps them together, with a tree
-//! of its own.
+//! meets the few members near it instead of every one. POV-Ray puts a union's members into
+//! its scene-wide hierarchy; so does Prism for a union that is an object of the scene
+//! (`render::extract::separable`), but inside tests, merges and nested unions go through
+//! the group, with this tree of its own.
 
 use glam::DVec3;
 use prism_api::{Aabb, Ray};

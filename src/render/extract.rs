@@ -8,13 +8,14 @@ use super::focal_blur::BlurSchedule;
 use super::lights::{RenderLight, SceneLights};
 use super::sampling::PatternTable;
 use crate::accel::primitive::Primitive;
-use crate::accel::scene_bvh::Accel;
+use crate::accel::scene_bvh::{Accel, SeparableParts};
 use std::any::Any;
 use std::collections::HashMap;
 use std::sync::Arc;
 
 use glam::Vec3;
 
+use crate::geometry::csg::CsgShape;
 use crate::geometry::mesh::MeshShape;
 use crate::material::Material;
 use crate::material::pov_view::PovView;
@@ -99,6 +100,22 @@ pub(crate) fn flattenable(primitives: &[Primitive]) -> Vec<Option<&[[Vec3; 3]]>>
         .collect()
 }
 
+/// Which primitives' parts go into the scene-level BVH one by one (see
+/// [`Accel::build_flattening`]): CSG unions that keep their interior surfaces, of at least
+/// two members with bounded surfaces.
+pub(crate) fn separable(primitives: &[Primitive]) -> Vec<Option<Arc<dyn SeparableParts>>> {
+    primitives
+        .iter()
+        .map(|p| {
+            let group = CsgShape::of(p.shape.as_ref())?;
+            group.separable_members().filter(|&members| members >= 2)?;
+            let any: Arc<dyn Any + Send + Sync> = p.shape.clone();
+            let group: Arc<dyn SeparableParts> = any.downcast::<CsgShape>().ok()?;
+            Some(group)
+        })
+        .collect()
+}
+
 /// Builds the render scene. Call after `resolve_transforms` and `validate`.
 pub fn extract(scene: &Scene) -> RenderScene {
     type Entry = (hecs::Entity, Primitive, Arc<Material>, Option<Vec<Arc<Material>>>);
@@ -142,7 +159,7 @@ pub fn extract(scene: &Scene) -> RenderScene {
     let sources = lights.into_iter().map(|(_, l)| l).collect();
     let lights = SceneLights::new(sources, &primitives, &materials, &scene.environment);
 
-    let accel = Accel::build_flattening(&primitives, &flattenable(&primitives));
+    let accel = Accel::build_flattening(&primitives, &flattenable(&primitives), &separable(&primitives));
     let has_transparency = materials.iter().any(|m| PovView::new(m).is_transparent());
     let camera = RenderCamera::new(&scene.camera(), scene.render.width, scene.render.height);
     let focal_blur = scene
@@ -225,7 +242,7 @@ mod tests {
         ];
         let flatten = flattenable(&primitives);
         assert_eq!(flatten.iter().map(Option::is_some).collect::<Vec<_>>(), [true, true, true, false]);
-        let flat = Accel::build_flattening(&primitives, &flatten);
+        let flat = Accel::build_flattening(&primitives, &flatten, &[]);
         assert_eq!(flat.flattened_triangles(), 3 * flatten[0].unwrap().len());
         let two_level = Accel::build(&primitives);
         assert_eq!(two_level.flattened_triangles(), 0);
@@ -277,6 +294,116 @@ mod tests {
         }
         assert!(hits > 4000, "most rays hit something ({hits})");
         assert!(near_misses < 10, "{near_misses} rays found different triangles");
+    }
+
+    /// Unions with their members in the scene's tree one by one find exactly the hits the
+    /// unions find whole (primitive, t and part, so the same leaf and material), occlusion
+    /// included: members moved and turned, a nested group and an inverted member among
+    /// them, twin members on top of each other (the lower member must win the tie, as in the
+    /// group), and a union that is not separable (an intersection) beside them.
+    #[test]
+    fn separated_unions_hit_as_whole_unions_do() {
+        use crate::geometry::csg::{CsgMember, CsgOperation};
+        let mut rng = TestRng::new(5);
+        let sphere = |c: DVec3, r: f64| -> Arc<dyn Shape> { Arc::new(prism_sphere::Sphere { center: c, radius: r }) };
+        let boxed = |h: f64| -> Arc<dyn Shape> {
+            Arc::new(prism_box::BoxShape { min: DVec3::splat(-h), max: DVec3::splat(h) })
+        };
+        let member = |shape: Arc<dyn Shape>, at: DAffine3, inverse: bool| CsgMember::new(shape, at, inverse);
+        let mut unions = Vec::new();
+        for _ in 0..6 {
+            let mut members = Vec::new();
+            for k in 0..12 {
+                let at = DAffine3::from_scale_rotation_translation(
+                    DVec3::new(rng.range(0.5, 1.5), rng.range(0.5, 1.5), rng.range(0.5, 1.5)),
+                    DQuat::from_euler(glam::EulerRot::XYZ, rng.range(0.0, 3.0), rng.range(0.0, 3.0), 0.0),
+                    DVec3::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)),
+                );
+                let shape = match k % 4 {
+                    0 => sphere(DVec3::ZERO, rng.range(0.2, 0.7)),
+                    1 => boxed(rng.range(0.2, 0.6)),
+                    2 => Arc::new(CsgShape::new(
+                        CsgOperation::Difference,
+                        vec![
+                            member(boxed(0.5), DAffine3::IDENTITY, false),
+                            member(sphere(DVec3::Y * 0.4, 0.4), DAffine3::IDENTITY, false),
+                        ],
+                    )),
+                    _ => Arc::new(CsgShape::new(
+                        CsgOperation::Intersection,
+                        vec![
+                            member(boxed(0.5), DAffine3::IDENTITY, false),
+                            member(boxed(0.4), DAffine3::IDENTITY, true),
+                        ],
+                    )),
+                };
+                members.push(member(shape.clone(), at, false));
+                if k % 5 == 0 {
+                    // A twin on top of this member: every hit on one is a tie with the other.
+                    members.push(member(shape, at, false));
+                }
+            }
+            unions.push(Arc::new(CsgShape::new(CsgOperation::Union, members)) as Arc<dyn Shape>);
+        }
+        let inside_out = CsgShape::new(
+            CsgOperation::Intersection,
+            vec![
+                member(sphere(DVec3::ZERO, 1.0), DAffine3::IDENTITY, false),
+                member(boxed(0.8), DAffine3::IDENTITY, false),
+            ],
+        );
+        let mut primitives: Vec<Primitive> = unions
+            .into_iter()
+            .enumerate()
+            .map(|(i, u)| Primitive::new(u, DAffine3::from_translation(DVec3::new(i as f64 - 2.5, 0.0, 0.0)), 0, false))
+            .collect();
+        primitives.push(Primitive::new(Arc::new(inside_out), DAffine3::from_translation(DVec3::Z * 2.0), 0, false));
+        let separable = separable(&primitives);
+        assert_eq!(separable.iter().filter(|s| s.is_some()).count(), 6, "the unions, not the intersection");
+        let split = Accel::build_flattening(&primitives, &[], &separable);
+        assert!(split.separated_parts() >= 6 * 14);
+        let whole = Accel::build(&primitives);
+        let (mut hits, mut twins) = (0, 0);
+        for case in 0..20_000 {
+            let origin = DVec3::new(rng.range(-9.0, 9.0), rng.range(-9.0, 9.0), rng.range(-9.0, 9.0));
+            let target = DVec3::new(rng.range(-5.0, 5.0), rng.range(-3.0, 3.0), rng.range(-3.0, 3.0));
+            let ray = Ray::new(origin, (target - origin) * rng.range(0.2, 2.0));
+            let t_max = if case % 3 == 0 { rng.range(0.2, 1.5) } else { f64::INFINITY };
+            let skip_odd = |i: u32| i.is_multiple_of(2);
+            for accept in [&(|_| true) as &dyn Fn(u32) -> bool, &skip_odd] {
+                let expected = whole.closest(&primitives, &ray, 1e-6, t_max, accept);
+                let found = split.closest(&primitives, &ray, 1e-6, t_max, accept);
+                let pair =
+                    |h: Option<crate::accel::scene_bvh::ClosestHit>| h.map(|h| (h.primitive, h.hit.t, h.hit.part));
+                assert_eq!(pair(found), pair(expected), "case {case}");
+                assert_eq!(split.occluded(&primitives, &ray, 1e-6, t_max, accept), expected.is_some(), "case {case}");
+                if let Some(hit) = expected {
+                    hits += 1;
+                    twins += usize::from(on_first_twin(&primitives[hit.primitive as usize], &hit.hit));
+                }
+            }
+        }
+        assert!(hits > 10_000, "most rays hit ({hits})");
+        assert!(twins > 500, "ties between twins are decided ({twins})");
+    }
+
+    /// True when `hit` lies on a union member followed by its twin (the same shape placed
+    /// the same way).
+    fn on_first_twin(primitive: &Primitive, hit: &prism_api::Hit) -> bool {
+        let Some(group) = CsgShape::of(primitive.shape.as_ref()) else { return false };
+        let leaf = crate::accel::primitive::leaf_of(hit);
+        let members = group.members();
+        let mut base = 0;
+        for (i, m) in members.iter().enumerate() {
+            let leaves = CsgShape::of(m.shape.as_ref()).map_or(1, CsgShape::leaves);
+            if leaf < base + leaves {
+                return members.get(i + 1).is_some_and(|next| {
+                    Arc::ptr_eq(&next.shape, &m.shape) && next.group_from_member == m.group_from_member
+                });
+            }
+            base += leaves;
+        }
+        false
     }
 
     #[test]
