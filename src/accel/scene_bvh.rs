@@ -62,9 +62,10 @@ struct TreePart {
     shape: u32,
 }
 
-/// What [`Accel::part_closest`] needs to know of the nearest hit found so far: its t, and
-/// the primitive and part it lies on (`u32::MAX` for none, or for a whole primitive's part).
-/// Passed by value, so that the hot loop's own variables never have their address taken.
+/// What [`Accel::part_closest`] needs to know of the nearest hit found so far: its t, the
+/// primitive it lies on (`u32::MAX` for none) and, when that primitive is a separated one,
+/// the part (else any value: no part belongs to a whole primitive). Passed by value, so
+/// that the hot loop's own variables never have their address taken.
 #[derive(Clone, Copy)]
 struct SoFar {
     t: f64,
@@ -99,9 +100,8 @@ fn to_obvhs_aabb(b: &prism_api::Aabb) -> obvhs::aabb::Aabb {
 }
 
 /// Whether primitive `index` (`primitive`) has a hit on `ray` in `(t_min, *best_t)`, taken
-/// into `best` and `best_t` when it has. Inlined into each caller: out of line, the closest
-/// hit's loop kept its best hit in memory and a plane's intersect waited on the ray's stores
-/// (5 % of the room at 4K).
+/// into `best` and `best_t` when it has. Always inlined: it is the traversal's leaf test,
+/// and a leaf test out of line cost the room at 4K 5 % (see [`Accel::closest`]).
 #[inline(always)]
 fn closer_whole(
     primitive: &Primitive,
