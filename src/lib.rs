@@ -1,8 +1,8 @@
 //! Prism: a ray tracer for scenes written as TOML.
 //!
 //! Data flows one way, each step a plain function:
-//! [`scene::load`] (TOML -> hecs `World`), [`scene::transforms::resolve_transforms`],
-//! [`scene::validate::validate`], [`render::scene::extract`] (world -> immutable render
+//! [`scene::load`] (TOML -> hecs `World`), [`world::transforms::resolve_transforms`],
+//! [`world::validate::validate`], [`render::extract::extract`] (world -> immutable render
 //! scene with its BVH), [`render::render`] (any integrator over a region, tiles in parallel -> [`film::Film`]) and
 //! [`output`] (film -> EXR / PNG / ...). [`scene::save`] is the inverse of `load`.
 

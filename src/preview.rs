@@ -84,7 +84,7 @@ pub struct Layout {
 
 impl Layout {
     /// The layout of a `image` (width, height) on a `screen` (width, height): an image that
-    /// does not fit [`SCREEN_SHARE`] of the screen is shrunk (keeping its aspect ratio),
+    /// does not fit `SCREEN_SHARE` of the screen is shrunk (keeping its aspect ratio),
     /// and a small one is enlarged by the largest whole factor that keeps its longer side
     /// at most [`SMALL_IMAGE_SIDE`] and the window on the screen.
     pub fn fit(image: (u32, u32), screen: (u32, u32)) -> Self {

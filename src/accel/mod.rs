@@ -1,6 +1,6 @@
 //! Acceleration: primitives placed in the world, and both levels of the BVH (the scene
 //! level over primitives, the mesh level over triangles), which share one 8-wide node
-//! layout; the SIMD kernels of both (box and triangle tests) live in [`simd`], once per
+//! layout; the SIMD kernels of both (box and triangle tests) live in `simd`, once per
 //! instruction set.
 
 pub mod mesh_bvh;

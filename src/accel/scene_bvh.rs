@@ -1,4 +1,4 @@
-//! Ray queries over all primitives: an 8-wide BVH ([`crate::accel::wide`]) over the world
+//! Ray queries over all primitives: an 8-wide BVH (`accel::wide`) over the world
 //! bounds of bounded primitives, one primitive per leaf, plus a short list of unbounded ones
 //! (infinite planes) tested beside it, as POV-Ray does. A primitive whose shape has
 //! [`SeparableParts`] (a CSG union) puts each part in the tree instead, as POV-Ray splits

@@ -90,7 +90,7 @@ impl TriangleGroups {
 }
 
 /// One group of a [`TriangleGroups`], checked when made: its counts are within the limits
-/// and its words, with [`TAIL_WORDS`] after them, lie in the buffer, which is what the SIMD
+/// and its words, with `TAIL_WORDS` after them, lie in the buffer, which is what the SIMD
 /// kernels' loads rely on.
 #[derive(Clone, Copy, Debug)]
 pub struct Group<'a> {
@@ -140,14 +140,14 @@ impl<'a> Group<'a> {
     }
 
     /// The coordinates: `3 × vertex_count` floats (x of every vertex, then y, then z),
-    /// followed by at least [`TAIL_WORDS`] readable words.
+    /// followed by at least `TAIL_WORDS` readable words.
     #[inline(always)]
     pub fn coordinates(&self) -> *const f32 {
         self.words[1..].as_ptr().cast()
     }
 
     /// The corner index bytes: `3 × triangle_count` (first corners, then second, then
-    /// third), followed by at least [`TAIL_WORDS`] readable words.
+    /// third), followed by at least `TAIL_WORDS` readable words.
     #[inline(always)]
     pub fn corner_indices(&self) -> *const u8 {
         self.words[1 + 3 * self.vertices..].as_ptr().cast()

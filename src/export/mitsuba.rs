@@ -16,7 +16,7 @@
 //! one, so absorbing glass is not padded with a black diffuse lobe; and its `path`
 //! integrator drops a sample that only passed through `Null` lobes (a thin dielectric's
 //! transmission) before leaving a scene without an environment, so such scenes get a black
-//! one ([`dark_environment`]).
+//! one (`dark_environment`).
 //!
 //! glTF metallic-roughness materials become the `gltf_metallic_roughness` BSDF that
 //! scripts/mitsuba_gltf_bsdf.py registers with Mitsuba (glTF 2.0 Appendix B written from the

@@ -331,7 +331,7 @@ impl MeshData {
 }
 
 /// What a mesh part's own (file) material does to its geometry: cut-outs and bumps. These
-/// belong to the shape rather than to [`Material`] because the alpha test runs during
+/// belong to the shape rather than to [`Material`](crate::material::Material) because the alpha test runs during
 /// traversal and the normal map changes the shading normal the shape reports.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SurfaceMaps {

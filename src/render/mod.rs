@@ -268,7 +268,7 @@ const BUDGET_FILL: f64 = 0.9;
 /// and returns the last pass that completed: exactly the image a render with that pass's
 /// sample count gives. The first pass takes one sample per pixel and always completes;
 /// each later pass takes as many samples as the previous pass's time per sample predicts
-/// will fill [`BUDGET_FILL`] of the remaining time, at most `max_samples`. A pass the budget
+/// will fill `BUDGET_FILL` of the remaining time, at most `max_samples`. A pass the budget
 /// cuts off is discarded. `scene`'s sample count is left at the returned pass's.
 pub fn render_within(
     scene: &mut RenderScene,

@@ -575,7 +575,7 @@ struct TextureTable {
     rotation: Option<f64>,
 }
 
-/// A texture is written as an image path or as a [`TextureTable`], as the deserializer
+/// A texture is written as an image path or as a `TextureTable`, as the deserializer
 /// reads it.
 impl JsonSchema for TextureRef {
     fn schema_name() -> std::borrow::Cow<'static, str> {

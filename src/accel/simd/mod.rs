@@ -146,7 +146,7 @@ pub trait Dispatch {
     fn run<K: Kernels>(self, kernels: K) -> Self::Output;
 }
 
-/// The name of the instruction set [`dispatch`] runs with on this CPU.
+/// The name of the instruction set `dispatch` runs with on this CPU.
 pub fn instruction_set() -> &'static str {
     #[cfg(target_arch = "x86_64")]
     if Avx512::detect().is_some() {

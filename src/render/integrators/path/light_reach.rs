@@ -66,7 +66,7 @@ impl Reach {
     }
 }
 
-/// A binary tree over the lights that reach a bounded region, each node a [`Cluster`] of
+/// A binary tree over the lights that reach a bounded region, each node a `Cluster` of
 /// its two children's lights. A choice at a point takes, at each node from the root down, a
 /// child in proportion to its weight there, so a light's probability is the product of the
 /// shares along its path; any positive weights keep the choice unbiased, and these follow
