@@ -442,29 +442,17 @@ impl CsgShape {
         self.leaves
     }
 
-    /// The number of members the scene's tree may hold one by one in place of the group,
-    /// when it may: a union that keeps its interior surfaces, whose members' surfaces are all
-    /// bounded. Its nearest hit is the nearest of its members' own
-    /// ([`CsgShape::member_intersect`]), the lowest member on a tie, so each member can be a
-    /// leaf of the scene's tree (as POV-Ray puts a union's members into its bounding
-    /// hierarchy) and a ray meets the few near it without a walk of the group's own tree.
-    pub fn separable_members(&self) -> Option<usize> {
-        let separable = self.operation == CsgOperation::Union
+    /// True when the scene's tree may hold the members one by one in place of the group: a
+    /// union of two or more members that keeps its interior surfaces, whose members'
+    /// surfaces are all bounded. Its nearest hit is the nearest of its members' own (its
+    /// [`SeparableParts`]), the lowest member on a tie, so each member can be a leaf of the
+    /// scene's tree (as POV-Ray puts a union's members into its bounding hierarchy) and a ray
+    /// meets the few near it without a walk of the group's own tree.
+    pub fn is_separable(&self) -> bool {
+        self.operation == CsgOperation::Union
             && self.interior_surfaces
-            && self.members.iter().all(|m| m.surface_bounds.is_bounded());
-        separable.then_some(self.members.len())
-    }
-
-    /// Bounds in the group's space of member `index`'s surface.
-    pub fn member_surface_bounds(&self, index: usize) -> Aabb {
-        self.members[index].surface_bounds
-    }
-
-    /// The nearest hit of member `index` alone with `t_min < t < t_max`, numbered among the
-    /// group's leaves; for a group with [`CsgShape::separable_members`], what the group's
-    /// own nearest hit is made of.
-    pub fn member_intersect(&self, index: usize, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        self.member_nearest(index, ray, DVec3::ONE / ray.direction, t_min, t_max)
+            && self.members.len() >= 2
+            && self.members.iter().all(|m| m.surface_bounds.is_bounded())
     }
 
     /// True when a crossing of member `index` at group-space `point` lies on the boundary the
@@ -595,19 +583,21 @@ fn collect_sampling_leaves(members: &[CsgMember], group_from_members: DAffine3, 
     }
 }
 
-/// A union's members as parts of the scene's tree (asked only of groups with
-/// [`CsgShape::separable_members`]).
+/// A union's members as parts of the scene's tree (asked only of groups that
+/// [`CsgShape::is_separable`]): a part's hit is the member's nearest, numbered among the
+/// group's leaves, with the member's surface bounds clipping the ray as in the group's own
+/// walk.
 impl SeparableParts for CsgShape {
     fn part_count(&self) -> usize {
         self.members.len()
     }
 
     fn part_bounds(&self, index: usize) -> Aabb {
-        self.member_surface_bounds(index)
+        self.members[index].surface_bounds
     }
 
     fn part_intersect(&self, index: usize, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        self.member_intersect(index, ray, t_min, t_max)
+        self.member_nearest(index, ray, DVec3::ONE / ray.direction, t_min, t_max)
     }
 }
 

@@ -107,11 +107,11 @@ pub(crate) fn separable(primitives: &[Primitive]) -> Vec<Option<Arc<dyn Separabl
     primitives
         .iter()
         .map(|p| {
-            let group = CsgShape::of(p.shape.as_ref())?;
-            group.separable_members().filter(|&members| members >= 2)?;
+            if !CsgShape::of(p.shape.as_ref()).is_some_and(CsgShape::is_separable) {
+                return None;
+            }
             let any: Arc<dyn Any + Send + Sync> = p.shape.clone();
-            let group: Arc<dyn SeparableParts> = any.downcast::<CsgShape>().ok()?;
-            Some(group)
+            any.downcast::<CsgShape>().ok().map(|group| group as Arc<dyn SeparableParts>)
         })
         .collect()
 }

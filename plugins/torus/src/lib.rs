@@ -144,9 +144,9 @@ impl Torus {
         let (inner, outer) = ((self.major - self.minor).powi(2), (self.major + self.minor).powi(2));
         let slack = 1e-9 * outer;
         // A convex parabola in u: largest at an end, least at its vertex (or the nearer end).
-        let farthest = squared(lo).max(squared(hi));
+        let (at_lo, at_hi) = (squared(lo), squared(hi));
         let vertex = if dd > 0.0 { (-od / dd).clamp(lo, hi) } else { lo };
-        let nearest = squared(vertex).min(squared(lo)).min(squared(hi));
+        let (farthest, nearest) = (at_lo.max(at_hi), squared(vertex).min(at_lo).min(at_hi));
         farthest < inner - slack || nearest > outer + slack
     }
 
