@@ -6,14 +6,16 @@
 //! space; the BVH works in f32 with conservatively enlarged boxes, and the closest hit is
 //! decided in f64.
 
+use std::any::Any;
 use std::sync::Arc;
 
 use glam::{DVec3, Vec3, Vec3A};
 use obvhs::BvhBuildParams;
-use prism_api::{Hit, Ray};
+use prism_api::{Hit, Ray, Shape};
+use prism_plane::Plane;
 
 use super::mesh_bvh::TriangleBvh;
-use super::primitive::Primitive;
+use super::primitive::{Placement, Primitive};
 use super::simd::BoxRay;
 use super::triangle::{WatertightRay, mesh_hit, plane_t};
 use super::wide::{CollapseCost, EMPTY, LEAF, WIDTH, WideTree, build_binary, traverse_fastest, with_traversal_stack};
@@ -23,8 +25,8 @@ pub struct Accel {
     /// The tree over bounded primitives whose triangles are not flattened; a leaf's
     /// reference is the primitive's index.
     tree: Option<WideTree>,
-    /// Primitives that are not bounded.
-    unbounded: Vec<u32>,
+    /// Primitives that are not bounded (infinite planes, mostly).
+    unbounded: Vec<Unbounded>,
     /// The world-space triangles of small meshes, in one tree of their own.
     flat: Option<FlatTriangles>,
     /// When triangles are flattened or parts separated: the tree over every bounded
@@ -71,6 +73,46 @@ struct SoFar {
     t: f64,
     primitive: u32,
     part: u32,
+}
+
+/// An unbounded primitive. Every query tests each of them, so an infinite plane placed as
+/// is (object space = world space) keeps a copy of itself that the query calls directly:
+/// through `dyn Shape` each test paid a call the compiler cannot inline (the room, with
+/// five planes, renders 6 % faster at 4K; images identical).
+#[derive(Clone, Debug)]
+struct Unbounded {
+    primitive: u32,
+    plane: Option<Plane>,
+}
+
+impl Unbounded {
+    fn new(index: u32, primitive: &Primitive) -> Self {
+        let any: &dyn Any = primitive.shape.as_ref();
+        let plane = match primitive.placement {
+            Placement::Identity => any.downcast_ref::<Plane>().cloned(),
+            _ => None,
+        };
+        Self { primitive: index, plane }
+    }
+
+    /// The primitive's hit along the world `ray` with `t_min < t < t_max`.
+    #[inline(always)]
+    fn intersect(&self, primitives: &[Primitive], ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+        match &self.plane {
+            Some(plane) => plane.intersect(ray, t_min, t_max),
+            None => primitives[self.primitive as usize].intersect(ray, t_min, t_max),
+        }
+    }
+
+    /// True when the primitive lies on the world `ray` within `(t_min, t_max)`.
+    #[inline(always)]
+    fn occluded(&self, primitives: &[Primitive], ray: &Ray, t_min: f64, t_max: f64) -> bool {
+        match &self.plane {
+            // What the trait's default `occluded` answers for a plane.
+            Some(plane) => plane.intersect(ray, t_min, t_max).is_some(),
+            None => primitives[self.primitive as usize].occluded(ray, t_min, t_max),
+        }
+    }
 }
 
 /// The triangles of several mesh primitives in world space, in one triangle BVH: a ray
@@ -188,7 +230,7 @@ impl Accel {
         let mut owners = Vec::new();
         for (i, p) in primitives.iter().enumerate() {
             if !p.world_bounds.is_bounded() {
-                unbounded.push(i as u32);
+                unbounded.push(Unbounded::new(i as u32, p));
                 continue;
             }
             all_bounded.push(i as u32);
@@ -301,8 +343,13 @@ impl Accel {
         let test = |index: u32, best_t: &mut f64, best: &mut Option<(u32, Hit)>| {
             closer_whole(&primitives[index as usize], index, ray, (t_min, best_t), best, &accept)
         };
-        for &index in &self.unbounded {
-            test(index, &mut best_t, &mut best);
+        for unbounded in &self.unbounded {
+            if accept(unbounded.primitive)
+                && let Some(hit) = unbounded.intersect(primitives, ray, t_min, best_t)
+            {
+                best_t = hit.t;
+                best = Some((unbounded.primitive, hit));
+            }
         }
         if let Some(flat) = &self.flat
             && let Some(wray) = WatertightRay::new(ray.origin.as_vec3(), ray.direction.as_vec3())
@@ -425,7 +472,7 @@ impl Accel {
         // The unbounded ones (planes, mostly) last: the ray was just written, and a plane
         // that reads it back at once waits for those stores (4-6 % of a scene with a floor);
         // they seldom cast the shadow, so nothing is lost by asking them after the rest.
-        self.unbounded.iter().any(|&i| test(i))
+        self.unbounded.iter().any(|u| accept(u.primitive) && u.occluded(primitives, ray, t_min, t_max))
     }
 
     /// Collects into `out` the primitives that may meet `hull`: unbounded ones that do not
@@ -441,7 +488,7 @@ impl Accel {
             out.len += 1;
             true
         };
-        for &index in &self.unbounded {
+        for &Unbounded { primitive: index, .. } in &self.unbounded {
             let p = &primitives[index as usize];
             let mut corners = [DVec3::ZERO; 8];
             for (corner, &v) in corners.iter_mut().zip(hull.vertices()) {
@@ -589,12 +636,8 @@ impl ConvexHull {
 
 #[cfg(test)]
 mod tests {
-    use std::sync::Arc;
-
     use glam::DAffine3;
-    use prism_api::Shape;
     use prism_api::contract::TestRng;
-    use prism_plane::Plane;
     use prism_sphere::Sphere;
 
     use super::*;
@@ -603,9 +646,11 @@ mod tests {
         Primitive::new(shape, DAffine3::IDENTITY, 0, false)
     }
 
-    /// Hundreds of spheres (a tree several nodes deep) and planes: the closest hit and the
-    /// occlusion answer equal a brute-force loop, and gathering for a frustum never leaves
-    /// out a primitive that a shadow ray inside it hits.
+    /// Hundreds of spheres (a tree several nodes deep) and planes (two placed as they are,
+    /// tested directly, and one moved, tested through its primitive): the closest hit and the
+    /// occlusion answer equal a brute-force loop, with every primitive accepted and with the
+    /// first plane refused, and gathering for a frustum never leaves out a primitive that a
+    /// shadow ray inside it hits.
     #[test]
     fn queries_equal_brute_force() {
         let mut rng = TestRng::new(11);
@@ -618,14 +663,20 @@ mod tests {
         // Planes through the region, so that they block many of the rays.
         primitives.push(primitive(Arc::new(Plane::new(DVec3::Y, -3.0))));
         primitives.push(primitive(Arc::new(Plane::new(DVec3::new(0.6, 0.0, 0.8), 2.0))));
+        let moved = DAffine3::from_translation(DVec3::new(1.0, 2.0, 0.5)) * DAffine3::from_rotation_z(0.4);
+        primitives.push(Primitive::new(Arc::new(Plane::new(DVec3::X, 4.0)), moved, 0, false));
+        let refused = 500;
         let accel = Accel::build(&primitives);
-        let brute = |ray: &Ray, t_min: f64, t_max: f64| -> Option<(u32, f64)> {
+        assert_eq!(accel.unbounded.iter().filter(|u| u.plane.is_some()).count(), 2, "planes tested directly");
+        let brute_among = |ray: &Ray, t_min: f64, t_max: f64, accept: &dyn Fn(u32) -> bool| -> Option<(u32, f64)> {
             let hits = primitives
                 .iter()
                 .enumerate()
-                .filter_map(|(i, p)| p.shape.intersect(ray, t_min, t_max).map(|h| (i as u32, h.t)));
+                .filter(|&(i, _)| accept(i as u32))
+                .filter_map(|(i, p)| p.intersect(ray, t_min, t_max).map(|h| (i as u32, h.t)));
             hits.min_by(|a, b| a.1.total_cmp(&b.1))
         };
+        let brute = |ray: &Ray, t_min: f64, t_max: f64| brute_among(ray, t_min, t_max, &|_| true);
         for case in 0..3000 {
             let origin = DVec3::new(rng.range(-12.0, 12.0), rng.range(-12.0, 12.0), rng.range(-12.0, 12.0));
             let ray = Ray::new(origin, rng.unit_vector());
@@ -635,6 +686,12 @@ mod tests {
             assert_eq!(found, expected, "case {case}: {ray:?}");
             let occluded = accel.occluded(&primitives, &ray, 1e-6, t_max, |_| true);
             assert_eq!(occluded, expected.is_some(), "case {case}: occlusion of {ray:?}");
+            let accept = |i: u32| i != refused;
+            let expected = brute_among(&ray, 1e-6, t_max, &accept);
+            let found = accel.closest(&primitives, &ray, 1e-6, t_max, accept).map(|h| (h.primitive, h.hit.t));
+            assert_eq!(found, expected, "case {case}, plane {refused} refused: {ray:?}");
+            let occluded = accel.occluded(&primitives, &ray, 1e-6, t_max, accept);
+            assert_eq!(occluded, expected.is_some(), "case {case}, plane {refused} refused: occlusion of {ray:?}");
         }
         let mut gathers = 0;
         for case in 0..400 {

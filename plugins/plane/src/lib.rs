@@ -80,6 +80,8 @@ impl Shape for Plane {
         Aabb::INFINITE
     }
 
+    // Inline: the renderer's primitives call the built-in shapes directly.
+    #[inline]
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         // Every ray meets the infinite planes first, just after it was built.
         let ray = &Ray::new(math::load_components(&ray.origin), math::load_components(&ray.direction));
