@@ -109,6 +109,7 @@ impl Shape for Plane {
         self.normal.dot(math::load_components(&point)) - self.offset < prism_api::pov::EPSILON
     }
 
+    #[inline]
     fn misses_hull(&self, points: &[DVec3]) -> bool {
         // Every point strictly on one side, by more than rounding in their signed distances.
         let scale = points.iter().fold(self.offset.abs(), |m, p| m.max(p.abs().max_element()));
