@@ -237,6 +237,8 @@ fn main() {
         "| scene | AA | threads | Prism wall s | POV wall s | wall ratio | Prism CPU s | POV CPU s | CPU ratio | Prism render s | POV trace s | RMSE | % > 2/255 |"
     );
     println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    // The antialiased rows' wall ratios, for the summary under the table.
+    let mut antialiased: Vec<(String, f64)> = Vec::new();
     for (name, path) in &scenes {
         let text = std::fs::read_to_string(path).unwrap();
         let own_method = text.lines().find(|l| l.trim_start().starts_with("antialias"));
@@ -334,6 +336,9 @@ fn main() {
                         .collect(),
                 );
                 let (rmse, over) = image_error(&ours, &theirs);
+                if variant == "aa" {
+                    antialiased.push((format!("{name} ({threads} threads)"), pov_run.wall / prism_run.wall));
+                }
                 let show = |t: Option<f64>| t.map_or("?".into(), |t| format!("{t:.3}"));
                 println!(
                     "| {name} | {} | {threads} | {:.3} | {:.3} | {:.2}x | {:.3} | {:.3} | {:.2}x | {} | {} | {rmse:.1e} | {over:.2} |",
@@ -354,4 +359,23 @@ fn main() {
             }
         }
     }
+    print_summary(&antialiased);
+}
+
+/// Issue 17's measure under the table: how many antialiased rows reach 5x POV-Ray's wall
+/// time, their mean ratio and the lowest rows.
+fn print_summary(rows: &[(String, f64)]) {
+    if rows.is_empty() {
+        return;
+    }
+    let at_five = rows.iter().filter(|(_, ratio)| *ratio >= 5.0).count();
+    let mean = rows.iter().map(|(_, ratio)| ratio).sum::<f64>() / rows.len() as f64;
+    let mut lowest: Vec<&(String, f64)> = rows.iter().collect();
+    lowest.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let lowest: Vec<String> = lowest.iter().take(5).map(|(name, ratio)| format!("{name} {ratio:.2}x")).collect();
+    println!(
+        "\nantialiased rows at 5x POV-Ray's wall time or more: {at_five} of {}; mean {mean:.2}x; lowest: {}",
+        rows.len(),
+        lowest.join(", ")
+    );
 }
