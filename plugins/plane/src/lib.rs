@@ -80,7 +80,7 @@ impl Shape for Plane {
         Aabb::INFINITE
     }
 
-    // Inline: the renderer's primitives call the built-in shapes directly.
+    // Inline: the scene's list of unbounded primitives calls a plane by its own type.
     #[inline]
     fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
         // Every ray meets the infinite planes first, just after it was built.
