@@ -1,6 +1,6 @@
 //! Tabulated discrete distributions for importance sampling: [`Distribution1D`] picks an
-//! index with probability proportional to its weight (a cumulative table and a binary
-//! search), [`Distribution2D`] a cell of a grid (a marginal over the rows, then the row's
+//! index with probability proportional to its weight (a cumulative table, searched from a
+//! guide table), [`Distribution2D`] a cell of a grid (a marginal over the rows, then the row's
 //! conditional). Both hand back the uniform sample remapped to `[0, 1)` within the chosen
 //! entry, so the caller can place a continuous point inside it with the same random number.
 //! The environment map samples its cells with them; light selection can use them too.
@@ -12,9 +12,22 @@ use glam::DVec2;
 /// [`Distribution1D::total`] is 0 and the caller decides what that means.
 #[derive(Clone, Debug)]
 pub struct Distribution1D {
-    weights: Vec<f64>,
-    /// `prefix[i]` is the sum of the weights before `i`; `len + 1` entries.
-    prefix: Vec<f64>,
+    /// `entries[i]` is the sum of the weights before `i` and the weight of `i`, side by side
+    /// so that the search's last reads bring in the weight too; `len + 1` entries, the last
+    /// one the total and a weight of 0.
+    entries: Vec<Entry>,
+    /// `guide[b]`, for each of `len` equal slices of `[0, 1)` and the end: the last index `i`
+    /// with `entries[i].before <= b / len * total`, where the search for a `u` in slice `b`
+    /// starts (a guide table: a few entries to search instead of a binary search's chain of
+    /// dependent loads over the whole table).
+    guide: Vec<u32>,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    /// The sum of the weights before this entry.
+    before: f64,
+    weight: f64,
 }
 
 impl Distribution1D {
@@ -23,41 +36,45 @@ impl Distribution1D {
     pub fn new(weights: Vec<f64>) -> Self {
         assert!(!weights.is_empty(), "a distribution needs at least one entry");
         assert!(weights.iter().all(|w| w.is_finite() && *w >= 0.0), "weights must be finite and non-negative");
-        let mut prefix = Vec::with_capacity(weights.len() + 1);
+        let mut entries = Vec::with_capacity(weights.len() + 1);
         let mut sum = 0.0;
-        prefix.push(0.0);
-        for &w in &weights {
-            sum += w;
-            prefix.push(sum);
+        for &weight in &weights {
+            entries.push(Entry { before: sum, weight });
+            sum += weight;
         }
+        entries.push(Entry { before: sum, weight: 0.0 });
         assert!(sum.is_finite(), "the weights' sum overflows");
-        Self { weights, prefix }
+        let slices = weights.len();
+        let guide = (0..=slices)
+            .map(|b| (last_at_most(&entries, b as f64 / slices as f64 * sum) as u32).min(slices as u32 - 1))
+            .collect();
+        Self { entries, guide }
     }
 
     /// Number of entries.
     pub fn len(&self) -> usize {
-        self.weights.len()
+        self.entries.len() - 1
     }
 
     /// Always false: a distribution has at least one entry.
     pub fn is_empty(&self) -> bool {
-        self.weights.is_empty()
+        self.len() == 0
     }
 
     /// The sum of the weights.
     pub fn total(&self) -> f64 {
-        self.prefix[self.weights.len()]
+        self.entries[self.len()].before
     }
 
     /// The weight of entry `i`, as given.
     pub fn weight(&self, i: usize) -> f64 {
-        self.weights[i]
+        self.entries[..self.len()][i].weight
     }
 
     /// The probability of entry `i`: its weight over the total (`1 / len` when all are 0).
     pub fn probability(&self, i: usize) -> f64 {
         let total = self.total();
-        if total > 0.0 { self.weights[i] / total } else { 1.0 / self.len() as f64 }
+        if total > 0.0 { self.weight(i) / total } else { 1.0 / self.len() as f64 }
     }
 
     /// The entry `u` in `[0, 1)` selects (never one of probability 0), its probability, and
@@ -72,19 +89,42 @@ impl Distribution1D {
             return (i, 1.0 / n as f64, (x - i as f64).clamp(0.0, ONE_BELOW));
         }
         let target = u * total;
-        // The last i with prefix[i] <= target: entries of weight 0 have prefix[i] ==
-        // prefix[i + 1] and are stepped over; rounding at the very top can still land on one
-        // (trailing zeros), so step back to the last entry with weight.
-        let mut i = (self.prefix.partition_point(|&p| p <= target).max(1) - 1).min(n - 1);
-        while self.weights[i] == 0.0 && i > 0 {
+        // The last i with a sum before it <= target: entries of weight 0 have the same sum
+        // before them as the next and are stepped over; rounding at the very top can still
+        // land on one (trailing zeros), so step back to the last entry with weight.
+        let mut i = self.last_at_most(u, target).min(n - 1);
+        while self.entries[i].weight == 0.0 && i > 0 {
             i -= 1;
         }
-        while self.weights[i] == 0.0 {
+        while self.entries[i].weight == 0.0 {
             i += 1;
         }
-        let remapped = ((target - self.prefix[i]) / self.weights[i]).clamp(0.0, ONE_BELOW);
-        (i, self.weights[i] / total, remapped)
+        let Entry { before, weight } = self.entries[i];
+        let remapped = ((target - before) / weight).clamp(0.0, ONE_BELOW);
+        (i, weight / total, remapped)
     }
+
+    /// [`last_at_most`] of `target = u * total`, searched between the guide's entries for
+    /// `u`'s slice and the next. The slice's bounds are checked against `target` itself, so
+    /// rounding in the slice's choice can only send the search to the whole table, never
+    /// change its answer.
+    fn last_at_most(&self, u: f64, target: f64) -> usize {
+        let slices = self.len();
+        let slice = ((u * slices as f64) as usize).min(slices - 1);
+        let low = self.guide[slice] as usize;
+        let high = (self.guide[slice + 1] as usize + 2).min(self.entries.len());
+        if self.entries[low].before <= target && (high == self.entries.len() || self.entries[high].before > target) {
+            low + self.entries[low + 1..high].partition_point(|e| e.before <= target)
+        } else {
+            last_at_most(&self.entries, target)
+        }
+    }
+}
+
+/// The last index `i` of `entries` with `entries[i].before <= target` (0 when there is
+/// none), the sums not decreasing.
+fn last_at_most(entries: &[Entry], target: f64) -> usize {
+    entries.partition_point(|e| e.before <= target).max(1) - 1
 }
 
 /// The largest `f64` below 1.
@@ -155,6 +195,43 @@ mod tests {
         let expected: Vec<f64> =
             (0..observed.len()).map(|k| n as f64 * d.probability(k / quarters) / quarters as f64).collect();
         assert_fits("Distribution1D (entries x remapped quarters)", &observed, &expected, 0.01);
+    }
+
+    /// The guided search answers exactly as a binary search over the whole table, for tables
+    /// with runs of zeros, spikes, tiny and huge weights, at random `u` and at the slices'
+    /// edges (where rounding decides the slice).
+    #[test]
+    fn guided_search_is_the_whole_search() {
+        let mut rng = TestRng::new(21);
+        let mut tables = vec![vec![1.0], vec![0.0, 5.0], vec![3.0, 0.0, 0.0, 0.0, 1e-300, 0.0, 7.0, 0.0]];
+        for len in [2, 3, 17, 256, 1000] {
+            tables.push((0..len).map(|_| rng.uniform()).collect());
+            tables.push(
+                (0..len)
+                    .map(|k| match k % 5 {
+                        0 => 0.0,
+                        1 => 1e6 * rng.uniform(),
+                        2 => 1e-9 * rng.uniform(),
+                        _ => rng.uniform(),
+                    })
+                    .collect(),
+            );
+            let mut spike = vec![1e-12; len];
+            spike[len / 3] = 1e12;
+            tables.push(spike);
+        }
+        for weights in tables {
+            let d = Distribution1D::new(weights);
+            let (n, total) = (d.len(), d.total());
+            let edges = (0..=n).flat_map(|b| {
+                let x = b as f64 / n as f64;
+                [x, x.next_down().max(0.0), x.next_up().min(1.0)]
+            });
+            for u in (0..20_000).map(|_| rng.uniform()).chain(edges) {
+                let target = u * total;
+                assert_eq!(d.last_at_most(u, target), last_at_most(&d.entries, target), "u = {u}, {n} entries");
+            }
+        }
     }
 
     #[test]
