@@ -18,18 +18,32 @@ Prism's code, so that the live Mitsuba check judges Prism's reading of it indepe
     fresnel_mix(ior, base, layer) = mix(base, layer, f0 + (1 - f0) (1 - |V.H|)^5),
         f0 = ((1 - ior) / (1 + ior))^2  (ior = 1.5 unless KHR_materials_ior says otherwise)
 
+With KHR_materials_transmission (thin-walled: no KHR_materials_volume) and
+KHR_materials_clearcoat, from those extensions' specifications:
+
+    dielectric_brdf = fresnel_mix(ior, base = mix(diffuse_brdf(baseColor),
+                                                  specular_btdf(alpha) * baseColor, transmission),
+                                  layer = specular_brdf(alpha))
+    specular_btdf   = specular_brdf with L mirrored through the surface (L' = L - 2 N (N.L)):
+                      thin-walled transmission leaves straight through, blurred by the roughness,
+                      and its Fresnel is read at V.H' with H' the half vector of V and L'
+    coated_material = mix(material, clearcoat_brdf, clearcoat * fr(0.04, |N.V|)),
+        clearcoat_brdf = specular_brdf(alpha = clearcoatRoughness^2)
+
 Parameters (as glTF's pbrMetallicRoughness writes them; a texture multiplies its factor):
     base_color_factor (rgb, linear, default 1), base_color_texture (texture, optional; a
     `bitmap` decoded from sRGB), metallic (float, default 1), roughness (float, default 1),
     metallic_roughness_texture (texture, optional; a linear `bitmap`: blue multiplies
-    metallic, green multiplies roughness), ior (float, default 1.5).
+    metallic, green multiplies roughness), ior (float, default 1.5), transmission, clearcoat,
+    clearcoat_roughness (floats, default 0).
 The surface scatters alike from both sides (the shading frame is flipped to the viewer's
 side), as Prism's path integrator reads glTF surfaces. Factors and products are clamped to
 0..1 as glTF's ranges are. alpha is kept above 1e-4 so that a roughness of 0 stays finite.
 
-Sampling picks the diffuse lobe (cosine-weighted) or the specular lobe (GGX visible
-normals) with probabilities estimated from the Fresnel weights at N.V; eval and pdf are
-the full model and the mixture density, which is all Mitsuba's path integrator needs.
+Sampling picks the diffuse lobe (cosine-weighted), the specular lobe (GGX visible
+normals), the transmission lobe (the specular lobe's direction mirrored through the surface)
+or the coat's lobe with probabilities estimated from the Fresnel weights at N.V; eval and
+pdf are the full model and the mixture density, which is all Mitsuba's path integrator needs.
 
 Usage: import this module (after mi.set_variant) and call register(); the JIT variants
 (llvm_ad_rgb) run it fast, scalar_rgb calls Python per sample. Run as a script to check it:
@@ -88,10 +102,15 @@ def _plugin_class():
             self.roughness = float(props.get("roughness", 1.0))
             self.metallic_roughness_texture = _optional_texture(props, "metallic_roughness_texture")
             self.ior = float(props.get("ior", 1.5))
-            diffuse = mi.BSDFFlags.DiffuseReflection | mi.BSDFFlags.FrontSide | mi.BSDFFlags.BackSide
-            glossy = mi.BSDFFlags.GlossyReflection | mi.BSDFFlags.FrontSide | mi.BSDFFlags.BackSide
-            self.m_components = [diffuse, glossy]
-            self.m_flags = diffuse | glossy
+            self.transmission = float(props.get("transmission", 0.0))
+            self.clearcoat = float(props.get("clearcoat", 0.0))
+            self.clearcoat_roughness = float(props.get("clearcoat_roughness", 0.0))
+            sides = mi.BSDFFlags.FrontSide | mi.BSDFFlags.BackSide
+            diffuse = mi.BSDFFlags.DiffuseReflection | sides
+            glossy = mi.BSDFFlags.GlossyReflection | sides
+            through = mi.BSDFFlags.GlossyTransmission | sides
+            self.m_components = [diffuse, glossy, through, glossy]
+            self.m_flags = diffuse | glossy | through
 
         # Parameters at a surface point ----------------------------------------------------
         def _params(self, si, active):
@@ -136,65 +155,102 @@ def _plugin_class():
             g = 2.0 * n / (n + dr.sqrt(a2 + (1.0 - a2) * n_x * n_x))
             return dr.select(h_x * n_x > 0.0, g, 0.0)
 
+        def _specular(self, alpha, v, l):
+            """specular_brdf times |N.L| for V = v and L = l above the surface, and V.H."""
+            h = dr.normalize(v + l)
+            v_h, l_h = dr.dot(v, h), dr.dot(l, h)
+            vis = self._g1(alpha, v.z, v_h) * self._g1(alpha, l.z, l_h) / (4.0 * dr.abs(l.z) * dr.abs(v.z))
+            return vis * self._d(alpha, h.z) * dr.abs(l.z), v_h
+
+        def _coat_weight(self, n_v):
+            return self.clearcoat * _schlick(0.04, dr.abs(n_v))
+
+        def _coat_alpha(self):
+            return max(self.clearcoat_roughness * self.clearcoat_roughness, MIN_ALPHA)
+
         def _eval_local(self, base, metallic, alpha, wi, wo):
-            """f(V = wi, L = wo) |N.L| with both directions above the surface."""
-            n_v, n_l = wi.z, wo.z
-            h = dr.normalize(wi + wo)
-            n_h, v_h, l_h = h.z, dr.dot(wi, h), dr.dot(wo, h)
-            vis = self._g1(alpha, n_v, v_h) * self._g1(alpha, n_l, l_h) / (4.0 * dr.abs(n_l) * dr.abs(n_v))
-            specular = vis * self._d(alpha, n_h)
-            diffuse = base * dr.inv_pi
+            """f(V = wi, L = wo) |N.L| with V above the surface, L on either side."""
+            n_v = wi.z
+            above = wo.z > 0.0
+            # Thin-walled transmission: the reflection lobe's formulas at L mirrored.
+            l = mi.Vector3f(wo.x, wo.y, dr.abs(wo.z))
+            specular, v_h = self._specular(alpha, wi, l)
             fr = _schlick(self._f0_dielectric(), dr.abs(v_h))
-            dielectric = dr.lerp(diffuse, mi.Color3f(specular), fr)
-            metal = specular * _schlick(base, dr.abs(v_h))
-            f = dr.lerp(dielectric, metal, metallic)
-            valid = (n_v > 0.0) & (n_l > 0.0)
-            return dr.select(valid, f * n_l, 0.0)
+            diffuse = base * dr.inv_pi * l.z
+            base_part = dr.select(above, diffuse * (1.0 - self.transmission), base * specular * self.transmission)
+            layer = dr.select(above, specular, 0.0)
+            dielectric = dr.lerp(base_part, mi.Color3f(layer), fr)
+            metal = dr.select(above, specular, 0.0) * _schlick(base, dr.abs(v_h))
+            material = dr.lerp(dielectric, metal, metallic)
+            coat, _ = self._specular(self._coat_alpha(), wi, l)
+            f = dr.lerp(material, mi.Color3f(dr.select(above, coat, 0.0)), self._coat_weight(n_v))
+            valid = (n_v > 0.0) & (wo.z != 0.0)
+            return dr.select(valid, f, 0.0)
 
         # Sampling ---------------------------------------------------------------------------
-        def _specular_probability(self, base, metallic, n_v):
+        def _lobe_probabilities(self, base, metallic, n_v):
+            """Probabilities of the diffuse, specular, transmission and coat lobes."""
             fd = _schlick(self._f0_dielectric(), n_v)
             fm = _schlick(base, n_v)
             fm_mean = (fm[0] + fm[1] + fm[2]) / 3.0
             base_mean = (base[0] + base[1] + base[2]) / 3.0
-            w_spec = dr.maximum(metallic * fm_mean + (1.0 - metallic) * fd, 0.05)
-            w_diff = (1.0 - metallic) * (1.0 - fd) * base_mean
-            return w_spec / (w_spec + w_diff)
+            coat = self._coat_weight(n_v)
+            w_spec = (1.0 - coat) * dr.maximum(metallic * fm_mean + (1.0 - metallic) * fd, 0.05)
+            w_base = (1.0 - coat) * (1.0 - metallic) * (1.0 - fd) * base_mean
+            w_diff, w_through = w_base * (1.0 - self.transmission), w_base * self.transmission
+            total = w_diff + w_spec + w_through + coat
+            return w_diff / total, w_spec / total, w_through / total, coat / total
+
+        def _glossy_pdf(self, alpha, v, l):
+            """Density of the GGX visible-normal reflection of v giving l (both above)."""
+            h = dr.normalize(v + l)
+            v_h, l_h = dr.dot(v, h), dr.dot(l, h)
+            pdf_h = self._g1(alpha, v.z, v_h) * dr.abs(v_h) * self._d(alpha, h.z) / v.z
+            return dr.select(l.z > 0.0, pdf_h / (4.0 * dr.abs(l_h)), 0.0)
 
         def _pdf_local(self, base, metallic, alpha, wi, wo):
-            n_v, n_l = wi.z, wo.z
-            p_spec = self._specular_probability(base, metallic, n_v)
-            h = dr.normalize(wi + wo)
-            v_h, l_h = dr.dot(wi, h), dr.dot(wo, h)
-            # Visible-normal density G1(V) |V.H| D(H) / |N.V|, then the reflection Jacobian.
-            pdf_h = self._g1(alpha, n_v, v_h) * dr.abs(v_h) * self._d(alpha, h.z) / n_v
-            pdf_spec = pdf_h / (4.0 * dr.abs(l_h))
-            pdf_diff = n_l * dr.inv_pi
-            pdf = dr.lerp(pdf_diff, pdf_spec, p_spec)
-            return dr.select((n_v > 0.0) & (n_l > 0.0), pdf, 0.0)
+            n_v = wi.z
+            p_diff, p_spec, p_through, p_coat = self._lobe_probabilities(base, metallic, n_v)
+            above = wo.z > 0.0
+            l = mi.Vector3f(wo.x, wo.y, dr.abs(wo.z))
+            glossy = self._glossy_pdf(alpha, wi, l)
+            coat = self._glossy_pdf(self._coat_alpha(), wi, l)
+            pdf_above = p_diff * l.z * dr.inv_pi + p_spec * glossy + p_coat * coat
+            pdf = dr.select(above, pdf_above, p_through * glossy)
+            return dr.select((n_v > 0.0) & (wo.z != 0.0), pdf, 0.0)
 
         def sample(self, ctx, si, sample1, sample2, active=True):
             base, metallic, alpha = self._params(si, active)
             wi, _ = self._upper(si, si.wi)
             flip = mi.Frame3f.cos_theta(si.wi) < 0.0
-            p_spec = self._specular_probability(base, metallic, wi.z)
-            pick_spec = sample1 < p_spec
-            distribution = mi.MicrofacetDistribution(mi.MicrofacetType.GGX, alpha, True)
+            p_diff, p_spec, p_through, _ = self._lobe_probabilities(base, metallic, wi.z)
+            pick_diff = sample1 < p_diff
+            pick_spec = ~pick_diff & (sample1 < p_diff + p_spec)
+            pick_through = ~pick_diff & ~pick_spec & (sample1 < p_diff + p_spec + p_through)
+            pick_coat = ~pick_diff & ~pick_spec & ~pick_through
+            lobe_alpha = dr.select(pick_coat, self._coat_alpha(), alpha)
+            distribution = mi.MicrofacetDistribution(mi.MicrofacetType.GGX, lobe_alpha, True)
             m, _ = distribution.sample(wi, sample2)
-            wo_spec = mi.reflect(wi, m)
+            wo_glossy = mi.reflect(wi, m)
             wo_diff = mi.warp.square_to_cosine_hemisphere(sample2)
-            wo = dr.select(pick_spec, wo_spec, wo_diff)
+            wo = dr.select(pick_diff, wo_diff, wo_glossy)
+            wo = dr.select(pick_through, mi.Vector3f(wo.x, wo.y, -wo.z), wo)
             value = self._eval_local(base, metallic, alpha, wi, wo)
             pdf = self._pdf_local(base, metallic, alpha, wi, wo)
-            ok = active & (wi.z > 0.0) & (wo.z > 0.0) & (pdf > 0.0)
+            # A glossy reflection below the surface (or its mirror above it) is no sample.
+            sampled_side = dr.select(pick_through, wo.z < 0.0, wo.z > 0.0)
+            ok = active & (wi.z > 0.0) & sampled_side & (pdf > 0.0)
             bs = mi.BSDFSample3f()
             bs.wo = mi.Vector3f(wo.x, wo.y, dr.select(flip, -wo.z, wo.z))
             bs.pdf = dr.select(ok, pdf, 0.0)
             bs.eta = 1.0
-            bs.sampled_component = dr.select(pick_spec, mi.UInt32(1), mi.UInt32(0))
-            bs.sampled_type = dr.select(
-                pick_spec, mi.UInt32(+mi.BSDFFlags.GlossyReflection), mi.UInt32(+mi.BSDFFlags.DiffuseReflection)
+            bs.sampled_component = dr.select(
+                pick_diff, mi.UInt32(0), dr.select(pick_spec, mi.UInt32(1), dr.select(pick_through, mi.UInt32(2), mi.UInt32(3)))
             )
+            reflection = dr.select(
+                pick_diff, mi.UInt32(+mi.BSDFFlags.DiffuseReflection), mi.UInt32(+mi.BSDFFlags.GlossyReflection)
+            )
+            bs.sampled_type = dr.select(pick_through, mi.UInt32(+mi.BSDFFlags.GlossyTransmission), reflection)
             weight = dr.select(ok, value / dr.maximum(pdf, 1e-30), 0.0)
             return bs, weight
 
@@ -221,6 +277,9 @@ def _plugin_class():
             callback.put("metallic", self.metallic, flags)
             callback.put("roughness", self.roughness, flags)
             callback.put("ior", self.ior, flags)
+            callback.put("transmission", self.transmission, flags)
+            callback.put("clearcoat", self.clearcoat, flags)
+            callback.put("clearcoat_roughness", self.clearcoat_roughness, flags)
             for name in ("base_color_texture", "metallic_roughness_texture"):
                 texture = getattr(self, name)
                 if texture is not None:
@@ -230,6 +289,8 @@ def _plugin_class():
             return (
                 f"GltfMetallicRoughness[base_color_factor={self.base_color_factor}, "
                 f"metallic={self.metallic}, roughness={self.roughness}, ior={self.ior}, "
+                f"transmission={self.transmission}, clearcoat={self.clearcoat}, "
+                f"clearcoat_roughness={self.clearcoat_roughness}, "
                 f"base_color_texture={self.base_color_texture is not None}, "
                 f"metallic_roughness_texture={self.metallic_roughness_texture is not None}]"
             )
@@ -275,13 +336,14 @@ def prepare(xml_path, variant="auto"):
 
 
 # Self-checks ---------------------------------------------------------------------------
-def _bsdf(metallic, roughness, base=(0.8, 0.5, 0.2), ior=1.5):
+def _bsdf(metallic, roughness, base=(0.8, 0.5, 0.2), ior=1.5, extensions=None):
     return mi.load_dict({
         "type": PLUGIN_NAME,
         "base_color_factor": mi.ScalarColor3f(base),
         "metallic": metallic,
         "roughness": roughness,
         "ior": ior,
+        **(extensions or {}),
     })
 
 
@@ -296,15 +358,19 @@ def _directional_albedo(bsdf, wi, n):
     sampler.seed(1, n)
     bs, weight = bsdf.sample(ctx, si, sampler.next_1d(), sampler.next_2d())
     sampled = np.array(weight).reshape(3, -1).mean(axis=1) if dr.width(weight) > 1 else np.array(weight)
-    # Quadrature: stratified uniform hemisphere directions, eval / (1 / 2 pi).
+    # Quadrature: stratified uniform hemisphere directions, eval / (1 / 2 pi), above the
+    # surface and mirrored below it (where transmission leaves).
     side = int(np.sqrt(n))
     u = (np.arange(side) + 0.5) / side
     uu, vv = np.meshgrid(u, u)
     wo = mi.warp.square_to_uniform_hemisphere(mi.Point2f(uu.ravel(), vv.ravel()))
     si_q = dr.zeros(mi.SurfaceInteraction3f, side * side)
     si_q.wi = mi.Vector3f(wi)
-    value = bsdf.eval(ctx, si_q, wo)
-    quadrature = np.array(value).reshape(3, -1).mean(axis=1) * 2.0 * np.pi
+    quadrature = 0.0
+    for below in (False, True):
+        direction = mi.Vector3f(wo.x, wo.y, -wo.z) if below else wo
+        value = bsdf.eval(ctx, si_q, direction)
+        quadrature = quadrature + np.array(value).reshape(3, -1).mean(axis=1) * 2.0 * np.pi
     return sampled, quadrature
 
 
@@ -316,11 +382,20 @@ def self_check():
     failures = 0
     # The chi-square histogram (64 x 128 cells) resolves lobes of alpha >= 0.2; sharper ones
     # are checked by the albedo comparison only.
-    for metallic, roughness in [(0.0, 0.2), (0.0, 0.5), (0.5, 0.5), (1.0, 0.3), (1.0, 0.5), (0.0, 1.0), (0.3, 0.7)]:
+    # The extensions: thin-walled transmission, a clear coat, both over a half metal.
+    cases = [(m, r, {}) for m, r in [(0.0, 0.2), (0.0, 0.5), (0.5, 0.5), (1.0, 0.3), (1.0, 0.5), (0.0, 1.0), (0.3, 0.7)]]
+    cases += [
+        (0.0, 0.5, {"transmission": 0.8}),
+        (0.0, 0.7, {"transmission": 1.0, "ior": 1.2}),
+        (0.2, 0.6, {"clearcoat": 1.0, "clearcoat_roughness": 0.5}),
+        (0.3, 0.5, {"transmission": 0.6, "clearcoat": 0.5, "clearcoat_roughness": 0.6}),
+    ]
+    for metallic, roughness, extensions in cases:
         params = (
             f'<rgb name="base_color_factor" value="0.8, 0.5, 0.2"/><float name="metallic" value="{metallic}"/>'
             f'<float name="roughness" value="{roughness}"/>'
-        )
+        ) + "".join(f'<float name="{k}" value="{v}"/>' for k, v in extensions.items())
+        ior = extensions.pop("ior", 1.5)
         for theta in [10.0, 45.0, 80.0]:
             t = np.radians(theta)
             wi = [float(np.sin(t)), 0.0, float(np.cos(t))]
@@ -330,9 +405,10 @@ def self_check():
                 sample_count=200_000, res=64,
             )
             ok = roughness * roughness < 0.2 or test.run()
-            print(f"chi2 metallic {metallic} roughness {roughness} theta {theta}: {'ok' if ok else 'FAIL'}")
+            print(f"chi2 metallic {metallic} roughness {roughness} {extensions} theta {theta}: {'ok' if ok else 'FAIL'}")
             failures += 0 if ok else 1
-            sampled, quadrature = _directional_albedo(_bsdf(metallic, roughness), wi, 1 << 20)
+            bsdf = _bsdf(metallic, roughness, ior=ior, extensions=extensions)
+            sampled, quadrature = _directional_albedo(bsdf, wi, 1 << 20)
             close = np.allclose(sampled, quadrature, rtol=0.02, atol=2e-3)
             print(f"  albedo sampled {np.round(sampled, 4)} quadrature {np.round(quadrature, 4)}: {'ok' if close else 'FAIL'}")
             failures += 0 if close else 1

@@ -428,3 +428,75 @@ fn khronos_cameras_sample_gives_its_perspective_camera() {
     let (film, _) = render_frame(&prism::prepare(&mut ortho).unwrap(), &RenderOptions::default()).unwrap();
     assert!(film.get(16, 16)[0] > 0.0 && film.get(0, 0) == [0.0; 3], "{:?} {:?}", film.get(16, 16), film.get(0, 0));
 }
+
+/// A 2 x 1 PNG as a `data:` URI: red channel 0.5 and 1 (linear), green 0.25 and 1.
+fn png_uri() -> String {
+    let mut png = Vec::new();
+    let image = image::RgbImage::from_raw(2, 1, vec![128, 64, 0, 255, 255, 0]).unwrap();
+    image.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png).unwrap();
+    format!("data:image/png;base64,{}", base64(&png))
+}
+
+/// The quad's file with `material` as its one material and a texture 0 of [`png_uri`].
+fn quad_with_material(material: Value, used: &[&str]) -> String {
+    let mut doc: Value = serde_json::from_str(&gltf(json!([{ "mesh": 0 }]), json!([0]), json!([]), json!([]))).unwrap();
+    doc["materials"] = json!([material]);
+    doc["images"] = json!([{ "uri": png_uri() }]);
+    doc["textures"] = json!([{ "source": 0 }]);
+    doc["extensionsUsed"] = json!(used);
+    serde_json::to_string_pretty(&doc).unwrap()
+}
+
+/// KHR_materials_ior, KHR_materials_transmission (with its texture) and
+/// KHR_materials_clearcoat (read from the extension's JSON, textures included) reach the
+/// material model; KHR_materials_volume is reported as not read; a clear-coat texture index
+/// the file does not have is an error naming the key, through the CLI, with no output.
+#[test]
+fn gltf_material_extensions_reach_the_model() {
+    use prism::material::SurfaceModel;
+    use prism::world::components::MaterialComponent;
+    let material = json!({
+        "pbrMetallicRoughness": { "baseColorFactor": [0.8, 0.6, 0.4, 1.0], "metallicFactor": 0.2, "roughnessFactor": 0.4 },
+        "extensions": {
+            "KHR_materials_ior": { "ior": 1.25 },
+            "KHR_materials_transmission": { "transmissionFactor": 0.75, "transmissionTexture": { "index": 0 } },
+            "KHR_materials_clearcoat": {
+                "clearcoatFactor": 0.5, "clearcoatRoughnessFactor": 0.25,
+                "clearcoatTexture": { "index": 0 }, "clearcoatRoughnessTexture": { "index": 0 }
+            },
+            "KHR_materials_volume": { "thicknessFactor": 0.1 }
+        }
+    });
+    let used = ["KHR_materials_ior", "KHR_materials_transmission", "KHR_materials_clearcoat", "KHR_materials_volume"];
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "quad.gltf", &quad_with_material(material.clone(), &used));
+    let scene = load(&write(dir.path(), "scene.toml", "[[object]]\nshape = \"mesh\"\nfile = \"quad.gltf\"\n"));
+    let models: Vec<_> = scene
+        .world
+        .query::<&MaterialComponent>()
+        .iter()
+        .filter_map(|c| match &c.material.surface {
+            SurfaceModel::MetallicRoughness(m) => Some(m.clone()),
+            _ => None,
+        })
+        .collect();
+    let [m] = models.as_slice() else { panic!("one glTF material, got {}", models.len()) };
+    assert_eq!((m.ior, m.transmission, m.clearcoat, m.clearcoat_roughness), (1.25, 0.75, 0.5, 0.25));
+    assert!(m.transmission_texture.is_some() && m.clearcoat_texture.is_some());
+    assert!(m.clearcoat_roughness_texture.is_some());
+    let warnings: Vec<String> = scene.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(warnings.iter().any(|w| w.contains("KHR_materials_volume is not read")), "warnings: {warnings:?}");
+
+    // A clear-coat texture that is not in the file.
+    let mut broken = material;
+    broken["extensions"]["KHR_materials_clearcoat"]["clearcoatTexture"]["index"] = json!(7);
+    write(dir.path(), "quad.gltf", &quad_with_material(broken, &used));
+    let run = prism()
+        .current_dir(dir.path())
+        .args(["render", "scene.toml", "-o", "out.png", "--width", "8", "--height", "6"])
+        .output()
+        .unwrap();
+    let problems = failed_run_problems(&run, &["quad.gltf", "KHR_materials_clearcoat.clearcoatTexture", "index"]);
+    assert!(problems.is_empty(), "{problems:?}\n{}", String::from_utf8_lossy(&run.stderr));
+    assert!(!dir.path().join("out.png").exists());
+}

@@ -347,6 +347,14 @@ fn gltf_materials_become_the_plugin_and_what_it_cannot_hold_is_an_error_naming_t
                 .to_string(),
             Some("material.texture"),
         ),
+        (
+            "material = { pbr = { transmission = 0.5, transmission_texture = \"t.png\" } }".to_string(),
+            Some("material.pbr.transmission_texture"),
+        ),
+        (
+            "material = { pbr = { clearcoat = 1, clearcoat_roughness_texture = \"t.png\" } }".to_string(),
+            Some("material.pbr.clearcoat_roughness_texture"),
+        ),
     ];
     let mesh_case = (format!("[[object]]\nshape = \"mesh\"\nfile = \"{clearcoat}\"\n"), Some("normal map"));
     let scenes = cases

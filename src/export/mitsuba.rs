@@ -802,11 +802,12 @@ const GLTF_PLUGIN: &str = "gltf_metallic_roughness";
 /// A glTF metallic-roughness material as the `gltf_metallic_roughness` BSDF of
 /// scripts/mitsuba_gltf_bsdf.py (the specification's Appendix B, written from its text), as
 /// Prism's path integrator reads it: the base colour factor times an sRGB texture, the
-/// metallic and roughness factors times a linear texture's blue and green channels, ior 1.5,
-/// both sides alike. Textures are bilinear at full resolution with their wrap modes; an image
-/// inside a glTF file is written beside the meshes as a PNG of the texels Prism samples.
-/// Errors name what the plugin does not hold: alpha blending below full coverage, textured
-/// emission, texture transforms (KHR_texture_transform), different wraps along u and v.
+/// metallic and roughness factors times a linear texture's blue and green channels, the ior,
+/// thin-walled transmission and clear coat factors, both sides alike. Textures are bilinear
+/// at full resolution with their wrap modes; an image inside a glTF file is written beside
+/// the meshes as a PNG of the texels Prism samples. Errors name what the plugin does not
+/// hold: alpha blending below full coverage, textured emission, the extensions' textures,
+/// texture transforms (KHR_texture_transform), different wraps along u and v.
 fn metallic_roughness_xml(
     material: &crate::material::Material,
     m: &crate::material::MetallicRoughness,
@@ -824,12 +825,28 @@ fn metallic_roughness_xml(
             format!("alpha blending (BLEND, alpha {}) is not exported to Mitsuba; use OPAQUE", m.alpha),
         ));
     }
+    let extension_textures = [
+        ("pbr.transmission_texture", &m.transmission_texture),
+        ("pbr.clearcoat_texture", &m.clearcoat_texture),
+        ("pbr.clearcoat_roughness_texture", &m.clearcoat_roughness_texture),
+    ];
+    if let Some((key, _)) = extension_textures.iter().find(|(_, t)| t.is_some()) {
+        return Err((key, "the extensions' textures are not exported to Mitsuba (their factors are)".into()));
+    }
     let mut xml = format!(
-        "<bsdf type=\"{GLTF_PLUGIN}\"><rgb name=\"base_color_factor\" value=\"{}\"/><float name=\"metallic\" value=\"{}\"/><float name=\"roughness\" value=\"{}\"/><float name=\"ior\" value=\"1.5\"/>",
+        "<bsdf type=\"{GLTF_PLUGIN}\"><rgb name=\"base_color_factor\" value=\"{}\"/><float name=\"metallic\" value=\"{}\"/><float name=\"roughness\" value=\"{}\"/><float name=\"ior\" value=\"{}\"/>",
         rgb(m.finish.color.0),
         number(m.metallic),
-        number(m.roughness)
+        number(m.roughness),
+        number(m.ior)
     );
+    for (name, value) in
+        [("transmission", m.transmission), ("clearcoat", m.clearcoat), ("clearcoat_roughness", m.clearcoat_roughness)]
+    {
+        if value != 0.0 {
+            xml.push_str(&format!("<float name=\"{name}\" value=\"{}\"/>", number(value)));
+        }
+    }
     if let Some(texture) = &m.finish.texture {
         xml.push_str(&bitmap_xml("base_color_texture", "texture", texture, false, xml_dir, out, mesh_prefix)?);
     }

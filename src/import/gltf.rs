@@ -703,17 +703,20 @@ impl Importer<'_> {
                 Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Srgb)?);
         }
         let mut params = MetallicRoughness {
-            finish,
-            metallic: f64::from(pbr.metallic_factor()).clamp(0.0, 1.0),
-            roughness: f64::from(pbr.roughness_factor()).clamp(0.0, 1.0),
             metallic_roughness_texture: None,
             alpha_mode: AlphaMode::Opaque,
             alpha,
+            ..MetallicRoughness::core(
+                finish,
+                f64::from(pbr.metallic_factor()).clamp(0.0, 1.0),
+                f64::from(pbr.roughness_factor()).clamp(0.0, 1.0),
+            )
         };
         if let Some(info) = pbr.metallic_roughness_texture() {
             params.metallic_roughness_texture =
                 Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Linear)?);
         }
+        self.material_extensions(m, &mut params)?;
         let strength = f64::from(m.emissive_strength().unwrap_or(1.0));
         let [er, eg, eb] = m.emissive_factor().map(|c| f64::from(c) * strength);
         let mut emission = Emission { radiance: Rgb::new(er, eg, eb), ..Emission::default() };
@@ -751,13 +754,89 @@ impl Importer<'_> {
                 }
             }
         }
-        let material = Material { surface: SurfaceModel::MetallicRoughness(params), emission, ..Material::default() };
+        let material =
+            Material { surface: SurfaceModel::MetallicRoughness(Box::new(params)), emission, ..Material::default() };
         if let Err((key, message)) = material.check() {
             let material = m.index().map_or("default".into(), |i| i.to_string());
             return Err(ImportError::new(self.path, ImportErrorKind::Material { material, key, message }));
         }
         Ok((Arc::new(material), maps, m.name().map(str::to_string)))
     }
+
+    /// `KHR_materials_ior`, `KHR_materials_transmission` and `KHR_materials_clearcoat` (read
+    /// from the extension's JSON: the crate has no type for it) into `params`; factors clamped
+    /// to 0..1 as the core's are. Not read, with a warning: `KHR_materials_volume` (the
+    /// transmission stays thin-walled), the clear coat's normal texture and transforms of
+    /// the clear coat's textures.
+    fn material_extensions(&mut self, m: &gltf::Material, params: &mut MetallicRoughness) -> Result<(), ImportError> {
+        let name = || m.index().map_or("default".into(), |i| i.to_string());
+        if let Some(ior) = m.ior() {
+            params.ior = f64::from(ior);
+        }
+        if let Some(t) = m.transmission() {
+            params.transmission = f64::from(t.transmission_factor()).clamp(0.0, 1.0);
+            if let Some(info) = t.transmission_texture() {
+                params.transmission_texture = Some(self.texture(
+                    info.texture(),
+                    info.tex_coord(),
+                    info.texture_transform(),
+                    ColorSpace::Linear,
+                )?);
+            }
+        }
+        if m.volume().is_some_and(|v| v.thickness_factor() > 0.0) {
+            self.model.warnings.push(format!(
+                "material {}: KHR_materials_volume is not read: its transmission is thin-walled (no refraction, no attenuation)",
+                name()
+            ));
+        }
+        let Some(coat) = m.extension_value("KHR_materials_clearcoat") else { return Ok(()) };
+        let factor = |key: &str, default: f64| coat.get(key).and_then(gltf::json::Value::as_f64).unwrap_or(default);
+        params.clearcoat = factor("clearcoatFactor", 0.0).clamp(0.0, 1.0);
+        params.clearcoat_roughness = factor("clearcoatRoughnessFactor", 0.0).clamp(0.0, 1.0);
+        for key in ["clearcoatTexture", "clearcoatRoughnessTexture"] {
+            let Some(info) = coat.get(key) else { continue };
+            let texture = info
+                .get("index")
+                .and_then(gltf::json::Value::as_u64)
+                .and_then(|i| self.document.textures().nth(usize::try_from(i).ok()?))
+                .ok_or_else(|| {
+                    let message = format!("names no texture of the file: {}", shown_json(info));
+                    let key = if key == "clearcoatTexture" {
+                        "KHR_materials_clearcoat.clearcoatTexture"
+                    } else {
+                        "KHR_materials_clearcoat.clearcoatRoughnessTexture"
+                    };
+                    ImportError::new(self.path, ImportErrorKind::Material { material: name(), key, message })
+                })?;
+            if info.get("extensions").is_some() {
+                self.model.warnings.push(format!(
+                    "material {}: the extensions of KHR_materials_clearcoat's {key} (a texture transform) are not read",
+                    name()
+                ));
+            }
+            let tex_coord = info.get("texCoord").and_then(gltf::json::Value::as_u64).unwrap_or(0);
+            let loaded =
+                self.texture(texture, u32::try_from(tex_coord).unwrap_or(u32::MAX), None, ColorSpace::Linear)?;
+            if key == "clearcoatTexture" {
+                params.clearcoat_texture = Some(loaded);
+            } else {
+                params.clearcoat_roughness_texture = Some(loaded);
+            }
+        }
+        if coat.get("clearcoatNormalTexture").is_some() {
+            self.model
+                .warnings
+                .push(format!("material {}: KHR_materials_clearcoat's normal texture is not read", name()));
+        }
+        Ok(())
+    }
+}
+
+/// A JSON value for a message: at most 80 characters.
+fn shown_json(value: &gltf::json::Value) -> String {
+    let text = value.to_string();
+    if text.chars().count() <= 80 { text } else { format!("{}...", text.chars().take(77).collect::<String>()) }
 }
 
 /// Triangles from a triangle list, strip or fan (glTF 2.0 section 3.7.2.1 winding rules).

@@ -45,7 +45,7 @@ pub enum SurfaceModel {
     /// POV-Ray's pigment and finish, as a scene wrote them.
     Finish(Finish),
     /// glTF 2.0 metallic-roughness, as a file or a scene's `pbr` table wrote it.
-    MetallicRoughness(MetallicRoughness),
+    MetallicRoughness(Box<MetallicRoughness>),
     /// OBJ/MTL parameters, as the `.mtl` file wrote them.
     Mtl(Mtl),
     /// A physically based scattering model, as a scene's `bsdf` table wrote it.
@@ -198,6 +198,49 @@ pub struct MetallicRoughness {
     pub alpha_mode: AlphaMode,
     /// The base colour factor's alpha (coverage, 0..1).
     pub alpha: f64,
+    /// Index of refraction of the dielectric part (`KHR_materials_ior`; 1.5 by default).
+    pub ior: f64,
+    /// Share of the dielectric part's diffuse base that passes through the surface instead
+    /// (`KHR_materials_transmission`, thin-walled: straight through, blurred by the roughness,
+    /// tinted by the base colour), 0..1.
+    pub transmission: f64,
+    /// Texture whose red channel multiplies `transmission`.
+    pub transmission_texture: Option<TextureRef>,
+    /// Strength of a clear coat over the material (`KHR_materials_clearcoat`: a GGX layer
+    /// with F0 0.04), 0..1.
+    pub clearcoat: f64,
+    /// Texture whose red channel multiplies `clearcoat`.
+    pub clearcoat_texture: Option<TextureRef>,
+    /// Perceptual roughness of the clear coat (its GGX alpha is the square), 0..1.
+    pub clearcoat_roughness: f64,
+    /// Texture whose green channel multiplies `clearcoat_roughness`.
+    pub clearcoat_roughness_texture: Option<TextureRef>,
+}
+
+impl MetallicRoughness {
+    /// The core model's extension defaults: ior 1.5, no transmission, no clear coat.
+    pub fn core(finish: Finish, metallic: f64, roughness: f64) -> Self {
+        Self {
+            finish,
+            metallic,
+            roughness,
+            metallic_roughness_texture: None,
+            alpha_mode: AlphaMode::Opaque,
+            alpha: 1.0,
+            ior: 1.5,
+            transmission: 0.0,
+            transmission_texture: None,
+            clearcoat: 0.0,
+            clearcoat_texture: None,
+            clearcoat_roughness: 0.0,
+            clearcoat_roughness_texture: None,
+        }
+    }
+
+    /// The textures driving the extensions' factors.
+    pub fn extension_textures(&self) -> impl Iterator<Item = &TextureRef> {
+        [&self.transmission_texture, &self.clearcoat_texture, &self.clearcoat_roughness_texture].into_iter().flatten()
+    }
 }
 
 /// OBJ/MTL parameters as the `.mtl` file wrote them (`None` where it did not). `Ke` is the
@@ -284,7 +327,9 @@ impl Material {
             || match &self.surface {
                 SurfaceModel::Finish(f) => f.texture.is_some(),
                 SurfaceModel::MetallicRoughness(m) => {
-                    m.finish.texture.is_some() || m.metallic_roughness_texture.is_some()
+                    m.finish.texture.is_some()
+                        || m.metallic_roughness_texture.is_some()
+                        || m.extension_textures().next().is_some()
                 }
                 SurfaceModel::Mtl(m) => m.map_kd.is_some(),
                 SurfaceModel::Physical(p) => p.texture.is_some(),
@@ -316,16 +361,24 @@ impl Material {
             }
             SurfaceModel::MetallicRoughness(p) => {
                 check_finish(&p.finish)?;
-                for (key, v) in [("metallic", p.metallic), ("roughness", p.roughness)] {
+                for (key, v) in [
+                    ("metallic", p.metallic),
+                    ("roughness", p.roughness),
+                    ("transmission", p.transmission),
+                    ("clearcoat", p.clearcoat),
+                    ("clearcoat_roughness", p.clearcoat_roughness),
+                ] {
                     if !(0.0..=1.0).contains(&v) {
                         return Err((key, format!("must be between 0 and 1, got {v}")));
                     }
                 }
+                check_ior(p.ior)?;
                 numbers.push(("alpha", p.alpha));
                 if let AlphaMode::Mask { cutoff } = p.alpha_mode {
                     numbers.push(("alphaCutoff", cutoff));
                 }
                 textures.extend(&p.metallic_roughness_texture);
+                textures.extend(p.extension_textures());
             }
             SurfaceModel::Physical(p) => {
                 colors.push(("color", p.color));
@@ -388,6 +441,16 @@ pub const MIN_IOR: f64 = 0.2;
 /// The largest relative index of refraction a `bsdf` accepts (diamond is 2.42; 5 leaves
 /// room for exotic media while catching typos such as 15).
 pub const MAX_IOR: f64 = 5.0;
+
+/// A metallic-roughness index of refraction: 0 (`KHR_materials_ior`'s Fresnel of 1 at every
+/// angle) or between 1 and [`MAX_IOR`].
+pub(crate) fn check_ior(ior: f64) -> Result<(), (&'static str, String)> {
+    if ior == 0.0 || (1.0..=MAX_IOR).contains(&ior) {
+        Ok(())
+    } else {
+        Err(("ior", format!("must be 0 or between 1 and {MAX_IOR}, got {}", crate::diagnostics::shown_number(ior))))
+    }
+}
 
 /// The first of `colors`, then of `numbers`, that is not finite, as (key, message).
 pub(crate) fn check_finite(

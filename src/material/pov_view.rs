@@ -155,6 +155,8 @@ struct PbrParams {
     metallic: f64,
     roughness: f64,
     metallic_roughness_texture: Option<TextureRef>,
+    transmission: f64,
+    transmission_texture: Option<TextureRef>,
 }
 
 impl PovView {
@@ -197,6 +199,9 @@ impl PovView {
                     // Whitted tracing has no partial coverage: blending becomes transmission.
                     base.finish.transmit = (1.0 - p.alpha).clamp(0.0, 1.0);
                 }
+                // Thin-walled transmission as a filter (the factors' here, for shadows; each
+                // hit looks its textures up).
+                base.finish.filter = transmission_filter(p.transmission, p.metallic, base.finish.transmit);
                 let varying = Varying {
                     texture: p.finish.texture.clone(),
                     pbr: Some(pbr_params(p)),
@@ -326,6 +331,13 @@ impl PovView {
             let mirror = metallic * gloss;
             m.reflection =
                 Reflection { min: Rgb::grey(mirror), max: Rgb::grey(mirror), metallic, ..Reflection::default() };
+            // Thin-walled transmission passes light straight through, tinted by the base
+            // colour: POV-Ray's filter (added to a blended material's transmit).
+            let mut transmission = p.transmission;
+            if let Some(t) = &p.transmission_texture {
+                transmission *= f64::from(t.sample(uv, footprint).x);
+            }
+            shaded.pigment.filter = transmission_filter(transmission, metallic, shaded.pigment.transmit);
         }
         if let Some((radiance, texture)) = &varying.emitted {
             shaded.emitted = radiance.0;
@@ -337,11 +349,19 @@ impl PovView {
     }
 }
 
+/// POV-Ray's filter for glTF's thin-walled transmission: the dielectric part's share
+/// (`transmission * (1 - metallic)`), within what `transmit` leaves.
+fn transmission_filter(transmission: f64, metallic: f64, transmit: f64) -> f64 {
+    (transmission * (1.0 - metallic)).clamp(0.0, (1.0 - transmit).max(0.0))
+}
+
 fn pbr_params(p: &MetallicRoughness) -> PbrParams {
     PbrParams {
         metallic: p.metallic,
         roughness: p.roughness,
         metallic_roughness_texture: p.metallic_roughness_texture.clone(),
+        transmission: p.transmission,
+        transmission_texture: p.transmission_texture.clone(),
     }
 }
 
@@ -499,14 +519,15 @@ mod tests {
     }
 
     fn gltf(metallic: f64, roughness: f64, alpha_mode: AlphaMode, alpha: f64) -> PovView {
-        let surface = SurfaceModel::MetallicRoughness(MetallicRoughness {
-            finish: Finish { color: Rgb::new(0.8, 0.4, 0.2), ..Finish::default() },
-            metallic,
-            roughness,
-            metallic_roughness_texture: None,
+        let surface = SurfaceModel::MetallicRoughness(Box::new(MetallicRoughness {
             alpha_mode,
             alpha,
-        });
+            ..MetallicRoughness::core(
+                Finish { color: Rgb::new(0.8, 0.4, 0.2), ..Finish::default() },
+                metallic,
+                roughness,
+            )
+        }));
         let emission = Emission { radiance: Rgb::new(1.0, 2.0, 3.0), ..Emission::default() };
         PovView::new(&Material { surface, emission, interior: Interior::default() })
     }
@@ -532,6 +553,31 @@ mod tests {
         assert!(!f.finish.reflection.is_reflective());
         assert_eq!(shaded.pigment.transmit, 0.75);
         assert!(view.base.is_transparent() && view.varies_over_surface());
+    }
+
+    /// Thin-walled transmission is POV-Ray's filter: the dielectric share `transmission (1 -
+    /// metallic)`, within what a blended material's transmit leaves; shadows through it are
+    /// tinted by the base colour.
+    #[test]
+    fn gltf_transmission_is_a_filter() {
+        let view = |metallic: f64, transmission: f64, alpha_mode: AlphaMode, alpha: f64| {
+            let surface = SurfaceModel::MetallicRoughness(Box::new(MetallicRoughness {
+                alpha_mode,
+                alpha,
+                transmission,
+                ..MetallicRoughness::core(Finish { color: Rgb::new(0.8, 0.4, 0.2), ..Finish::default() }, metallic, 0.5)
+            }));
+            PovView::new(&Material { surface, emission: Emission::default(), interior: Interior::default() })
+        };
+        let half_metal = view(0.5, 0.6, AlphaMode::Opaque, 1.0);
+        let shaded = half_metal.at_surface(DVec3::ZERO, DVec2::ZERO, 0.0);
+        assert_eq!((shaded.pigment.filter, shaded.pigment.transmit), (0.3, 0.0));
+        assert!(half_metal.is_transparent());
+        assert_eq!(half_metal.shadow_filter(DVec3::ZERO), DVec3::new(0.8, 0.4, 0.2) * 0.3);
+        let blended = view(0.0, 1.0, AlphaMode::Blend, 0.25);
+        let shaded = blended.at_surface(DVec3::ZERO, DVec2::ZERO, 0.0);
+        assert_eq!((shaded.pigment.filter, shaded.pigment.transmit), (0.25, 0.75));
+        assert!(!view(0.0, 0.0, AlphaMode::Opaque, 1.0).is_transparent());
     }
 
     #[test]

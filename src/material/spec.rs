@@ -15,9 +15,7 @@ use serde::{Deserialize, Serialize};
 
 use super::normal::{Normal, NormalField};
 use super::pattern::{Pigment, PigmentField};
-use super::{
-    AlphaMode, Emission, Finish, Interior, Layer, Material, MetallicRoughness, Physical, Scattering, SurfaceModel,
-};
+use super::{Emission, Finish, Interior, Layer, Material, MetallicRoughness, Physical, Scattering, SurfaceModel};
 use crate::color::Rgb;
 use crate::texture::{ColorSpace, TextureRef};
 
@@ -208,6 +206,25 @@ pub struct Pbr {
     /// Texture (sRGB) multiplying `emissive`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub emissive_texture: Option<TextureRef>,
+    /// Index of refraction of the dielectric part: 0 (a Fresnel of 1 at every angle) or 1 to
+    /// 5 (`KHR_materials_ior`).
+    pub ior: f64,
+    /// Share of the dielectric's diffuse base passing straight through instead, tinted by the
+    /// colour (thin-walled `KHR_materials_transmission`), 0..1.
+    pub transmission: f64,
+    /// Texture (linear) whose red channel multiplies `transmission`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub transmission_texture: Option<TextureRef>,
+    /// Clear coat strength (`KHR_materials_clearcoat`), 0..1.
+    pub clearcoat: f64,
+    /// Texture (linear) whose red channel multiplies `clearcoat`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub clearcoat_texture: Option<TextureRef>,
+    /// Perceptual roughness of the clear coat, 0..1.
+    pub clearcoat_roughness: f64,
+    /// Texture (linear) whose green channel multiplies `clearcoat_roughness`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub clearcoat_roughness_texture: Option<TextureRef>,
 }
 
 impl Default for Pbr {
@@ -218,6 +235,13 @@ impl Default for Pbr {
             metallic_roughness_texture: None,
             emissive: Rgb::BLACK,
             emissive_texture: None,
+            ior: 1.5,
+            transmission: 0.0,
+            transmission_texture: None,
+            clearcoat: 0.0,
+            clearcoat_texture: None,
+            clearcoat_roughness: 0.0,
+            clearcoat_roughness_texture: None,
         }
     }
 }
@@ -370,18 +394,32 @@ impl MaterialSpec {
             }
         }
         if let Some(p) = &self.pbr {
-            for (key, v) in [("pbr.metallic", p.metallic), ("pbr.roughness", p.roughness)] {
+            for (key, v) in [
+                ("pbr.metallic", p.metallic),
+                ("pbr.roughness", p.roughness),
+                ("pbr.transmission", p.transmission),
+                ("pbr.clearcoat", p.clearcoat),
+                ("pbr.clearcoat_roughness", p.clearcoat_roughness),
+            ] {
                 if !(0.0..=1.0).contains(&v) {
                     return Err((key, format!("must be between 0 and 1, got {v}")));
                 }
             }
+            super::check_ior(p.ior).map_err(|(_, message)| ("pbr.ior", message))?;
             // A colour like `emission` (finite, within the limit beyond which its products
             // overflow), and radiance, so not negative.
             super::check_finite(&[("pbr.emissive", p.emissive)], &[])?;
             if p.emissive.0.min_element() < 0.0 {
                 return Err(("pbr.emissive", "must not be negative".into()));
             }
-            for t in [&p.metallic_roughness_texture, &p.emissive_texture].into_iter().flatten() {
+            let textures = [
+                &p.metallic_roughness_texture,
+                &p.emissive_texture,
+                &p.transmission_texture,
+                &p.clearcoat_texture,
+                &p.clearcoat_roughness_texture,
+            ];
+            for t in textures.into_iter().flatten() {
                 t.check()?;
             }
         }
@@ -489,6 +527,12 @@ impl MaterialSpec {
             if let Some(t) = p.emissive_texture.as_mut() {
                 out.push((t, ColorSpace::Srgb));
             }
+            for t in [&mut p.transmission_texture, &mut p.clearcoat_texture, &mut p.clearcoat_roughness_texture]
+                .into_iter()
+                .flatten()
+            {
+                out.push((t, ColorSpace::Linear));
+            }
         }
         for layer in self.layers.iter_mut().flatten() {
             out.extend(layer.textures_mut());
@@ -547,14 +591,17 @@ impl MaterialSpec {
             (Some(p), None) => {
                 emission.radiance = p.emissive;
                 emission.texture = p.emissive_texture.clone();
-                SurfaceModel::MetallicRoughness(MetallicRoughness {
-                    finish,
-                    metallic: p.metallic,
-                    roughness: p.roughness,
+                SurfaceModel::MetallicRoughness(Box::new(MetallicRoughness {
                     metallic_roughness_texture: p.metallic_roughness_texture.clone(),
-                    alpha_mode: AlphaMode::Opaque,
-                    alpha: 1.0,
-                })
+                    ior: p.ior,
+                    transmission: p.transmission,
+                    transmission_texture: p.transmission_texture.clone(),
+                    clearcoat: p.clearcoat,
+                    clearcoat_texture: p.clearcoat_texture.clone(),
+                    clearcoat_roughness: p.clearcoat_roughness,
+                    clearcoat_roughness_texture: p.clearcoat_roughness_texture.clone(),
+                    ..MetallicRoughness::core(finish, p.metallic, p.roughness)
+                }))
             }
         };
         Material { surface, interior: self.interior(), emission }
@@ -760,6 +807,37 @@ mod tests {
         assert_eq!(check("pbr = { emissive = [1e31, 0, 0] }").unwrap_err().0, "pbr.emissive");
         assert_eq!(check("pbr = { emissive = [0, -1, 0] }").unwrap_err().0, "pbr.emissive");
         assert!(check("pbr = { emissive = [1e30, 0, 0] }").is_ok());
+    }
+
+    /// The glTF extensions' keys of `pbr`: their ranges named with the key, their values in
+    /// the model, and a round trip through TOML.
+    #[test]
+    fn pbr_extension_keys_reach_the_model_within_their_ranges() {
+        let check = |text: &str| toml::from_str::<MaterialSpec>(text).unwrap().check();
+        for (text, key) in [
+            ("pbr = { transmission = 1.5 }", "pbr.transmission"),
+            ("pbr = { clearcoat = -0.1 }", "pbr.clearcoat"),
+            ("pbr = { clearcoat_roughness = 2 }", "pbr.clearcoat_roughness"),
+            ("pbr = { ior = 0.5 }", "pbr.ior"),
+            ("pbr = { ior = 6 }", "pbr.ior"),
+            ("pbr = { ior = nan }", "pbr.ior"),
+        ] {
+            assert_eq!(check(text).unwrap_err().0, key, "{text}");
+        }
+        for ior in ["0", "1", "5"] {
+            assert!(check(&format!("pbr = {{ ior = {ior} }}")).is_ok(), "ior {ior}");
+        }
+        let text = "pbr = { metallic = 0.1, roughness = 0.2, ior = 1.3, transmission = 0.4, clearcoat = 0.5, \
+                    clearcoat_roughness = 0.6, transmission_texture = { file = \"t.png\" } }";
+        let spec: MaterialSpec = toml::from_str(text).unwrap();
+        let SurfaceModel::MetallicRoughness(m) = spec.to_material().surface else { panic!("metallic-roughness") };
+        assert_eq!((m.ior, m.transmission, m.clearcoat, m.clearcoat_roughness), (1.3, 0.4, 0.5, 0.6));
+        assert_eq!(m.transmission_texture.as_ref().map(|t| t.file.as_str()), Some("t.png"));
+        let back: MaterialSpec = toml::from_str(&toml::to_string(&spec).unwrap()).unwrap();
+        assert_eq!(spec, back);
+        let defaults: MaterialSpec = toml::from_str("pbr = {}").unwrap();
+        let SurfaceModel::MetallicRoughness(m) = defaults.to_material().surface else { panic!("metallic-roughness") };
+        assert_eq!((m.ior, m.transmission, m.clearcoat), (1.5, 0.0, 0.0));
     }
 
     #[test]

@@ -27,6 +27,7 @@ use crate::color::Rgb;
 use crate::material::normal::NormalField;
 use crate::material::{AlphaMode, Finish, Layer, Material, MetallicRoughness, Mtl, Physical, Scattering, SurfaceModel};
 use crate::render::bsdf::{Bsdf, BsdfSample};
+use crate::texture::TextureRef;
 
 /// At most this many lobes at one hit.
 pub const MAX_LOBES: usize = 3;
@@ -419,14 +420,20 @@ fn metallic_roughness_scatter(m: &MetallicRoughness, base_color: DVec3, uv: DVec
         roughness *= f64::from(v.y);
         metallic *= f64::from(v.z);
     }
+    // The extensions' textures multiply their factors: red for transmission and the coat,
+    // green for the coat's roughness.
+    let times = |factor: f64, texture: &Option<TextureRef>, channel: usize| {
+        texture.as_ref().map_or(factor, |t| factor * f64::from(t.sample(uv, 0.0)[channel]))
+    };
+    let clearcoat_roughness = times(m.clearcoat_roughness, &m.clearcoat_roughness_texture, 1);
     let bsdf = Bsdf::MetallicRoughness {
         base_color: base_color.clamp(DVec3::ZERO, DVec3::ONE),
         metallic: metallic.clamp(0.0, 1.0),
         alpha: (roughness * roughness).clamp(0.0, 1.0),
-        ior: 1.5,
-        transmission: 0.0,
-        clearcoat: 0.0,
-        clearcoat_alpha: 0.0,
+        ior: m.ior,
+        transmission: times(m.transmission, &m.transmission_texture, 0).clamp(0.0, 1.0),
+        clearcoat: times(m.clearcoat, &m.clearcoat_texture, 0).clamp(0.0, 1.0),
+        clearcoat_alpha: (clearcoat_roughness * clearcoat_roughness).clamp(0.0, 1.0),
     };
     let coverage = match m.alpha_mode {
         AlphaMode::Blend => m.alpha.clamp(0.0, 1.0),
@@ -502,6 +509,42 @@ mod tests {
         let blue = at(1.5).scatter;
         let weights: Vec<DVec3> = blue.lobes().map(|(w, _)| w).collect();
         assert_eq!(weights, [DVec3::new(0.0, 0.0, 0.5), DVec3::splat(0.5)]);
+    }
+
+    /// glTF's extensions under `path`: thin-walled transmission sends light through the back,
+    /// times its texture's red channel; the clear coat's strength is times its texture's red,
+    /// its roughness times its texture's green.
+    #[test]
+    fn gltf_extensions_and_their_textures_reach_the_bsdf() {
+        use crate::texture::{ColorSpace, Texture};
+        let texel = |r: u8, g: u8| {
+            let mut t = TextureRef::new("t.png");
+            t.texture = Some(std::sync::Arc::new(Texture::from_rgba8(1, 1, vec![[r, g, 0, 255]], ColorSpace::Linear)));
+            t
+        };
+        let wo = DVec3::new(0.3, 0.0, 1.0).normalize();
+        let (below, mirror) = (DVec3::new(-0.3, 0.0, -1.0).normalize(), DVec3::new(-0.3, 0.0, 1.0).normalize());
+        let eval = |m: &MetallicRoughness, wi: DVec3| {
+            metallic_roughness_scatter(m, DVec3::splat(0.8), DVec2::splat(0.5)).eval(wo, wi).x
+        };
+        let clear = MetallicRoughness::core(Finish::default(), 0.0, 0.5);
+        let through = MetallicRoughness { transmission: 1.0, ..clear.clone() };
+        assert_eq!(eval(&clear, below), 0.0);
+        assert!(eval(&through, below) > 0.0);
+        let masked = MetallicRoughness { transmission_texture: Some(texel(0, 0)), ..through.clone() };
+        assert_eq!(eval(&masked, below), 0.0);
+        let full = MetallicRoughness { transmission_texture: Some(texel(255, 0)), ..through.clone() };
+        assert_eq!(eval(&full, below), eval(&through, below));
+
+        let coated = MetallicRoughness { clearcoat: 1.0, clearcoat_roughness: 0.1, ..clear.clone() };
+        assert!(eval(&coated, mirror) > 2.0 * eval(&clear, mirror), "a smooth coat adds a sharp lobe");
+        let uncoated = MetallicRoughness { clearcoat_texture: Some(texel(0, 255)), ..coated.clone() };
+        assert_eq!(eval(&uncoated, mirror), eval(&clear, mirror));
+        let rough = MetallicRoughness { clearcoat_roughness: 1.0, ..coated.clone() };
+        let roughened = MetallicRoughness { clearcoat_roughness_texture: Some(texel(0, 255)), ..rough.clone() };
+        let smoothed = MetallicRoughness { clearcoat_roughness_texture: Some(texel(255, 26)), ..rough.clone() };
+        assert_eq!(eval(&roughened, mirror), eval(&rough, mirror));
+        assert!(eval(&smoothed, mirror) > 2.0 * eval(&rough, mirror), "green 0.1 times roughness 1 is smooth");
     }
 
     fn shaded(text: &str) -> Shaded {
