@@ -487,6 +487,23 @@ fn gltf_material_extensions_reach_the_model() {
     let warnings: Vec<String> = scene.warnings.iter().map(|w| w.to_string()).collect();
     assert!(warnings.iter().any(|w| w.contains("KHR_materials_volume is not read")), "warnings: {warnings:?}");
 
+    // An ior beyond what Prism's dielectrics take is clamped, with a warning.
+    let mut dense = material.clone();
+    dense["extensions"]["KHR_materials_ior"]["ior"] = json!(9.0);
+    write(dir.path(), "quad.gltf", &quad_with_material(dense, &used));
+    let scene = load(&dir.path().join("scene.toml"));
+    let iors: Vec<f64> = scene
+        .world
+        .query::<&MaterialComponent>()
+        .iter()
+        .filter_map(|c| match &c.material.surface {
+            SurfaceModel::MetallicRoughness(m) => Some(m.ior),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(iors, [prism::material::MAX_IOR]);
+    assert!(scene.warnings.iter().any(|w| w.to_string().contains("KHR_materials_ior 9 is outside")));
+
     // A clear-coat texture that is not in the file.
     let mut broken = material;
     broken["extensions"]["KHR_materials_clearcoat"]["clearcoatTexture"]["index"] = json!(7);

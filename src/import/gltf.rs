@@ -23,7 +23,7 @@ use crate::color::Rgb;
 use crate::files::{FileAccess, FileError, FileKind};
 use crate::geometry::mesh::{AlphaMask, MeshBuilder, MeshData, MeshError, MeshShape, NormalMap, SurfaceMaps};
 use crate::limits::{MAX_GLTF_INSTANCES, MemoryBudget};
-use crate::material::{AlphaMode, Emission, Finish, Material, MetallicRoughness, SurfaceModel};
+use crate::material::{AlphaMode, Emission, Finish, MAX_IOR, Material, MetallicRoughness, SurfaceModel};
 use crate::texture::{ColorSpace, TextureRef, TextureStore, Wrap};
 
 /// Deepest node nesting accepted (deeper trees are almost certainly broken files).
@@ -770,8 +770,19 @@ impl Importer<'_> {
     /// the clear coat's textures.
     fn material_extensions(&mut self, m: &gltf::Material, params: &mut MetallicRoughness) -> Result<(), ImportError> {
         let name = || m.index().map_or("default".into(), |i| i.to_string());
-        if let Some(ior) = m.ior() {
-            params.ior = f64::from(ior);
+        if let Some(ior) = m.ior().map(f64::from) {
+            // The extension allows 0 and anything from 1 up; Prism's dielectrics stop at
+            // MAX_IOR, and a file is not refused for what it may say.
+            params.ior = if ior == 0.0 || (1.0..=MAX_IOR).contains(&ior) {
+                ior
+            } else {
+                let used = if ior > MAX_IOR { MAX_IOR } else { 1.5 };
+                self.model.warnings.push(format!(
+                    "material {}: KHR_materials_ior {ior} is outside 0 or 1..{MAX_IOR}; {used} is used",
+                    name()
+                ));
+                used
+            };
         }
         if let Some(t) = m.transmission() {
             params.transmission = f64::from(t.transmission_factor()).clamp(0.0, 1.0);
