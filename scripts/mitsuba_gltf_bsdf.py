@@ -18,12 +18,14 @@ Prism's code, so that the live Mitsuba check judges Prism's reading of it indepe
     fresnel_mix(ior, base, layer) = mix(base, layer, f0 + (1 - f0) (1 - |V.H|)^5),
         f0 = ((1 - ior) / (1 + ior))^2  (ior = 1.5 unless KHR_materials_ior says otherwise)
 
-With KHR_materials_transmission (thin-walled: no KHR_materials_volume) and
-KHR_materials_clearcoat, from those extensions' specifications:
+With KHR_materials_specular, KHR_materials_transmission (thin-walled: no
+KHR_materials_volume) and KHR_materials_clearcoat, from those extensions' specifications:
 
-    dielectric_brdf = fresnel_mix(ior, base = mix(diffuse_brdf(baseColor),
-                                                  specular_btdf(alpha) * baseColor, transmission),
-                                  layer = specular_brdf(alpha))
+    dielectric_brdf = F * specular_brdf(alpha) + (1 - max_value(F)) * base,
+        base = mix(diffuse_brdf(baseColor), specular_btdf(alpha) * baseColor, transmission),
+        F    = mix(f0, f90, (1 - |V.H|)^5) (RGB), f0 = min(f0_ior * specularColor, 1) * specular,
+               f90 = specular (specular = 1 and specularColor = 1 without the extension give
+               Appendix B's fresnel_mix)
     specular_btdf   = specular_brdf with L mirrored through the surface (L' = L - 2 N (N.L)):
                       thin-walled transmission leaves straight through, blurred by the roughness,
                       and its Fresnel is read at V.H' with H' the half vector of V and L'
@@ -34,8 +36,9 @@ Parameters (as glTF's pbrMetallicRoughness writes them; a texture multiplies its
     base_color_factor (rgb, linear, default 1), base_color_texture (texture, optional; a
     `bitmap` decoded from sRGB), metallic (float, default 1), roughness (float, default 1),
     metallic_roughness_texture (texture, optional; a linear `bitmap`: blue multiplies
-    metallic, green multiplies roughness), ior (float, default 1.5), transmission, clearcoat,
-    clearcoat_roughness (floats, default 0).
+    metallic, green multiplies roughness), ior (float, default 1.5), specular (float, default
+    1), specular_color (rgb, default 1), transmission, clearcoat, clearcoat_roughness (floats,
+    default 0).
 The surface scatters alike from both sides (the shading frame is flipped to the viewer's
 side), as Prism's path integrator reads glTF surfaces. Factors and products are clamped to
 0..1 as glTF's ranges are. alpha is kept above 1e-4 so that a roughness of 0 stays finite.
@@ -102,6 +105,8 @@ def _plugin_class():
             self.roughness = float(props.get("roughness", 1.0))
             self.metallic_roughness_texture = _optional_texture(props, "metallic_roughness_texture")
             self.ior = float(props.get("ior", 1.5))
+            self.specular = float(props.get("specular", 1.0))
+            self.specular_color = _color(props, "specular_color", 1.0)
             self.transmission = float(props.get("transmission", 0.0))
             self.clearcoat = float(props.get("clearcoat", 0.0))
             self.clearcoat_roughness = float(props.get("clearcoat_roughness", 0.0))
@@ -131,6 +136,12 @@ def _plugin_class():
 
         def _f0_dielectric(self):
             return ((1.0 - self.ior) / (1.0 + self.ior)) ** 2
+
+        def _dielectric_fresnel(self, cos):
+            """KHR_materials_specular's Fresnel F (RGB) at cos = |V.H|."""
+            f0 = dr.minimum(self._f0_dielectric() * mi.Color3f(self.specular_color), 1.0) * self.specular
+            m = dr.clip(1.0 - dr.abs(cos), 0.0, 1.0)
+            return dr.lerp(f0, mi.Color3f(self.specular), m * m * m * m * m)
 
         @staticmethod
         def _upper(si, wo):
@@ -175,11 +186,12 @@ def _plugin_class():
             # Thin-walled transmission: the reflection lobe's formulas at L mirrored.
             l = mi.Vector3f(wo.x, wo.y, dr.abs(wo.z))
             specular, v_h = self._specular(alpha, wi, l)
-            fr = _schlick(self._f0_dielectric(), dr.abs(v_h))
+            fr = self._dielectric_fresnel(v_h)
+            fr_max = dr.maximum(dr.maximum(fr[0], fr[1]), fr[2])
             diffuse = base * dr.inv_pi * l.z
             base_part = dr.select(above, diffuse * (1.0 - self.transmission), base * specular * self.transmission)
             layer = dr.select(above, specular, 0.0)
-            dielectric = dr.lerp(base_part, mi.Color3f(layer), fr)
+            dielectric = fr * layer + (1.0 - fr_max) * base_part
             metal = dr.select(above, specular, 0.0) * _schlick(base, dr.abs(v_h))
             material = dr.lerp(dielectric, metal, metallic)
             coat, _ = self._specular(self._coat_alpha(), wi, l)
@@ -190,7 +202,8 @@ def _plugin_class():
         # Sampling ---------------------------------------------------------------------------
         def _lobe_probabilities(self, base, metallic, n_v):
             """Probabilities of the diffuse, specular, transmission and coat lobes."""
-            fd = _schlick(self._f0_dielectric(), n_v)
+            fr = self._dielectric_fresnel(n_v)
+            fd = dr.maximum(dr.maximum(fr[0], fr[1]), fr[2])
             fm = _schlick(base, n_v)
             fm_mean = (fm[0] + fm[1] + fm[2]) / 3.0
             base_mean = (base[0] + base[1] + base[2]) / 3.0
@@ -277,6 +290,8 @@ def _plugin_class():
             callback.put("metallic", self.metallic, flags)
             callback.put("roughness", self.roughness, flags)
             callback.put("ior", self.ior, flags)
+            callback.put("specular", self.specular, flags)
+            callback.put("specular_color", self.specular_color, flags)
             callback.put("transmission", self.transmission, flags)
             callback.put("clearcoat", self.clearcoat, flags)
             callback.put("clearcoat_roughness", self.clearcoat_roughness, flags)
@@ -289,6 +304,7 @@ def _plugin_class():
             return (
                 f"GltfMetallicRoughness[base_color_factor={self.base_color_factor}, "
                 f"metallic={self.metallic}, roughness={self.roughness}, ior={self.ior}, "
+                f"specular={self.specular}, specular_color={self.specular_color}, "
                 f"transmission={self.transmission}, clearcoat={self.clearcoat}, "
                 f"clearcoat_roughness={self.clearcoat_roughness}, "
                 f"base_color_texture={self.base_color_texture is not None}, "
@@ -337,13 +353,14 @@ def prepare(xml_path, variant="auto"):
 
 # Self-checks ---------------------------------------------------------------------------
 def _bsdf(metallic, roughness, base=(0.8, 0.5, 0.2), ior=1.5, extensions=None):
+    extensions = {k: mi.ScalarColor3f(v) if isinstance(v, tuple) else v for k, v in (extensions or {}).items()}
     return mi.load_dict({
         "type": PLUGIN_NAME,
         "base_color_factor": mi.ScalarColor3f(base),
         "metallic": metallic,
         "roughness": roughness,
         "ior": ior,
-        **(extensions or {}),
+        **extensions,
     })
 
 
@@ -389,12 +406,16 @@ def self_check():
         (0.0, 0.7, {"transmission": 1.0, "ior": 1.2}),
         (0.2, 0.6, {"clearcoat": 1.0, "clearcoat_roughness": 0.5}),
         (0.3, 0.5, {"transmission": 0.6, "clearcoat": 0.5, "clearcoat_roughness": 0.6}),
+        (0.0, 0.4, {"specular": 0.4, "specular_color": (1.5, 0.6, 0.2), "transmission": 0.5}),
     ]
     for metallic, roughness, extensions in cases:
         params = (
             f'<rgb name="base_color_factor" value="0.8, 0.5, 0.2"/><float name="metallic" value="{metallic}"/>'
             f'<float name="roughness" value="{roughness}"/>'
-        ) + "".join(f'<float name="{k}" value="{v}"/>' for k, v in extensions.items())
+        ) + "".join(
+            f'<rgb name="{k}" value="{", ".join(map(str, v))}"/>' if isinstance(v, tuple) else f'<float name="{k}" value="{v}"/>'
+            for k, v in extensions.items()
+        )
         ior = extensions.pop("ior", 1.5)
         for theta in [10.0, 45.0, 80.0]:
             t = np.radians(theta)

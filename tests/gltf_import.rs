@@ -464,10 +464,20 @@ fn gltf_material_extensions_reach_the_model() {
                 "clearcoatFactor": 0.5, "clearcoatRoughnessFactor": 0.25,
                 "clearcoatTexture": { "index": 0 }, "clearcoatRoughnessTexture": { "index": 0 }
             },
-            "KHR_materials_volume": { "thicknessFactor": 0.1 }
+            "KHR_materials_volume": { "thicknessFactor": 0.1 },
+            "KHR_materials_specular": {
+                "specularFactor": 0.5, "specularColorFactor": [1.5, 0.75, 0.25],
+                "specularTexture": { "index": 0 }, "specularColorTexture": { "index": 0 }
+            }
         }
     });
-    let used = ["KHR_materials_ior", "KHR_materials_transmission", "KHR_materials_clearcoat", "KHR_materials_volume"];
+    let used = [
+        "KHR_materials_ior",
+        "KHR_materials_transmission",
+        "KHR_materials_clearcoat",
+        "KHR_materials_volume",
+        "KHR_materials_specular",
+    ];
     let dir = tempfile::tempdir().unwrap();
     write(dir.path(), "quad.gltf", &quad_with_material(material.clone(), &used));
     let scene = load(&write(dir.path(), "scene.toml", "[[object]]\nshape = \"mesh\"\nfile = \"quad.gltf\"\n"));
@@ -484,6 +494,8 @@ fn gltf_material_extensions_reach_the_model() {
     assert_eq!((m.ior, m.transmission, m.clearcoat, m.clearcoat_roughness), (1.25, 0.75, 0.5, 0.25));
     assert!(m.transmission_texture.is_some() && m.clearcoat_texture.is_some());
     assert!(m.clearcoat_roughness_texture.is_some());
+    assert_eq!((m.specular, m.specular_color.0.to_array()), (0.5, [1.5, 0.75, 0.25]));
+    assert!(m.specular_texture.is_some() && m.specular_color_texture.is_some());
     let warnings: Vec<String> = scene.warnings.iter().map(|w| w.to_string()).collect();
     assert!(warnings.iter().any(|w| w.contains("KHR_materials_volume is not read")), "warnings: {warnings:?}");
 

@@ -355,6 +355,10 @@ fn gltf_materials_become_the_plugin_and_what_it_cannot_hold_is_an_error_naming_t
             "material = { pbr = { clearcoat = 1, clearcoat_roughness_texture = \"t.png\" } }".to_string(),
             Some("material.pbr.clearcoat_roughness_texture"),
         ),
+        (
+            "material = { pbr = { specular_color_texture = \"t.png\" } }".to_string(),
+            Some("material.pbr.specular_color_texture"),
+        ),
     ];
     let mesh_case = (format!("[[object]]\nshape = \"mesh\"\nfile = \"{clearcoat}\"\n"), Some("normal map"));
     let scenes = cases

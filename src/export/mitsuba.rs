@@ -803,7 +803,7 @@ const GLTF_PLUGIN: &str = "gltf_metallic_roughness";
 /// scripts/mitsuba_gltf_bsdf.py (the specification's Appendix B, written from its text), as
 /// Prism's path integrator reads it: the base colour factor times an sRGB texture, the
 /// metallic and roughness factors times a linear texture's blue and green channels, the ior,
-/// thin-walled transmission and clear coat factors, both sides alike. Textures are bilinear
+/// specular, thin-walled transmission and clear coat factors, both sides alike. Textures are bilinear
 /// at full resolution with their wrap modes; an image inside a glTF file is written beside
 /// the meshes as a PNG of the texels Prism samples. Errors name what the plugin does not
 /// hold: alpha blending below full coverage, textured emission, the extensions' textures,
@@ -826,6 +826,8 @@ fn metallic_roughness_xml(
         ));
     }
     let extension_textures = [
+        ("pbr.specular_texture", &m.specular_texture),
+        ("pbr.specular_color_texture", &m.specular_color_texture),
         ("pbr.transmission_texture", &m.transmission_texture),
         ("pbr.clearcoat_texture", &m.clearcoat_texture),
         ("pbr.clearcoat_roughness_texture", &m.clearcoat_roughness_texture),
@@ -840,6 +842,12 @@ fn metallic_roughness_xml(
         number(m.roughness),
         number(m.ior)
     );
+    if m.specular != 1.0 {
+        xml.push_str(&format!("<float name=\"specular\" value=\"{}\"/>", number(m.specular)));
+    }
+    if m.specular_color != crate::color::Rgb::WHITE {
+        xml.push_str(&format!("<rgb name=\"specular_color\" value=\"{}\"/>", rgb(m.specular_color.0)));
+    }
     for (name, value) in
         [("transmission", m.transmission), ("clearcoat", m.clearcoat), ("clearcoat_roughness", m.clearcoat_roughness)]
     {

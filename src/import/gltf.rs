@@ -763,9 +763,10 @@ impl Importer<'_> {
         Ok((Arc::new(material), maps, m.name().map(str::to_string)))
     }
 
-    /// `KHR_materials_ior`, `KHR_materials_transmission` and `KHR_materials_clearcoat` (read
-    /// from the extension's JSON: the crate has no type for it) into `params`; factors clamped
-    /// to 0..1 as the core's are. Not read, with a warning: `KHR_materials_volume` (the
+    /// `KHR_materials_ior`, `KHR_materials_specular`, `KHR_materials_transmission` and
+    /// `KHR_materials_clearcoat` (read from the extension's JSON: the crate has no type for
+    /// it) into `params`; factors clamped to 0..1 as the core's are (the specular colour only
+    /// to at least 0: it may exceed 1). Not read, with a warning: `KHR_materials_volume` (the
     /// transmission stays thin-walled), the clear coat's normal texture and transforms of
     /// the clear coat's textures.
     fn material_extensions(&mut self, m: &gltf::Material, params: &mut MetallicRoughness) -> Result<(), ImportError> {
@@ -783,6 +784,23 @@ impl Importer<'_> {
                 ));
                 used
             };
+        }
+        if let Some(s) = m.specular() {
+            params.specular = f64::from(s.specular_factor()).clamp(0.0, 1.0);
+            let [r, g, b] = s.specular_color_factor().map(|c| f64::from(c).max(0.0));
+            params.specular_color = Rgb::new(r, g, b);
+            if let Some(info) = s.specular_texture() {
+                params.specular_texture = Some(self.texture(
+                    info.texture(),
+                    info.tex_coord(),
+                    info.texture_transform(),
+                    ColorSpace::Linear,
+                )?);
+            }
+            if let Some(info) = s.specular_color_texture() {
+                params.specular_color_texture =
+                    Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Srgb)?);
+            }
         }
         if let Some(t) = m.transmission() {
             params.transmission = f64::from(t.transmission_factor()).clamp(0.0, 1.0);

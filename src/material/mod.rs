@@ -200,6 +200,16 @@ pub struct MetallicRoughness {
     pub alpha: f64,
     /// Index of refraction of the dielectric part (`KHR_materials_ior`; 1.5 by default).
     pub ior: f64,
+    /// Strength of the dielectric part's specular reflection, 0..1 (`KHR_materials_specular`;
+    /// 1 by default).
+    pub specular: f64,
+    /// Texture whose alpha channel multiplies `specular`.
+    pub specular_texture: Option<TextureRef>,
+    /// Colour of the dielectric's F0 (linear RGB, 1 by default; may exceed 1, the product
+    /// with the ior's F0 is clamped to 1).
+    pub specular_color: Rgb,
+    /// Texture (sRGB) multiplying `specular_color`.
+    pub specular_color_texture: Option<TextureRef>,
     /// Share of the dielectric part's diffuse base that passes through the surface instead
     /// (`KHR_materials_transmission`, thin-walled: straight through, blurred by the roughness,
     /// tinted by the base colour), 0..1.
@@ -228,6 +238,10 @@ impl MetallicRoughness {
             alpha_mode: AlphaMode::Opaque,
             alpha: 1.0,
             ior: 1.5,
+            specular: 1.0,
+            specular_texture: None,
+            specular_color: Rgb::WHITE,
+            specular_color_texture: None,
             transmission: 0.0,
             transmission_texture: None,
             clearcoat: 0.0,
@@ -239,7 +253,15 @@ impl MetallicRoughness {
 
     /// The textures driving the extensions' factors.
     pub fn extension_textures(&self) -> impl Iterator<Item = &TextureRef> {
-        [&self.transmission_texture, &self.clearcoat_texture, &self.clearcoat_roughness_texture].into_iter().flatten()
+        [
+            &self.specular_texture,
+            &self.specular_color_texture,
+            &self.transmission_texture,
+            &self.clearcoat_texture,
+            &self.clearcoat_roughness_texture,
+        ]
+        .into_iter()
+        .flatten()
     }
 }
 
@@ -364,6 +386,7 @@ impl Material {
                 for (key, v) in [
                     ("metallic", p.metallic),
                     ("roughness", p.roughness),
+                    ("specular", p.specular),
                     ("transmission", p.transmission),
                     ("clearcoat", p.clearcoat),
                     ("clearcoat_roughness", p.clearcoat_roughness),
@@ -373,6 +396,10 @@ impl Material {
                     }
                 }
                 check_ior(p.ior)?;
+                colors.push(("specularColorFactor", p.specular_color));
+                if p.specular_color.0.min_element() < 0.0 {
+                    return Err(("specularColorFactor", "must not be negative".into()));
+                }
                 numbers.push(("alpha", p.alpha));
                 if let AlphaMode::Mask { cutoff } = p.alpha_mode {
                     numbers.push(("alphaCutoff", cutoff));

@@ -157,6 +157,8 @@ struct PbrParams {
     metallic_roughness_texture: Option<TextureRef>,
     transmission: f64,
     transmission_texture: Option<TextureRef>,
+    specular: f64,
+    specular_texture: Option<TextureRef>,
 }
 
 impl PovView {
@@ -297,9 +299,10 @@ impl PovView {
     ///
     /// The finish derived from glTF parameters (documented in `docs/meshes.md`): with `m` =
     /// metallic, `r` = roughness and `g = (1 - r)^2`: diffuse `0.6 (1 - m)`, Blinn specular
-    /// `g (0.25 + 0.75 m)` with POV-Ray roughness `a^2 / (2 - 2 a^2)` for GGX `a = r^2`
-    /// (exponent 2 / a^2 - 2), highlights and reflection tinted by the base colour by `m`,
-    /// mirror reflection `m g`.
+    /// `g (0.25 + 0.75 m)` (less `g 0.25 (1 - m) (1 - s)` for a specular strength `s`) with
+    /// POV-Ray roughness `a^2 / (2 - 2 a^2)` for GGX `a = r^2` (exponent 2 / a^2 - 2),
+    /// highlights and reflection tinted by the base colour by `m`, mirror reflection `m g`,
+    /// `filter` the thin-walled transmission's dielectric share.
     pub fn at_surface(&self, point: DVec3, uv: DVec2, footprint: f64) -> ShadedFinish<'_> {
         let mut shaded = ShadedFinish::uniform(&self.base);
         let Some(varying) = &self.varying else {
@@ -324,7 +327,13 @@ impl PovView {
             let alpha2 = roughness.powi(4).max(1e-4);
             let m = &mut shaded.finish.to_mut().finish;
             m.diffuse = 0.6 * (1.0 - metallic);
-            m.specular = gloss * (0.25 + 0.75 * metallic);
+            // The dielectric's share of the highlight, g 0.25 (1 - m), scales with
+            // KHR_materials_specular's strength s (written so that s = 1 changes nothing).
+            let mut strength = p.specular;
+            if let Some(t) = &p.specular_texture {
+                strength *= f64::from(t.sample(uv, footprint).w);
+            }
+            m.specular = gloss * (0.25 + 0.75 * metallic - 0.25 * (1.0 - metallic) * (1.0 - strength));
             m.roughness = (alpha2 / (2.0 - 2.0 * alpha2)).clamp(5e-4, 1.0);
             m.metallic = metallic;
             m.phong = 0.0;
@@ -362,6 +371,8 @@ fn pbr_params(p: &MetallicRoughness) -> PbrParams {
         metallic_roughness_texture: p.metallic_roughness_texture.clone(),
         transmission: p.transmission,
         transmission_texture: p.transmission_texture.clone(),
+        specular: p.specular,
+        specular_texture: p.specular_texture.clone(),
     }
 }
 
@@ -578,6 +589,24 @@ mod tests {
         let shaded = blended.at_surface(DVec3::ZERO, DVec2::ZERO, 0.0);
         assert_eq!((shaded.pigment.filter, shaded.pigment.transmit), (0.25, 0.75));
         assert!(!view(0.0, 0.0, AlphaMode::Opaque, 1.0).is_transparent());
+    }
+
+    /// KHR_materials_specular's strength scales the dielectric's share of the highlight and
+    /// leaves the metal's.
+    #[test]
+    fn gltf_specular_strength_scales_the_dielectric_highlight() {
+        let highlight = |metallic: f64, specular: f64| {
+            let surface = SurfaceModel::MetallicRoughness(Box::new(MetallicRoughness {
+                specular,
+                ..MetallicRoughness::core(Finish::default(), metallic, 0.0)
+            }));
+            let view =
+                PovView::new(&Material { surface, emission: Emission::default(), interior: Interior::default() });
+            view.at_surface(DVec3::ZERO, DVec2::ZERO, 0.0).finish.finish.specular
+        };
+        assert_eq!((highlight(0.0, 1.0), highlight(0.0, 0.0), highlight(0.0, 0.5)), (0.25, 0.0, 0.125));
+        assert_eq!((highlight(1.0, 1.0), highlight(1.0, 0.0)), (1.0, 1.0));
+        assert_eq!(highlight(0.5, 0.0), 0.5);
     }
 
     #[test]

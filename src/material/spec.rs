@@ -209,6 +209,17 @@ pub struct Pbr {
     /// Index of refraction of the dielectric part: 0 (a Fresnel of 1 at every angle) or 1 to
     /// 5 (`KHR_materials_ior`).
     pub ior: f64,
+    /// Strength of the dielectric's specular reflection, 0..1 (`KHR_materials_specular`).
+    pub specular: f64,
+    /// Texture (linear) whose alpha channel multiplies `specular`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub specular_texture: Option<TextureRef>,
+    /// Colour of the dielectric's F0 (linear RGB, not negative; the product with the ior's F0
+    /// is clamped to 1).
+    pub specular_color: Rgb,
+    /// Texture (sRGB) multiplying `specular_color`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub specular_color_texture: Option<TextureRef>,
     /// Share of the dielectric's diffuse base passing straight through instead, tinted by the
     /// colour (thin-walled `KHR_materials_transmission`), 0..1.
     pub transmission: f64,
@@ -236,6 +247,10 @@ impl Default for Pbr {
             emissive: Rgb::BLACK,
             emissive_texture: None,
             ior: 1.5,
+            specular: 1.0,
+            specular_texture: None,
+            specular_color: Rgb::WHITE,
+            specular_color_texture: None,
             transmission: 0.0,
             transmission_texture: None,
             clearcoat: 0.0,
@@ -397,6 +412,7 @@ impl MaterialSpec {
             for (key, v) in [
                 ("pbr.metallic", p.metallic),
                 ("pbr.roughness", p.roughness),
+                ("pbr.specular", p.specular),
                 ("pbr.transmission", p.transmission),
                 ("pbr.clearcoat", p.clearcoat),
                 ("pbr.clearcoat_roughness", p.clearcoat_roughness),
@@ -406,6 +422,10 @@ impl MaterialSpec {
                 }
             }
             super::check_ior(p.ior).map_err(|(_, message)| ("pbr.ior", message))?;
+            super::check_finite(&[("pbr.specular_color", p.specular_color)], &[])?;
+            if p.specular_color.0.min_element() < 0.0 {
+                return Err(("pbr.specular_color", "must not be negative".into()));
+            }
             // A colour like `emission` (finite, within the limit beyond which its products
             // overflow), and radiance, so not negative.
             super::check_finite(&[("pbr.emissive", p.emissive)], &[])?;
@@ -415,6 +435,8 @@ impl MaterialSpec {
             let textures = [
                 &p.metallic_roughness_texture,
                 &p.emissive_texture,
+                &p.specular_texture,
+                &p.specular_color_texture,
                 &p.transmission_texture,
                 &p.clearcoat_texture,
                 &p.clearcoat_roughness_texture,
@@ -527,10 +549,16 @@ impl MaterialSpec {
             if let Some(t) = p.emissive_texture.as_mut() {
                 out.push((t, ColorSpace::Srgb));
             }
-            for t in [&mut p.transmission_texture, &mut p.clearcoat_texture, &mut p.clearcoat_roughness_texture]
-                .into_iter()
-                .flatten()
-            {
+            if let Some(t) = p.specular_color_texture.as_mut() {
+                out.push((t, ColorSpace::Srgb));
+            }
+            let linear = [
+                &mut p.specular_texture,
+                &mut p.transmission_texture,
+                &mut p.clearcoat_texture,
+                &mut p.clearcoat_roughness_texture,
+            ];
+            for t in linear.into_iter().flatten() {
                 out.push((t, ColorSpace::Linear));
             }
         }
@@ -594,6 +622,10 @@ impl MaterialSpec {
                 SurfaceModel::MetallicRoughness(Box::new(MetallicRoughness {
                     metallic_roughness_texture: p.metallic_roughness_texture.clone(),
                     ior: p.ior,
+                    specular: p.specular,
+                    specular_texture: p.specular_texture.clone(),
+                    specular_color: p.specular_color,
+                    specular_color_texture: p.specular_color_texture.clone(),
                     transmission: p.transmission,
                     transmission_texture: p.transmission_texture.clone(),
                     clearcoat: p.clearcoat,
@@ -816,6 +848,9 @@ mod tests {
         let check = |text: &str| toml::from_str::<MaterialSpec>(text).unwrap().check();
         for (text, key) in [
             ("pbr = { transmission = 1.5 }", "pbr.transmission"),
+            ("pbr = { specular = 1.1 }", "pbr.specular"),
+            ("pbr = { specular_color = [1, -0.5, 1] }", "pbr.specular_color"),
+            ("pbr = { specular_color = [1, 1e31, 1] }", "pbr.specular_color"),
             ("pbr = { clearcoat = -0.1 }", "pbr.clearcoat"),
             ("pbr = { clearcoat_roughness = 2 }", "pbr.clearcoat_roughness"),
             ("pbr = { ior = 0.5 }", "pbr.ior"),
@@ -828,16 +863,21 @@ mod tests {
             assert!(check(&format!("pbr = {{ ior = {ior} }}")).is_ok(), "ior {ior}");
         }
         let text = "pbr = { metallic = 0.1, roughness = 0.2, ior = 1.3, transmission = 0.4, clearcoat = 0.5, \
-                    clearcoat_roughness = 0.6, transmission_texture = { file = \"t.png\" } }";
+                    clearcoat_roughness = 0.6, transmission_texture = { file = \"t.png\" }, specular = 0.7, \
+                    specular_color = [1.5, 1, 0.5] }";
         let spec: MaterialSpec = toml::from_str(text).unwrap();
         let SurfaceModel::MetallicRoughness(m) = spec.to_material().surface else { panic!("metallic-roughness") };
         assert_eq!((m.ior, m.transmission, m.clearcoat, m.clearcoat_roughness), (1.3, 0.4, 0.5, 0.6));
+        assert_eq!((m.specular, m.specular_color), (0.7, Rgb::new(1.5, 1.0, 0.5)));
         assert_eq!(m.transmission_texture.as_ref().map(|t| t.file.as_str()), Some("t.png"));
         let back: MaterialSpec = toml::from_str(&toml::to_string(&spec).unwrap()).unwrap();
         assert_eq!(spec, back);
         let defaults: MaterialSpec = toml::from_str("pbr = {}").unwrap();
         let SurfaceModel::MetallicRoughness(m) = defaults.to_material().surface else { panic!("metallic-roughness") };
-        assert_eq!((m.ior, m.transmission, m.clearcoat), (1.5, 0.0, 0.0));
+        assert_eq!(
+            (m.ior, m.transmission, m.clearcoat, m.specular, m.specular_color),
+            (1.5, 0.0, 0.0, 1.0, Rgb::WHITE)
+        );
     }
 
     #[test]

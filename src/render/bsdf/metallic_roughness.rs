@@ -1,13 +1,16 @@
 //! glTF 2.0 metallic-roughness (the specification's Appendix B) with KHR_materials_ior,
-//! KHR_materials_transmission (thin-walled) and KHR_materials_clearcoat.
+//! KHR_materials_specular, KHR_materials_transmission (thin-walled) and
+//! KHR_materials_clearcoat.
 //!
 //! With V = `wo`, L = `wi`, H their half vector and `spec = D(H) G1(V) G1(L) / (4 |N·V|)`
 //! (glTF's `V_GGX · D_GGX · |N·L|`, with α = roughness²):
 //!
 //! - `metal = spec · (base + (1 - base)(1 - |V·H|)^5)`;
-//! - `dielectric = mix(base_part, spec, Fd)`, `Fd = f0 + (1 - f0)(1 - |V·H|)^5`,
-//!   `f0 = ((ior - 1)/(ior + 1))^2`, and
-//!   `base_part = mix(base · |N·L| / π, base · btdf, transmission)`;
+//! - `dielectric = Fd · spec + (1 - max(Fd)) · base_part`, the Fresnel
+//!   `Fd = f0 + (f90 - f0)(1 - |V·H|)^5` (RGB) with KHR_materials_specular's
+//!   `f0 = min(((ior - 1)/(ior + 1))^2 · specular_color, 1) · specular` and `f90 = specular`
+//!   (without the extension, specular 1 and colour 1: Appendix B's `mix(base_part, spec, Fd)`),
+//!   and `base_part = mix(base · |N·L| / π, base · btdf, transmission)`;
 //! - `material = mix(dielectric, metal, metallic)`;
 //! - `coated = mix(material, coat_spec, clearcoat · Fc)`, `Fc = 0.04 + 0.96 (1 - |N·V|)^5`
 //!   (the extension's `fresnel_coat`), `coat_spec` the GGX term of roughness
@@ -35,6 +38,8 @@ pub(crate) struct MetallicRoughness {
     pub(crate) metallic: f64,
     pub(crate) alpha: f64,
     pub(crate) ior: f64,
+    pub(crate) specular: f64,
+    pub(crate) specular_color: DVec3,
     pub(crate) transmission: f64,
     pub(crate) clearcoat: f64,
     pub(crate) clearcoat_alpha: f64,
@@ -62,6 +67,13 @@ impl MetallicRoughness {
         ((self.ior - 1.0) / (self.ior + 1.0)).powi(2)
     }
 
+    /// The dielectric Fresnel at `cos` (KHR_materials_specular's, RGB).
+    fn dielectric_fresnel(&self, cos: f64) -> DVec3 {
+        let f0 = (DVec3::splat(self.f0()) * self.specular_color).min(DVec3::ONE) * self.specular;
+        let m = (1.0 - cos.abs()).clamp(0.0, 1.0);
+        f0 + (DVec3::splat(self.specular) - f0) * ((m * m) * (m * m) * m)
+    }
+
     /// The clear coat's weight `clearcoat · Fc(N·V)`.
     fn coat_weight(&self, wo: DVec3) -> f64 {
         if self.clearcoat > 0.0 { self.clearcoat * schlick(DVec3::splat(0.04), wo.z).x } else { 0.0 }
@@ -78,14 +90,13 @@ impl MetallicRoughness {
         }
         let ggx = Ggx::new(self.alpha);
         let coat_w = self.coat_weight(wo);
-        let f0 = self.f0();
         let result = if wi.z > 0.0 {
             let h = (wo + wi).normalize();
             let vh = wo.dot(h);
             let spec = Self::spec(ggx, wo, wi, h);
-            let fd = schlick(DVec3::splat(f0), vh).x;
+            let fd = self.dielectric_fresnel(vh);
             let diffuse = self.base_color * (wi.z * FRAC_1_PI * (1.0 - self.transmission));
-            let dielectric = diffuse * (1.0 - fd) + DVec3::splat(fd * spec);
+            let dielectric = diffuse * (1.0 - fd.max_element()) + fd * spec;
             let metal = schlick(self.base_color, vh) * spec;
             let material = dielectric.lerp(metal, self.metallic);
             let coat = if coat_w > 0.0 { Self::spec(Ggx::new(self.clearcoat_alpha), wo, wi, h) } else { 0.0 };
@@ -93,7 +104,7 @@ impl MetallicRoughness {
         } else {
             let l = mirror(wi);
             let h = (wo + l).normalize();
-            let fd = schlick(DVec3::splat(f0), wo.dot(h)).x;
+            let fd = self.dielectric_fresnel(wo.dot(h)).max_element();
             let btdf = self.base_color * (self.transmission * (1.0 - fd) * Self::spec(ggx, wo, l, h));
             btdf * ((1.0 - self.metallic) * (1.0 - coat_w))
         };
@@ -103,7 +114,7 @@ impl MetallicRoughness {
     fn lobes(&self, wo: DVec3) -> Option<Lobes> {
         let coat = self.coat_weight(wo);
         let rest = 1.0 - coat;
-        let fd = schlick(DVec3::splat(self.f0()), wo.z).x;
+        let fd = self.dielectric_fresnel(wo.z).max_element();
         let fm = mean(schlick(self.base_color, wo.z));
         // The specular lobe can always contribute (Schlick's Fresnel is positive off the
         // normal), so it keeps a floor.
@@ -169,17 +180,69 @@ mod tests {
     use glam::DVec3;
 
     fn gltf(base_color: DVec3, metallic: f64, alpha: f64, transmission: f64, clearcoat: f64) -> Bsdf {
-        Bsdf::MetallicRoughness { base_color, metallic, alpha, ior: 1.5, transmission, clearcoat, clearcoat_alpha: 0.1 }
+        Bsdf::MetallicRoughness {
+            base_color,
+            metallic,
+            alpha,
+            ior: 1.5,
+            specular: 1.0,
+            specular_color: DVec3::ONE,
+            transmission,
+            clearcoat,
+            clearcoat_alpha: 0.1,
+        }
     }
 
     /// Parameter sets: dielectric, half-metal with clear coat, transmissive with clear coat.
-    fn combos(alpha: f64) -> [(Bsdf, &'static str); 3] {
+    /// Parameter sets: dielectric, half-metal with clear coat, transmissive with clear coat,
+    /// transmissive with a weak coloured specular reflection (KHR_materials_specular).
+    fn combos(alpha: f64) -> [(Bsdf, &'static str); 4] {
         let colour = DVec3::new(0.8, 0.5, 0.2);
+        let mut specular = gltf(colour, 0.0, alpha, 0.5, 0.0);
+        if let Bsdf::MetallicRoughness { specular: s, specular_color, .. } = &mut specular {
+            (*s, *specular_color) = (0.4, DVec3::new(1.5, 0.6, 0.2));
+        }
         [
             (gltf(colour, 0.0, alpha, 0.0, 0.0), "gltf dielectric"),
             (gltf(colour, 0.5, alpha, 0.0, 1.0), "gltf metal+coat"),
             (gltf(colour, 0.0, alpha, 0.8, 0.5), "gltf transmission+coat"),
+            (specular, "gltf specular+transmission"),
         ]
+    }
+
+    /// KHR_materials_specular: strength 0 leaves a dielectric diffuse alone (no Fresnel, so
+    /// the diffuse part is whole); a coloured F0 tints the highlight; strength and colour 1
+    /// are Appendix B's model.
+    #[test]
+    fn specular_strength_and_colour_shape_the_dielectric_fresnel() {
+        let colour = DVec3::new(0.8, 0.5, 0.2);
+        let with = |specular: f64, specular_color: DVec3| Bsdf::MetallicRoughness {
+            base_color: colour,
+            metallic: 0.0,
+            alpha: 0.3,
+            ior: 1.5,
+            specular,
+            specular_color,
+            transmission: 0.0,
+            clearcoat: 0.0,
+            clearcoat_alpha: 0.1,
+        };
+        let wo = chi2::wo_at(0.8);
+        let mirror = DVec3::new(-wo.x, -wo.y, wo.z);
+        let off = DVec3::new(0.6, 0.0, 0.8);
+        let lambert = |wi: DVec3| colour * (wi.z * std::f64::consts::FRAC_1_PI);
+        let none = with(0.0, DVec3::ONE);
+        for wi in [mirror, off] {
+            let f = none.eval(wo, wi);
+            assert!((f - lambert(wi)).abs().max_element() < 1e-15, "{f} against {}", lambert(wi));
+        }
+        let plain = with(1.0, DVec3::ONE).eval(wo, mirror);
+        let appendix_b = gltf(colour, 0.0, 0.3, 0.0, 0.0).eval(wo, mirror);
+        assert!((plain - appendix_b).abs().max_element() < 1e-12);
+        // A red F0 raises the red highlight above the blue one, on the same diffuse.
+        let red = with(1.0, DVec3::new(3.0, 1.0, 0.2)).eval(wo, mirror);
+        let highlight = red - appendix_b;
+        assert!(highlight.x > 0.0 && highlight.z < 0.0, "{highlight}");
     }
 
     #[test]
@@ -211,6 +274,8 @@ mod tests {
                                 metallic,
                                 alpha,
                                 ior,
+                                specular: 1.0,
+                                specular_color: DVec3::ONE,
                                 transmission,
                                 clearcoat,
                                 clearcoat_alpha: 0.2,

@@ -129,6 +129,8 @@ pub enum Bsdf {
     /// glTF 2.0 metallic-roughness exactly as the glTF 2.0 specification's Appendix B defines
     /// it (Schlick Fresnel, GGX with separable Smith G, `alpha = roughness^2`), with
     /// KHR_materials_ior (`ior`, F0 = ((ior-1)/(ior+1))^2, default 1.5),
+    /// KHR_materials_specular (`specular`, `specular_color`: the dielectric Fresnel's F0
+    /// `min(F0 · specular_color, 1) · specular` and F90 `specular`, RGB),
     /// KHR_materials_transmission (`transmission`: the dielectric's diffuse part becomes a
     /// GGX rough transmission with the base colour as tint, thin-walled as the extension's
     /// spec describes) and KHR_materials_clearcoat (`clearcoat`, `clearcoat_alpha`: a GGX
@@ -145,6 +147,11 @@ pub enum Bsdf {
         alpha: f64,
         /// IOR of the dielectric part (KHR_materials_ior; 1.5 by default).
         ior: f64,
+        /// Strength of the dielectric's specular reflection in [0, 1] (KHR_materials_specular;
+        /// 1 by default).
+        specular: f64,
+        /// Colour of the dielectric's F0 (KHR_materials_specular; white by default).
+        specular_color: DVec3,
         /// Transmission factor in [0, 1] (KHR_materials_transmission).
         transmission: f64,
         /// Clear coat factor in [0, 1] (KHR_materials_clearcoat).
@@ -257,17 +264,27 @@ impl Bsdf {
 
     fn metallic_roughness(&self) -> Option<metallic_roughness::MetallicRoughness> {
         match *self {
-            Bsdf::MetallicRoughness { base_color, metallic, alpha, ior, transmission, clearcoat, clearcoat_alpha } => {
-                Some(metallic_roughness::MetallicRoughness {
-                    base_color,
-                    metallic,
-                    alpha,
-                    ior,
-                    transmission,
-                    clearcoat,
-                    clearcoat_alpha,
-                })
-            }
+            Bsdf::MetallicRoughness {
+                base_color,
+                metallic,
+                alpha,
+                ior,
+                specular,
+                specular_color,
+                transmission,
+                clearcoat,
+                clearcoat_alpha,
+            } => Some(metallic_roughness::MetallicRoughness {
+                base_color,
+                metallic,
+                alpha,
+                ior,
+                specular,
+                specular_color,
+                transmission,
+                clearcoat,
+                clearcoat_alpha,
+            }),
             _ => None,
         }
     }
@@ -322,6 +339,8 @@ mod tests {
                         metallic,
                         alpha,
                         ior: eta,
+                        specular: 1.0,
+                        specular_color: DVec3::ONE,
                         transmission,
                         clearcoat,
                         clearcoat_alpha: alpha,

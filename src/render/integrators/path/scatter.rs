@@ -420,17 +420,21 @@ fn metallic_roughness_scatter(m: &MetallicRoughness, base_color: DVec3, uv: DVec
         roughness *= f64::from(v.y);
         metallic *= f64::from(v.z);
     }
-    // The extensions' textures multiply their factors: red for transmission and the coat,
-    // green for the coat's roughness.
+    // The extensions' textures multiply their factors: alpha for the specular strength, red
+    // for transmission and the coat, green for the coat's roughness.
     let times = |factor: f64, texture: &Option<TextureRef>, channel: usize| {
         texture.as_ref().map_or(factor, |t| factor * f64::from(t.sample(uv, 0.0)[channel]))
     };
     let clearcoat_roughness = times(m.clearcoat_roughness, &m.clearcoat_roughness_texture, 1);
+    let specular_color = m.specular_color.0
+        * m.specular_color_texture.as_ref().map_or(DVec3::ONE, |t| t.sample(uv, 0.0).truncate().as_dvec3());
     let bsdf = Bsdf::MetallicRoughness {
         base_color: base_color.clamp(DVec3::ZERO, DVec3::ONE),
         metallic: metallic.clamp(0.0, 1.0),
         alpha: (roughness * roughness).clamp(0.0, 1.0),
         ior: m.ior,
+        specular: times(m.specular, &m.specular_texture, 3).clamp(0.0, 1.0),
+        specular_color: specular_color.max(DVec3::ZERO),
         transmission: times(m.transmission, &m.transmission_texture, 0).clamp(0.0, 1.0),
         clearcoat: times(m.clearcoat, &m.clearcoat_texture, 0).clamp(0.0, 1.0),
         clearcoat_alpha: (clearcoat_roughness * clearcoat_roughness).clamp(0.0, 1.0),
@@ -517,11 +521,12 @@ mod tests {
     #[test]
     fn gltf_extensions_and_their_textures_reach_the_bsdf() {
         use crate::texture::{ColorSpace, Texture};
-        let texel = |r: u8, g: u8| {
+        let texel_alpha = |r: u8, g: u8, a: u8| {
             let mut t = TextureRef::new("t.png");
-            t.texture = Some(std::sync::Arc::new(Texture::from_rgba8(1, 1, vec![[r, g, 0, 255]], ColorSpace::Linear)));
+            t.texture = Some(std::sync::Arc::new(Texture::from_rgba8(1, 1, vec![[r, g, 0, a]], ColorSpace::Linear)));
             t
         };
+        let texel = |r: u8, g: u8| texel_alpha(r, g, 255);
         let wo = DVec3::new(0.3, 0.0, 1.0).normalize();
         let (below, mirror) = (DVec3::new(-0.3, 0.0, -1.0).normalize(), DVec3::new(-0.3, 0.0, 1.0).normalize());
         let eval = |m: &MetallicRoughness, wi: DVec3| {
@@ -545,6 +550,19 @@ mod tests {
         let smoothed = MetallicRoughness { clearcoat_roughness_texture: Some(texel(255, 26)), ..rough.clone() };
         assert_eq!(eval(&roughened, mirror), eval(&rough, mirror));
         assert!(eval(&smoothed, mirror) > 2.0 * eval(&rough, mirror), "green 0.1 times roughness 1 is smooth");
+
+        // KHR_materials_specular: the strength times the texture's alpha, the colour times
+        // the texture's RGB.
+        let glossy = MetallicRoughness::core(Finish::default(), 0.0, 0.2);
+        let unlit = MetallicRoughness { specular: 0.0, ..glossy.clone() };
+        let alpha_zero = MetallicRoughness { specular_texture: Some(texel_alpha(255, 255, 0)), ..glossy.clone() };
+        assert!(eval(&glossy, mirror) > 2.0 * eval(&unlit, mirror));
+        assert_eq!(eval(&alpha_zero, mirror), eval(&unlit, mirror));
+        let tinted = MetallicRoughness { specular_color: Rgb::new(0.0, 1.0, 1.0), ..glossy.clone() };
+        let untinted = MetallicRoughness { specular_color_texture: Some(texel(0, 255)), ..tinted.clone() };
+        assert_eq!(eval(&tinted, mirror), eval(&untinted, mirror), "red 0 in the colour texture changes no red");
+        let blacked = MetallicRoughness { specular_color_texture: Some(texel(0, 255)), ..glossy.clone() };
+        assert!(eval(&blacked, mirror) < eval(&glossy, mirror), "red 0 in the colour texture lowers the red F0");
     }
 
     fn shaded(text: &str) -> Shaded {
