@@ -17,6 +17,10 @@ confirmed by rendering it again with more seeds (`--k`) before it is chased.
     PRISM=target/release/prism python3 scripts/mitsuba-differential.py OUTDIR FIRST_SEED END_SEED \
         [--k 16] [--spp 32]
 
+With GLTF_EXT=1 in the environment, about half the objects take a `pbr` material with glTF's
+KHR_materials_ior, _specular, _transmission and _clearcoat in random combinations (drawn
+from a stream of their own: the rest of each scene is what the seed gives without it).
+
 Prints one line per seed: `ok`, `DIFF` (the scene, the XML and the compare images are in
 OUTDIR/sSEED/), `unsure` (the judge failed it for want of precision only, see `triage`),
 `export-error` (the exporter refused a scene the generator meant to be
@@ -242,6 +246,8 @@ def scene(seed):
         objects.append({'shape': 'plane', 'normal': [0.0, 1.0, 0.0], 'offset': round(r.uniform(-0.3, 0.0), 3),
                         'material': material(r, False)})
     objects += [shape_object(r) for _ in range(r.randint(1, 5))]
+    if os.environ.get('GLTF_EXT'):
+        gltf_extensions(random.Random('%d-gltf' % seed), objects)
     for o in objects:
         lines.append('[[object]]')
         lines += ['%s = %s' % (k, value(v)) for k, v in o.items()]
@@ -272,6 +278,28 @@ def scene(seed):
         lines.append('[[light]]')
         lines += ['%s = %s' % (k, value(v)) for k, v in light.items()]
     return '\n'.join(lines) + '\n'
+
+
+def gltf_extensions(r, objects):
+    """GLTF_EXT=1: about half the objects get a `pbr` material with the glTF extensions
+    (KHR_materials_ior, _specular, _transmission, _clearcoat) in random combinations; drawn
+    from their own stream, so the rest of each seed's scene is as without GLTF_EXT."""
+    for o in objects:
+        if 'material' not in o or r.random() < 0.5:
+            continue
+        p = {'metallic': round(r.choice([0.0, 0.0, 1.0, r.random()]), 3), 'roughness': round(r.uniform(0.05, 1.0), 3)}
+        if r.random() < 0.5:
+            p['ior'] = r.choice([0.0, 1.0, round(r.uniform(1.0, 3.0), 3)])
+        if r.random() < 0.5:
+            p['specular'] = round(r.random(), 3)
+        if r.random() < 0.4:
+            p['specular_color'] = colour(r, 0.0, 3.0)
+        if r.random() < 0.5:
+            p['transmission'] = round(r.choice([1.0, r.random()]), 3)
+        if r.random() < 0.4:
+            p['clearcoat'] = round(r.choice([1.0, r.random()]), 3)
+            p['clearcoat_roughness'] = round(r.random(), 3)
+        o['material'] = {'color': colour(r), 'pbr': p}
 
 
 def judge():
