@@ -651,6 +651,15 @@ impl Importer<'_> {
         }
     }
 
+    /// The texture a material's texture info names, if it names one.
+    fn texture_info(
+        &mut self,
+        info: Option<gltf::texture::Info>,
+        space: ColorSpace,
+    ) -> Result<Option<TextureRef>, ImportError> {
+        info.map(|info| self.texture(info.texture(), info.tex_coord(), info.texture_transform(), space)).transpose()
+    }
+
     fn texture(
         &mut self,
         texture: gltf::Texture,
@@ -698,10 +707,7 @@ impl Importer<'_> {
         let [r, g, b, alpha] = pbr.base_color_factor().map(f64::from);
         let mut finish = Finish { color: Rgb::new(r, g, b), ..Finish::default() };
         let mut maps = SurfaceMaps::default();
-        if let Some(info) = pbr.base_color_texture() {
-            finish.texture =
-                Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Srgb)?);
-        }
+        finish.texture = self.texture_info(pbr.base_color_texture(), ColorSpace::Srgb)?;
         let mut params = MetallicRoughness {
             metallic_roughness_texture: None,
             alpha_mode: AlphaMode::Opaque,
@@ -712,18 +718,12 @@ impl Importer<'_> {
                 f64::from(pbr.roughness_factor()).clamp(0.0, 1.0),
             )
         };
-        if let Some(info) = pbr.metallic_roughness_texture() {
-            params.metallic_roughness_texture =
-                Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Linear)?);
-        }
+        params.metallic_roughness_texture = self.texture_info(pbr.metallic_roughness_texture(), ColorSpace::Linear)?;
         self.material_extensions(m, &mut params)?;
         let strength = f64::from(m.emissive_strength().unwrap_or(1.0));
         let [er, eg, eb] = m.emissive_factor().map(|c| f64::from(c) * strength);
         let mut emission = Emission { radiance: Rgb::new(er, eg, eb), ..Emission::default() };
-        if let Some(info) = m.emissive_texture() {
-            emission.texture =
-                Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Srgb)?);
-        }
+        emission.texture = self.texture_info(m.emissive_texture(), ColorSpace::Srgb)?;
         if let Some(normal) = m.normal_texture() {
             let t = self.texture(normal.texture(), normal.tex_coord(), None, ColorSpace::Linear)?;
             maps.normal_map = Some(NormalMap { texture: t, scale: f64::from(normal.scale()), height: false });
@@ -732,15 +732,7 @@ impl Importer<'_> {
             gltf::material::AlphaMode::Opaque => {}
             gltf::material::AlphaMode::Mask => {
                 params.alpha_mode = AlphaMode::Mask { cutoff: f64::from(m.alpha_cutoff().unwrap_or(0.5)) };
-                let texture = match pbr.base_color_texture() {
-                    Some(info) => Some(self.texture(
-                        info.texture(),
-                        info.tex_coord(),
-                        info.texture_transform(),
-                        ColorSpace::Linear,
-                    )?),
-                    None => None,
-                };
+                let texture = self.texture_info(pbr.base_color_texture(), ColorSpace::Linear)?;
                 maps.alpha_mask =
                     Some(AlphaMask { texture, factor: alpha as f32, cutoff: m.alpha_cutoff().unwrap_or(0.5) });
             }
@@ -789,29 +781,12 @@ impl Importer<'_> {
             params.specular = f64::from(s.specular_factor()).clamp(0.0, 1.0);
             let [r, g, b] = s.specular_color_factor().map(|c| f64::from(c).max(0.0));
             params.specular_color = Rgb::new(r, g, b);
-            if let Some(info) = s.specular_texture() {
-                params.specular_texture = Some(self.texture(
-                    info.texture(),
-                    info.tex_coord(),
-                    info.texture_transform(),
-                    ColorSpace::Linear,
-                )?);
-            }
-            if let Some(info) = s.specular_color_texture() {
-                params.specular_color_texture =
-                    Some(self.texture(info.texture(), info.tex_coord(), info.texture_transform(), ColorSpace::Srgb)?);
-            }
+            params.specular_texture = self.texture_info(s.specular_texture(), ColorSpace::Linear)?;
+            params.specular_color_texture = self.texture_info(s.specular_color_texture(), ColorSpace::Srgb)?;
         }
         if let Some(t) = m.transmission() {
             params.transmission = f64::from(t.transmission_factor()).clamp(0.0, 1.0);
-            if let Some(info) = t.transmission_texture() {
-                params.transmission_texture = Some(self.texture(
-                    info.texture(),
-                    info.tex_coord(),
-                    info.texture_transform(),
-                    ColorSpace::Linear,
-                )?);
-            }
+            params.transmission_texture = self.texture_info(t.transmission_texture(), ColorSpace::Linear)?;
         }
         if m.volume().is_some_and(|v| v.thickness_factor() > 0.0) {
             self.model.warnings.push(format!(
