@@ -529,3 +529,37 @@ fn gltf_material_extensions_reach_the_model() {
     assert!(problems.is_empty(), "{problems:?}\n{}", String::from_utf8_lossy(&run.stderr));
     assert!(!dir.path().join("out.png").exists());
 }
+
+/// A KHR_materials_pbrSpecularGlossiness material becomes metallic-roughness as
+/// KHR_materials_specular's conversion says: the diffuse as base colour, metallic 0,
+/// roughness 1 - glossiness, ior 0 with the specular colour as F0, its texture's RGB
+/// multiplying that colour and its alpha the glossiness.
+#[test]
+fn specular_glossiness_materials_are_converted() {
+    use prism::material::SurfaceModel;
+    use prism::world::components::MaterialComponent;
+    let material = json!({
+        "extensions": { "KHR_materials_pbrSpecularGlossiness": {
+            "diffuseFactor": [0.5, 0.25, 0.125, 1.0], "specularFactor": [0.25, 0.5, 0.75],
+            "glossinessFactor": 0.75, "specularGlossinessTexture": { "index": 0 }, "diffuseTexture": { "index": 0 }
+        } }
+    });
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "quad.gltf", &quad_with_material(material, &["KHR_materials_pbrSpecularGlossiness"]));
+    let scene = load(&write(dir.path(), "scene.toml", "[[object]]\nshape = \"mesh\"\nfile = \"quad.gltf\"\n"));
+    let models: Vec<_> = scene
+        .world
+        .query::<&MaterialComponent>()
+        .iter()
+        .filter_map(|c| match &c.material.surface {
+            SurfaceModel::MetallicRoughness(m) => Some(m.clone()),
+            _ => None,
+        })
+        .collect();
+    let [m] = models.as_slice() else { panic!("one glTF material, got {}", models.len()) };
+    assert_eq!(m.finish.color.0.to_array(), [0.5, 0.25, 0.125]);
+    assert_eq!((m.metallic, m.roughness, m.ior, m.specular), (0.0, 0.25, 0.0, 1.0));
+    assert_eq!(m.specular_color.0.to_array(), [0.25, 0.5, 0.75]);
+    assert!(m.finish.texture.is_some() && m.specular_color_texture.is_some() && m.glossiness_texture.is_some());
+    assert!(m.metallic_roughness_texture.is_none());
+}

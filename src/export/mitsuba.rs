@@ -826,6 +826,7 @@ fn metallic_roughness_xml(
         ));
     }
     let extension_textures = [
+        ("glossiness_texture (KHR_materials_pbrSpecularGlossiness)", &m.glossiness_texture),
         ("pbr.specular_texture", &m.specular_texture),
         ("pbr.specular_color_texture", &m.specular_color_texture),
         ("pbr.transmission_texture", &m.transmission_texture),

@@ -701,13 +701,22 @@ impl Importer<'_> {
     }
 
     /// glTF metallic-roughness as written (see `docs/meshes.md`), factors clamped to glTF's
-    /// 0..1; the emission is `emissiveFactor` times `KHR_materials_emissive_strength`.
+    /// 0..1; the emission is `emissiveFactor` times `KHR_materials_emissive_strength`. A
+    /// `KHR_materials_pbrSpecularGlossiness` material is converted as `KHR_materials_specular`
+    /// describes: its diffuse as the base colour, metallic 0, roughness 1 - glossiness, and
+    /// its specular colour as the F0 of a dielectric of ior 0 (a Fresnel rising from the
+    /// colour to 1).
     fn material(&mut self, m: &gltf::Material) -> Result<(Arc<Material>, SurfaceMaps, Option<String>), ImportError> {
         let pbr = m.pbr_metallic_roughness();
-        let [r, g, b, alpha] = pbr.base_color_factor().map(f64::from);
+        let specular_glossiness = m.pbr_specular_glossiness();
+        let (base_factor, base_texture) = match &specular_glossiness {
+            Some(sg) => (sg.diffuse_factor(), sg.diffuse_texture()),
+            None => (pbr.base_color_factor(), pbr.base_color_texture()),
+        };
+        let [r, g, b, alpha] = base_factor.map(f64::from);
         let mut finish = Finish { color: Rgb::new(r, g, b), ..Finish::default() };
         let mut maps = SurfaceMaps::default();
-        finish.texture = self.texture_info(pbr.base_color_texture(), ColorSpace::Srgb)?;
+        finish.texture = self.texture_info(base_texture.clone(), ColorSpace::Srgb)?;
         let mut params = MetallicRoughness {
             metallic_roughness_texture: None,
             alpha_mode: AlphaMode::Opaque,
@@ -720,6 +729,16 @@ impl Importer<'_> {
         };
         params.metallic_roughness_texture = self.texture_info(pbr.metallic_roughness_texture(), ColorSpace::Linear)?;
         self.material_extensions(m, &mut params)?;
+        if let Some(sg) = specular_glossiness {
+            let [r, g, b] = sg.specular_factor().map(|c| f64::from(c).max(0.0));
+            params.metallic = 0.0;
+            params.metallic_roughness_texture = None;
+            params.roughness = (1.0 - f64::from(sg.glossiness_factor())).clamp(0.0, 1.0);
+            (params.ior, params.specular, params.specular_color) = (0.0, 1.0, Rgb::new(r, g, b));
+            let info = sg.specular_glossiness_texture();
+            params.specular_color_texture = self.texture_info(info.clone(), ColorSpace::Srgb)?;
+            params.glossiness_texture = self.texture_info(info, ColorSpace::Linear)?;
+        }
         let strength = f64::from(m.emissive_strength().unwrap_or(1.0));
         let [er, eg, eb] = m.emissive_factor().map(|c| f64::from(c) * strength);
         let mut emission = Emission { radiance: Rgb::new(er, eg, eb), ..Emission::default() };
@@ -732,13 +751,13 @@ impl Importer<'_> {
             gltf::material::AlphaMode::Opaque => {}
             gltf::material::AlphaMode::Mask => {
                 params.alpha_mode = AlphaMode::Mask { cutoff: f64::from(m.alpha_cutoff().unwrap_or(0.5)) };
-                let texture = self.texture_info(pbr.base_color_texture(), ColorSpace::Linear)?;
+                let texture = self.texture_info(base_texture.clone(), ColorSpace::Linear)?;
                 maps.alpha_mask =
                     Some(AlphaMask { texture, factor: alpha as f32, cutoff: m.alpha_cutoff().unwrap_or(0.5) });
             }
             gltf::material::AlphaMode::Blend => {
                 params.alpha_mode = AlphaMode::Blend;
-                if pbr.base_color_texture().is_some() {
+                if base_texture.is_some() {
                     self.model.warnings.push(format!(
                         "material {}: alpha BLEND uses the factor's alpha only, not the texture's",
                         m.index().map_or("default".into(), |i| i.to_string())

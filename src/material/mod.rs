@@ -194,6 +194,9 @@ pub struct MetallicRoughness {
     pub roughness: f64,
     /// Texture whose blue channel multiplies `metallic` and green channel `roughness`.
     pub metallic_roughness_texture: Option<TextureRef>,
+    /// Texture whose alpha channel multiplies the glossiness `1 - roughness` (a converted
+    /// `KHR_materials_pbrSpecularGlossiness` texture).
+    pub glossiness_texture: Option<TextureRef>,
     /// The alpha mode.
     pub alpha_mode: AlphaMode,
     /// The base colour factor's alpha (coverage, 0..1).
@@ -235,6 +238,7 @@ impl MetallicRoughness {
             metallic,
             roughness,
             metallic_roughness_texture: None,
+            glossiness_texture: None,
             alpha_mode: AlphaMode::Opaque,
             alpha: 1.0,
             ior: 1.5,
@@ -254,6 +258,7 @@ impl MetallicRoughness {
     /// The textures driving the extensions' factors.
     pub fn extension_textures(&self) -> impl Iterator<Item = &TextureRef> {
         [
+            &self.glossiness_texture,
             &self.specular_texture,
             &self.specular_color_texture,
             &self.transmission_texture,

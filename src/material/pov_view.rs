@@ -155,6 +155,7 @@ struct PbrParams {
     metallic: f64,
     roughness: f64,
     metallic_roughness_texture: Option<TextureRef>,
+    glossiness_texture: Option<TextureRef>,
     transmission: f64,
     transmission_texture: Option<TextureRef>,
     specular: f64,
@@ -323,6 +324,9 @@ impl PovView {
                 roughness *= f64::from(texel.y);
                 metallic *= f64::from(texel.z);
             }
+            if let Some(t) = &p.glossiness_texture {
+                roughness = 1.0 - (1.0 - roughness) * f64::from(t.sample(uv, footprint).w);
+            }
             let gloss = (1.0 - roughness).powi(2);
             let alpha2 = roughness.powi(4).max(1e-4);
             let m = &mut shaded.finish.to_mut().finish;
@@ -369,6 +373,7 @@ fn pbr_params(p: &MetallicRoughness) -> PbrParams {
         metallic: p.metallic,
         roughness: p.roughness,
         metallic_roughness_texture: p.metallic_roughness_texture.clone(),
+        glossiness_texture: p.glossiness_texture.clone(),
         transmission: p.transmission,
         transmission_texture: p.transmission_texture.clone(),
         specular: p.specular,

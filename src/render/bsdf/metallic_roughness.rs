@@ -193,7 +193,6 @@ mod tests {
         }
     }
 
-    /// Parameter sets: dielectric, half-metal with clear coat, transmissive with clear coat.
     /// Parameter sets: dielectric, half-metal with clear coat, transmissive with clear coat,
     /// transmissive with a weak coloured specular reflection (KHR_materials_specular).
     fn combos(alpha: f64) -> [(Bsdf, &'static str); 4] {

@@ -420,6 +420,9 @@ fn metallic_roughness_scatter(m: &MetallicRoughness, base_color: DVec3, uv: DVec
         roughness *= f64::from(v.y);
         metallic *= f64::from(v.z);
     }
+    if let Some(t) = &m.glossiness_texture {
+        roughness = 1.0 - (1.0 - roughness) * f64::from(t.sample(uv, 0.0).w);
+    }
     // The extensions' textures multiply their factors: alpha for the specular strength, red
     // for transmission and the coat, green for the coat's roughness.
     let times = |factor: f64, texture: &Option<TextureRef>, channel: usize| {
@@ -561,6 +564,13 @@ mod tests {
         let tinted = MetallicRoughness { specular_color: Rgb::new(0.0, 1.0, 1.0), ..glossy.clone() };
         let untinted = MetallicRoughness { specular_color_texture: Some(texel(0, 255)), ..tinted.clone() };
         assert_eq!(eval(&tinted, mirror), eval(&untinted, mirror), "red 0 in the colour texture changes no red");
+        // A converted specular-glossiness texture: its alpha multiplies the glossiness.
+        let matte = MetallicRoughness::core(Finish::default(), 0.0, 1.0);
+        let glossed =
+            MetallicRoughness { roughness: 0.8, glossiness_texture: Some(texel_alpha(0, 0, 255)), ..matte.clone() };
+        let dulled = MetallicRoughness { glossiness_texture: Some(texel_alpha(255, 255, 0)), ..glossy.clone() };
+        assert_eq!(eval(&glossed, mirror), eval(&MetallicRoughness { roughness: 0.8, ..matte.clone() }, mirror));
+        assert_eq!(eval(&dulled, mirror), eval(&matte, mirror), "alpha 0: glossiness 0, roughness 1");
         let blacked = MetallicRoughness { specular_color_texture: Some(texel(0, 255)), ..glossy.clone() };
         assert!(eval(&blacked, mirror) < eval(&glossy, mirror), "red 0 in the colour texture lowers the red F0");
     }
