@@ -161,13 +161,6 @@ impl Texture {
         self.levels.len()
     }
 
-    /// About the mean of the image (linear RGBA): its coarsest mip level, each level's texels
-    /// the means of 2x2 below them in linear light (the mean itself for sizes that halve
-    /// evenly; an odd size leaves a last row or column out of the level above it).
-    pub fn mean(&self) -> Vec4 {
-        self.bilinear(self.levels.len() - 1, DVec2::splat(0.5), [Wrap::Clamp; 2])
-    }
-
     /// Bytes of texel storage over all levels.
     pub fn memory_bytes(&self) -> usize {
         self.levels.iter().map(|l| l.texels.len() * 4).sum()
@@ -700,7 +693,6 @@ mod tests {
         assert!((top.x - 0.5).abs() < 0.01, "{top}");
         let data = checker(ColorSpace::Linear);
         assert!((data.sample(DVec2::splat(0.5), 2.0, [Wrap::Repeat; 2]).x - 0.5).abs() < 0.01);
-        assert!((t.mean().x - 0.5).abs() < 0.01 && (data.mean().x - 0.5).abs() < 0.01, "{}", t.mean());
     }
 
     #[test]

@@ -28,7 +28,6 @@ use glam::{DVec2, DVec3};
 use super::light_reach::{LightTree, ONE_BELOW, Reach, Receiver};
 use super::scatter::luminance;
 use crate::geometry::csg::CsgShape;
-use crate::material::Material;
 use crate::render::extract::RenderScene;
 use crate::render::lights::{EnvironmentMapLight, LightSource, SpotCone, emitting_materials};
 
@@ -231,20 +230,6 @@ pub fn uniform_sphere(u: DVec2) -> DVec3 {
     DVec3::new(r * phi.cos(), r * phi.sin(), z)
 }
 
-/// The radiance (W/(m^2 sr)) a material's emission typically has, for weighing its emitter
-/// in the light choice: negative components emit nothing under path (`PathMaterial`'s
-/// emission), and an emission texture counts with its mean (at least a thousandth of its
-/// factor, so that no glowing texture weighs nothing; any weight keeps the choice unbiased).
-fn typical_radiance(material: &Material) -> DVec3 {
-    let emission = &material.emission;
-    let texture_mean = emission
-        .texture
-        .as_ref()
-        .and_then(|t| t.texture.as_ref())
-        .map_or(DVec3::ONE, |t| t.mean().truncate().as_dvec3().max(DVec3::splat(1e-3)));
-    emission.radiance.0.max(DVec3::ZERO) * texture_mean + emission.times_color.0.max(DVec3::ZERO)
-}
-
 impl LightSampler {
     /// The distribution for `scene` under `environment`.
     pub fn new(scene: &RenderScene, environment: &Environment) -> Self {
@@ -269,9 +254,11 @@ impl LightSampler {
         }
         for emitter in &scene.lights.area_emitters {
             let primitive = &scene.primitives[emitter.primitive as usize];
-            // A CSG group counts its brightest leaf material.
-            let radiance =
-                emitting_materials(primitive, &scene.materials).map(typical_radiance).fold(DVec3::ZERO, DVec3::max);
+            // Negative components emit nothing under path (`PathMaterial`'s emission); a CSG
+            // group counts its brightest leaf material.
+            let radiance = emitting_materials(primitive, &scene.materials)
+                .map(|m| m.emission.radiance.0.max(DVec3::ZERO) + m.emission.times_color.0.max(DVec3::ZERO))
+                .fold(DVec3::ZERO, DVec3::max);
             let area = match CsgShape::of(primitive.shape.as_ref()) {
                 // About the area sampled, scaled as a uniform scale would.
                 Some(group) => {
@@ -570,35 +557,6 @@ fn point_weights(reach: &[Reach], receiver: &Receiver, weights: &mut [f64; SPATI
 mod tests {
     use super::*;
     use prism_api::contract::{TestRng, chi_square_p_value};
-
-    /// An emission texture weighs its emitter with its mean: a mostly dark screen no longer
-    /// takes the light choice's samples as if it glowed all over; a black one keeps a
-    /// thousandth of its factor; negative components count as 0.
-    #[test]
-    fn textured_emission_weighs_with_the_texture_mean() {
-        use crate::material::Emission;
-        use crate::texture::{ColorSpace, Texture, TextureRef};
-        let emitting = |texels: Vec<[u8; 4]>| {
-            let mut texture = TextureRef::new("e.png");
-            texture.texture = Some(std::sync::Arc::new(Texture::from_rgba8(2, 2, texels, ColorSpace::Linear)));
-            let emission = Emission {
-                radiance: crate::color::Rgb::new(4.0, 2.0, -1.0),
-                texture: Some(texture),
-                ..Emission::default()
-            };
-            Material { emission, ..Material::default() }
-        };
-        let quarter =
-            typical_radiance(&emitting(vec![[255, 255, 255, 255], [0, 0, 0, 255], [0, 0, 0, 255], [0, 0, 0, 255]]));
-        assert!((quarter - DVec3::new(1.0, 0.5, 0.0)).abs().max_element() < 0.02, "{quarter}");
-        let black = typical_radiance(&emitting(vec![[0, 0, 0, 255]; 4]));
-        assert_eq!(black, DVec3::new(4e-3, 2e-3, 0.0));
-        let plain = Material {
-            emission: Emission { radiance: crate::color::Rgb::new(4.0, 2.0, 1.0), ..Emission::default() },
-            ..Material::default()
-        };
-        assert_eq!(typical_radiance(&plain), DVec3::new(4.0, 2.0, 1.0));
-    }
 
     /// Five emitters of different shapes, sizes and radiances, and a sky.
     fn sampler() -> (RenderScene, LightSampler) {
