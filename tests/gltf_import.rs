@@ -447,14 +447,29 @@ fn quad_with_material(material: Value, used: &[&str]) -> String {
     serde_json::to_string_pretty(&doc).unwrap()
 }
 
+/// The scene's one glTF (metallic-roughness) material.
+fn the_gltf_material(scene: &Scene) -> prism::material::MetallicRoughness {
+    use prism::material::SurfaceModel;
+    use prism::world::components::MaterialComponent;
+    let models: Vec<_> = scene
+        .world
+        .query::<&MaterialComponent>()
+        .iter()
+        .filter_map(|c| match &c.material.surface {
+            SurfaceModel::MetallicRoughness(m) => Some((**m).clone()),
+            _ => None,
+        })
+        .collect();
+    let [m] = models.as_slice() else { panic!("one glTF material, got {}", models.len()) };
+    m.clone()
+}
+
 /// KHR_materials_ior, KHR_materials_transmission (with its texture) and
 /// KHR_materials_clearcoat (read from the extension's JSON, textures included) reach the
 /// material model; KHR_materials_volume is reported as not read; a clear-coat texture index
 /// the file does not have is an error naming the key, through the CLI, with no output.
 #[test]
 fn gltf_material_extensions_reach_the_model() {
-    use prism::material::SurfaceModel;
-    use prism::world::components::MaterialComponent;
     let material = json!({
         "pbrMetallicRoughness": { "baseColorFactor": [0.8, 0.6, 0.4, 1.0], "metallicFactor": 0.2, "roughnessFactor": 0.4 },
         "extensions": {
@@ -481,16 +496,7 @@ fn gltf_material_extensions_reach_the_model() {
     let dir = tempfile::tempdir().unwrap();
     write(dir.path(), "quad.gltf", &quad_with_material(material.clone(), &used));
     let scene = load(&write(dir.path(), "scene.toml", "[[object]]\nshape = \"mesh\"\nfile = \"quad.gltf\"\n"));
-    let models: Vec<_> = scene
-        .world
-        .query::<&MaterialComponent>()
-        .iter()
-        .filter_map(|c| match &c.material.surface {
-            SurfaceModel::MetallicRoughness(m) => Some(m.clone()),
-            _ => None,
-        })
-        .collect();
-    let [m] = models.as_slice() else { panic!("one glTF material, got {}", models.len()) };
+    let m = &the_gltf_material(&scene);
     assert_eq!((m.ior, m.transmission, m.clearcoat, m.clearcoat_roughness), (1.25, 0.75, 0.5, 0.25));
     assert!(m.transmission_texture.is_some() && m.clearcoat_texture.is_some());
     assert!(m.clearcoat_roughness_texture.is_some());
@@ -504,16 +510,7 @@ fn gltf_material_extensions_reach_the_model() {
     dense["extensions"]["KHR_materials_ior"]["ior"] = json!(9.0);
     write(dir.path(), "quad.gltf", &quad_with_material(dense, &used));
     let scene = load(&dir.path().join("scene.toml"));
-    let iors: Vec<f64> = scene
-        .world
-        .query::<&MaterialComponent>()
-        .iter()
-        .filter_map(|c| match &c.material.surface {
-            SurfaceModel::MetallicRoughness(m) => Some(m.ior),
-            _ => None,
-        })
-        .collect();
-    assert_eq!(iors, [prism::material::MAX_IOR]);
+    assert_eq!(the_gltf_material(&scene).ior, prism::material::MAX_IOR);
     assert!(scene.warnings.iter().any(|w| w.to_string().contains("KHR_materials_ior 9 is outside")));
 
     // A clear-coat texture that is not in the file.
@@ -536,8 +533,6 @@ fn gltf_material_extensions_reach_the_model() {
 /// multiplying that colour and its alpha the glossiness.
 #[test]
 fn specular_glossiness_materials_are_converted() {
-    use prism::material::SurfaceModel;
-    use prism::world::components::MaterialComponent;
     let material = json!({
         "extensions": { "KHR_materials_pbrSpecularGlossiness": {
             "diffuseFactor": [0.5, 0.25, 0.125, 1.0], "specularFactor": [0.25, 0.5, 0.75],
@@ -547,16 +542,7 @@ fn specular_glossiness_materials_are_converted() {
     let dir = tempfile::tempdir().unwrap();
     write(dir.path(), "quad.gltf", &quad_with_material(material, &["KHR_materials_pbrSpecularGlossiness"]));
     let scene = load(&write(dir.path(), "scene.toml", "[[object]]\nshape = \"mesh\"\nfile = \"quad.gltf\"\n"));
-    let models: Vec<_> = scene
-        .world
-        .query::<&MaterialComponent>()
-        .iter()
-        .filter_map(|c| match &c.material.surface {
-            SurfaceModel::MetallicRoughness(m) => Some(m.clone()),
-            _ => None,
-        })
-        .collect();
-    let [m] = models.as_slice() else { panic!("one glTF material, got {}", models.len()) };
+    let m = &the_gltf_material(&scene);
     assert_eq!(m.finish.color.0.to_array(), [0.5, 0.25, 0.125]);
     assert_eq!((m.metallic, m.roughness, m.ior, m.specular), (0.0, 0.25, 0.0, 1.0));
     assert_eq!(m.specular_color.0.to_array(), [0.25, 0.5, 0.75]);

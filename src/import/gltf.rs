@@ -817,7 +817,15 @@ impl Importer<'_> {
         let factor = |key: &str, default: f64| coat.get(key).and_then(gltf::json::Value::as_f64).unwrap_or(default);
         params.clearcoat = factor("clearcoatFactor", 0.0).clamp(0.0, 1.0);
         params.clearcoat_roughness = factor("clearcoatRoughnessFactor", 0.0).clamp(0.0, 1.0);
-        for key in ["clearcoatTexture", "clearcoatRoughnessTexture"] {
+        let slots = [
+            ("clearcoatTexture", "KHR_materials_clearcoat.clearcoatTexture", &mut params.clearcoat_texture),
+            (
+                "clearcoatRoughnessTexture",
+                "KHR_materials_clearcoat.clearcoatRoughnessTexture",
+                &mut params.clearcoat_roughness_texture,
+            ),
+        ];
+        for (key, error_key, slot) in slots {
             let Some(info) = coat.get(key) else { continue };
             let texture = info
                 .get("index")
@@ -825,12 +833,7 @@ impl Importer<'_> {
                 .and_then(|i| self.document.textures().nth(usize::try_from(i).ok()?))
                 .ok_or_else(|| {
                     let message = format!("names no texture of the file: {}", shown_json(info));
-                    let key = if key == "clearcoatTexture" {
-                        "KHR_materials_clearcoat.clearcoatTexture"
-                    } else {
-                        "KHR_materials_clearcoat.clearcoatRoughnessTexture"
-                    };
-                    ImportError::new(self.path, ImportErrorKind::Material { material: name(), key, message })
+                    ImportError::new(self.path, ImportErrorKind::Material { material: name(), key: error_key, message })
                 })?;
             if info.get("extensions").is_some() {
                 self.model.warnings.push(format!(
@@ -839,13 +842,8 @@ impl Importer<'_> {
                 ));
             }
             let tex_coord = info.get("texCoord").and_then(gltf::json::Value::as_u64).unwrap_or(0);
-            let loaded =
-                self.texture(texture, u32::try_from(tex_coord).unwrap_or(u32::MAX), None, ColorSpace::Linear)?;
-            if key == "clearcoatTexture" {
-                params.clearcoat_texture = Some(loaded);
-            } else {
-                params.clearcoat_roughness_texture = Some(loaded);
-            }
+            *slot =
+                Some(self.texture(texture, u32::try_from(tex_coord).unwrap_or(u32::MAX), None, ColorSpace::Linear)?);
         }
         if coat.get("clearcoatNormalTexture").is_some() {
             self.model

@@ -255,6 +255,41 @@ impl MetallicRoughness {
         }
     }
 
+    /// The parameters at texture coordinates `uv`, textures read over a footprint `footprint`
+    /// wide in uv units (it selects the mip level; 0 for full resolution): each factor times
+    /// its texture's channel there, not clamped. The metallic-roughness texture's blue and
+    /// green multiply metallic and roughness, the glossiness texture's alpha the glossiness
+    /// `1 - roughness`, the specular texture's alpha the strength, the specular colour
+    /// texture's RGB the colour, red the transmission and the coat, green the coat's roughness.
+    pub fn at(&self, uv: glam::DVec2, footprint: f64) -> MetallicRoughnessAt {
+        let (mut metallic, mut roughness) = (self.metallic, self.roughness);
+        if let Some(t) = &self.metallic_roughness_texture {
+            let v = t.sample(uv, footprint);
+            roughness *= f64::from(v.y);
+            metallic *= f64::from(v.z);
+        }
+        if let Some(t) = &self.glossiness_texture {
+            roughness = 1.0 - (1.0 - roughness) * f64::from(t.sample(uv, footprint).w);
+        }
+        let times = |factor: f64, texture: &Option<TextureRef>, channel: usize| {
+            texture.as_ref().map_or(factor, |t| factor * f64::from(t.sample(uv, footprint)[channel]))
+        };
+        let specular_color = self.specular_color.0
+            * self
+                .specular_color_texture
+                .as_ref()
+                .map_or(glam::DVec3::ONE, |t| t.sample(uv, footprint).truncate().as_dvec3());
+        MetallicRoughnessAt {
+            metallic,
+            roughness,
+            specular: times(self.specular, &self.specular_texture, 3),
+            specular_color,
+            transmission: times(self.transmission, &self.transmission_texture, 0),
+            clearcoat: times(self.clearcoat, &self.clearcoat_texture, 0),
+            clearcoat_roughness: times(self.clearcoat_roughness, &self.clearcoat_roughness_texture, 1),
+        }
+    }
+
     /// The textures driving the extensions' factors.
     pub fn extension_textures(&self) -> impl Iterator<Item = &TextureRef> {
         [
@@ -268,6 +303,26 @@ impl MetallicRoughness {
         .into_iter()
         .flatten()
     }
+}
+
+/// [`MetallicRoughness`] at one surface point ([`MetallicRoughness::at`]): factors times
+/// their textures, not clamped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MetallicRoughnessAt {
+    /// Metalness.
+    pub metallic: f64,
+    /// Perceptual roughness.
+    pub roughness: f64,
+    /// Strength of the dielectric's specular reflection.
+    pub specular: f64,
+    /// Colour of the dielectric's F0 (linear RGB).
+    pub specular_color: glam::DVec3,
+    /// Thin-walled transmission.
+    pub transmission: f64,
+    /// Clear coat strength.
+    pub clearcoat: f64,
+    /// Perceptual roughness of the clear coat.
+    pub clearcoat_roughness: f64,
 }
 
 /// OBJ/MTL parameters as the `.mtl` file wrote them (`None` where it did not). `Ke` is the

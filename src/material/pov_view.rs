@@ -12,8 +12,8 @@ use glam::{DVec2, DVec3};
 use super::normal::NormalField;
 use super::pattern::PigmentField;
 use super::{
-    AlphaMode, Emission, Finish, Interior, Material, MetallicRoughness, Mtl, Physical, Reflection, Scattering,
-    SurfaceModel,
+    AlphaMode, Emission, Finish, Interior, Material, MetallicRoughness, MetallicRoughnessAt, Mtl, Physical, Reflection,
+    Scattering, SurfaceModel,
 };
 use crate::color::Rgb;
 use crate::texture::TextureRef;
@@ -143,23 +143,11 @@ struct Varying {
     /// Multiplies the colour.
     texture: Option<TextureRef>,
     /// glTF parameters turned into the finish at each hit.
-    pbr: Option<PbrParams>,
+    pbr: Option<MetallicRoughness>,
     /// Emitted radiance (W/(m^2 sr)) and its texture, added as is.
     emitted: Option<(Rgb, Option<TextureRef>)>,
     /// A pigment pattern giving colour, filter and transmit.
     pigment: Option<Arc<PigmentField>>,
-}
-
-#[derive(Clone, Debug)]
-struct PbrParams {
-    metallic: f64,
-    roughness: f64,
-    metallic_roughness_texture: Option<TextureRef>,
-    glossiness_texture: Option<TextureRef>,
-    transmission: f64,
-    transmission_texture: Option<TextureRef>,
-    specular: f64,
-    specular_texture: Option<TextureRef>,
 }
 
 impl PovView {
@@ -207,7 +195,7 @@ impl PovView {
                 base.finish.filter = transmission_filter(p.transmission, p.metallic, base.finish.transmit);
                 let varying = Varying {
                     texture: p.finish.texture.clone(),
-                    pbr: Some(pbr_params(p)),
+                    pbr: Some((**p).clone()),
                     emitted: Some(emitted()),
                     pigment: None,
                 };
@@ -318,25 +306,14 @@ impl PovView {
             shaded.pigment.color *= texel.truncate().as_dvec3();
         }
         if let Some(p) = &varying.pbr {
-            let (mut metallic, mut roughness) = (p.metallic, p.roughness);
-            if let Some(t) = &p.metallic_roughness_texture {
-                let texel = t.sample(uv, footprint);
-                roughness *= f64::from(texel.y);
-                metallic *= f64::from(texel.z);
-            }
-            if let Some(t) = &p.glossiness_texture {
-                roughness = 1.0 - (1.0 - roughness) * f64::from(t.sample(uv, footprint).w);
-            }
+            // The specular colour and the clear coat have no place in POV-Ray's finish.
+            let MetallicRoughnessAt { metallic, roughness, specular: strength, transmission, .. } = p.at(uv, footprint);
             let gloss = (1.0 - roughness).powi(2);
             let alpha2 = roughness.powi(4).max(1e-4);
             let m = &mut shaded.finish.to_mut().finish;
             m.diffuse = 0.6 * (1.0 - metallic);
             // The dielectric's share of the highlight, g 0.25 (1 - m), scales with
             // KHR_materials_specular's strength s (written so that s = 1 changes nothing).
-            let mut strength = p.specular;
-            if let Some(t) = &p.specular_texture {
-                strength *= f64::from(t.sample(uv, footprint).w);
-            }
             m.specular = gloss * (0.25 + 0.75 * metallic - 0.25 * (1.0 - metallic) * (1.0 - strength));
             m.roughness = (alpha2 / (2.0 - 2.0 * alpha2)).clamp(5e-4, 1.0);
             m.metallic = metallic;
@@ -346,10 +323,6 @@ impl PovView {
                 Reflection { min: Rgb::grey(mirror), max: Rgb::grey(mirror), metallic, ..Reflection::default() };
             // Thin-walled transmission passes light straight through, tinted by the base
             // colour: POV-Ray's filter (added to a blended material's transmit).
-            let mut transmission = p.transmission;
-            if let Some(t) = &p.transmission_texture {
-                transmission *= f64::from(t.sample(uv, footprint).x);
-            }
             shaded.pigment.filter = transmission_filter(transmission, metallic, shaded.pigment.transmit);
         }
         if let Some((radiance, texture)) = &varying.emitted {
@@ -366,19 +339,6 @@ impl PovView {
 /// (`transmission * (1 - metallic)`), within what `transmit` leaves.
 fn transmission_filter(transmission: f64, metallic: f64, transmit: f64) -> f64 {
     (transmission * (1.0 - metallic)).clamp(0.0, (1.0 - transmit).max(0.0))
-}
-
-fn pbr_params(p: &MetallicRoughness) -> PbrParams {
-    PbrParams {
-        metallic: p.metallic,
-        roughness: p.roughness,
-        metallic_roughness_texture: p.metallic_roughness_texture.clone(),
-        glossiness_texture: p.glossiness_texture.clone(),
-        transmission: p.transmission,
-        transmission_texture: p.transmission_texture.clone(),
-        specular: p.specular,
-        specular_texture: p.specular_texture.clone(),
-    }
 }
 
 /// A physically based model read as a POV-Ray finish (documented in `docs/scene-format.md`):

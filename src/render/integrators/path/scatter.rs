@@ -27,7 +27,6 @@ use crate::color::Rgb;
 use crate::material::normal::NormalField;
 use crate::material::{AlphaMode, Finish, Layer, Material, MetallicRoughness, Mtl, Physical, Scattering, SurfaceModel};
 use crate::render::bsdf::{Bsdf, BsdfSample};
-use crate::texture::TextureRef;
 
 /// At most this many lobes at one hit.
 pub const MAX_LOBES: usize = 3;
@@ -414,33 +413,17 @@ fn layered_scatter(layers: &[Layer], point: &SurfacePoint, ior: f64) -> Shaded {
 }
 
 fn metallic_roughness_scatter(m: &MetallicRoughness, base_color: DVec3, uv: DVec2) -> Scatter {
-    let (mut metallic, mut roughness) = (m.metallic, m.roughness);
-    if let Some(t) = &m.metallic_roughness_texture {
-        let v = t.sample(uv, 0.0);
-        roughness *= f64::from(v.y);
-        metallic *= f64::from(v.z);
-    }
-    if let Some(t) = &m.glossiness_texture {
-        roughness = 1.0 - (1.0 - roughness) * f64::from(t.sample(uv, 0.0).w);
-    }
-    // The extensions' textures multiply their factors: alpha for the specular strength, red
-    // for transmission and the coat, green for the coat's roughness.
-    let times = |factor: f64, texture: &Option<TextureRef>, channel: usize| {
-        texture.as_ref().map_or(factor, |t| factor * f64::from(t.sample(uv, 0.0)[channel]))
-    };
-    let clearcoat_roughness = times(m.clearcoat_roughness, &m.clearcoat_roughness_texture, 1);
-    let specular_color = m.specular_color.0
-        * m.specular_color_texture.as_ref().map_or(DVec3::ONE, |t| t.sample(uv, 0.0).truncate().as_dvec3());
+    let at = m.at(uv, 0.0);
     let bsdf = Bsdf::MetallicRoughness {
         base_color: base_color.clamp(DVec3::ZERO, DVec3::ONE),
-        metallic: metallic.clamp(0.0, 1.0),
-        alpha: (roughness * roughness).clamp(0.0, 1.0),
+        metallic: at.metallic.clamp(0.0, 1.0),
+        alpha: (at.roughness * at.roughness).clamp(0.0, 1.0),
         ior: m.ior,
-        specular: times(m.specular, &m.specular_texture, 3).clamp(0.0, 1.0),
-        specular_color: specular_color.max(DVec3::ZERO),
-        transmission: times(m.transmission, &m.transmission_texture, 0).clamp(0.0, 1.0),
-        clearcoat: times(m.clearcoat, &m.clearcoat_texture, 0).clamp(0.0, 1.0),
-        clearcoat_alpha: (clearcoat_roughness * clearcoat_roughness).clamp(0.0, 1.0),
+        specular: at.specular.clamp(0.0, 1.0),
+        specular_color: at.specular_color.max(DVec3::ZERO),
+        transmission: at.transmission.clamp(0.0, 1.0),
+        clearcoat: at.clearcoat.clamp(0.0, 1.0),
+        clearcoat_alpha: (at.clearcoat_roughness * at.clearcoat_roughness).clamp(0.0, 1.0),
     };
     let coverage = match m.alpha_mode {
         AlphaMode::Blend => m.alpha.clamp(0.0, 1.0),
@@ -523,7 +506,7 @@ mod tests {
     /// its roughness times its texture's green.
     #[test]
     fn gltf_extensions_and_their_textures_reach_the_bsdf() {
-        use crate::texture::{ColorSpace, Texture};
+        use crate::texture::{ColorSpace, Texture, TextureRef};
         let texel_alpha = |r: u8, g: u8, a: u8| {
             let mut t = TextureRef::new("t.png");
             t.texture = Some(std::sync::Arc::new(Texture::from_rgba8(1, 1, vec![[r, g, 0, a]], ColorSpace::Linear)));
