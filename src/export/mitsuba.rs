@@ -91,9 +91,15 @@ pub fn export(scene: &Scene, source: &str, mesh_prefix: &str, xml_dir: &Path) ->
     );
     xml.push_str("<scene version=\"3.0.0\">\n");
     let render = &scene.render;
+    // Absorbing interiors need the integrator that tracks media.
+    let integrator = if scene.world.query::<&MaterialComponent>().iter().any(|m| interior_xml(&m.material).is_some()) {
+        "volpath"
+    } else {
+        "path"
+    };
     let _ = writeln!(
         xml,
-        "  <integrator type=\"path\">\n    <integer name=\"max_depth\" value=\"{}\"/>\n    <integer name=\"rr_depth\" value=\"{}\"/>\n    <boolean name=\"hide_emitters\" value=\"false\"/>\n  </integrator>",
+        "  <integrator type=\"{integrator}\">\n    <integer name=\"max_depth\" value=\"{}\"/>\n    <integer name=\"rr_depth\" value=\"{}\"/>\n    <boolean name=\"hide_emitters\" value=\"false\"/>\n  </integrator>",
         render.max_depth, render.rr_depth
     );
     if !matches!(render.antialias, Antialias::Stratified {}) {
@@ -452,6 +458,7 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &P
             continue;
         }
         let (bsdf, emission) = match bsdf_xml(&material.material, xml_dir, out, mesh_prefix)
+            .map(|bsdf| bsdf + &interior_xml(&material.material).unwrap_or_default())
             .and_then(|bsdf| Ok((bsdf, emitter_xml(&material.material)?)))
         {
             Ok(xml) => xml,
@@ -481,6 +488,25 @@ fn objects(out: &mut MitsubaScene, scene: &Scene, mesh_prefix: &str, xml_dir: &P
             shape_xml(out, &mut meshes, &shape, &bsdf, emission.as_deref(), mesh_prefix);
         }
     }
+}
+
+/// The shape's absorbing interior as a Mitsuba `homogeneous` medium that absorbs and does not
+/// scatter (`sigma_t` times `scale` the absorption per scene unit, albedo 0), when the path integrator sees
+/// one ([`PathMaterial::encloses_medium`]). Mitsuba gives a shape's inside this medium and
+/// its outside none: an object inside another absorbing one would need the outer medium as
+/// its `exterior`, which the export does not write (Prism tracks nested interiors itself).
+fn interior_xml(material: &Material) -> Option<String> {
+    let path_material = PathMaterial::new(material);
+    let absorption = path_material.absorption();
+    let strongest = absorption.max_element();
+    // Mitsuba reads an RGB `sigma_t` as a reflectance (0..1): the largest channel goes to `scale`.
+    (path_material.encloses_medium() && strongest > 0.0).then(|| {
+        format!(
+            "    <medium type=\"homogeneous\" name=\"interior\">\n      <rgb name=\"sigma_t\" value=\"{}\"/>\n      <float name=\"scale\" value=\"{}\"/>\n      <rgb name=\"albedo\" value=\"0, 0, 0\"/>\n    </medium>\n",
+            rgb(absorption / strongest),
+            number(strongest)
+        )
+    })
 }
 
 /// The PLY files of an export: one per distinct triangle list, however many objects use it,
@@ -1146,6 +1172,29 @@ mod tests {
         .unwrap();
         assert!(!out.xml.contains("blendbsdf"), "{}", out.xml);
         assert!(out.xml.contains("name=\"specular_reflectance\" value=\"0.5, 0.2, 0.1\""), "{}", out.xml);
+    }
+
+    /// An absorbing interior is a `homogeneous` medium inside the shape that absorbs what the
+    /// path integrator absorbs (sigma_t = absorption, albedo 0), rendered by `volpath`; a scene
+    /// without one keeps `path`, and an interior behind no refracting surface is not written.
+    #[test]
+    fn absorbing_interiors_are_media_under_volpath() {
+        let glass = export_text(
+            "[[object]]\nshape = \"sphere\"\nmaterial = { bsdf = { type = \"dielectric\" }, \
+             attenuation_color = [0.5, 1.0, 1.0], attenuation_distance = 2.0 }\n",
+        )
+        .unwrap();
+        let sigma = std::f64::consts::LN_2 / 2.0;
+        assert!(glass.xml.contains("<integrator type=\"volpath\">"), "{}", glass.xml);
+        assert!(glass.xml.contains("<medium type=\"homogeneous\" name=\"interior\">"), "{}", glass.xml);
+        assert!(glass.xml.contains("name=\"sigma_t\" value=\"1.0, 0.0, 0.0\""), "{}", glass.xml);
+        assert!(glass.xml.contains(&format!("name=\"scale\" value=\"{}\"", number(sigma))), "{}", glass.xml);
+        let sheet = export_text(
+            "[[object]]\nshape = \"sphere\"\nmaterial = { bsdf = { type = \"thin_dielectric\" }, \
+             attenuation_color = 0.5, attenuation_distance = 2.0 }\n",
+        )
+        .unwrap();
+        assert!(sheet.xml.contains("<integrator type=\"path\">") && !sheet.xml.contains("<medium"), "{}", sheet.xml);
     }
 
     /// Under a mirroring transform Mitsuba turns a sphere's normals inward (a negative radius)

@@ -605,7 +605,8 @@ fn texture_block(
 
 /// The object's `interior { }`.
 fn interior_sdl(out: &mut String, interior: &Interior) {
-    let Interior { ior, fade_distance, fade_power, fade_color } = interior;
+    // Absorption arrives as the exponential fade the classic view made of it.
+    let Interior { ior, fade_distance, fade_power, fade_color, absorption: _ } = interior;
     let _ = write!(out, "  interior {{ ior {}", number(*ior));
     if *fade_distance != 0.0 {
         let _ = write!(

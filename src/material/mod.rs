@@ -18,6 +18,8 @@ pub mod spec;
 
 pub use spec::{MaterialSpec, Pbr, Reflection};
 
+use glam::DVec3;
+
 use crate::color::Rgb;
 use crate::texture::TextureRef;
 
@@ -356,12 +358,47 @@ pub struct Interior {
     pub fade_power: f64,
     /// The colour POV-Ray's fade tends toward.
     pub fade_color: Rgb,
+    /// Beer-Lambert absorption coefficient of the medium, per scene unit of length (linear
+    /// RGB, not negative): light crossing a distance `d` inside keeps `exp(-absorption * d)`.
+    pub absorption: Rgb,
 }
 
 impl Default for Interior {
-    /// Vacuum-like: no refraction, no fade.
+    /// Vacuum-like: no refraction, no fade, no absorption.
     fn default() -> Self {
-        Self { ior: 1.0, fade_distance: 0.0, fade_power: 0.0, fade_color: Rgb::BLACK }
+        Self { ior: 1.0, fade_distance: 0.0, fade_power: 0.0, fade_color: Rgb::BLACK, absorption: Rgb::BLACK }
+    }
+}
+
+/// A transmitted colour below this counts as this (an absorption coefficient of at most
+/// `-ln(1e-6) = 13.8` per attenuation distance: white light keeps a millionth).
+const DARKEST_ATTENUATION: f64 = 1e-6;
+
+impl Interior {
+    /// The absorption coefficient under which white light that crosses `distance` scene units
+    /// of the medium keeps the linear colour `color` (glTF's `KHR_materials_volume`
+    /// attenuation colour and distance): `-ln(color) / distance`. An infinite distance
+    /// absorbs nothing; a colour channel of 0 keeps a millionth.
+    pub fn absorption_of(color: Rgb, distance: f64) -> Rgb {
+        if distance.is_infinite() {
+            return Rgb::BLACK;
+        }
+        let keep = color.0.clamp(DVec3::splat(DARKEST_ATTENUATION), DVec3::ONE);
+        Rgb(DVec3::new(-keep.x.ln(), -keep.y.ln(), -keep.z.ln()) / distance)
+    }
+
+    /// The Beer-Lambert absorption coefficient (per scene unit, linear RGB) a physically based
+    /// integrator reads: `absorption` plus POV-Ray's exponential fade (`fade_power` of 1000 or
+    /// more), which is Beer-Lambert absorption of `(1 - fade_color) / fade_distance`. Negative
+    /// parts, which would amplify light, are taken as 0. POV-Ray's polynomial fades are not
+    /// absorption by a medium and add none.
+    pub fn absorption_coefficient(&self) -> DVec3 {
+        let fade = if self.fade_power >= 1000.0 && self.fade_distance > 0.0 {
+            (DVec3::ONE - self.fade_color.0) / self.fade_distance
+        } else {
+            DVec3::ZERO
+        };
+        (self.absorption.0 + fade).max(DVec3::ZERO)
     }
 }
 
@@ -426,6 +463,7 @@ impl Material {
             ("emission", self.emission.times_color),
             ("emissive", self.emission.radiance),
             ("fade_color", self.interior.fade_color),
+            ("attenuation_distance", self.interior.absorption),
         ];
         let mut numbers = vec![
             ("ior", self.interior.ior),
@@ -631,7 +669,16 @@ mod tests {
     #[test]
     fn interior_and_finish_keep_the_written_values() {
         let m = spec("ior = 1.5\nfade_distance = 2\nfade_power = 1001\nroughness = 0.01\nmetallic = 0.5");
-        assert_eq!(m.interior, Interior { ior: 1.5, fade_distance: 2.0, fade_power: 1001.0, fade_color: Rgb::BLACK });
+        assert_eq!(
+            m.interior,
+            Interior {
+                ior: 1.5,
+                fade_distance: 2.0,
+                fade_power: 1001.0,
+                fade_color: Rgb::BLACK,
+                absorption: Rgb::BLACK
+            }
+        );
         let SurfaceModel::Finish(f) = &m.surface else { panic!("a finish") };
         assert_eq!((f.roughness, f.metallic), (0.01, 0.5));
         assert!(m.check().is_ok());

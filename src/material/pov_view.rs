@@ -153,7 +153,7 @@ struct Varying {
 impl PovView {
     /// The view of `material`.
     pub fn new(material: &Material) -> Self {
-        let interior = &material.interior;
+        let interior = &pov_interior(&material.interior);
         let emission = &material.emission;
         let finish = |f: &Finish, emission: Rgb| PovFinish {
             finish: Finish { texture: None, pigment: None, normal: None, ..f.clone() },
@@ -332,6 +332,23 @@ impl PovView {
             }
         }
         shaded
+    }
+}
+
+/// The interior as POV-Ray writes it: a physical absorption coefficient `a` becomes an
+/// exponential fade (`fade_power` 1000), which POV-Ray computes as `exp(-(1 - fade_color) *
+/// d / fade_distance)`: `fade_distance = 1 / max(a)` and `fade_color = 1 - a / max(a)` keep
+/// the fade colour within 0..1. An interior with POV-Ray's own fade keeps it.
+fn pov_interior(interior: &Interior) -> Interior {
+    let strongest = interior.absorption.0.max_element();
+    if strongest <= 0.0 || interior.fade_distance != 0.0 {
+        return *interior;
+    }
+    Interior {
+        fade_distance: 1.0 / strongest,
+        fade_power: 1000.0,
+        fade_color: Rgb(DVec3::ONE - interior.absorption.0 / strongest),
+        ..*interior
     }
 }
 
@@ -586,5 +603,28 @@ mod tests {
             (f.interior.ior, f.interior.fade_distance, f.finish.roughness, f.finish.ambient),
             (1.33, 3.0, 0.05, Rgb::grey(0.1))
         );
+    }
+
+    /// Physical absorption reaches POV-Ray as its exponential fade, which attenuates by
+    /// `exp(-(1 - fade_color) d / fade_distance)`: the same Beer-Lambert law, every channel.
+    #[test]
+    fn absorption_is_an_exponential_fade_for_pov_ray() {
+        let spec: crate::material::MaterialSpec =
+            toml::from_str("color = 1\nfilter = 1\nattenuation_color = [0.5, 1.0, 0.1]\nattenuation_distance = 2")
+                .unwrap();
+        let material = spec.to_material();
+        let interior = PovView::new(&material).base.interior;
+        assert!(interior.fade_power >= 1000.0, "{interior:?}");
+        let fade_color = interior.fade_color.0;
+        assert!(fade_color.cmpge(DVec3::ZERO).all() && fade_color.cmple(DVec3::ONE).all(), "{fade_color}");
+        let d = 3.0;
+        let fade = (-(DVec3::ONE - fade_color) * (d / interior.fade_distance)).exp();
+        let beer = (-material.interior.absorption.0 * d).exp();
+        assert!((fade - beer).abs().max_element() < 1e-12, "{fade} against {beer}");
+        // POV-Ray's own fade is kept as written.
+        let pov: crate::material::MaterialSpec =
+            toml::from_str("fade_distance = 3\nfade_power = 2\nfade_color = 0.5").unwrap();
+        let kept = PovView::new(&pov.to_material()).base.interior;
+        assert_eq!((kept.fade_distance, kept.fade_power, kept.fade_color), (3.0, 2.0, Rgb::grey(0.5)));
     }
 }

@@ -9,6 +9,7 @@
 
 use std::fmt;
 
+use glam::DVec3;
 use schemars::JsonSchema;
 use serde::de::{self, Deserializer, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
@@ -68,6 +69,16 @@ pub struct MaterialSpec {
     pub fade_power: f64,
     /// Colour the interior fades toward.
     pub fade_color: Rgb,
+    /// Physically based absorption inside the object (glTF's `KHR_materials_volume`): the
+    /// linear colour white light keeps after crossing `attenuation_distance` of the interior.
+    /// Components between 0 and 1; needs `attenuation_distance`.
+    pub attenuation_color: Rgb,
+    /// The distance in scene units over which white light inside takes `attenuation_color`
+    /// (Beer-Lambert: `attenuation_color ^ (d / attenuation_distance)` after a distance `d`).
+    /// Absent (or `inf`): no absorption. Exclusive with POV-Ray's `fade_*`, which the classic
+    /// integrator reads it as (an exponential fade).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub attenuation_distance: Option<f64>,
     /// An image whose (linear) colour multiplies `color`: a path relative to the scene file,
     /// or a table `{ file, wrap, offset, scale, rotation }`. Needs a shape with texture
     /// coordinates (meshes from glTF or OBJ files).
@@ -283,6 +294,8 @@ impl Default for MaterialSpec {
             fade_distance: 0.0,
             fade_power: 0.0,
             fade_color: Rgb::BLACK,
+            attenuation_color: Rgb::WHITE,
+            attenuation_distance: None,
             texture: None,
             pigment: None,
             normal: None,
@@ -319,7 +332,7 @@ impl MaterialSpec {
             return Err((
                 key.to_string(),
                 "belongs to a layer: write it inside one of `layers` (beside `layers` only the interior, \
-                 `ior` and `fade_*`, and `emission_two_sided` may be written)"
+                 `ior`, `fade_*` and `attenuation_*`, and `emission_two_sided` may be written)"
                     .into(),
             ));
         }
@@ -343,6 +356,8 @@ impl MaterialSpec {
                 ("fade_distance", layer.fade_distance != d.fade_distance),
                 ("fade_power", layer.fade_power != d.fade_power),
                 ("fade_color", layer.fade_color != d.fade_color),
+                ("attenuation_color", layer.attenuation_color != d.attenuation_color),
+                ("attenuation_distance", layer.attenuation_distance != d.attenuation_distance),
                 ("emission_two_sided", layer.emission_two_sided != d.emission_two_sided),
             ];
             if let Some((key, _)) = interior.iter().find(|(_, w)| *w) {
@@ -398,6 +413,7 @@ impl MaterialSpec {
                 format!("must be greater than 0 and at most {}, got {}", crate::limits::MAX_IOR, self.ior),
             ));
         }
+        self.check_attenuation()?;
         if let Some(bsdf) = &self.bsdf {
             self.check_only_bsdf()?;
             bsdf.to_scattering()?.check()?;
@@ -645,7 +661,54 @@ impl MaterialSpec {
             fade_distance: self.fade_distance,
             fade_power: self.fade_power,
             fade_color: self.fade_color,
+            absorption: Interior::absorption_of(
+                self.attenuation_color,
+                self.attenuation_distance.unwrap_or(f64::INFINITY),
+            ),
         }
+    }
+
+    /// `attenuation_color` in 0..1 and `attenuation_distance` positive, given together and not
+    /// beside POV-Ray's fade.
+    fn check_attenuation(&self) -> Result<(), (&'static str, String)> {
+        let c = self.attenuation_color.0;
+        if !(c.cmpge(DVec3::ZERO).all() && c.cmple(DVec3::ONE).all()) {
+            return Err((
+                "attenuation_color",
+                format!("components must lie between 0 and 1 (the share of light kept), got {:?}", c.to_array()),
+            ));
+        }
+        let Some(distance) = self.attenuation_distance else {
+            if self.attenuation_color != Rgb::WHITE {
+                return Err((
+                    "attenuation_color",
+                    "needs `attenuation_distance`, the distance over which white light takes this colour".into(),
+                ));
+            }
+            return Ok(());
+        };
+        if distance.is_nan() || distance <= 0.0 {
+            return Err((
+                "attenuation_distance",
+                format!("must be greater than 0 (or `inf` for no absorption), got {distance}"),
+            ));
+        }
+        let absorption = Interior::absorption_of(self.attenuation_color, distance).0.max_element();
+        if absorption > crate::limits::MAX_COLOR_COMPONENT {
+            return Err((
+                "attenuation_distance",
+                format!("{distance} is too short: the absorption per unit length ({absorption:e}) would overflow"),
+            ));
+        }
+        if self.fade_distance != 0.0 {
+            return Err((
+                "attenuation_distance",
+                "is written beside POV-Ray's `fade_distance`: give the interior either the physical \
+                 attenuation or POV-Ray's fade"
+                    .into(),
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -784,6 +847,21 @@ mod tests {
         assert_eq!(m.phong_size, 40.0);
         assert_eq!(m.roughness, 0.05);
         assert_eq!(m.ior, 1.0);
+    }
+
+    #[test]
+    fn attenuation_is_the_interiors_beer_lambert_absorption() {
+        let m: MaterialSpec = toml::from_str("attenuation_color = [0.5, 1.0, 0.0]\nattenuation_distance = 2").unwrap();
+        assert!(m.check().is_ok());
+        let a = m.to_material().interior.absorption.0;
+        // White light keeps the colour after the distance: exp(-a d) = c.
+        assert!(((-a.x * 2.0).exp() - 0.5).abs() < 1e-15 && a.y == 0.0, "{a}");
+        // A channel of 0 keeps a millionth, not infinity.
+        assert!(((-a.z * 2.0).exp() - 1e-6).abs() < 1e-18, "{a}");
+        let none: MaterialSpec = toml::from_str("attenuation_distance = inf").unwrap();
+        assert!(none.check().is_ok());
+        assert_eq!(none.to_material().interior.absorption, Rgb::BLACK);
+        assert_eq!(MaterialSpec::default().to_material().interior.absorption, Rgb::BLACK);
     }
 
     #[test]

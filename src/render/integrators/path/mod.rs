@@ -7,9 +7,13 @@
 //! path comes from its sample's stream at fixed dimensions per bounce, so the image is a pure
 //! function of (pixel, sample, dimension, seed); the numbers are stratified over each pixel's
 //! samples (padded Owen-scrambled Sobol, [`SampleStream::stratified2`]).
+//!
+//! Inside an object whose interior absorbs ([`medium`]), every stretch of a path, and every
+//! shadow ray, carries the Beer-Lambert transmittance of the medium it crosses.
 
 pub mod light_reach;
 pub mod light_sampler;
+pub mod medium;
 pub mod scatter;
 
 use glam::{DVec2, DVec3};
@@ -24,6 +28,7 @@ use crate::render::extract::RenderScene;
 use crate::render::sampling::SampleStream;
 use light_reach::Receiver;
 use light_sampler::{Environment, LightSample, LightSampler};
+use medium::{Media, transmittance};
 use scatter::{PathMaterial, SurfacePoint};
 
 /// Rays start this far (relative to the scene's scale at the hit) beyond their origin.
@@ -47,6 +52,11 @@ pub struct Path<'a> {
     /// Whether a camera ray's first hit carries its uv on untextured materials too (for the
     /// `uv` AOV; shading reads the uv of textured materials only).
     first_hit_uv: bool,
+    /// Whether some material's interior absorbs (otherwise no path tracks its media).
+    absorbing: bool,
+    /// Primitives whose interior may hold a camera ray's origin (solids of a material that
+    /// encloses a medium, bounds touching the lens), in load order; empty when nothing absorbs.
+    camera_containers: Vec<u32>,
 }
 
 /// The power heuristic (beta = 2) weight of a strategy with density `a` against one with `b`.
@@ -63,6 +73,21 @@ fn rotated(u: DVec2, k: u32) -> DVec2 {
     const STEP: DVec2 = DVec2::new(0.754_877_666_246_692_8, 0.569_840_290_998_053_2);
     // k = 0 leaves u as it is (u lies in [0, 1)).
     (u + STEP * f64::from(k)).fract()
+}
+
+/// Absorption coefficients (per scene unit) that shadow rays leaving a vertex cross: on the
+/// side its geometric normal points to, and on the other.
+struct ShadowAbsorption {
+    front: DVec3,
+    back: DVec3,
+}
+
+impl ShadowAbsorption {
+    /// The transmittance of a shadow ray leaving along `direction` (unit) over `distance`.
+    fn transmittance(&self, geometric_normal: DVec3, direction: DVec3, distance: f64) -> DVec3 {
+        let absorption = if direction.dot(geometric_normal) >= 0.0 { self.front } else { self.back };
+        if absorption == DVec3::ZERO { DVec3::ONE } else { transmittance(absorption, distance) }
+    }
 }
 
 /// A hit with what the path needs from it, in world space.
@@ -84,16 +109,64 @@ struct Vertex {
 impl<'a> Path<'a> {
     /// The path integrator for `scene`.
     pub fn new(scene: &'a RenderScene) -> Self {
-        let materials = scene.materials.iter().map(PathMaterial::new).collect();
+        let materials: Vec<PathMaterial> = scene.materials.iter().map(PathMaterial::new).collect();
+        let absorbing = materials.iter().any(|m| m.absorption() != DVec3::ZERO);
+        let lens = scene.camera.lens_bounds();
+        // A CSG group whose members differ in material is left out: its crossings name the
+        // members' materials, its inside test only the whole.
+        let camera_containers = (0..scene.primitives.len() as u32)
+            .filter(|&i| {
+                let p = &scene.primitives[i as usize];
+                absorbing
+                    && p.leaf_materials.is_none()
+                    && materials[p.material as usize].encloses_medium()
+                    && p.world_bounds.min.cmple(lens.max).all()
+                    && p.world_bounds.max.cmpge(lens.min).all()
+            })
+            .collect();
         let environment = Environment::of(scene);
         let lights = LightSampler::new(scene, &environment);
-        Self { scene, materials, lights, environment, first_hit_uv: false }
+        Self { scene, materials, lights, environment, first_hit_uv: false, absorbing, camera_containers }
     }
 
     /// The same integrator, giving every first hit its uv when `uv` is true (the `uv` AOV),
     /// not only those on textured materials.
     pub fn with_first_hit_uv(self, uv: bool) -> Self {
         Self { first_hit_uv: uv, ..self }
+    }
+
+    /// The interiors a camera ray from `origin` starts in: those of the solids that hold it, in
+    /// load order (the last counts as the innermost), as the classic integrator's camera rays.
+    fn media_at(&self, origin: DVec3) -> Media {
+        self.camera_containers.iter().fold(Media::default(), |media, &i| {
+            let p = &self.scene.primitives[i as usize];
+            if p.shape.inside(p.object_point(origin)) { media.crossed(p.material, true) } else { media }
+        })
+    }
+
+    /// The absorption coefficient (per scene unit) inside `media`'s innermost interior.
+    fn absorption(&self, media: &Media) -> DVec3 {
+        media.innermost().map_or(DVec3::ZERO, |m| self.materials[m as usize].absorption())
+    }
+
+    /// The absorption that shadow rays leaving `vertex` meet on its front (geometric normal's)
+    /// side and on its back, for a path that arrived along `direction` inside `media`.
+    fn shadow_absorption(&self, media: &Media, vertex: &Vertex, direction: DVec3) -> ShadowAbsorption {
+        let here = self.absorption(media);
+        let material = &self.materials[vertex.material as usize];
+        let from_front = direction.dot(vertex.geometric_normal) < 0.0;
+        let beyond = if material.encloses_medium() {
+            // A ray to the far side crosses the surface: into the interior from outside,
+            // out of it from inside.
+            self.absorption(&media.crossed(vertex.material, from_front))
+        } else {
+            here
+        };
+        if from_front {
+            ShadowAbsorption { front: here, back: beyond }
+        } else {
+            ShadowAbsorption { front: beyond, back: here }
+        }
     }
 
     fn closest(&self, ray: &Ray, t_max: f64) -> Option<ClosestHit> {
@@ -185,12 +258,19 @@ impl<'a> Path<'a> {
         let mut previous_delta = true;
         let mut previous = Receiver { point: ray.origin, normal: DVec3::ZERO };
         let mut depth = 1u32;
+        // The interiors around the path, and the innermost one's absorption.
+        let mut media = if self.camera_containers.is_empty() { Media::default() } else { self.media_at(ray.origin) };
+        let mut absorption = self.absorption(&media);
         loop {
             rays += 1;
             let direction = ray.direction.normalize();
             // Read in place, field by field (a copy of the whole hit would wait for the
             // query's stores to retire).
             let found = self.closest(&ray, MAX_DISTANCE);
+            if absorption != DVec3::ZERO {
+                let distance = found.as_ref().map_or(f64::INFINITY, |c| c.hit.t * ray.direction.length());
+                throughput *= transmittance(absorption, distance);
+            }
             let Some(closest) = &found else {
                 if !self.environment.is_black() {
                     let weight = if previous_delta {
@@ -248,6 +328,8 @@ impl<'a> Path<'a> {
             // same reference point.
             let reference = Self::offset_origin(&vertex, -direction);
             let receiver = Receiver { point: reference, normal: vertex.shading_normal };
+            let shadow_absorption = (self.absorbing && (absorption != DVec3::ZERO || material.encloses_medium()))
+                .then(|| self.shadow_absorption(&media, &vertex, direction));
 
             // Next-event estimation: every source, then one of the other lights.
             if scatter.has_smooth_lobe() {
@@ -256,7 +338,8 @@ impl<'a> Path<'a> {
                     let u = rotated(u_source, source);
                     if let Some(sample) = LightSampler::sample_source(scene, source, reference, u, 1.0) {
                         rays += 1;
-                        radiance += throughput * self.direct(&vertex, &frame, wo, scatter, sample);
+                        radiance +=
+                            throughput * self.direct(&vertex, &frame, wo, scatter, sample, shadow_absorption.as_ref());
                     }
                 }
                 let sample = self.lights.sample(
@@ -268,7 +351,8 @@ impl<'a> Path<'a> {
                 );
                 if let Some(sample) = sample {
                     rays += 1;
-                    radiance += throughput * self.direct(&vertex, &frame, wo, scatter, sample);
+                    radiance +=
+                        throughput * self.direct(&vertex, &frame, wo, scatter, sample, shadow_absorption.as_ref());
                 }
             }
 
@@ -278,6 +362,15 @@ impl<'a> Path<'a> {
                 break;
             }
             let next = frame.to_world(s.wi);
+            let into_back = next.dot(vertex.geometric_normal) < 0.0;
+            if self.absorbing
+                && material.encloses_medium()
+                && into_back != (direction.dot(vertex.geometric_normal) > 0.0)
+            {
+                // The path crossed the surface: into the interior against the outward normal.
+                media = media.crossed(vertex.material, into_back);
+                absorption = self.absorption(&media);
+            }
             throughput *= s.weight;
             previous_pdf = s.pdf;
             previous_delta = s.delta;
@@ -298,7 +391,8 @@ impl<'a> Path<'a> {
         PixelSample { radiance, first_hit, rays }
     }
 
-    /// The light-sampling estimate of one sampled light at `vertex`, MIS-weighted.
+    /// The light-sampling estimate of one sampled light at `vertex`, MIS-weighted, through
+    /// the absorbing media the shadow ray crosses (none when `absorption` is `None`).
     fn direct(
         &self,
         vertex: &Vertex,
@@ -306,8 +400,12 @@ impl<'a> Path<'a> {
         wo: DVec3,
         scatter: &scatter::Scatter,
         sample: LightSample,
+        absorption: Option<&ShadowAbsorption>,
     ) -> DVec3 {
         let scene = self.scene;
+        let through = |direction: DVec3, distance: f64| {
+            absorption.map_or(DVec3::ONE, |a| a.transmittance(vertex.geometric_normal, direction, distance))
+        };
         match sample {
             LightSample::Delta { direction, distance, irradiance } => {
                 let f = scatter.eval(wo, frame.to_local(direction));
@@ -322,7 +420,7 @@ impl<'a> Path<'a> {
                 }) {
                     return DVec3::ZERO;
                 }
-                f * irradiance
+                f * irradiance * through(direction, distance)
             }
             LightSample::Emitter { primitive, direction, pdf } => {
                 let wi = frame.to_local(direction);
@@ -361,7 +459,7 @@ impl<'a> Path<'a> {
                     None => self.emitted(&self.vertex(&ray, &hit), -direction),
                 };
                 let weight = power_heuristic(pdf, scatter.pdf(wo, wi));
-                f * emitted * (weight / pdf)
+                f * emitted * (weight / pdf) * through(direction, hit.hit.t * direction.length())
             }
             LightSample::Environment { direction, radiance, pdf } => {
                 let wi = frame.to_local(direction);
@@ -376,7 +474,7 @@ impl<'a> Path<'a> {
                     return DVec3::ZERO;
                 }
                 let weight = power_heuristic(pdf, scatter.pdf(wo, wi));
-                f * radiance * (weight / pdf)
+                f * radiance * (weight / pdf) * through(direction, f64::INFINITY)
             }
         }
     }

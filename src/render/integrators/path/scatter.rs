@@ -213,6 +213,10 @@ pub struct PathMaterial {
     /// The emitted radiance when it is the same at every point (see
     /// [`PathMaterial::uniform_emission`]).
     uniform_emission: Option<DVec3>,
+    /// See [`PathMaterial::encloses_medium`].
+    encloses_medium: bool,
+    /// Beer-Lambert absorption of the interior, per scene unit (linear RGB).
+    absorption: DVec3,
 }
 
 /// What a hit needs to know besides the scattering: the surface colour (for emission).
@@ -235,7 +239,16 @@ fn rgb_of(v: glam::Vec4) -> DVec3 {
 impl PathMaterial {
     /// The path integrator's view of `material`.
     pub fn new(material: &Material) -> Self {
-        let mut path_material = Self { material: material.clone(), uniform_emission: None };
+        // Light that crosses a refracting interface enters (or leaves) the interior; thin
+        // sheets and glTF's thin-walled transmission have no inside to enter.
+        let encloses_medium = match &material.surface {
+            SurfaceModel::Physical(p) => !matches!(p.scattering, Scattering::ThinDielectric { .. }),
+            SurfaceModel::MetallicRoughness(_) => false,
+            SurfaceModel::Finish(_) | SurfaceModel::Layered(_) | SurfaceModel::Mtl(_) => true,
+        };
+        let absorption = if encloses_medium { material.interior.absorption_coefficient() } else { DVec3::ZERO };
+        let mut path_material =
+            Self { material: material.clone(), uniform_emission: None, encloses_medium, absorption };
         let e = &material.emission;
         let patterned = match &material.surface {
             SurfaceModel::Finish(f) => f.pigment.is_some(),
@@ -263,6 +276,19 @@ impl PathMaterial {
     /// True when shading reads the surface's uv (an image drives some parameter).
     pub fn is_textured(&self) -> bool {
         self.material.is_textured()
+    }
+
+    /// True when a path that crosses this surface enters or leaves the object's interior (a
+    /// refracting interface: a dielectric, a POV-Ray finish that lets light through, a
+    /// dissolved MTL material), so that the interior's absorption applies inside.
+    pub fn encloses_medium(&self) -> bool {
+        self.encloses_medium
+    }
+
+    /// Beer-Lambert absorption of the interior, per scene unit (linear RGB; zero for
+    /// materials that enclose no medium).
+    pub fn absorption(&self) -> DVec3 {
+        self.absorption
     }
 
     /// True when a surface of this material may emit.
