@@ -20,6 +20,8 @@ confirmed by rendering it again with more seeds (`--k`) before it is chased.
 With GLTF_EXT=1 in the environment, about half the objects take a `pbr` material with glTF's
 KHR_materials_ior, _specular, _transmission and _clearcoat in random combinations (drawn
 from a stream of their own: the rest of each scene is what the seed gives without it).
+With MEDIA=1, most refracting objects get an absorbing interior (`attenuation_*` or POV-Ray's
+exponential fade), from another stream of their own.
 
 Prints one line per seed: `ok`, `DIFF` (the scene, the XML and the compare images are in
 OUTDIR/sSEED/), `unsure` (the judge failed it for want of precision only, see `triage`),
@@ -248,6 +250,8 @@ def scene(seed):
     objects += [shape_object(r) for _ in range(r.randint(1, 5))]
     if os.environ.get('GLTF_EXT'):
         gltf_extensions(random.Random('%d-gltf' % seed), objects)
+    if os.environ.get('MEDIA'):
+        absorbing_interiors(random.Random('%d-media' % seed), objects)
     for o in objects:
         lines.append('[[object]]')
         lines += ['%s = %s' % (k, value(v)) for k, v in o.items()]
@@ -300,6 +304,25 @@ def gltf_extensions(r, objects):
             p['clearcoat'] = round(r.choice([1.0, r.random()]), 3)
             p['clearcoat_roughness'] = round(r.random(), 3)
         o['material'] = {'color': colour(r), 'pbr': p}
+
+
+def absorbing_interiors(r, objects):
+    """MEDIA=1: most refracting objects (dielectrics and POV-Ray glass) get an absorbing
+    interior, `attenuation_*` or an exponential fade; drawn from their own stream. Mitsuba
+    gives each shape's inside its medium and its outside none, so two absorbing objects that
+    overlap are a false lead (Prism nests them)."""
+    for o in objects:
+        m = o.get('material', {})
+        glass = m.get('bsdf', {}).get('type') == 'dielectric' or 'transmit' in m
+        if not glass or r.random() < 0.25:
+            continue
+        if 'transmit' in m and r.random() < 0.5:
+            m['fade_distance'] = round(r.uniform(0.2, 3.0), 3)
+            m['fade_power'] = 1001
+            m['fade_color'] = colour(r, 0.0, 1.0)
+        else:
+            m['attenuation_color'] = colour(r, 0.05, 1.0)
+            m['attenuation_distance'] = round(r.uniform(0.1, 3.0), 3)
 
 
 def judge():
