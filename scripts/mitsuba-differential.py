@@ -310,7 +310,10 @@ def absorbing_interiors(r, objects):
     """MEDIA=1: most refracting objects (dielectrics and POV-Ray glass) get an absorbing
     interior, `attenuation_*` or an exponential fade; drawn from their own stream. Mitsuba
     gives each shape's inside its medium and its outside none, so two absorbing objects that
-    overlap are a false lead (Prism nests them)."""
+    overlap are a false lead (Prism nests them). A scene with a thin dielectric gets none:
+    the exporter refuses the pair (Mitsuba's `volpath` lets shadow rays through thin panes)."""
+    if any(o.get('material', {}).get('bsdf', {}).get('type') == 'thin_dielectric' for o in objects):
+        return
     for o in objects:
         m = o.get('material', {})
         glass = m.get('bsdf', {}).get('type') == 'dielectric' or 'transmit' in m

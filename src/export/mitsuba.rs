@@ -1,5 +1,6 @@
 //! `prism export mitsuba`: a scene as Mitsuba 3 XML (`version="3.0.0"`) that renders, with
-//! Mitsuba's `path` integrator, the image Prism's `path` integrator renders.
+//! Mitsuba's `path` integrator (`volpath` where interiors absorb: their media are
+//! `homogeneous`, see [`interior_xml`]), the image Prism's `path` integrator renders.
 //!
 //! Every default is written out: the `path` integrator's `max_depth` and `rr_depth`, a
 //! `perspective` (or `thinlens`) sensor with `fov_axis="y"`, an `independent` sampler with
@@ -127,8 +128,17 @@ pub fn export(scene: &Scene, source: &str, mesh_prefix: &str, xml_dir: &Path) ->
     }
     lights(xml, scene, &mut errors);
     objects(&mut out, scene, mesh_prefix, xml_dir, &mut errors);
+    let passes_through = out.xml.contains("type=\"thindielectric\"") || out.xml.contains("type=\"null\"");
+    if integrator == "volpath" && passes_through {
+        errors.push(Diagnostic::new(
+            scene.render_key("integrator"),
+            "a scene with absorbing interiors needs Mitsuba's `volpath`, whose shadow rays pass through thin \
+             dielectrics and alpha-blended surfaces, where Prism's path integrator (and Mitsuba's `path`) \
+             stops them: such a scene would render brighter in Mitsuba",
+        ));
+    }
     let lit_around = scene.environment.environment.is_some() || background.max_element() > 0.0;
-    if !lit_around && (out.xml.contains("type=\"thindielectric\"") || out.xml.contains("type=\"null\"")) {
+    if !lit_around && passes_through {
         out.xml.push_str(&dark_environment(out.xml.contains("<emitter")));
     }
     out.xml.push_str("</scene>\n");
@@ -1177,6 +1187,7 @@ mod tests {
     /// An absorbing interior is a `homogeneous` medium inside the shape that absorbs what the
     /// path integrator absorbs (sigma_t = absorption, albedo 0), rendered by `volpath`; a scene
     /// without one keeps `path`, and an interior behind no refracting surface is not written.
+    /// Beside a thin dielectric the export is an error: `volpath`'s shadow rays pass through it.
     #[test]
     fn absorbing_interiors_are_media_under_volpath() {
         let glass = export_text(
@@ -1189,6 +1200,13 @@ mod tests {
         assert!(glass.xml.contains("<medium type=\"homogeneous\" name=\"interior\">"), "{}", glass.xml);
         assert!(glass.xml.contains("name=\"sigma_t\" value=\"1.0, 0.0, 0.0\""), "{}", glass.xml);
         assert!(glass.xml.contains(&format!("name=\"scale\" value=\"{}\"", number(sigma))), "{}", glass.xml);
+        let beside_a_pane = export_text(
+            "[[object]]\nshape = \"sphere\"\nmaterial = { bsdf = { type = \"dielectric\" }, \
+             attenuation_color = 0.5, attenuation_distance = 2.0 }\n\
+             [[object]]\nshape = \"rectangle\"\nmaterial = { bsdf = { type = \"thin_dielectric\" } }\n",
+        );
+        let error = beside_a_pane.unwrap_err().to_string();
+        assert!(error.contains("volpath") && error.contains("thin"), "{error}");
         let sheet = export_text(
             "[[object]]\nshape = \"sphere\"\nmaterial = { bsdf = { type = \"thin_dielectric\" }, \
              attenuation_color = 0.5, attenuation_distance = 2.0 }\n",
