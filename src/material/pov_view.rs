@@ -345,7 +345,9 @@ fn pov_interior(interior: &Interior) -> Interior {
         return *interior;
     }
     Interior {
-        fade_distance: 1.0 / strongest,
+        // POV-Ray takes a fade distance within its EPSILON (1e-10) of 0 as no fade at all; a
+        // medium this dense is black over any distance the scene resolves anyway.
+        fade_distance: (1.0 / strongest).max(1e-9),
         fade_power: 1000.0,
         fade_color: Rgb(DVec3::ONE - interior.absorption.0 / strongest),
         ..*interior
