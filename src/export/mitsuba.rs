@@ -1093,7 +1093,7 @@ fn bsdf_model_xml(bsdf: &Bsdf, tint: DVec3) -> Result<String, Problem> {
                 number(*eta)
             )
         }
-        Bsdf::MetallicRoughness { .. } => {
+        Bsdf::MetallicRoughness(_) => {
             return Err(("pbr", "glTF metallic-roughness is exported only as a whole material".into()));
         }
     })

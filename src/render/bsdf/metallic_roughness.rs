@@ -31,18 +31,28 @@ use super::fresnel::{reflect_about, schlick};
 use super::microfacet::Ggx;
 use super::{BsdfSample, cosine_hemisphere};
 
-/// The parameters of [`super::Bsdf::MetallicRoughness`].
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct MetallicRoughness {
-    pub(crate) base_color: DVec3,
-    pub(crate) metallic: f64,
-    pub(crate) alpha: f64,
-    pub(crate) ior: f64,
-    pub(crate) specular: f64,
-    pub(crate) specular_color: DVec3,
-    pub(crate) transmission: f64,
-    pub(crate) clearcoat: f64,
-    pub(crate) clearcoat_alpha: f64,
+/// The parameters of [`super::Bsdf::MetallicRoughness`], and the model itself.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MetallicRoughnessBsdf {
+    /// Base colour: the diffuse albedo of the dielectric and F0 of the metal.
+    pub base_color: DVec3,
+    /// Metalness in [0, 1]: the blend from the dielectric to the metal BRDF.
+    pub metallic: f64,
+    /// GGX roughness, `roughness^2`.
+    pub alpha: f64,
+    /// IOR of the dielectric part (KHR_materials_ior; 1.5 by default).
+    pub ior: f64,
+    /// Strength of the dielectric's specular reflection in [0, 1] (KHR_materials_specular;
+    /// 1 by default).
+    pub specular: f64,
+    /// Colour of the dielectric's F0 (KHR_materials_specular; white by default).
+    pub specular_color: DVec3,
+    /// Transmission factor in [0, 1] (KHR_materials_transmission).
+    pub transmission: f64,
+    /// Clear coat factor in [0, 1] (KHR_materials_clearcoat).
+    pub clearcoat: f64,
+    /// GGX roughness of the clear coat, `clearcoatRoughness^2`.
+    pub clearcoat_alpha: f64,
 }
 
 /// Lobe selection probabilities for one `wo`.
@@ -62,7 +72,7 @@ fn mean(c: DVec3) -> f64 {
     (c.x + c.y + c.z) / 3.0
 }
 
-impl MetallicRoughness {
+impl MetallicRoughnessBsdf {
     fn f0(&self) -> f64 {
         ((self.ior - 1.0) / (self.ior + 1.0)).powi(2)
     }
@@ -174,13 +184,14 @@ impl MetallicRoughness {
 
 #[cfg(test)]
 mod tests {
+    use super::MetallicRoughnessBsdf;
     use crate::render::bsdf::Bsdf;
     use crate::render::bsdf::chi2::{self, Rng};
     use crate::render::bsdf::fresnel::schlick;
     use glam::DVec3;
 
     fn gltf(base_color: DVec3, metallic: f64, alpha: f64, transmission: f64, clearcoat: f64) -> Bsdf {
-        Bsdf::MetallicRoughness {
+        Bsdf::MetallicRoughness(MetallicRoughnessBsdf {
             base_color,
             metallic,
             alpha,
@@ -190,7 +201,7 @@ mod tests {
             transmission,
             clearcoat,
             clearcoat_alpha: 0.1,
-        }
+        })
     }
 
     /// Parameter sets: dielectric, half-metal with clear coat, transmissive with clear coat,
@@ -198,7 +209,7 @@ mod tests {
     fn combos(alpha: f64) -> [(Bsdf, &'static str); 4] {
         let colour = DVec3::new(0.8, 0.5, 0.2);
         let mut specular = gltf(colour, 0.0, alpha, 0.5, 0.0);
-        if let Bsdf::MetallicRoughness { specular: s, specular_color, .. } = &mut specular {
+        if let Bsdf::MetallicRoughness(MetallicRoughnessBsdf { specular: s, specular_color, .. }) = &mut specular {
             (*s, *specular_color) = (0.4, DVec3::new(1.5, 0.6, 0.2));
         }
         [
@@ -215,16 +226,18 @@ mod tests {
     #[test]
     fn specular_strength_and_colour_shape_the_dielectric_fresnel() {
         let colour = DVec3::new(0.8, 0.5, 0.2);
-        let with = |specular: f64, specular_color: DVec3| Bsdf::MetallicRoughness {
-            base_color: colour,
-            metallic: 0.0,
-            alpha: 0.3,
-            ior: 1.5,
-            specular,
-            specular_color,
-            transmission: 0.0,
-            clearcoat: 0.0,
-            clearcoat_alpha: 0.1,
+        let with = |specular: f64, specular_color: DVec3| {
+            Bsdf::MetallicRoughness(MetallicRoughnessBsdf {
+                base_color: colour,
+                metallic: 0.0,
+                alpha: 0.3,
+                ior: 1.5,
+                specular,
+                specular_color,
+                transmission: 0.0,
+                clearcoat: 0.0,
+                clearcoat_alpha: 0.1,
+            })
         };
         let wo = chi2::wo_at(0.8);
         let mirror = DVec3::new(-wo.x, -wo.y, wo.z);
@@ -268,7 +281,7 @@ mod tests {
                 for transmission in [0.0, 1.0] {
                     for clearcoat in [0.0, 1.0] {
                         for ior in [1.0, 1.5, 2.5] {
-                            let bsdf = Bsdf::MetallicRoughness {
+                            let bsdf = Bsdf::MetallicRoughness(MetallicRoughnessBsdf {
                                 base_color: DVec3::ONE,
                                 metallic,
                                 alpha,
@@ -278,7 +291,7 @@ mod tests {
                                 transmission,
                                 clearcoat,
                                 clearcoat_alpha: 0.2,
-                            };
+                            });
                             let conserving = metallic == 1.0 || (transmission == 1.0 && metallic == 0.0);
                             for cos in chi2::COS_WO {
                                 let (mean, sigma) = chi2::directional_albedo(&bsdf, chi2::wo_at(cos), 20_000, &mut rng);

@@ -29,6 +29,7 @@ use dielectric::Tints;
 use glam::{DVec2, DVec3};
 
 pub use fresnel::{fresnel_conductor, fresnel_dielectric};
+pub use metallic_roughness::MetallicRoughnessBsdf;
 
 /// An orthonormal shading frame; local z is the shading normal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -138,27 +139,7 @@ pub enum Bsdf {
     ///
     /// The roughnesses are clamped to the GGX minimum 1e-4 (no delta lobes). The clear coat's
     /// Fresnel weight is the extension's `fresnel_coat`, Schlick at N·V.
-    MetallicRoughness {
-        /// Base colour: the diffuse albedo of the dielectric and F0 of the metal.
-        base_color: DVec3,
-        /// Metalness in [0, 1]: the blend from the dielectric to the metal BRDF.
-        metallic: f64,
-        /// GGX roughness, `roughness^2`.
-        alpha: f64,
-        /// IOR of the dielectric part (KHR_materials_ior; 1.5 by default).
-        ior: f64,
-        /// Strength of the dielectric's specular reflection in [0, 1] (KHR_materials_specular;
-        /// 1 by default).
-        specular: f64,
-        /// Colour of the dielectric's F0 (KHR_materials_specular; white by default).
-        specular_color: DVec3,
-        /// Transmission factor in [0, 1] (KHR_materials_transmission).
-        transmission: f64,
-        /// Clear coat factor in [0, 1] (KHR_materials_clearcoat).
-        clearcoat: f64,
-        /// GGX roughness of the clear coat, `clearcoatRoughness^2`.
-        clearcoat_alpha: f64,
-    },
+    MetallicRoughness(MetallicRoughnessBsdf),
 }
 
 /// What `Bsdf::sample` returns.
@@ -199,7 +180,7 @@ impl Bsdf {
             }
             Bsdf::ThinDielectric { .. } => DVec3::ZERO,
             Bsdf::Plastic { diffuse, eta, alpha } => plastic::eval(diffuse, eta, alpha, wo, wi),
-            Bsdf::MetallicRoughness { .. } => self.metallic_roughness().map_or(DVec3::ZERO, |m| m.eval(wo, wi)),
+            Bsdf::MetallicRoughness(m) => m.eval(wo, wi),
         }
     }
 
@@ -211,7 +192,7 @@ impl Bsdf {
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::pdf(eta, alpha, wo, wi),
             Bsdf::ThinDielectric { .. } => 0.0,
             Bsdf::Plastic { diffuse, eta, alpha } => plastic::pdf(diffuse, eta, alpha, wo, wi),
-            Bsdf::MetallicRoughness { .. } => self.metallic_roughness().map_or(0.0, |m| m.pdf(wo, wi)),
+            Bsdf::MetallicRoughness(m) => m.pdf(wo, wi),
         }
     }
 
@@ -228,14 +209,14 @@ impl Bsdf {
                 dielectric::sample_thin(eta, Tints { reflect: reflect_tint, transmit: transmit_tint }, wo, u_lobe)
             }
             Bsdf::Plastic { diffuse, eta, alpha } => plastic::sample(diffuse, eta, alpha, wo, u_lobe, u),
-            Bsdf::MetallicRoughness { .. } => self.metallic_roughness()?.sample(wo, u_lobe, u),
+            Bsdf::MetallicRoughness(m) => m.sample(wo, u_lobe, u),
         }
     }
 
     /// True when every lobe is a delta lobe (no light sampling helps).
     pub fn is_delta(&self) -> bool {
         match *self {
-            Bsdf::Diffuse { .. } | Bsdf::Plastic { .. } | Bsdf::MetallicRoughness { .. } => false,
+            Bsdf::Diffuse { .. } | Bsdf::Plastic { .. } | Bsdf::MetallicRoughness(_) => false,
             Bsdf::Conductor { alpha, .. } => alpha == 0.0,
             Bsdf::Dielectric { eta, alpha, .. } => dielectric::is_smooth(eta, alpha),
             Bsdf::ThinDielectric { .. } => true,
@@ -256,37 +237,10 @@ impl Bsdf {
             Bsdf::Conductor { eta, k, tint, .. } => fresnel_conductor(1.0, eta, k) * tint,
             Bsdf::Dielectric { .. } | Bsdf::ThinDielectric { .. } => DVec3::ONE,
             Bsdf::Plastic { diffuse, .. } => diffuse,
-            Bsdf::MetallicRoughness { base_color, .. } => base_color,
+            Bsdf::MetallicRoughness(m) => m.base_color,
         };
         let albedo = albedo.clamp(DVec3::ZERO, DVec3::ONE);
         if albedo.is_finite() { albedo } else { DVec3::ZERO }
-    }
-
-    fn metallic_roughness(&self) -> Option<metallic_roughness::MetallicRoughness> {
-        match *self {
-            Bsdf::MetallicRoughness {
-                base_color,
-                metallic,
-                alpha,
-                ior,
-                specular,
-                specular_color,
-                transmission,
-                clearcoat,
-                clearcoat_alpha,
-            } => Some(metallic_roughness::MetallicRoughness {
-                base_color,
-                metallic,
-                alpha,
-                ior,
-                specular,
-                specular_color,
-                transmission,
-                clearcoat,
-                clearcoat_alpha,
-            }),
-            _ => None,
-        }
     }
 }
 
@@ -334,7 +288,7 @@ mod tests {
                 bsdfs.push(Bsdf::Dielectric { eta, alpha, reflect_tint: DVec3::ONE, transmit_tint: DVec3::ONE });
                 bsdfs.push(Bsdf::Plastic { diffuse: DVec3::splat(0.5), eta, alpha });
                 for (metallic, transmission, clearcoat) in [(0.0, 0.0, 0.0), (1.0, 0.0, 1.0), (0.0, 1.0, 1.0)] {
-                    bsdfs.push(Bsdf::MetallicRoughness {
+                    bsdfs.push(Bsdf::MetallicRoughness(MetallicRoughnessBsdf {
                         base_color: DVec3::new(1.0, 0.5, 0.0),
                         metallic,
                         alpha,
@@ -344,7 +298,7 @@ mod tests {
                         transmission,
                         clearcoat,
                         clearcoat_alpha: alpha,
-                    });
+                    }));
                 }
             }
             bsdfs.push(Bsdf::Plastic { diffuse: DVec3::ZERO, eta: 1.5, alpha });

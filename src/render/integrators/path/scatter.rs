@@ -26,7 +26,7 @@ use glam::{DVec2, DVec3};
 use crate::color::Rgb;
 use crate::material::normal::NormalField;
 use crate::material::{AlphaMode, Finish, Layer, Material, MetallicRoughness, Mtl, Physical, Scattering, SurfaceModel};
-use crate::render::bsdf::{Bsdf, BsdfSample};
+use crate::render::bsdf::{Bsdf, BsdfSample, MetallicRoughnessBsdf};
 
 /// At most this many lobes at one hit.
 pub const MAX_LOBES: usize = 3;
@@ -440,7 +440,7 @@ fn layered_scatter(layers: &[Layer], point: &SurfacePoint, ior: f64) -> Shaded {
 
 fn metallic_roughness_scatter(m: &MetallicRoughness, base_color: DVec3, uv: DVec2) -> Scatter {
     let at = m.at(uv, 0.0);
-    let bsdf = Bsdf::MetallicRoughness {
+    let bsdf = Bsdf::MetallicRoughness(MetallicRoughnessBsdf {
         base_color: base_color.clamp(DVec3::ZERO, DVec3::ONE),
         metallic: at.metallic.clamp(0.0, 1.0),
         alpha: (at.roughness * at.roughness).clamp(0.0, 1.0),
@@ -450,7 +450,7 @@ fn metallic_roughness_scatter(m: &MetallicRoughness, base_color: DVec3, uv: DVec
         transmission: at.transmission.clamp(0.0, 1.0),
         clearcoat: at.clearcoat.clamp(0.0, 1.0),
         clearcoat_alpha: (at.clearcoat_roughness * at.clearcoat_roughness).clamp(0.0, 1.0),
-    };
+    });
     let coverage = match m.alpha_mode {
         AlphaMode::Blend => m.alpha.clamp(0.0, 1.0),
         AlphaMode::Opaque | AlphaMode::Mask { .. } => 1.0,
