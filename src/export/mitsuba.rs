@@ -1,6 +1,6 @@
 //! `prism export mitsuba`: a scene as Mitsuba 3 XML (`version="3.0.0"`) that renders, with
 //! Mitsuba's `path` integrator (`volpath` where interiors absorb: their media are
-//! `homogeneous`, see [`interior_xml`]), the image Prism's `path` integrator renders.
+//! `homogeneous`, see `interior_xml`), the image Prism's `path` integrator renders.
 //!
 //! Every default is written out: the `path` integrator's `max_depth` and `rr_depth`, a
 //! `perspective` (or `thinlens`) sensor with `fov_axis="y"`, an `independent` sampler with
